@@ -1,0 +1,3 @@
+fn main() {
+    println!("jointlin harness: under construction");
+}

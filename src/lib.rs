@@ -1,0 +1,1 @@
+//! jointlin: placeholder while the core is written.
