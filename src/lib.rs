@@ -1,1 +1,20 @@
-//! jointlin: placeholder while the core is written.
+//! # jointlin
+//!
+//! Frequency-domain linearization of bolted and clamped joint contact, after Wang (KIT 2012):
+//! per contact point and vibration amplitude, the Hertz–Mindlin–Coulomb hysteresis is
+//! replaced by an equivalent spring k* (first-order harmonic balance, (3.8), (4.3)) and an
+//! equivalent damper d* (energy balance, (3.14)).
+//!
+//! Pipeline, one contact point at a time:
+//! 1. [`law`]: pure contact laws (Hertz normal, Mindlin or Jenkins tangential).
+//! 2. [`hysteresis`]: the stateful time-domain point (slip → force, tangent, dissipation).
+//! 3. [`linearize`]: amplitude A, frequency ω → k*, d*, η, energy per cycle, peak force.
+//! 4. [`iterate`]: amplitude consistency for one point or a small dense system (4.2.3).
+//! 5. [`store`]: the UEXTERNALDB-side iteration store over frequency increments (4.3.2).
+//! 6. `ffi`: the C ABI (`jointlin_*`), the only unsafe code.
+
+pub mod error;
+pub mod hysteresis;
+pub mod law;
+
+pub use error::Error;

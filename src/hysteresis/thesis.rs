@@ -1,0 +1,129 @@
+//! The thesis's unloading rule (§2.3.3, phases 1–3; model.md §4).
+
+use super::{sign, StepResult};
+use crate::error::Error;
+use crate::law::Backbone;
+
+/// State of the thesis rule. Phase 1/2: on the virgin curve from `origin` in direction
+/// `dir`. Phase 3 (`unloading`): on the elastic line through the reversal point.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ThesisState {
+    pub slip: f64,
+    pub force: f64,
+    /// Slip where the current virgin branch started (the last zero-force point).
+    pub origin: f64,
+    /// Direction of the current virgin branch: +1, −1, or 0 before any motion.
+    pub dir: f64,
+    /// Phase 3: elastic unloading from (rev_slip, rev_force).
+    pub unloading: bool,
+    pub rev_slip: f64,
+    pub rev_force: f64,
+}
+
+impl ThesisState {
+    pub fn virgin(origin: f64) -> Self {
+        Self {
+            slip: origin,
+            force: 0.0,
+            origin,
+            dir: 0.0,
+            unloading: false,
+            rev_slip: origin,
+            rev_force: 0.0,
+        }
+    }
+
+    pub(super) fn write(&self, out: &mut [f64]) {
+        out[..7].copy_from_slice(&[
+            self.slip,
+            self.force,
+            self.origin,
+            self.dir,
+            f64::from(u8::from(self.unloading)),
+            self.rev_slip,
+            self.rev_force,
+        ]);
+    }
+
+    pub(super) fn read(s: &[f64]) -> Result<Self, Error> {
+        if ![-1.0, 0.0, 1.0].contains(&s[3]) || ![0.0, 1.0].contains(&s[4]) {
+            return Err(Error::OutOfRange("stored thesis-rule state is corrupt"));
+        }
+        Ok(Self {
+            slip: s[0],
+            force: s[1],
+            origin: s[2],
+            dir: s[3],
+            unloading: s[4] == 1.0,
+            rev_slip: s[5],
+            rev_force: s[6],
+        })
+    }
+
+    /// Walks from `self.slip` to `target` through as many phase changes as it takes.
+    pub(super) fn advance(&mut self, b: &Backbone, target: f64) -> StepResult {
+        let k0 = b.k_t0();
+        let limit = b.friction_limit();
+        let motion = sign(target - self.slip);
+        let mut dissipated = 0.0;
+        if motion == 0.0 {
+            return StepResult {
+                force: self.force,
+                tangent: self.tangent(b),
+                dissipated,
+            };
+        }
+        if self.dir == 0.0 {
+            self.dir = motion; // first motion starts phase 1 in its direction
+        }
+        if !self.unloading && motion != self.dir {
+            // Reversal on the virgin curve: phase 3 begins.
+            self.unloading = true;
+            self.rev_slip = self.slip;
+            self.rev_force = self.force;
+        }
+        if self.unloading {
+            // Elastic line F = F_r + k_T0 (δ − δ_r) (2.38); leaves it at F = 0 or back at δ_r.
+            let zero_slip = self.rev_slip - self.rev_force / k0;
+            let back_past_reversal = self.dir * (target - self.rev_slip) > 0.0;
+            let past_zero = self.dir * (target - zero_slip) < 0.0;
+            if back_past_reversal {
+                self.unloading = false; // rejoins the virgin branch it left
+                self.slip = self.rev_slip;
+            } else if past_zero {
+                self.unloading = false; // force changed sign: phase 1 in the other direction
+                self.origin = zero_slip;
+                self.dir = -self.dir;
+                self.slip = zero_slip;
+            } else {
+                self.slip = target;
+                self.force = (self.rev_force + k0 * (target - self.rev_slip)).clamp(-limit, limit);
+                return StepResult {
+                    force: self.force,
+                    tangent: k0,
+                    dissipated,
+                };
+            }
+        }
+        // Phases 1 and 2 on the virgin curve from `origin`, (2.49) then (2.39).
+        let s_from = (self.dir * (self.slip - self.origin)).max(0.0);
+        let s_to = (self.dir * (target - self.origin)).max(0.0);
+        dissipated +=
+            (b.elastic_split_dissipation(s_to) - b.elastic_split_dissipation(s_from)).max(0.0);
+        self.slip = target;
+        self.force = self.dir * b.force(s_to);
+        StepResult {
+            force: self.force,
+            tangent: self.tangent(b),
+            dissipated,
+        }
+    }
+
+    fn tangent(&self, b: &Backbone) -> f64 {
+        if self.unloading || self.dir == 0.0 {
+            b.k_t0()
+        } else {
+            b.tangent((self.dir * (self.slip - self.origin)).max(0.0))
+        }
+    }
+}
