@@ -1,0 +1,563 @@
+//! Structured 8-node hexahedral meshes of axis-aligned boxes, bodies stacked in z,
+//! and the [`Model`] that holds nodes, elements, materials, fixed DOFs and nodal loads.
+//!
+//! Numbering inside a body with divisions (nx, ny, nz): grid node (i, j, k) is
+//! `first_node + i + (nx+1)·(j + (ny+1)·k)`, element (i, j, k) is
+//! `first_element + i + nx·(j + ny·k)`. Every body owns its nodes: two stacked bodies
+//! have **coincident but distinct** nodes on their interface (to be tied or put in
+//! contact by node-pair blocks, never merged).
+//!
+//! Element node order is Abaqus C3D8's: corners at (ξ, η, ζ) =
+//! (−−−), (+−−), (++−), (−+−), (−−+), (+−+), (+++), (−++).
+
+use thiserror::Error;
+
+/// Errors in building a mesh or model.
+#[derive(Debug, Error, PartialEq)]
+pub enum MeshError {
+    #[error("box size must be positive and finite, got {0:?}")]
+    BadSize([f64; 3]),
+    #[error("box divisions must be at least 1, got {0:?}")]
+    BadDivisions([usize; 3]),
+    #[error("material {0} does not exist")]
+    UnknownMaterial(usize),
+    #[error("invalid material: E = {e} (must be > 0), nu = {nu} (must be in (-1, 0.5)), rho = {rho} (must be >= 0)")]
+    BadMaterial { e: f64, nu: f64, rho: f64 },
+    #[error("body {0} does not exist")]
+    UnknownBody(usize),
+    #[error("node {0} does not exist")]
+    UnknownNode(usize),
+}
+
+/// Linear isotropic elastic material. Units: E in force/length² (MPa in N-mm-t),
+/// ρ in mass/length³ (t/mm³ in N-mm-t); ν dimensionless.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Material {
+    pub youngs_modulus: f64,
+    pub poisson_ratio: f64,
+    pub density: f64,
+}
+
+impl Material {
+    /// Checks E > 0, −1 < ν < 0.5, ρ ≥ 0 (all finite).
+    pub fn new(youngs_modulus: f64, poisson_ratio: f64, density: f64) -> Result<Self, MeshError> {
+        let ok = youngs_modulus.is_finite()
+            && youngs_modulus > 0.0
+            && poisson_ratio > -1.0
+            && poisson_ratio < 0.5
+            && density.is_finite()
+            && density >= 0.0;
+        if !ok {
+            return Err(MeshError::BadMaterial {
+                e: youngs_modulus,
+                nu: poisson_ratio,
+                rho: density,
+            });
+        }
+        Ok(Material {
+            youngs_modulus,
+            poisson_ratio,
+            density,
+        })
+    }
+
+    /// Shear modulus G = E / (2(1+ν)).
+    pub fn shear_modulus(&self) -> f64 {
+        self.youngs_modulus / (2.0 * (1.0 + self.poisson_ratio))
+    }
+}
+
+/// An axis-aligned box occupying `origin .. origin + size`, divided into
+/// `divisions` equal hex8 elements per axis, of material index `material`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BoxSpec {
+    pub origin: [f64; 3],
+    pub size: [f64; 3],
+    pub divisions: [usize; 3],
+    pub material: usize,
+}
+
+/// A face of an axis-aligned box, named by its outward normal.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Face {
+    XMin,
+    XMax,
+    YMin,
+    YMax,
+    ZMin,
+    ZMax,
+}
+
+impl Face {
+    /// Axis (0, 1, 2) the face is normal to.
+    pub fn axis(self) -> usize {
+        match self {
+            Face::XMin | Face::XMax => 0,
+            Face::YMin | Face::YMax => 1,
+            Face::ZMin | Face::ZMax => 2,
+        }
+    }
+
+    /// Unit outward normal.
+    pub fn outward_normal(self) -> [f64; 3] {
+        let mut n = [0.0; 3];
+        n[self.axis()] = if self.is_max() { 1.0 } else { -1.0 };
+        n
+    }
+
+    fn is_max(self) -> bool {
+        matches!(self, Face::XMax | Face::YMax | Face::ZMax)
+    }
+
+    /// Local corner indices (C3D8 order) of this face of an element, counter-clockwise
+    /// seen from outside, so (p1−p0)×(p3−p0) points outward.
+    pub fn element_corners(self) -> [usize; 4] {
+        match self {
+            Face::XMin => [0, 4, 7, 3],
+            Face::XMax => [1, 2, 6, 5],
+            Face::YMin => [0, 1, 5, 4],
+            Face::YMax => [2, 3, 7, 6],
+            Face::ZMin => [0, 3, 2, 1],
+            Face::ZMax => [4, 5, 6, 7],
+        }
+    }
+}
+
+/// One body (box) of a [`Model`]: where its nodes and elements start.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Body {
+    pub spec: BoxSpec,
+    pub first_node: usize,
+    pub first_element: usize,
+}
+
+impl Body {
+    /// Number of nodes (nx+1)(ny+1)(nz+1).
+    pub fn n_nodes(&self) -> usize {
+        let [nx, ny, nz] = self.spec.divisions;
+        (nx + 1) * (ny + 1) * (nz + 1)
+    }
+
+    /// Number of elements nx·ny·nz.
+    pub fn n_elements(&self) -> usize {
+        let [nx, ny, nz] = self.spec.divisions;
+        nx * ny * nz
+    }
+
+    /// Global node id of grid node (i, j, k), 0 ≤ i ≤ nx etc.
+    pub fn node(&self, i: usize, j: usize, k: usize) -> usize {
+        let [nx, ny, _] = self.spec.divisions;
+        self.first_node + i + (nx + 1) * (j + (ny + 1) * k)
+    }
+
+    /// Global element id of grid element (i, j, k), 0 ≤ i < nx etc.
+    pub fn element(&self, i: usize, j: usize, k: usize) -> usize {
+        let [nx, ny, _] = self.spec.divisions;
+        self.first_element + i + nx * (j + ny * k)
+    }
+
+    /// Global node ids on a face, ordered with the lower of the two in-face axes
+    /// running fastest.
+    pub fn face_nodes(&self, face: Face) -> Vec<usize> {
+        let [nx, ny, nz] = self.spec.divisions;
+        let fixed = if face.is_max() {
+            self.spec.divisions[face.axis()]
+        } else {
+            0
+        };
+        let mut out = Vec::new();
+        match face.axis() {
+            0 => {
+                for k in 0..=nz {
+                    for j in 0..=ny {
+                        out.push(self.node(fixed, j, k));
+                    }
+                }
+            }
+            1 => {
+                for k in 0..=nz {
+                    for i in 0..=nx {
+                        out.push(self.node(i, fixed, k));
+                    }
+                }
+            }
+            _ => {
+                for j in 0..=ny {
+                    for i in 0..=nx {
+                        out.push(self.node(i, j, fixed));
+                    }
+                }
+            }
+        }
+        out
+    }
+
+    /// The element faces lying on a body face: 4 global node ids each,
+    /// counter-clockwise seen from outside (for `fe::surface`).
+    pub fn face_quads(&self, face: Face, elements: &[Element]) -> Vec<[usize; 4]> {
+        let [nx, ny, nz] = self.spec.divisions;
+        let axis = face.axis();
+        let fixed = if face.is_max() {
+            self.spec.divisions[axis] - 1
+        } else {
+            0
+        };
+        let corners = face.element_corners();
+        let mut out = Vec::new();
+        for k in 0..nz {
+            for j in 0..ny {
+                for i in 0..nx {
+                    let ijk = [i, j, k];
+                    if ijk[axis] != fixed {
+                        continue;
+                    }
+                    let e = self.element(i, j, k);
+                    let en = &elements[e].nodes;
+                    out.push(corners.map(|c| en[c]));
+                }
+            }
+        }
+        out
+    }
+}
+
+/// A hex8 element: 8 global node ids (C3D8 order) and a material index.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Element {
+    pub nodes: [usize; 8],
+    pub material: usize,
+}
+
+/// One layer of a z-stack: thickness (length), divisions through it, material index.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Layer {
+    pub thickness: f64,
+    pub nz: usize,
+    pub material: usize,
+}
+
+/// All bodies' nodes (3 DOF each: full DOF `3n + c`), elements, materials, fixed DOFs
+/// and nodal loads (force units, in global axes).
+#[derive(Debug, Clone, Default)]
+pub struct Model {
+    pub nodes: Vec<[f64; 3]>,
+    pub elements: Vec<Element>,
+    pub materials: Vec<Material>,
+    pub bodies: Vec<Body>,
+    /// `fixed[3n + c]`: DOF held at zero displacement.
+    pub fixed: Vec<bool>,
+    /// `loads[3n + c]`: nodal force (static amplitude or harmonic amplitude).
+    pub loads: Vec<f64>,
+}
+
+impl Model {
+    /// An empty model with these materials.
+    pub fn new(materials: Vec<Material>) -> Self {
+        Model {
+            materials,
+            ..Default::default()
+        }
+    }
+
+    /// Total number of DOFs, 3 per node.
+    pub fn n_dofs(&self) -> usize {
+        3 * self.nodes.len()
+    }
+
+    /// Meshes a box as a new body with its own nodes; returns the body index.
+    pub fn add_box(&mut self, spec: BoxSpec) -> Result<usize, MeshError> {
+        if spec.size.iter().any(|&s| !(s.is_finite() && s > 0.0))
+            || spec.origin.iter().any(|o| !o.is_finite())
+        {
+            return Err(MeshError::BadSize(spec.size));
+        }
+        if spec.divisions.contains(&0) {
+            return Err(MeshError::BadDivisions(spec.divisions));
+        }
+        if spec.material >= self.materials.len() {
+            return Err(MeshError::UnknownMaterial(spec.material));
+        }
+        let body = Body {
+            spec,
+            first_node: self.nodes.len(),
+            first_element: self.elements.len(),
+        };
+        let [nx, ny, nz] = spec.divisions;
+        let h = [0, 1, 2].map(|a| spec.size[a] / spec.divisions[a] as f64);
+        for k in 0..=nz {
+            for j in 0..=ny {
+                for i in 0..=nx {
+                    // Last grid line placed exactly at origin + size (no round-off drift),
+                    // so stacked bodies' interface nodes coincide bit for bit.
+                    let coord = |a: usize, idx: usize| {
+                        if idx == spec.divisions[a] {
+                            spec.origin[a] + spec.size[a]
+                        } else {
+                            spec.origin[a] + idx as f64 * h[a]
+                        }
+                    };
+                    self.nodes.push([coord(0, i), coord(1, j), coord(2, k)]);
+                }
+            }
+        }
+        for k in 0..nz {
+            for j in 0..ny {
+                for i in 0..nx {
+                    let n = |di: usize, dj: usize, dk: usize| body.node(i + di, j + dj, k + dk);
+                    self.elements.push(Element {
+                        nodes: [
+                            n(0, 0, 0),
+                            n(1, 0, 0),
+                            n(1, 1, 0),
+                            n(0, 1, 0),
+                            n(0, 0, 1),
+                            n(1, 0, 1),
+                            n(1, 1, 1),
+                            n(0, 1, 1),
+                        ],
+                        material: spec.material,
+                    });
+                }
+            }
+        }
+        self.fixed.resize(self.n_dofs(), false);
+        self.loads.resize(self.n_dofs(), 0.0);
+        self.bodies.push(body);
+        Ok(self.bodies.len() - 1)
+    }
+
+    /// Stacks boxes of common footprint `lx × ly` (divided `nx × ny`) in +z from
+    /// `origin`, one body per layer; returns the body indices bottom to top.
+    /// Interface nodes of neighbouring layers coincide exactly but stay distinct.
+    pub fn add_stack(
+        &mut self,
+        origin: [f64; 3],
+        footprint: [f64; 2],
+        divisions: [usize; 2],
+        layers: &[Layer],
+    ) -> Result<Vec<usize>, MeshError> {
+        let mut z = origin[2];
+        let mut ids = Vec::with_capacity(layers.len());
+        for layer in layers {
+            let id = self.add_box(BoxSpec {
+                origin: [origin[0], origin[1], z],
+                size: [footprint[0], footprint[1], layer.thickness],
+                divisions: [divisions[0], divisions[1], layer.nz],
+                material: layer.material,
+            })?;
+            ids.push(id);
+            // The next layer starts exactly at this layer's top grid line.
+            let b = self.bodies[id];
+            z = self.nodes[b.first_node + b.n_nodes() - 1][2];
+        }
+        Ok(ids)
+    }
+
+    /// Body by index.
+    pub fn body(&self, id: usize) -> Result<&Body, MeshError> {
+        self.bodies.get(id).ok_or(MeshError::UnknownBody(id))
+    }
+
+    /// Node ids whose coordinates satisfy `pred`.
+    pub fn nodes_where(&self, pred: impl Fn([f64; 3]) -> bool) -> Vec<usize> {
+        (0..self.nodes.len())
+            .filter(|&n| pred(self.nodes[n]))
+            .collect()
+    }
+
+    /// Holds components `comps` (x, y, z) of these nodes at zero.
+    pub fn fix(&mut self, nodes: &[usize], comps: [bool; 3]) -> Result<(), MeshError> {
+        for &n in nodes {
+            if n >= self.nodes.len() {
+                return Err(MeshError::UnknownNode(n));
+            }
+            for c in 0..3 {
+                if comps[c] {
+                    self.fixed[3 * n + c] = true;
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Adds force `f` (global axes) to node `n`'s load.
+    pub fn add_nodal_load(&mut self, n: usize, f: [f64; 3]) -> Result<(), MeshError> {
+        if n >= self.nodes.len() {
+            return Err(MeshError::UnknownNode(n));
+        }
+        for c in 0..3 {
+            self.loads[3 * n + c] += f[c];
+        }
+        Ok(())
+    }
+
+    /// The 8 corner coordinates of element `e`.
+    pub fn element_coords(&self, e: usize) -> [[f64; 3]; 8] {
+        self.elements[e].nodes.map(|n| self.nodes[n])
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn steel() -> Material {
+        Material::new(210_000.0, 0.3, 7.85e-9).unwrap()
+    }
+
+    #[test]
+    fn box_counts_and_numbering() {
+        let mut m = Model::new(vec![steel()]);
+        let b = m
+            .add_box(BoxSpec {
+                origin: [1.0, 2.0, 3.0],
+                size: [4.0, 2.0, 1.0],
+                divisions: [4, 2, 1],
+                material: 0,
+            })
+            .unwrap();
+        let body = *m.body(b).unwrap();
+        assert_eq!(m.nodes.len(), 5 * 3 * 2);
+        assert_eq!(m.elements.len(), 8);
+        assert_eq!(m.fixed.len(), 90);
+        assert_eq!(m.nodes[body.node(0, 0, 0)], [1.0, 2.0, 3.0]);
+        assert_eq!(m.nodes[body.node(4, 2, 1)], [5.0, 4.0, 4.0]);
+        assert_eq!(m.nodes[body.node(1, 1, 0)], [2.0, 3.0, 3.0]);
+        // Element (1,0,0): corner 0 at grid (1,0,0), corner 6 at grid (2,1,1).
+        let e = &m.elements[body.element(1, 0, 0)];
+        assert_eq!(e.nodes[0], body.node(1, 0, 0));
+        assert_eq!(e.nodes[6], body.node(2, 1, 1));
+    }
+
+    #[test]
+    fn face_selection_matches_predicate() {
+        let mut m = Model::new(vec![steel()]);
+        let b = m
+            .add_box(BoxSpec {
+                origin: [0.0; 3],
+                size: [3.0, 2.0, 1.0],
+                divisions: [3, 2, 2],
+                material: 0,
+            })
+            .unwrap();
+        let body = *m.body(b).unwrap();
+        for (face, pred) in [
+            (
+                Face::XMin,
+                Box::new(|p: [f64; 3]| p[0] == 0.0) as Box<dyn Fn([f64; 3]) -> bool>,
+            ),
+            (Face::XMax, Box::new(|p: [f64; 3]| p[0] == 3.0)),
+            (Face::YMax, Box::new(|p: [f64; 3]| p[1] == 2.0)),
+            (Face::ZMin, Box::new(|p: [f64; 3]| p[2] == 0.0)),
+        ] {
+            let mut a = body.face_nodes(face);
+            a.sort();
+            assert_eq!(a, m.nodes_where(pred), "{face:?}");
+        }
+        // Face quads have outward normals and lie on the face.
+        for face in [
+            Face::XMin,
+            Face::XMax,
+            Face::YMin,
+            Face::YMax,
+            Face::ZMin,
+            Face::ZMax,
+        ] {
+            let quads = body.face_quads(face, &m.elements);
+            let n = face.outward_normal();
+            let [nx, ny, nz] = body.spec.divisions;
+            let expect = match face.axis() {
+                0 => ny * nz,
+                1 => nx * nz,
+                _ => nx * ny,
+            };
+            assert_eq!(quads.len(), expect);
+            for q in quads {
+                let p: Vec<[f64; 3]> = q.iter().map(|&i| m.nodes[i]).collect();
+                let a = [0, 1, 2].map(|c| p[1][c] - p[0][c]);
+                let b = [0, 1, 2].map(|c| p[3][c] - p[0][c]);
+                let cross = [
+                    a[1] * b[2] - a[2] * b[1],
+                    a[2] * b[0] - a[0] * b[2],
+                    a[0] * b[1] - a[1] * b[0],
+                ];
+                let dot: f64 = (0..3).map(|c| cross[c] * n[c]).sum();
+                assert!(dot > 0.0, "{face:?} quad not outward");
+            }
+        }
+    }
+
+    #[test]
+    fn stack_has_coincident_distinct_interface_nodes() {
+        let mut m = Model::new(vec![steel(), steel()]);
+        let ids = m
+            .add_stack(
+                [0.0, 0.0, 0.0],
+                [60.0, 10.0],
+                [6, 2],
+                &[
+                    Layer {
+                        thickness: 2.0,
+                        nz: 1,
+                        material: 0,
+                    },
+                    Layer {
+                        thickness: 1.0,
+                        nz: 1,
+                        material: 1,
+                    },
+                    Layer {
+                        thickness: 2.0,
+                        nz: 1,
+                        material: 0,
+                    },
+                ],
+            )
+            .unwrap();
+        assert_eq!(ids, vec![0, 1, 2]);
+        for w in ids.windows(2) {
+            let lo = m.bodies[w[0]].face_nodes(Face::ZMax);
+            let hi = m.bodies[w[1]].face_nodes(Face::ZMin);
+            assert_eq!(lo.len(), 7 * 3);
+            for (a, b) in lo.iter().zip(&hi) {
+                assert_ne!(a, b);
+                assert_eq!(m.nodes[*a], m.nodes[*b]);
+            }
+        }
+        let top = m.bodies[2].face_nodes(Face::ZMax);
+        assert!(top.iter().all(|&n| m.nodes[n][2] == 5.0));
+    }
+
+    #[test]
+    fn bad_input_is_an_error() {
+        let mut m = Model::new(vec![steel()]);
+        let spec = BoxSpec {
+            origin: [0.0; 3],
+            size: [1.0; 3],
+            divisions: [1; 3],
+            material: 0,
+        };
+        assert_eq!(
+            m.add_box(BoxSpec {
+                divisions: [1, 0, 1],
+                ..spec
+            }),
+            Err(MeshError::BadDivisions([1, 0, 1]))
+        );
+        assert_eq!(
+            m.add_box(BoxSpec {
+                material: 3,
+                ..spec
+            }),
+            Err(MeshError::UnknownMaterial(3))
+        );
+        assert!(m
+            .add_box(BoxSpec {
+                size: [1.0, -1.0, 1.0],
+                ..spec
+            })
+            .is_err());
+        assert!(Material::new(1.0, 0.5, 1.0).is_err());
+        assert!(m.fix(&[99], [true; 3]).is_err());
+    }
+}

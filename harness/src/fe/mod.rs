@@ -1,0 +1,12 @@
+//! Finite-element foundation: meshes, the hex8 element, sparse assembly, loads,
+//! node-pair blocks and contact pairs.
+//!
+//! DOF numbering: node `n`, component `c` (0 = x, 1 = y, 2 = z) is full DOF `3n + c`.
+
+pub mod assembly;
+pub mod contact_pairs;
+pub mod csc;
+pub mod hex8;
+pub mod mesh;
+pub mod pair_blocks;
+pub mod surface;

@@ -1,0 +1,396 @@
+//! Lowest eigenpairs of K φ = λ M φ (λ = ω², (rad/time)²) by shift-invert subspace
+//! iteration (Bathe, "Finite Element Procedures", §11.6), factorizing K − σM once with
+//! UMFPACK (real matrix through the complex interface).
+//!
+//! Per iteration, with q = min(max(2p, p+8), n) vectors X (n×q):
+//!   Y = M X;  X̄ = (K − σM)⁻¹ Y;  K̂ = X̄ᵀ Y (= X̄ᵀ(K − σM)X̄);  M̂ = X̄ᵀ M X̄;
+//!   K̂ Z = M̂ Z diag(μ) (dense, via Cholesky of M̂);  X ← X̄ Z;  λ = σ + μ.
+//! The Ritz pairs closest to σ converge first; iteration stops when the p wanted ones
+//! have relative residuals ‖Kφ − λMφ‖ / ‖(K − σM)φ‖ below `tol` (this norm stays
+//! meaningful for rigid modes, λ ≈ 0, found with σ < 0). Shapes come out M-orthonormal
+//! (φᵀMφ = 1).
+
+use nalgebra::{Complex, DMatrix, SymmetricEigen};
+use thiserror::Error;
+
+use crate::fe::assembly::same_pattern;
+use crate::fe::csc::Csc;
+use crate::rng::Rng;
+use crate::solve::umfpack::{Symbolic, UmfpackError};
+
+/// Errors of the eigensolver.
+#[derive(Debug, Error, Clone, PartialEq)]
+pub enum ModalError {
+    #[error(transparent)]
+    Umfpack(#[from] UmfpackError),
+    #[error("K and M are not on one sparsity pattern")]
+    PatternMismatch,
+    #[error("asked for {wanted} modes of a system with {n} DOFs")]
+    TooManyModes { wanted: usize, n: usize },
+    #[error("projected mass matrix not positive definite (M singular on the subspace?)")]
+    ProjectedMass,
+    #[error(
+        "no convergence after {iterations} iterations (largest relative residual {residual:.3e})"
+    )]
+    NotConverged { iterations: usize, residual: f64 },
+}
+
+/// Settings of [`lowest_modes`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ModalOptions {
+    /// Number of modes wanted, p ≥ 1.
+    pub n_modes: usize,
+    /// Shift σ in (rad/time)²: modes nearest σ converge first. 0 for a clamped
+    /// structure; slightly negative (e.g. −1e-3·λ₁ estimate) for a free one.
+    pub shift: f64,
+    /// Stop when every wanted mode has ‖Kφ − λMφ‖ / ‖(K − σM)φ‖ < tol. The eigenvalue
+    /// error is then about tol² relative (Rayleigh quotient).
+    pub tol: f64,
+    pub max_iter: usize,
+    /// Seed of the random start vectors (results are deterministic).
+    pub seed: u64,
+}
+
+impl Default for ModalOptions {
+    fn default() -> Self {
+        ModalOptions {
+            n_modes: 6,
+            shift: 0.0,
+            tol: 1e-8,
+            max_iter: 200,
+            seed: 1,
+        }
+    }
+}
+
+/// Eigenpairs sorted by ascending λ.
+#[derive(Debug, Clone)]
+pub struct Modes {
+    /// λᵢ = ωᵢ² in (rad/time)².
+    pub eigenvalues: Vec<f64>,
+    /// φᵢ on the free DOFs, M-normalized.
+    pub shapes: Vec<Vec<f64>>,
+    /// ‖Kφ − λMφ‖ / ‖(K − σM)φ‖ per mode.
+    pub residuals: Vec<f64>,
+    pub iterations: usize,
+}
+
+impl Modes {
+    /// Natural frequencies fᵢ = √λᵢ / 2π in 1/time (Hz for seconds). Negative λ
+    /// (round-off around rigid modes) gives 0.
+    pub fn frequencies_hz(&self) -> Vec<f64> {
+        self.eigenvalues
+            .iter()
+            .map(|&l| l.max(0.0).sqrt() / (2.0 * std::f64::consts::PI))
+            .collect()
+    }
+}
+
+fn mul_cols(a: &Csc<f64>, x: &DMatrix<f64>) -> DMatrix<f64> {
+    let mut y = DMatrix::zeros(x.nrows(), x.ncols());
+    for c in 0..x.ncols() {
+        let col = a.mul_vec(x.column(c).as_slice());
+        y.column_mut(c).copy_from_slice(&col);
+    }
+    y
+}
+
+/// The `opts.n_modes` eigenpairs of K φ = λ M φ nearest `opts.shift` (the lowest ones
+/// for a shift at or below the spectrum). K, M symmetric on one pattern, M positive
+/// definite, K − σM nonsingular.
+pub fn lowest_modes(k: &Csc<f64>, m: &Csc<f64>, opts: &ModalOptions) -> Result<Modes, ModalError> {
+    if !same_pattern(&k.pattern, &m.pattern) {
+        return Err(ModalError::PatternMismatch);
+    }
+    let n = k.n();
+    let p = opts.n_modes;
+    if p == 0 || p > n {
+        return Err(ModalError::TooManyModes { wanted: p, n });
+    }
+    let q = (2 * p).max(p + 8).min(n);
+    let mut shifted = Csc::<Complex<f64>>::zeros(k.pattern.clone());
+    for (s, (kv, mv)) in shifted
+        .values
+        .iter_mut()
+        .zip(k.values.iter().zip(&m.values))
+    {
+        *s = Complex::new(kv - opts.shift * mv, 0.0);
+    }
+    let symbolic = Symbolic::new(k.pattern.clone())?;
+    let lu = symbolic.factor(&shifted)?;
+
+    // Start: diag(M) (excites all DOFs, Bathe) plus random vectors.
+    let mut rng = Rng::new(opts.seed);
+    let mut x = DMatrix::from_fn(n, q, |_, _| rng.uniform(-1.0, 1.0));
+    for j in 0..n {
+        if let Some(s) = m.pattern.find(j, j) {
+            x[(j, 0)] = m.values[s];
+        }
+    }
+    let mut worst = f64::INFINITY;
+    let mut rhs = vec![Complex::new(0.0, 0.0); n];
+    let mut sol = vec![Complex::new(0.0, 0.0); n];
+    for it in 1..=opts.max_iter {
+        let y = mul_cols(m, &x);
+        let mut xb = DMatrix::zeros(n, q);
+        for c in 0..q {
+            for (r, v) in rhs.iter_mut().zip(y.column(c).iter()) {
+                *r = Complex::new(*v, 0.0);
+            }
+            lu.solve_into(&rhs, &mut sol)?;
+            for (t, s) in xb.column_mut(c).iter_mut().zip(&sol) {
+                *t = s.re;
+            }
+        }
+        let kr = xb.transpose() * &y;
+        let kr = (&kr + kr.transpose()) * 0.5;
+        let mx = mul_cols(m, &xb);
+        let mr = xb.transpose() * &mx;
+        let mr = (&mr + mr.transpose()) * 0.5;
+        let chol = mr.cholesky().ok_or(ModalError::ProjectedMass)?;
+        // C = L⁻¹ K̂ L⁻ᵀ, symmetric; K̂ Z = M̂ Z μ with Z = L⁻ᵀ V.
+        let l = chol.l();
+        let linv_k = l
+            .solve_lower_triangular(&kr)
+            .ok_or(ModalError::ProjectedMass)?;
+        let c = l
+            .solve_lower_triangular(&linv_k.transpose())
+            .ok_or(ModalError::ProjectedMass)?;
+        let c = (&c + c.transpose()) * 0.5;
+        let eig = SymmetricEigen::new(c);
+        let z_all = l
+            .transpose()
+            .solve_upper_triangular(&eig.eigenvectors)
+            .ok_or(ModalError::ProjectedMass)?;
+        // Nearest the shift first.
+        let mut order: Vec<usize> = (0..q).collect();
+        order.sort_by(|&a, &b| {
+            eig.eigenvalues[a]
+                .abs()
+                .total_cmp(&eig.eigenvalues[b].abs())
+        });
+        let mut z = DMatrix::zeros(q, q);
+        for (dst, &src) in order.iter().enumerate() {
+            z.set_column(dst, &z_all.column(src));
+        }
+        x = &xb * z;
+        let lambdas: Vec<f64> = order
+            .iter()
+            .map(|&i| opts.shift + eig.eigenvalues[i])
+            .collect();
+        let residuals: Vec<f64> = (0..p)
+            .map(|i| residual(k, m, x.column(i).as_slice(), lambdas[i], opts.shift))
+            .collect();
+        worst = residuals.iter().copied().fold(0.0, f64::max);
+        if worst < opts.tol {
+            return Ok(finish(&x, &lambdas[..p], &residuals, it));
+        }
+    }
+    Err(ModalError::NotConverged {
+        iterations: opts.max_iter,
+        residual: worst,
+    })
+}
+
+/// ‖Kφ − λMφ‖ / ‖(K − σM)φ‖: relative residual, also meaningful for rigid modes (Kφ ≈ 0)
+/// when σ ≠ 0.
+fn residual(k: &Csc<f64>, m: &Csc<f64>, phi: &[f64], lambda: f64, shift: f64) -> f64 {
+    let kp = k.mul_vec(phi);
+    let mp = m.mul_vec(phi);
+    let (mut r, mut s) = (0.0, 0.0);
+    for (a, b) in kp.iter().zip(&mp) {
+        r += (a - lambda * b).powi(2);
+        s += (a - shift * b).powi(2);
+    }
+    (r / s.max(f64::MIN_POSITIVE)).sqrt()
+}
+
+fn finish(x: &DMatrix<f64>, lambdas: &[f64], residuals: &[f64], iterations: usize) -> Modes {
+    let mut idx: Vec<usize> = (0..lambdas.len()).collect();
+    idx.sort_by(|&a, &b| lambdas[a].total_cmp(&lambdas[b]));
+    Modes {
+        eigenvalues: idx.iter().map(|&i| lambdas[i]).collect(),
+        shapes: idx
+            .iter()
+            .map(|&i| x.column(i).iter().copied().collect())
+            .collect(),
+        residuals: idx.iter().map(|&i| residuals[i]).collect(),
+        iterations,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::fe::assembly::assemble;
+    use crate::fe::csc::CscPattern;
+    use crate::fe::hex8::Formulation;
+    use crate::fe::mesh::{BoxSpec, Face, Material, Model};
+    use nalgebra::DVector;
+    use std::sync::Arc;
+
+    /// Units N, mm, s, t: E in MPa, ρ in t/mm³, λ in (rad/s)².
+    fn steel() -> Material {
+        Material::new(210_000.0, 0.3, 7.85e-9).unwrap()
+    }
+
+    fn cantilever(form: Formulation, nx: usize) -> (f64, f64, Modes) {
+        let (l, b) = (100.0, 4.0);
+        let mut model = Model::new(vec![steel()]);
+        model
+            .add_box(BoxSpec {
+                origin: [0.0; 3],
+                size: [l, b, b],
+                divisions: [nx, 2, 2],
+                material: 0,
+            })
+            .unwrap();
+        let clamp = model.bodies[0].face_nodes(Face::XMin);
+        model.fix(&clamp, [true; 3]).unwrap();
+        let sys = assemble(&model, form, &[]).unwrap();
+        let modes = lowest_modes(
+            &sys.k,
+            &sys.m,
+            &ModalOptions {
+                n_modes: 2,
+                ..Default::default()
+            },
+        )
+        .unwrap();
+        // Euler–Bernoulli: f₁ = (1.8751²/2π) √(EI/(ρAL⁴)), I = b⁴/12, A = b².
+        let (e, rho) = (210_000.0, 7.85e-9);
+        let i = b.powi(4) / 12.0;
+        let beta = 1.875_104_068_711_961;
+        let f_eb =
+            beta * beta / (2.0 * std::f64::consts::PI) * (e * i / (rho * b * b * l.powi(4))).sqrt();
+        let f1 = modes.frequencies_hz()[0];
+        (f1, f_eb, modes)
+    }
+
+    #[test]
+    fn cantilever_first_bending_within_1_percent_of_euler_bernoulli() {
+        // Steel 100×4×4 mm, 25×2×2 incompatible-mode hex8 (2×2×2 Gauss, 9 condensed
+        // bubbles), clamped face x = 0. Measured: f₁ = 335.72 Hz vs 334.21 Hz (EB),
+        // +0.45 % (clamped Poisson contraction and discretisation stiffen, shear
+        // flexibility softens); limit 1 % as asked of the element.
+        let (f1, f_eb, modes) = cantilever(Formulation::IncompatibleModes, 25);
+        let err = (f1 - f_eb) / f_eb;
+        eprintln!(
+            "cantilever f1 = {f1:.3} Hz, Euler-Bernoulli {f_eb:.3} Hz, error {:+.3} %",
+            100.0 * err
+        );
+        assert!(err.abs() < 0.01, "f1 {f1} vs {f_eb}");
+        // Square section: the y- and z-bending modes are a degenerate pair.
+        let f = modes.frequencies_hz();
+        assert!((f[1] - f[0]).abs() / f[0] < 1e-6, "{f:?}");
+        // Converged to the default tol 1e-8 (measured ~1e-9 after 4 iterations).
+        assert!(
+            modes.residuals.iter().all(|&r| r < 1e-8),
+            "{:?}",
+            modes.residuals
+        );
+    }
+
+    #[test]
+    fn full_integration_locks_in_bending() {
+        // Same beam, plain trilinear hex8: shear locking makes it far too stiff.
+        // Measured: f₁ = 400.1 Hz, +19.7 % (vs +0.45 % with incompatible modes).
+        let (f1, f_eb, _) = cantilever(Formulation::FullIntegration, 25);
+        let err = (f1 - f_eb) / f_eb;
+        eprintln!(
+            "full integration f1 = {f1:.3} Hz, error {:+.1} %",
+            100.0 * err
+        );
+        assert!(err > 0.1, "full integration only {err} too stiff");
+    }
+
+    fn dense_pattern(n: usize) -> Arc<CscPattern> {
+        Arc::new(CscPattern::from_entries(
+            n,
+            (0..n).flat_map(|j| (0..n).map(move |i| (i, j))),
+        ))
+    }
+
+    fn to_csc(a: &DMatrix<f64>, p: &Arc<CscPattern>) -> Csc<f64> {
+        let mut c = Csc::zeros(p.clone());
+        for j in 0..a.ncols() {
+            for i in 0..a.nrows() {
+                c.values[p.find(i, j).unwrap()] = a[(i, j)];
+            }
+        }
+        c
+    }
+
+    #[test]
+    fn random_pencil_matches_dense_generalized_eigen() {
+        // K, M random SPD 40×40; reference: L⁻¹ K L⁻ᵀ eigenvalues (M = LLᵀ), dense.
+        let n = 40;
+        let mut rng = Rng::new(11);
+        let g = DMatrix::from_fn(n, n, |_, _| rng.uniform(-1.0, 1.0));
+        let h = DMatrix::from_fn(n, n, |_, _| rng.uniform(-1.0, 1.0));
+        let kd = &g * g.transpose() + DMatrix::identity(n, n);
+        let md = &h * h.transpose() / n as f64 + DMatrix::identity(n, n);
+        let l = md.clone().cholesky().unwrap().l();
+        let a = l.solve_lower_triangular(&kd).unwrap();
+        let c = l.solve_lower_triangular(&a.transpose()).unwrap();
+        let mut reference: Vec<f64> = SymmetricEigen::new((&c + c.transpose()) * 0.5)
+            .eigenvalues
+            .iter()
+            .copied()
+            .collect();
+        reference.sort_by(f64::total_cmp);
+        let p = dense_pattern(n);
+        let modes = lowest_modes(
+            &to_csc(&kd, &p),
+            &to_csc(&md, &p),
+            &ModalOptions {
+                n_modes: 4,
+                ..Default::default()
+            },
+        )
+        .unwrap();
+        for i in 0..4 {
+            // Residual < 1e-8 ⇒ Rayleigh-quotient eigenvalue error ~1e-16·cond; 1e-10 leaves
+            // room for the spread of this random pencil. Measured: 18 iterations.
+            approx::assert_relative_eq!(modes.eigenvalues[i], reference[i], max_relative = 1e-10);
+            assert!(modes.residuals[i] < 1e-8);
+            // M-normalized.
+            let phi = DVector::from_column_slice(&modes.shapes[i]);
+            approx::assert_relative_eq!(
+                (phi.transpose() * &md * &phi)[0],
+                1.0,
+                max_relative = 1e-10
+            );
+        }
+    }
+
+    #[test]
+    fn free_body_has_six_rigid_modes_with_negative_shift() {
+        let mut model = Model::new(vec![steel()]);
+        model
+            .add_box(BoxSpec {
+                origin: [0.0; 3],
+                size: [20.0, 4.0, 4.0],
+                divisions: [5, 1, 1],
+                material: 0,
+            })
+            .unwrap();
+        let sys = assemble(&model, Formulation::IncompatibleModes, &[]).unwrap();
+        let modes = lowest_modes(
+            &sys.k,
+            &sys.m,
+            &ModalOptions {
+                n_modes: 7,
+                shift: -1e6,
+                ..Default::default()
+            },
+        )
+        .unwrap();
+        let l7 = modes.eigenvalues[6];
+        // Rigid modes: λ = 0 up to round-off relative to the first elastic one.
+        for &l in &modes.eigenvalues[..6] {
+            assert!(l.abs() < 1e-8 * l7, "{l} vs {l7}");
+        }
+        assert!(l7 > 1e6);
+    }
+}
