@@ -15,6 +15,8 @@
 
 pub mod error;
 pub mod hysteresis;
+pub mod iterate;
 pub mod law;
+pub mod linearize;
 
 pub use error::Error;

@@ -131,3 +131,8 @@ impl Backbone {
         }
     }
 }
+
+/// Normalized Mindlin force G(σ) = 1 − (1 − σ)^{3/2} (2.49 divided by μF_N), exact to rounding.
+pub fn mindlin_normalized_force(sigma: f64) -> f64 {
+    series::one_minus_pow(1.5, sigma)
+}
