@@ -1,0 +1,22 @@
+#!/usr/bin/env bash
+# Regenerates the README's measured tables: each block between
+#   <!-- BEGIN name -->  and  <!-- END name -->
+# is replaced by the output of the command registered for `name` below.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+declare -A commands=(
+  [accuracy_table]="cargo run --release -q --example accuracy_table"
+  [seed_cases]="cargo run --release -q --example seed_cases"
+)
+for name in "${!commands[@]}"; do
+  grep -q "<!-- BEGIN $name -->" README.md || continue
+  echo "== $name: ${commands[$name]}"
+  out=$(mktemp)
+  if [ "$name" = accuracy_table ]; then
+    { echo "Produced by \`${commands[$name]}\`:"; echo; eval "${commands[$name]}"; } > "$out"
+  else
+    { echo '```text'; echo "\$ ${commands[$name]}"; eval "${commands[$name]}"; echo '```'; } > "$out"
+  fi
+  perl -0pi -e "my \$t = do { local \$/; open my \$f, '<', '$out' or die; <\$f> }; s/(<!-- BEGIN $name -->\n).*?(<!-- END $name -->)/\$1\$t\$2/s" README.md
+  rm -f "$out"
+done
