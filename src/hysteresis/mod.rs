@@ -104,17 +104,17 @@ impl PointState {
         if slots.iter().any(|v| !v.is_finite()) {
             return Err(Error::NonFinite("stored hysteresis state"));
         }
-        match (slots[0], rule) {
-            (t, _) if t == 0.0 => Ok(Self::virgin(rule, origin)),
-            (t, Rule::Thesis) if t == 1.0 => {
-                Ok(PointState::Thesis(ThesisState::read(&slots[1..])?))
-            }
-            (t, Rule::Masing) if t == 2.0 => {
-                Ok(PointState::Masing(MasingState::read(&slots[1..])?))
-            }
-            _ => Err(Error::OutOfRange(
+        let tag = slots[0];
+        if tag == 0.0 {
+            Ok(Self::virgin(rule, origin))
+        } else if tag == 1.0 && rule == Rule::Thesis {
+            Ok(PointState::Thesis(ThesisState::read(&slots[1..])?))
+        } else if tag == 2.0 && rule == Rule::Masing {
+            Ok(PointState::Masing(MasingState::read(&slots[1..])?))
+        } else {
+            Err(Error::OutOfRange(
                 "stored hysteresis state belongs to another rule",
-            )),
+            ))
         }
     }
 }
