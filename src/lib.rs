@@ -18,5 +18,6 @@ pub mod hysteresis;
 pub mod iterate;
 pub mod law;
 pub mod linearize;
+pub mod store;
 
 pub use error::Error;

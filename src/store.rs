@@ -1,0 +1,1402 @@
+//! The UEXTERNALDB-side iteration store (thesis §4.3.2, Fig. 4.27; model.md §6–7).
+//!
+//! k*, d* of a contact point depend on the vibration amplitude they are linearized for, and
+//! that amplitude is the result of the steady-state analysis. The thesis iterates over whole
+//! frequency sweeps: pass 1 runs every frequency increment (KINC), the first with a
+//! user-given amplitude estimate and each later one with the amplitude computed at the
+//! previous increment; after the pass, estimate and computed amplitude are compared per
+//! point and increment; the increments out of tolerance are re-run in a new pass; when none
+//! is left, one final pass over all increments writes the results.
+//!
+//! This store holds, per contact point × increment and for both tangential directions, the
+//! estimate handed out, the amplitude the host reported back, the (estimate, computed)
+//! history of earlier passes (fed to the shared rule [`next_estimate`]), the converged flag
+//! and the pass count. It follows Abaqus's UEXTERNALDB calls ([`Store::external_db`]: LOP
+//! 0 start of analysis, 1 start of increment, 2 end of increment, 3 end of analysis, 4
+//! start of a restart analysis, 5 start of step, 6 end of step) and says what to run next
+//! ([`Action`]).
+//!
+//! Many host threads may query estimates and report amplitudes at once: the point registry
+//! sits behind an `RwLock`, the iteration state behind a `Mutex`, each held only for a few
+//! map operations (never during file I/O).
+
+use std::collections::{BTreeMap, BTreeSet, HashMap};
+use std::path::PathBuf;
+use std::sync::{Mutex, MutexGuard, RwLock};
+
+use crate::iterate::{next_estimate, Scheme};
+
+/// Errors of the iteration store. Each maps to one C status code in `ffi/error.rs`.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub enum StoreError {
+    /// An input was NaN or ±∞.
+    #[error("non-finite input: {0}")]
+    NonFinite(&'static str),
+    /// An input was finite but outside its valid range.
+    #[error("input out of range: {0}")]
+    OutOfRange(&'static str),
+    /// A point id that was never registered.
+    #[error("unknown contact point id {0}")]
+    UnknownPoint(i64),
+    /// A call that does not fit the LOP sequence (e.g. an estimate outside an increment).
+    #[error("call out of sequence: {0}")]
+    Sequence(String),
+    /// Reading or writing the restart file failed, or its content is not a store.
+    #[error("restart file: {0}")]
+    Io(String),
+    /// A panic while the store was locked left it in an unknown state.
+    #[error("the store was poisoned by an earlier panic")]
+    Poisoned,
+}
+
+/// How the host numbers the increments of a re-run or final pass.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum KincNumbering {
+    /// KINC is the sweep increment number in every pass (a host that re-runs selected
+    /// frequencies of the original sweep and keeps their numbers).
+    #[default]
+    Original,
+    /// Every pass numbers its increments 1..m (a new Abaqus analysis over the m re-run
+    /// frequencies): KINC = i means the i-th scheduled sweep increment, ascending.
+    Sequential,
+}
+
+/// Settings of the iteration.
+#[derive(Debug, Clone, PartialEq)]
+pub struct StoreConfig {
+    /// Amplitude estimate for the first increment of pass 1 (length, > 0).
+    pub initial_amplitude: f64,
+    /// Relative tolerance: converged when |a − a*| ≤ rtol·max(a, a*) + atol per direction.
+    pub rtol: f64,
+    /// Absolute tolerance (length, ≥ 0).
+    pub atol: f64,
+    /// Update rule for later passes; `Direct` is the thesis's "last computed amplitude".
+    pub scheme: Scheme,
+    /// Most iteration passes (pass 1 and re-runs); the final pass comes on top.
+    pub max_passes: u32,
+    /// KSTEP of the steady-state step that is iterated; 0 = every step.
+    pub sweep_step: i32,
+    /// Increment numbering of re-run passes.
+    pub numbering: KincNumbering,
+    /// Restart file, written at LOP 2 when LRESTART ≥ 1 and at LOP 3; read at LOP 4.
+    pub restart_path: Option<PathBuf>,
+}
+
+/// Default relative tolerance on the amplitude (0.1 %: well below the 3–9 % model error
+/// of the linearization itself, model.md §8).
+pub const DEFAULT_RTOL: f64 = 1e-3;
+/// Default bound on iteration passes (the thesis's beam needed 5, Fig. 4.33).
+pub const DEFAULT_MAX_PASSES: u32 = 20;
+
+impl StoreConfig {
+    /// Defaults around an initial amplitude estimate: rtol 1e-3, atol 0, secant, 20 passes,
+    /// every step, original numbering, no restart file.
+    pub fn new(initial_amplitude: f64) -> Self {
+        Self {
+            initial_amplitude,
+            rtol: DEFAULT_RTOL,
+            atol: 0.0,
+            scheme: Scheme::Secant,
+            max_passes: DEFAULT_MAX_PASSES,
+            sweep_step: 0,
+            numbering: KincNumbering::Original,
+            restart_path: None,
+        }
+    }
+
+    fn validate(&self) -> Result<(), StoreError> {
+        for (v, what) in [
+            (self.initial_amplitude, "initial amplitude"),
+            (self.rtol, "rtol"),
+            (self.atol, "atol"),
+        ] {
+            if !v.is_finite() {
+                return Err(StoreError::NonFinite(what));
+            }
+        }
+        if self.initial_amplitude <= 0.0 {
+            return Err(StoreError::OutOfRange("initial amplitude must be > 0"));
+        }
+        if !(0.0..1.0).contains(&self.rtol) || self.atol < 0.0 {
+            return Err(StoreError::OutOfRange("need 0 <= rtol < 1 and atol >= 0"));
+        }
+        if self.max_passes == 0 {
+            return Err(StoreError::OutOfRange("max_passes must be >= 1"));
+        }
+        if self.sweep_step < 0 {
+            return Err(StoreError::OutOfRange("sweep_step must be >= 0"));
+        }
+        Ok(())
+    }
+
+    /// |a − a*| ≤ rtol·max(a, a*) + atol.
+    fn within(&self, a: f64, a_star: f64) -> bool {
+        (a - a_star).abs() <= self.rtol * a.max(a_star) + self.atol
+    }
+
+    /// Amplitudes fed to the log-space update rule are floored here (ln 0 = −∞): at or below
+    /// atol (or 1e-12 of the initial estimate when atol = 0) amplitudes are indistinguishable.
+    fn floor(&self) -> f64 {
+        if self.atol > 0.0 {
+            self.atol
+        } else {
+            1e-12 * self.initial_amplitude
+        }
+    }
+}
+
+/// What the host should do next.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum Action {
+    /// Run pass 1: the whole sweep.
+    RunSweep,
+    /// Re-run these sweep increments (ascending).
+    RunPass(Vec<i32>),
+    /// All increments converged: run the final pass over all of them (ascending).
+    RunFinal(Vec<i32>),
+    /// The final pass confirmed every increment: finished.
+    Done,
+    /// Increments are still out of tolerance after `max_passes` iteration passes.
+    Failed(Vec<i32>),
+}
+
+/// Kind of a pass.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum PassKind {
+    First = 0,
+    Rerun = 1,
+    Final = 2,
+}
+
+/// Counts of one pass (what Fig. 4.33 plots: frequencies per analysis).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct PassStats {
+    pub number: u32,
+    pub kind: PassKind,
+    /// Increments run in this pass.
+    pub increments_run: u32,
+    /// Of those, the ones where every queried point converged.
+    pub increments_converged: u32,
+    /// Point × increment evaluations compared at LOP 2.
+    pub evaluations: u64,
+    /// Of those, points queried but never reported back.
+    pub not_reported: u64,
+}
+
+/// Why a point × increment is not converged.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Reason {
+    /// Converged (or never evaluated).
+    #[default]
+    None = 0,
+    /// |a − a*| above the tolerance in some direction.
+    OutOfTolerance = 1,
+    /// The point was queried in the increment but no amplitude was reported.
+    NotReported = 2,
+}
+
+/// What the store knows about one point in one sweep increment.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PointStatus {
+    /// Estimate handed out in the latest pass that queried the point here.
+    pub estimate: [f64; 2],
+    /// Latest amplitude reported back (0 when none yet).
+    pub computed: [f64; 2],
+    /// Number of tangential directions compared (1 or 2).
+    pub directions: usize,
+    pub converged: bool,
+    /// Passes in which this point was evaluated at this increment.
+    pub passes: u32,
+    pub reason: Reason,
+}
+
+/// Identity of a contact point: interaction name, NODE and coordinate bits. NODE alone is
+/// not enough (it is 0 for surface-to-surface contact).
+#[derive(Debug, Clone, PartialEq, Eq, Hash)]
+pub struct PointKey {
+    name: Vec<u8>,
+    node: i32,
+    coords: Vec<u64>,
+}
+
+/// Longest interaction name accepted (Abaqus: CHARACTER*80).
+pub const MAX_NAME_LEN: usize = 256;
+
+impl PointKey {
+    /// Trailing blanks and NULs of `name` are ignored (Fortran pads CHARACTER*80 with
+    /// blanks); −0.0 and 0.0 are the same coordinate. At most 3 coordinates.
+    pub fn new(name: &[u8], node: i32, coords: &[f64]) -> Result<Self, StoreError> {
+        if name.len() > MAX_NAME_LEN {
+            return Err(StoreError::OutOfRange("interaction name longer than 256"));
+        }
+        if coords.len() > 3 {
+            return Err(StoreError::OutOfRange("more than 3 coordinates"));
+        }
+        if coords.iter().any(|c| !c.is_finite()) {
+            return Err(StoreError::NonFinite("coordinates"));
+        }
+        let end = name
+            .iter()
+            .rposition(|&c| c != b' ' && c != 0)
+            .map_or(0, |i| i + 1);
+        Ok(Self {
+            name: name[..end].to_vec(),
+            node,
+            coords: coords.iter().map(|c| (c + 0.0).to_bits()).collect(),
+        })
+    }
+}
+
+#[derive(Debug, Clone, Default, PartialEq)]
+struct Record {
+    estimate: [f64; 2],
+    /// Pass in which `estimate` was handed out (0: never).
+    estimate_pass: u32,
+    /// Directions used by the querying host (1 or 2).
+    dirs: usize,
+    reported: [f64; 2],
+    /// Pass in which `reported` arrived (0: never).
+    reported_pass: u32,
+    history: [Vec<(f64, f64)>; 2],
+    converged: bool,
+    passes: u32,
+    reason: Reason,
+}
+
+#[derive(Debug, Clone, PartialEq)]
+enum Phase {
+    Ready,
+    Running(Run),
+}
+
+#[derive(Debug, Clone, PartialEq)]
+struct Run {
+    number: u32,
+    kind: PassKind,
+    /// Scheduled sweep increments (None in pass 1: whatever the sweep runs).
+    schedule: Option<Vec<i32>>,
+    /// Open increment: (host KINC, sweep KINC, points queried).
+    open: Option<(i32, i32, BTreeSet<i64>)>,
+    /// Sweep increments closed (LOP 2) in this pass.
+    ran: BTreeSet<i32>,
+}
+
+#[derive(Debug, Clone, PartialEq)]
+struct State {
+    phase: Phase,
+    next: Action,
+    /// Iteration passes done (pass 1, re-runs, final passes that failed).
+    iteration_passes: u32,
+    /// Current step from LOP 5 (0 before any).
+    step: i32,
+    /// All sweep increments and whether they are converged.
+    increments: BTreeMap<i32, bool>,
+    /// Records per point (index id − 1) and sweep increment.
+    records: Vec<BTreeMap<i32, Record>>,
+    stats: Vec<PassStats>,
+}
+
+impl State {
+    fn new() -> Self {
+        Self {
+            phase: Phase::Ready,
+            next: Action::RunSweep,
+            iteration_passes: 0,
+            step: 0,
+            increments: BTreeMap::new(),
+            records: Vec::new(),
+            stats: Vec::new(),
+        }
+    }
+}
+
+#[derive(Debug, Default)]
+struct Registry {
+    ids: HashMap<PointKey, i64>,
+    keys: Vec<PointKey>,
+}
+
+/// The iteration store. `Sync`: share it between host threads by reference.
+#[derive(Debug)]
+pub struct Store {
+    config: StoreConfig,
+    registry: RwLock<Registry>,
+    state: Mutex<State>,
+}
+
+fn seq(msg: impl Into<String>) -> StoreError {
+    StoreError::Sequence(msg.into())
+}
+
+impl Store {
+    pub fn new(config: StoreConfig) -> Result<Self, StoreError> {
+        config.validate()?;
+        Ok(Self {
+            config,
+            registry: RwLock::new(Registry::default()),
+            state: Mutex::new(State::new()),
+        })
+    }
+
+    pub fn config(&self) -> &StoreConfig {
+        &self.config
+    }
+
+    fn state(&self) -> Result<MutexGuard<'_, State>, StoreError> {
+        self.state.lock().map_err(|_| StoreError::Poisoned)
+    }
+
+    /// Stable 1-based id of the point with this key; the same key always gives the same id.
+    pub fn register(&self, key: PointKey) -> Result<i64, StoreError> {
+        if let Some(&id) = self
+            .registry
+            .read()
+            .map_err(|_| StoreError::Poisoned)?
+            .ids
+            .get(&key)
+        {
+            return Ok(id);
+        }
+        let mut reg = self.registry.write().map_err(|_| StoreError::Poisoned)?;
+        if let Some(&id) = reg.ids.get(&key) {
+            return Ok(id); // registered by another thread in between
+        }
+        let id = reg.keys.len() as i64 + 1;
+        reg.keys.push(key.clone());
+        reg.ids.insert(key, id);
+        Ok(id)
+    }
+
+    /// `hint` when it is the id of `key` (e.g. the id a host kept in STATEV), else the key's
+    /// id, registering it if new.
+    pub fn resolve(&self, hint: i64, key: PointKey) -> Result<i64, StoreError> {
+        if hint >= 1 {
+            let reg = self.registry.read().map_err(|_| StoreError::Poisoned)?;
+            if reg.keys.get(hint as usize - 1) == Some(&key) {
+                return Ok(hint);
+            }
+        }
+        self.register(key)
+    }
+
+    /// Number of registered points.
+    pub fn point_count(&self) -> Result<i64, StoreError> {
+        Ok(self
+            .registry
+            .read()
+            .map_err(|_| StoreError::Poisoned)?
+            .keys
+            .len() as i64)
+    }
+
+    fn check_point(&self, id: i64) -> Result<(), StoreError> {
+        if id >= 1 && id <= self.point_count()? {
+            Ok(())
+        } else {
+            Err(StoreError::UnknownPoint(id))
+        }
+    }
+
+    /// Sweep increment of the open increment for a host KINC, with the pass number.
+    fn current(state: &State, kinc: i32) -> Result<(u32, i32), StoreError> {
+        let Phase::Running(run) = &state.phase else {
+            return Err(seq("no pass is running (LOP 0 missing)"));
+        };
+        match &run.open {
+            Some((host, sweep, _)) if *host == kinc => Ok((run.number, *sweep)),
+            Some((host, _, _)) => Err(seq(format!(
+                "KINC {kinc} is not the open increment {host} (LOP 1)"
+            ))),
+            None => Err(seq("no increment is open (LOP 1 missing)")),
+        }
+    }
+
+    /// Amplitude estimates (length) of point `id` in the open increment `kinc` for both
+    /// tangential directions; `directions` (1 or 2) of them take part in the convergence
+    /// test. The estimate is fixed at the first query of a pass; later queries return it.
+    pub fn estimate(&self, id: i64, kinc: i32, directions: usize) -> Result<[f64; 2], StoreError> {
+        if !(1..=2).contains(&directions) {
+            return Err(StoreError::OutOfRange(
+                "tangential directions must be 1 or 2",
+            ));
+        }
+        self.check_point(id)?;
+        let mut guard = self.state()?;
+        let state = &mut *guard;
+        let (pass, sweep) = Self::current(state, kinc)?;
+        let idx = id as usize - 1;
+        if state.records.len() <= idx {
+            state.records.resize_with(idx + 1, BTreeMap::new);
+        }
+        let records = &mut state.records[idx];
+        // Thesis rule: the amplitude computed at the nearest earlier increment.
+        let previous = records
+            .range(..sweep)
+            .rev()
+            .find(|(_, r)| r.reported_pass > 0)
+            .map(|(_, r)| r.reported);
+        let rec = records.entry(sweep).or_default();
+        if rec.estimate_pass != pass {
+            let floor = self.config.floor();
+            let fallback = previous.unwrap_or([self.config.initial_amplitude; 2]);
+            for d in 0..2 {
+                rec.estimate[d] = if rec.history[d].is_empty() {
+                    fallback[d]
+                } else {
+                    let h: Vec<(f64, f64)> = rec.history[d]
+                        .iter()
+                        .map(|&(a, b)| (a.max(floor), b.max(floor)))
+                        .collect();
+                    let next = next_estimate(self.config.scheme, &h);
+                    if next.is_finite() {
+                        next
+                    } else {
+                        h[h.len() - 1].1
+                    }
+                };
+            }
+            rec.estimate_pass = pass;
+            rec.dirs = 0;
+        }
+        rec.dirs = rec.dirs.max(directions);
+        let estimate = rec.estimate;
+        if let Phase::Running(Run {
+            open: Some((_, _, touched)),
+            ..
+        }) = &mut state.phase
+        {
+            touched.insert(id);
+        }
+        Ok(estimate)
+    }
+
+    /// The amplitudes (length, ≥ 0) the host computed for point `id` in the open increment
+    /// `kinc`, after querying its estimate there. A later report overwrites an earlier one.
+    pub fn report(&self, id: i64, kinc: i32, amplitude: [f64; 2]) -> Result<(), StoreError> {
+        if amplitude.iter().any(|a| !a.is_finite()) {
+            return Err(StoreError::NonFinite("reported amplitude"));
+        }
+        if amplitude.iter().any(|&a| a < 0.0) {
+            return Err(StoreError::OutOfRange("reported amplitude must be >= 0"));
+        }
+        self.check_point(id)?;
+        let mut state = self.state()?;
+        let (pass, sweep) = Self::current(&state, kinc)?;
+        match state
+            .records
+            .get_mut(id as usize - 1)
+            .and_then(|r| r.get_mut(&sweep))
+        {
+            Some(rec) if rec.estimate_pass == pass => {
+                rec.reported = amplitude;
+                rec.reported_pass = pass;
+                Ok(())
+            }
+            _ => Err(seq(format!(
+                "point {id} reported in increment {kinc} without an estimate queried there"
+            ))),
+        }
+    }
+
+    /// One UEXTERNALDB call. LOP 1/2 outside the sweep step are ignored.
+    pub fn external_db(
+        &self,
+        lop: i32,
+        lrestart: i32,
+        kstep: i32,
+        kinc: i32,
+    ) -> Result<(), StoreError> {
+        let in_sweep = self.config.sweep_step == 0 || kstep == self.config.sweep_step;
+        match lop {
+            0 => self.begin_pass(),
+            1 if in_sweep => self.begin_increment(kinc),
+            2 if in_sweep => {
+                self.end_increment(kinc)?;
+                if lrestart >= 1 {
+                    self.save()?;
+                }
+                Ok(())
+            }
+            1 | 2 => Ok(()),
+            3 => {
+                self.end_pass()?;
+                self.save()
+            }
+            4 => self.restore(),
+            5 | 6 => {
+                self.state()?.step = if lop == 5 { kstep } else { 0 };
+                Ok(())
+            }
+            _ => Err(StoreError::OutOfRange("LOP must be 0..=6")),
+        }
+    }
+
+    /// LOP 0: starts the pass the last decision asked for.
+    pub fn begin_pass(&self) -> Result<(), StoreError> {
+        let mut state = self.state()?;
+        if let Phase::Running(run) = &state.phase {
+            return Err(seq(format!(
+                "pass {} is still running (LOP 3 missing)",
+                run.number
+            )));
+        }
+        let (kind, schedule) = match &state.next {
+            Action::RunSweep => (PassKind::First, None),
+            Action::RunPass(list) => (PassKind::Rerun, Some(list.clone())),
+            Action::RunFinal(list) => (PassKind::Final, Some(list.clone())),
+            Action::Done => return Err(seq("the iteration is done; no pass to start")),
+            Action::Failed(_) => return Err(seq("the iteration failed; no pass to start")),
+        };
+        let number = state.stats.len() as u32 + 1;
+        state.stats.push(PassStats {
+            number,
+            kind,
+            increments_run: 0,
+            increments_converged: 0,
+            evaluations: 0,
+            not_reported: 0,
+        });
+        state.phase = Phase::Running(Run {
+            number,
+            kind,
+            schedule,
+            open: None,
+            ran: BTreeSet::new(),
+        });
+        Ok(())
+    }
+
+    /// LOP 1: opens increment `kinc` of the running pass.
+    pub fn begin_increment(&self, kinc: i32) -> Result<(), StoreError> {
+        let numbering = self.config.numbering;
+        let mut state = self.state()?;
+        let Phase::Running(run) = &mut state.phase else {
+            return Err(seq("LOP 1 without a running pass (LOP 0 missing)"));
+        };
+        if let Some((open, _, _)) = &run.open {
+            return Err(seq(format!(
+                "LOP 1 for {kinc} while increment {open} is open (LOP 2 missing)"
+            )));
+        }
+        let sweep = match (&run.schedule, numbering) {
+            (None, _) => kinc,
+            (Some(list), KincNumbering::Original) if list.contains(&kinc) => kinc,
+            (Some(_), KincNumbering::Original) => {
+                return Err(seq(format!(
+                    "increment {kinc} is not scheduled in this pass"
+                )))
+            }
+            (Some(list), KincNumbering::Sequential) => {
+                match usize::try_from(kinc)
+                    .ok()
+                    .and_then(|i| list.get(i.wrapping_sub(1)))
+                {
+                    Some(&k) => k,
+                    None => {
+                        return Err(seq(format!(
+                            "KINC {kinc} beyond the {} increments of this pass",
+                            list.len()
+                        )))
+                    }
+                }
+            }
+        };
+        run.open = Some((kinc, sweep, BTreeSet::new()));
+        Ok(())
+    }
+
+    /// LOP 2: compares estimate and computed amplitude of every point queried in the open
+    /// increment; a point queried but not reported is not converged.
+    pub fn end_increment(&self, kinc: i32) -> Result<(), StoreError> {
+        let mut guard = self.state()?;
+        let state = &mut *guard;
+        let Phase::Running(run) = &mut state.phase else {
+            return Err(seq("LOP 2 without a running pass"));
+        };
+        let (sweep, touched) = match run.open.take() {
+            Some((host, sweep, touched)) if host == kinc => (sweep, touched),
+            Some(open) => {
+                let msg = format!("LOP 2 for {kinc} but increment {} is open", open.0);
+                run.open = Some(open);
+                return Err(seq(msg));
+            }
+            None => return Err(seq(format!("LOP 2 for {kinc} without LOP 1"))),
+        };
+        let pass = run.number;
+        run.ran.insert(sweep);
+        let stats = state.stats.last_mut().expect("a running pass has stats");
+        let mut all = true;
+        for id in touched {
+            let rec = state.records[id as usize - 1]
+                .get_mut(&sweep)
+                .expect("a queried point has a record");
+            stats.evaluations += 1;
+            rec.passes += 1;
+            if rec.reported_pass != pass {
+                rec.converged = false;
+                rec.reason = Reason::NotReported;
+                stats.not_reported += 1;
+            } else {
+                let mut ok = true;
+                for d in 0..rec.dirs {
+                    let (a, a_star) = (rec.estimate[d], rec.reported[d]);
+                    rec.history[d].push((a, a_star));
+                    ok &= self.config.within(a, a_star);
+                }
+                rec.converged = ok;
+                rec.reason = if ok {
+                    Reason::None
+                } else {
+                    Reason::OutOfTolerance
+                };
+            }
+            all &= rec.converged;
+        }
+        stats.increments_run += 1;
+        stats.increments_converged += u32::from(all);
+        state.increments.insert(sweep, all);
+        Ok(())
+    }
+
+    /// LOP 3: closes the pass and decides the next action.
+    pub fn end_pass(&self) -> Result<(), StoreError> {
+        let mut guard = self.state()?;
+        let state = &mut *guard;
+        let Phase::Running(run) = &state.phase else {
+            return Err(seq("LOP 3 without a running pass"));
+        };
+        if let Some((open, _, _)) = &run.open {
+            return Err(seq(format!("LOP 3 while increment {open} is open")));
+        }
+        if run.kind == PassKind::First && state.increments.is_empty() {
+            state.phase = Phase::Ready;
+            state.stats.pop();
+            return Err(seq(
+                "pass 1 ran no increment of the sweep step (check sweep_step)",
+            ));
+        }
+        if let Some(schedule) = &run.schedule {
+            // A scheduled increment the pass never ran is not converged (e.g. a final pass
+            // that stopped early must not count as confirming it).
+            for k in schedule {
+                if !run.ran.contains(k) {
+                    state.increments.insert(*k, false);
+                }
+            }
+        }
+        let kind = run.kind;
+        state.phase = Phase::Ready;
+        let left: Vec<i32> = state
+            .increments
+            .iter()
+            .filter(|(_, &ok)| !ok)
+            .map(|(&k, _)| k)
+            .collect();
+        if left.is_empty() {
+            state.next = if kind == PassKind::Final {
+                Action::Done
+            } else {
+                state.iteration_passes += 1;
+                Action::RunFinal(state.increments.keys().copied().collect())
+            };
+            return Ok(());
+        }
+        state.iteration_passes += 1;
+        state.next = if state.iteration_passes >= self.config.max_passes {
+            Action::Failed(left)
+        } else {
+            Action::RunPass(left)
+        };
+        Ok(())
+    }
+
+    /// What to run next, with the number of the pass that would run (for `Done` and
+    /// `Failed`: the last pass run). While a pass runs: `None`.
+    pub fn next_action(&self) -> Result<Option<(Action, u32)>, StoreError> {
+        let state = self.state()?;
+        if let Phase::Running(_) = state.phase {
+            return Ok(None);
+        }
+        let last = state.stats.len() as u32;
+        let number = match state.next {
+            Action::Done | Action::Failed(_) => last,
+            _ => last + 1,
+        };
+        Ok(Some((state.next.clone(), number)))
+    }
+
+    /// Counts of pass `number` (1-based), if it was started.
+    pub fn pass_stats(&self, number: u32) -> Result<Option<PassStats>, StoreError> {
+        let state = self.state()?;
+        Ok(number
+            .checked_sub(1)
+            .and_then(|i| state.stats.get(i as usize))
+            .copied())
+    }
+
+    /// Number of passes started so far.
+    pub fn passes(&self) -> Result<u32, StoreError> {
+        Ok(self.state()?.stats.len() as u32)
+    }
+
+    /// Status of point `id` at sweep increment `kinc`; None when never queried there.
+    pub fn point_status(&self, id: i64, kinc: i32) -> Result<Option<PointStatus>, StoreError> {
+        self.check_point(id)?;
+        let state = self.state()?;
+        Ok(state
+            .records
+            .get(id as usize - 1)
+            .and_then(|r| r.get(&kinc))
+            .map(|r| PointStatus {
+                estimate: r.estimate,
+                computed: if r.reported_pass > 0 {
+                    r.reported
+                } else {
+                    [0.0; 2]
+                },
+                directions: r.dirs,
+                converged: r.converged,
+                passes: r.passes,
+                reason: r.reason,
+            }))
+    }
+
+    /// Writes the store to the restart path (if any) atomically: a temporary file in the
+    /// same directory, then a rename.
+    pub fn save(&self) -> Result<(), StoreError> {
+        let Some(path) = &self.config.restart_path else {
+            return Ok(());
+        };
+        let text = self.serialize()?;
+        let mut tmp = path.clone().into_os_string();
+        tmp.push(format!(".tmp{}", std::process::id()));
+        let tmp = PathBuf::from(tmp);
+        std::fs::write(&tmp, text)
+            .and_then(|_| std::fs::rename(&tmp, path))
+            .map_err(|e| StoreError::Io(format!("writing {}: {e}", path.display())))
+    }
+
+    /// Replaces registry and iteration state by the restart file's content (LOP 4).
+    pub fn restore(&self) -> Result<(), StoreError> {
+        let Some(path) = &self.config.restart_path else {
+            return Err(StoreError::Io("no restart path configured".into()));
+        };
+        let text = std::fs::read_to_string(path)
+            .map_err(|e| StoreError::Io(format!("reading {}: {e}", path.display())))?;
+        let (registry, state) = restart::parse(&text)?;
+        *self.registry.write().map_err(|_| StoreError::Poisoned)? = registry;
+        *self.state()? = state;
+        Ok(())
+    }
+
+    fn serialize(&self) -> Result<String, StoreError> {
+        let keys = self
+            .registry
+            .read()
+            .map_err(|_| StoreError::Poisoned)?
+            .keys
+            .clone();
+        let state = self.state()?.clone();
+        Ok(restart::write(&keys, &state))
+    }
+}
+
+/// The restart file: a versioned, whitespace-separated token stream; floats as the hex of
+/// their bits so that a round trip is exact.
+mod restart {
+    use super::*;
+
+    const MAGIC: &str = "jointlin-store";
+    const VERSION: &str = "1";
+
+    fn f(out: &mut String, x: f64) {
+        out.push_str(&format!(" {:016x}", x.to_bits()));
+    }
+
+    fn ints(out: &mut String, list: &[i32]) {
+        out.push_str(&format!(" {}", list.len()));
+        for k in list {
+            out.push_str(&format!(" {k}"));
+        }
+    }
+
+    pub(super) fn write(keys: &[PointKey], s: &State) -> String {
+        let mut o = format!("{MAGIC} {VERSION}\n");
+        let (code, list): (i32, &[i32]) = match &s.next {
+            Action::RunSweep => (0, &[]),
+            Action::RunPass(l) => (1, l),
+            Action::RunFinal(l) => (2, l),
+            Action::Done => (3, &[]),
+            Action::Failed(l) => (4, l),
+        };
+        o.push_str(&format!("next {code}"));
+        ints(&mut o, list);
+        match &s.phase {
+            Phase::Ready => o.push_str("\nphase 0"),
+            Phase::Running(run) => {
+                o.push_str(&format!("\nphase 1 {} {}", run.number, run.kind as i32));
+                match &run.schedule {
+                    None => o.push_str(" 0"),
+                    Some(l) => {
+                        o.push_str(" 1");
+                        ints(&mut o, l);
+                    }
+                }
+                let ran: Vec<i32> = run.ran.iter().copied().collect();
+                ints(&mut o, &ran);
+            }
+        }
+        o.push_str(&format!("\ncounters {} {}\n", s.iteration_passes, s.step));
+        o.push_str(&format!("stats {}\n", s.stats.len()));
+        for st in &s.stats {
+            o.push_str(&format!(
+                "{} {} {} {} {} {}\n",
+                st.number,
+                st.kind as i32,
+                st.increments_run,
+                st.increments_converged,
+                st.evaluations,
+                st.not_reported
+            ));
+        }
+        o.push_str(&format!("increments {}", s.increments.len()));
+        for (k, ok) in &s.increments {
+            o.push_str(&format!(" {k} {}", u8::from(*ok)));
+        }
+        o.push_str(&format!("\npoints {}\n", keys.len()));
+        for k in keys {
+            let hex: String = k.name.iter().map(|b| format!("{b:02x}")).collect();
+            o.push_str(&format!("{} x{hex} {}", k.node, k.coords.len()));
+            for c in &k.coords {
+                o.push_str(&format!(" {c:016x}"));
+            }
+            o.push('\n');
+        }
+        let n: usize = s.records.iter().map(BTreeMap::len).sum();
+        o.push_str(&format!("records {n}\n"));
+        for (i, recs) in s.records.iter().enumerate() {
+            for (k, r) in recs {
+                o.push_str(&format!("{} {k} {} {}", i + 1, r.estimate_pass, r.dirs));
+                f(&mut o, r.estimate[0]);
+                f(&mut o, r.estimate[1]);
+                o.push_str(&format!(" {}", r.reported_pass));
+                f(&mut o, r.reported[0]);
+                f(&mut o, r.reported[1]);
+                o.push_str(&format!(
+                    " {} {} {}",
+                    u8::from(r.converged),
+                    r.passes,
+                    r.reason as i32
+                ));
+                for h in &r.history {
+                    o.push_str(&format!(" {}", h.len()));
+                    for &(a, b) in h {
+                        f(&mut o, a);
+                        f(&mut o, b);
+                    }
+                }
+                o.push('\n');
+            }
+        }
+        o.push_str("end\n");
+        o
+    }
+
+    struct Tokens<'a>(std::str::SplitWhitespace<'a>);
+
+    fn bad(what: &str) -> StoreError {
+        StoreError::Io(format!("corrupt restart file: {what}"))
+    }
+
+    impl<'a> Tokens<'a> {
+        fn word(&mut self, what: &str) -> Result<&'a str, StoreError> {
+            self.0.next().ok_or_else(|| bad(what))
+        }
+        fn tag(&mut self, tag: &str) -> Result<(), StoreError> {
+            if self.word(tag)? == tag {
+                Ok(())
+            } else {
+                Err(bad(tag))
+            }
+        }
+        fn int<T: std::str::FromStr>(&mut self, what: &str) -> Result<T, StoreError> {
+            self.word(what)?.parse().map_err(|_| bad(what))
+        }
+        fn float(&mut self, what: &str) -> Result<f64, StoreError> {
+            let x = u64::from_str_radix(self.word(what)?, 16).map_err(|_| bad(what))?;
+            Ok(f64::from_bits(x))
+        }
+        fn list(&mut self, what: &str) -> Result<Vec<i32>, StoreError> {
+            let n: usize = self.int(what)?;
+            (0..n).map(|_| self.int(what)).collect()
+        }
+    }
+
+    pub(super) fn parse(text: &str) -> Result<(Registry, State), StoreError> {
+        let mut t = Tokens(text.split_whitespace());
+        t.tag(MAGIC)?;
+        if t.word("version")? != VERSION {
+            return Err(bad("unsupported version"));
+        }
+        t.tag("next")?;
+        let code: i32 = t.int("next action")?;
+        let list = t.list("next list")?;
+        let next = match code {
+            0 => Action::RunSweep,
+            1 => Action::RunPass(list),
+            2 => Action::RunFinal(list),
+            3 => Action::Done,
+            4 => Action::Failed(list),
+            _ => return Err(bad("next action")),
+        };
+        t.tag("phase")?;
+        let phase = match t.int::<i32>("phase")? {
+            0 => Phase::Ready,
+            1 => {
+                let number = t.int("pass")?;
+                let kind = kind(t.int("kind")?)?;
+                let schedule = match t.int::<i32>("schedule")? {
+                    0 => None,
+                    _ => Some(t.list("schedule")?),
+                };
+                let ran = t.list("ran")?.into_iter().collect();
+                Phase::Running(Run {
+                    number,
+                    kind,
+                    schedule,
+                    open: None,
+                    ran,
+                })
+            }
+            _ => return Err(bad("phase")),
+        };
+        t.tag("counters")?;
+        let iteration_passes = t.int("iteration passes")?;
+        let step = t.int("step")?;
+        t.tag("stats")?;
+        let n: usize = t.int("stats")?;
+        let mut stats = Vec::new();
+        for _ in 0..n {
+            stats.push(PassStats {
+                number: t.int("stats")?,
+                kind: kind(t.int("stats")?)?,
+                increments_run: t.int("stats")?,
+                increments_converged: t.int("stats")?,
+                evaluations: t.int("stats")?,
+                not_reported: t.int("stats")?,
+            });
+        }
+        t.tag("increments")?;
+        let n: usize = t.int("increments")?;
+        let mut increments = BTreeMap::new();
+        for _ in 0..n {
+            let k = t.int("increment")?;
+            increments.insert(k, t.int::<u8>("increment flag")? == 1);
+        }
+        t.tag("points")?;
+        let n: usize = t.int("points")?;
+        let mut reg = Registry::default();
+        for i in 0..n {
+            let node = t.int("node")?;
+            let hex = t
+                .word("name")?
+                .strip_prefix('x')
+                .ok_or_else(|| bad("name"))?;
+            if hex.len() % 2 != 0 {
+                return Err(bad("name"));
+            }
+            let name = (0..hex.len() / 2)
+                .map(|j| u8::from_str_radix(&hex[2 * j..2 * j + 2], 16).map_err(|_| bad("name")))
+                .collect::<Result<Vec<u8>, _>>()?;
+            let m: usize = t.int("coordinate count")?;
+            if m > 3 {
+                return Err(bad("coordinate count"));
+            }
+            let coords = (0..m)
+                .map(|_| {
+                    u64::from_str_radix(t.word("coordinate")?, 16).map_err(|_| bad("coordinate"))
+                })
+                .collect::<Result<Vec<u64>, _>>()?;
+            let key = PointKey { name, node, coords };
+            reg.ids.insert(key.clone(), i as i64 + 1);
+            reg.keys.push(key);
+        }
+        t.tag("records")?;
+        let n: usize = t.int("records")?;
+        let mut records: Vec<BTreeMap<i32, Record>> = vec![BTreeMap::new(); reg.keys.len()];
+        for _ in 0..n {
+            let id: usize = t.int("record point")?;
+            let k: i32 = t.int("record increment")?;
+            let mut r = Record {
+                estimate_pass: t.int("record")?,
+                dirs: t.int("record")?,
+                ..Record::default()
+            };
+            r.estimate = [t.float("estimate")?, t.float("estimate")?];
+            r.reported_pass = t.int("record")?;
+            r.reported = [t.float("reported")?, t.float("reported")?];
+            r.converged = t.int::<u8>("record")? == 1;
+            r.passes = t.int("record")?;
+            r.reason = match t.int::<i32>("reason")? {
+                0 => Reason::None,
+                1 => Reason::OutOfTolerance,
+                2 => Reason::NotReported,
+                _ => return Err(bad("reason")),
+            };
+            for d in 0..2 {
+                let m: usize = t.int("history")?;
+                for _ in 0..m {
+                    r.history[d].push((t.float("history")?, t.float("history")?));
+                }
+            }
+            if id == 0 || id > records.len() || r.dirs > 2 {
+                return Err(bad("record point"));
+            }
+            records[id - 1].insert(k, r);
+        }
+        t.tag("end")?;
+        let state = State {
+            phase,
+            next,
+            iteration_passes,
+            step,
+            increments,
+            records,
+            stats,
+        };
+        Ok((reg, state))
+    }
+
+    fn kind(code: i32) -> Result<PassKind, StoreError> {
+        match code {
+            0 => Ok(PassKind::First),
+            1 => Ok(PassKind::Rerun),
+            2 => Ok(PassKind::Final),
+            _ => Err(bad("pass kind")),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn key(name: &str, node: i32, x: f64) -> PointKey {
+        PointKey::new(name.as_bytes(), node, &[x, 0.0, 1.0]).unwrap()
+    }
+
+    /// Runs passes until Done/Failed with a toy host: `host(point index, sweep kinc, estimate)`
+    /// returns the computed amplitude. Returns the final action and the passes run.
+    fn drive(
+        store: &Store,
+        ids: &[i64],
+        sweep: &[i32],
+        host: impl Fn(usize, i32, [f64; 2]) -> [f64; 2],
+    ) -> (Action, u32) {
+        loop {
+            let (action, number) = store.next_action().unwrap().unwrap();
+            let list = match &action {
+                Action::RunSweep => sweep.to_vec(),
+                Action::RunPass(l) | Action::RunFinal(l) => l.clone(),
+                Action::Done | Action::Failed(_) => return (action, number),
+            };
+            store.external_db(0, 0, 2, 0).unwrap();
+            for (i, &k) in list.iter().enumerate() {
+                let host_kinc = match store.config().numbering {
+                    KincNumbering::Original => k,
+                    KincNumbering::Sequential => i as i32 + 1,
+                };
+                store.external_db(1, 0, 2, host_kinc).unwrap();
+                for (p, &id) in ids.iter().enumerate() {
+                    let est = store.estimate(id, host_kinc, 2).unwrap();
+                    store.report(id, host_kinc, host(p, k, est)).unwrap();
+                }
+                store.external_db(2, 1, 2, host_kinc).unwrap();
+            }
+            store.external_db(3, 0, 2, 0).unwrap();
+        }
+    }
+
+    /// Linear contraction a* = c + s·a per point, increment, direction: fixed point c/(1 − s).
+    fn linear_host(p: usize, k: i32, a: [f64; 2]) -> [f64; 2] {
+        let c = |d: usize| 1e-3 * (1.0 + p as f64 + 0.5 * k as f64 + 0.25 * d as f64);
+        [c(0) + 0.4 * a[0], c(1) - 0.3 * a[1]]
+    }
+
+    #[test]
+    fn two_points_three_increments_converge_over_several_passes() {
+        for scheme in [Scheme::Direct, Scheme::Relaxation, Scheme::Secant] {
+            let mut cfg = StoreConfig::new(1e-3);
+            cfg.scheme = scheme;
+            cfg.rtol = 1e-6;
+            cfg.max_passes = 60; // relaxation contracts by only 0.7 per pass here
+            let store = Store::new(cfg).unwrap();
+            let ids = [
+                store.register(key("CP-1", 0, 1.0)).unwrap(),
+                store.register(key("CP-1", 0, 2.0)).unwrap(),
+            ];
+            let (action, passes) = drive(&store, &ids, &[1, 2, 3], linear_host);
+            assert_eq!(action, Action::Done, "{scheme:?}");
+            // Pass 1 cannot converge (the map moves every estimate), so ≥ 1 re-run + final.
+            assert!(passes >= 3, "{scheme:?}: {passes}");
+            let first = store.pass_stats(1).unwrap().unwrap();
+            assert_eq!((first.increments_run, first.evaluations), (3, 6));
+            assert_eq!(first.increments_converged, 0);
+            let last = store.pass_stats(passes).unwrap().unwrap();
+            assert_eq!(last.kind, PassKind::Final);
+            assert_eq!((last.increments_run, last.increments_converged), (3, 3));
+            for (p, &id) in ids.iter().enumerate() {
+                for k in 1..=3 {
+                    let st = store.point_status(id, k).unwrap().unwrap();
+                    assert!(st.converged);
+                    let c0 = 1e-3 * (1.0 + p as f64 + 0.5 * k as f64);
+                    let c1 = c0 + 0.25e-3;
+                    // Converged to rtol 1e-6 of a contraction with factor ≤ 0.4: the
+                    // estimate is within ~1e-6/(1 − 0.4) relative of the fixed point.
+                    assert!(
+                        (st.estimate[0] / (c0 / 0.6) - 1.0).abs() < 3e-6,
+                        "{scheme:?}"
+                    );
+                    assert!(
+                        (st.estimate[1] / (c1 / 1.3) - 1.0).abs() < 3e-6,
+                        "{scheme:?}"
+                    );
+                }
+            }
+            // Past the end: no more passes.
+            assert!(matches!(
+                store.external_db(0, 0, 2, 0),
+                Err(StoreError::Sequence(_))
+            ));
+        }
+    }
+
+    #[test]
+    fn pass_one_uses_the_initial_estimate_then_the_previous_increment() {
+        let store = Store::new(StoreConfig::new(0.5)).unwrap();
+        let id = store.register(key("I", 7, 0.0)).unwrap();
+        store.begin_pass().unwrap();
+        store.begin_increment(1).unwrap();
+        assert_eq!(store.estimate(id, 1, 2).unwrap(), [0.5, 0.5]);
+        store.report(id, 1, [0.25, 0.125]).unwrap();
+        // A second query in the same increment returns the same estimate.
+        assert_eq!(store.estimate(id, 1, 2).unwrap(), [0.5, 0.5]);
+        store.end_increment(1).unwrap();
+        store.begin_increment(2).unwrap();
+        assert_eq!(store.estimate(id, 2, 2).unwrap(), [0.25, 0.125]);
+    }
+
+    #[test]
+    fn direct_two_cycles_where_secant_converges() {
+        // a*(a) = 1/a: derivative −1 at the fixed point 1, so a ← a* flips 2 ↔ 0.5 forever
+        // (Fig. 4.13); the secant on ln a*/a = −2 ln a is exact after two pairs.
+        let host = |_: usize, _: i32, a: [f64; 2]| [1.0 / a[0], 1.0 / a[1]];
+        let run = |scheme| {
+            let mut cfg = StoreConfig::new(2.0);
+            cfg.scheme = scheme;
+            cfg.max_passes = 8;
+            let store = Store::new(cfg).unwrap();
+            let id = store.register(key("X", 1, 0.0)).unwrap();
+            let out = drive(&store, &[id], &[1], host);
+            (out, store.point_status(id, 1).unwrap().unwrap())
+        };
+        let ((action, passes), st) = run(Scheme::Direct);
+        assert_eq!(action, Action::Failed(vec![1]));
+        assert_eq!(passes, 8);
+        assert_eq!(st.estimate[0], 0.5); // pass 8: 2, 0.5, 2, … → 0.5
+        assert_eq!(st.reason, Reason::OutOfTolerance);
+        let ((action, passes), st) = run(Scheme::Secant);
+        assert_eq!(action, Action::Done);
+        assert!(passes <= 5, "{passes}");
+        assert!((st.estimate[0] - 1.0).abs() < 1e-3);
+    }
+
+    #[test]
+    fn a_point_queried_but_not_reported_is_not_converged() {
+        let store = Store::new(StoreConfig::new(1.0)).unwrap();
+        let (a, b) = (
+            store.register(key("P", 0, 1.0)).unwrap(),
+            store.register(key("P", 0, 2.0)).unwrap(),
+        );
+        store.begin_pass().unwrap();
+        store.begin_increment(4).unwrap();
+        store.estimate(a, 4, 1).unwrap();
+        store.estimate(b, 4, 1).unwrap();
+        // Direction 2 is not compared for a 1-direction point: its report may be anything.
+        store.report(a, 4, [1.0, 99.0]).unwrap();
+        store.end_increment(4).unwrap();
+        store.end_pass().unwrap();
+        assert_eq!(
+            store.point_status(a, 4).unwrap().unwrap().reason,
+            Reason::None
+        );
+        let sb = store.point_status(b, 4).unwrap().unwrap();
+        assert_eq!((sb.converged, sb.reason), (false, Reason::NotReported));
+        assert_eq!(store.pass_stats(1).unwrap().unwrap().not_reported, 1);
+        assert_eq!(
+            store.next_action().unwrap().unwrap(),
+            (Action::RunPass(vec![4]), 2)
+        );
+    }
+
+    #[test]
+    fn sequence_errors_are_named_not_panics() {
+        let store = Store::new(StoreConfig::new(1.0)).unwrap();
+        let id = store.register(key("S", 1, 0.0)).unwrap();
+        let is_seq = |r: Result<_, StoreError>| matches!(r, Err(StoreError::Sequence(_)));
+        assert!(is_seq(store.estimate(id, 1, 2).map(|_| ())));
+        assert!(is_seq(store.external_db(1, 0, 1, 1)));
+        assert!(is_seq(store.external_db(3, 0, 1, 1)));
+        store.external_db(0, 0, 1, 0).unwrap();
+        assert!(is_seq(store.external_db(0, 0, 1, 0)));
+        assert!(is_seq(store.external_db(2, 0, 1, 1)));
+        store.external_db(1, 0, 1, 1).unwrap();
+        assert!(is_seq(store.external_db(1, 0, 1, 2)));
+        assert!(is_seq(store.estimate(id, 2, 2).map(|_| ())));
+        assert!(is_seq(store.report(id, 1, [1.0, 1.0])));
+        assert!(is_seq(store.external_db(3, 0, 1, 1)));
+        assert!(is_seq(store.external_db(2, 0, 1, 2)));
+        assert_eq!(store.estimate(99, 1, 2), Err(StoreError::UnknownPoint(99)));
+        assert!(matches!(
+            store.external_db(9, 0, 1, 1),
+            Err(StoreError::OutOfRange(_))
+        ));
+        // Still usable after all those errors.
+        store.estimate(id, 1, 2).unwrap();
+        store.report(id, 1, [1.0, 1.0]).unwrap();
+        store.external_db(2, 0, 1, 1).unwrap();
+        store.external_db(3, 0, 1, 0).unwrap();
+        assert!(matches!(
+            store.next_action().unwrap().unwrap().0,
+            Action::RunFinal(_)
+        ));
+    }
+
+    #[test]
+    fn increments_outside_the_sweep_step_are_ignored() {
+        let mut cfg = StoreConfig::new(1.0);
+        cfg.sweep_step = 2;
+        let store = Store::new(cfg).unwrap();
+        store.external_db(0, 0, 1, 0).unwrap();
+        store.external_db(5, 0, 1, 0).unwrap();
+        store.external_db(1, 0, 1, 1).unwrap(); // static step: ignored
+        store.external_db(2, 0, 1, 1).unwrap();
+        store.external_db(6, 0, 1, 0).unwrap();
+        // Pass 1 saw no sweep increment: a named error, not a silent "done".
+        assert!(matches!(
+            store.external_db(3, 0, 1, 0),
+            Err(StoreError::Sequence(_))
+        ));
+    }
+
+    #[test]
+    fn sequential_numbering_maps_rerun_kinc_to_the_schedule() {
+        let mut cfg = StoreConfig::new(1e-3);
+        cfg.numbering = KincNumbering::Sequential;
+        cfg.rtol = 1e-6;
+        let store = Store::new(cfg).unwrap();
+        let ids = [store.register(key("Q", 0, 3.0)).unwrap()];
+        // Increment 2 has a fixed point at the initial estimate: converged in pass 1, so
+        // pass 2 re-runs only increments 1 and 3 as its KINC 1 and 2.
+        let host = |_: usize, k: i32, a: [f64; 2]| {
+            if k == 2 {
+                a
+            } else {
+                linear_host(0, k, a)
+            }
+        };
+        let (action, _) = drive(&store, &ids, &[1, 2, 3], host);
+        assert_eq!(action, Action::Done);
+        let second = store.pass_stats(2).unwrap().unwrap();
+        assert_eq!((second.kind, second.increments_run), (PassKind::Rerun, 2));
+        // Pass 1: increment 2 took increment 1's computed amplitude as its estimate and
+        // kept it (identity map), so it converged at once and was never re-run.
+        assert_eq!(store.point_status(ids[0], 2).unwrap().unwrap().passes, 2);
+    }
+
+    #[test]
+    fn restart_round_trip_continues_identically() {
+        let dir = std::env::temp_dir().join(format!("jointlin-store-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("restart.txt");
+        let mut cfg = StoreConfig::new(1e-3);
+        cfg.restart_path = Some(path.clone());
+        cfg.scheme = Scheme::Relaxation;
+        let a = Store::new(cfg.clone()).unwrap();
+        let ids = [
+            a.register(key("R", 0, 1.0)).unwrap(),
+            a.register(key("R", 0, -2.0)).unwrap(),
+        ];
+        // One full pass, then two increments of pass 2 with restart data written.
+        let one_increment = |s: &Store, k: i32| {
+            s.external_db(1, 0, 2, k).unwrap();
+            for (p, &id) in ids.iter().enumerate() {
+                let est = s.estimate(id, k, 2).unwrap();
+                s.report(id, k, linear_host(p, k, est)).unwrap();
+            }
+            s.external_db(2, 1, 2, k).unwrap();
+        };
+        a.external_db(0, 0, 2, 0).unwrap();
+        for k in 1..=3 {
+            one_increment(&a, k);
+        }
+        a.external_db(3, 0, 2, 0).unwrap();
+        a.external_db(0, 0, 2, 0).unwrap();
+        one_increment(&a, 1);
+        one_increment(&a, 2);
+        // A new process restarts from the file (LOP 4) and must equal the original.
+        let b = Store::new(cfg).unwrap();
+        b.external_db(4, 0, 2, 2).unwrap();
+        assert_eq!(a.serialize().unwrap(), b.serialize().unwrap());
+        assert_eq!(*a.state.lock().unwrap(), *b.state.lock().unwrap());
+        assert_eq!(b.register(key("R", 0, -2.0)).unwrap(), ids[1]);
+        for s in [&a, &b] {
+            one_increment(s, 3);
+            s.external_db(3, 0, 2, 0).unwrap();
+        }
+        assert_eq!(a.serialize().unwrap(), b.serialize().unwrap());
+        let (fa, na) = drive(&a, &ids, &[], linear_host);
+        let (fb, nb) = drive(&b, &ids, &[], linear_host);
+        assert_eq!((fa.clone(), na), (fb, nb));
+        assert_eq!(fa, Action::Done);
+        // A corrupt file is a named I/O error.
+        std::fs::write(&path, "jointlin-store 1\nnext 7 0\n").unwrap();
+        assert!(matches!(b.restore(), Err(StoreError::Io(_))));
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn keys_never_collapse_on_node_zero() {
+        let store = Store::new(StoreConfig::new(1.0)).unwrap();
+        let ids: Vec<i64> = (0..5)
+            .map(|i| store.register(key("SURF", 0, i as f64)).unwrap())
+            .collect();
+        assert_eq!(ids, vec![1, 2, 3, 4, 5]);
+        // Same key → same id; Fortran blank padding, trailing NULs and −0.0 do not matter.
+        let padded = PointKey::new(b"SURF    \0", 0, &[-0.0, 0.0, 1.0]).unwrap();
+        assert_eq!(store.register(padded).unwrap(), 1);
+        // Another interaction or node at the same place is another point.
+        assert_eq!(store.register(key("SURF2", 0, 0.0)).unwrap(), 6);
+        assert_eq!(store.register(key("SURF", 3, 0.0)).unwrap(), 7);
+        assert_eq!(store.resolve(2, key("SURF", 0, 1.0)).unwrap(), 2);
+        // A stale hint (id of another key) is not trusted.
+        assert_eq!(store.resolve(2, key("SURF", 0, 4.0)).unwrap(), 5);
+        assert_eq!(store.point_count().unwrap(), 7);
+        assert!(PointKey::new(b"N", 0, &[f64::NAN]).is_err());
+    }
+
+    #[test]
+    fn config_is_validated() {
+        let bad = |f: fn(&mut StoreConfig)| {
+            let mut c = StoreConfig::new(1.0);
+            f(&mut c);
+            Store::new(c).is_err()
+        };
+        assert!(bad(|c| c.initial_amplitude = 0.0));
+        assert!(bad(|c| c.initial_amplitude = f64::INFINITY));
+        assert!(bad(|c| c.rtol = -1e-3));
+        assert!(bad(|c| c.atol = f64::NAN));
+        assert!(bad(|c| c.max_passes = 0));
+        assert!(!bad(|c| c.atol = 1e-9));
+    }
+}
