@@ -16,6 +16,7 @@
 #![allow(clippy::needless_range_loop)]
 
 pub mod fe;
+pub mod scene;
 pub mod solve;
 
 pub(crate) mod rng;

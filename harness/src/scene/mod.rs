@@ -1,0 +1,72 @@
+//! Scenes: TOML files that describe a study (geometry, materials, contact interfaces,
+//! preload, excitation, sweep, iteration, outputs and the `[effects]` switches).
+//!
+//! [`Scene::load`] reads and validates; any problem is a [`SceneError`] naming the file,
+//! line, column and key. The schema with units is in [`schema`].
+
+pub mod error;
+pub mod schema;
+pub mod validate;
+
+use std::path::Path;
+
+pub use error::SceneError;
+pub use schema::*;
+
+/// A validated scene and where it came from.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Scene {
+    /// File name as given (for messages).
+    pub file: String,
+    /// The file's text (echoed into run.json).
+    pub text: String,
+    pub spec: SceneFile,
+}
+
+impl Scene {
+    /// Reads and validates a scene file.
+    pub fn load(path: &Path) -> Result<Scene, SceneError> {
+        let file = path.display().to_string();
+        let text = std::fs::read_to_string(path).map_err(|e| SceneError {
+            file: file.clone(),
+            line: 0,
+            column: 0,
+            key: String::new(),
+            message: format!("cannot read: {e}"),
+        })?;
+        Scene::parse(&file, &text)
+    }
+
+    /// Parses and validates scene text; `file` names it in errors.
+    pub fn parse(file: &str, text: &str) -> Result<Scene, SceneError> {
+        let spec: SceneFile = toml::from_str(text).map_err(|e| error::from_toml(file, text, &e))?;
+        if let Some((path, msg)) = validate::validate(&spec).into_iter().next() {
+            return Err(error::at_path(file, text, &path, msg));
+        }
+        Ok(Scene {
+            file: file.to_string(),
+            text: text.to_string(),
+            spec,
+        })
+    }
+
+    /// The sweep's frequencies (1/time), ascending.
+    pub fn frequencies(&self) -> Vec<f64> {
+        let s = &self.spec.sweep;
+        if s.count == 1 {
+            return vec![s.f_min];
+        }
+        (0..s.count)
+            .map(|i| {
+                let t = i as f64 / (s.count - 1) as f64;
+                match s.spacing {
+                    Spacing::Linear => s.f_min + t * (s.f_max - s.f_min),
+                    Spacing::Log => s.f_min * (s.f_max / s.f_min).powf(t),
+                }
+            })
+            .collect()
+    }
+}
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,386 @@
+//! The TOML schema of a scene, as deserialized (before validation).
+//!
+//! Units are the scene's own and must be consistent; `[units]` states them and every
+//! quantity below says which dimension it has. Example (N, mm, s, t):
+//! E in N/mm², ρ in t/mm³, pressure in N/mm², stiffness per area in N/mm³,
+//! frequency in 1/s = Hz. Every table rejects unknown keys (typos are errors).
+
+use std::collections::BTreeMap;
+
+use serde::{Deserialize, Serialize};
+
+/// The whole scene file.
+#[derive(Debug, Clone, Deserialize, Serialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct SceneFile {
+    /// Free text, echoed in run.json and plot titles.
+    #[serde(default)]
+    pub title: String,
+    pub units: Units,
+    /// Materials by name.
+    #[serde(default)]
+    pub materials: BTreeMap<String, MaterialSpec>,
+    pub bodies: Vec<BodySpec>,
+    #[serde(default)]
+    pub interfaces: Vec<InterfaceSpec>,
+    #[serde(default)]
+    pub preload: Vec<PreloadSpec>,
+    #[serde(default)]
+    pub clamp: Vec<ClampSpec>,
+    /// Grounded springs and dashpots on lumped (`mass`) bodies.
+    #[serde(default)]
+    pub springs: Vec<SpringSpec>,
+    pub excitation: Vec<ExcitationSpec>,
+    pub sweep: SweepSpec,
+    #[serde(default)]
+    pub iteration: IterationSpec,
+    pub outputs: Vec<OutputSpec>,
+    #[serde(default)]
+    pub effects: Effects,
+}
+
+/// The scene's unit system, stated (names only; the numbers must be consistent with
+/// them: mass = force·time²/length).
+#[derive(Debug, Clone, Deserialize, Serialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct Units {
+    pub length: String,
+    pub force: String,
+    pub time: String,
+    pub mass: String,
+}
+
+/// Linear isotropic elastic material.
+#[derive(Debug, Clone, Copy, Deserialize, Serialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct MaterialSpec {
+    /// Young's modulus E (force/length²).
+    #[serde(rename = "E")]
+    pub e: f64,
+    /// Poisson's ratio ν (−1 < ν < 0.5).
+    pub nu: f64,
+    /// Density ρ (mass/length³).
+    pub rho: f64,
+    /// Rayleigh mass-proportional damping α (1/time): D = αM + βK.
+    #[serde(default)]
+    pub rayleigh_alpha: f64,
+    /// Rayleigh stiffness-proportional damping β (time).
+    #[serde(default)]
+    pub rayleigh_beta: f64,
+}
+
+/// Kind of body.
+#[derive(Debug, Clone, Copy, Deserialize, Serialize, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub enum BodyKind {
+    /// Axis-aligned box meshed with hex8 elements: `origin`, `size`, `divisions`, `material`.
+    Box,
+    /// A lumped point mass (3 translational DOFs): `position`, `mass`.
+    Mass,
+}
+
+/// One body. Boxes need origin/size/divisions/material; masses need position/mass.
+#[derive(Debug, Clone, Deserialize, Serialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct BodySpec {
+    pub name: String,
+    pub kind: BodyKind,
+    /// Box corner with the smallest coordinates (length).
+    pub origin: Option<[f64; 3]>,
+    /// Box edge lengths (length).
+    pub size: Option<[f64; 3]>,
+    /// Elements per axis.
+    pub divisions: Option<[usize; 3]>,
+    /// Material name (key of `[materials]`).
+    pub material: Option<String>,
+    /// Point-mass position (length).
+    pub position: Option<[f64; 3]>,
+    /// Point mass (mass).
+    pub mass: Option<f64>,
+}
+
+/// Tangential contact law.
+#[derive(Debug, Clone, Copy, Deserialize, Serialize, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub enum LawName {
+    /// Hertz–Mindlin microslip (2.49) then Coulomb sliding.
+    Mindlin,
+    /// Linear spring k_T0 in series with a Coulomb slider.
+    Jenkins,
+}
+
+/// Unloading rule of the hysteresis loop.
+#[derive(Debug, Clone, Copy, Deserialize, Serialize, PartialEq, Eq, Default)]
+#[serde(rename_all = "snake_case")]
+pub enum RuleName {
+    /// The thesis's rule: elastic unloading with k_T0, then Mindlin loading (model.md §4).
+    #[default]
+    Thesis,
+    /// Masing (Mindlin–Deresiewicz).
+    Masing,
+}
+
+/// Normal contact law of an interface (stress form: pressure vs overclosure).
+#[derive(Debug, Clone, Copy, Deserialize, Serialize, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub enum NormalLawName {
+    /// p = k_N·h for overclosure h > 0: `normal_stiffness_per_area` (force/length³).
+    Linear,
+    /// Hertz (2.34) per point: `hertz_radius` r* (length), E* from the two materials
+    /// (2.31), spread over the point's tributary area.
+    Hertz,
+}
+
+/// A contact interface between two bodies: the z-max face of the first touches the
+/// z-min face of the second (coincident nodes), or `ground` and a `mass` body.
+#[derive(Debug, Clone, Deserialize, Serialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct InterfaceSpec {
+    pub name: String,
+    /// `[lower, upper]` body names; `"ground"` may be the lower one of a mass body.
+    pub between: [String; 2],
+    pub law: LawName,
+    #[serde(default)]
+    pub rule: RuleName,
+    /// Friction coefficient μ ≥ 0.
+    pub mu: f64,
+    /// Full-stick tangential stiffness per area k_T0/A (force/length³).
+    pub k_t0_per_area: f64,
+    pub normal_law: NormalLawName,
+    /// Linear normal stiffness per area (force/length³), for `normal_law = "linear"`;
+    /// also the constant normal stiffness when `normal_contact_nonlinearity = false`.
+    pub normal_stiffness_per_area: Option<f64>,
+    /// Hertz effective radius r* (length), for `normal_law = "hertz"`.
+    pub hertz_radius: Option<f64>,
+    /// Contact area (length²) of a ground–mass interface (box interfaces use the
+    /// nodes' tributary areas).
+    pub area: Option<f64>,
+}
+
+/// Kind of preload.
+#[derive(Debug, Clone, Copy, Deserialize, Serialize, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub enum PreloadKind {
+    /// Uniform pressure on a box face (force/length², positive in compression).
+    Pressure,
+    /// A point force at the node nearest `at` (bolt force replaced by point forces).
+    Force,
+}
+
+/// Box face names (outward normal).
+#[derive(Debug, Clone, Copy, Deserialize, Serialize, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub enum FaceName {
+    XMin,
+    XMax,
+    YMin,
+    YMax,
+    ZMin,
+    ZMax,
+}
+
+/// A static preload of the preload step.
+#[derive(Debug, Clone, Deserialize, Serialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct PreloadSpec {
+    pub kind: PreloadKind,
+    pub body: String,
+    /// Face for `pressure`.
+    pub face: Option<FaceName>,
+    /// Pressure (force/length², positive pushes into the body).
+    pub pressure: Option<f64>,
+    /// Point for `force` (length): the body's nearest node.
+    pub at: Option<[f64; 3]>,
+    /// Force vector for `force` (force, global axes).
+    pub force: Option<[f64; 3]>,
+}
+
+/// Fixed displacements (zero).
+#[derive(Debug, Clone, Deserialize, Serialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct ClampSpec {
+    pub body: String,
+    /// Box face to clamp; omitted for a mass body (its node).
+    pub face: Option<FaceName>,
+    /// Which components x, y, z are held (default all).
+    #[serde(default = "all_components")]
+    pub components: [bool; 3],
+}
+
+fn all_components() -> [bool; 3] {
+    [true; 3]
+}
+
+/// A grounded linear spring and dashpot on a mass body along a direction.
+#[derive(Debug, Clone, Deserialize, Serialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct SpringSpec {
+    pub body: String,
+    /// Direction (normalized on use).
+    pub direction: [f64; 3],
+    /// Stiffness (force/length).
+    pub stiffness: f64,
+    /// Viscous damping (force·time/length).
+    #[serde(default)]
+    pub damping: f64,
+}
+
+/// Kind of harmonic excitation.
+#[derive(Debug, Clone, Copy, Deserialize, Serialize, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub enum ExcitationKind {
+    /// Force amplitude (force) at the node nearest `at`.
+    Point,
+    /// Traction amplitude (force/length²) uniform on a box face along `direction`.
+    Face,
+}
+
+/// Harmonic excitation F̂ cos(ωt + φ) along a direction.
+#[derive(Debug, Clone, Deserialize, Serialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct ExcitationSpec {
+    pub kind: ExcitationKind,
+    pub body: String,
+    pub at: Option<[f64; 3]>,
+    pub face: Option<FaceName>,
+    /// Direction (normalized on use).
+    pub direction: [f64; 3],
+    /// Amplitude: force (point) or traction (face).
+    pub amplitude: f64,
+    /// Phase φ in degrees.
+    #[serde(default)]
+    pub phase_deg: f64,
+}
+
+/// Frequency spacing of the sweep.
+#[derive(Debug, Clone, Copy, Deserialize, Serialize, PartialEq, Eq, Default)]
+#[serde(rename_all = "snake_case")]
+pub enum Spacing {
+    #[default]
+    Linear,
+    Log,
+}
+
+/// The frequencies of the steady-state step (1/time, Hz for seconds).
+#[derive(Debug, Clone, Copy, Deserialize, Serialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct SweepSpec {
+    pub f_min: f64,
+    pub f_max: f64,
+    pub count: usize,
+    #[serde(default)]
+    pub spacing: Spacing,
+}
+
+/// Iteration mode of the steady-state step.
+#[derive(Debug, Clone, Copy, Deserialize, Serialize, PartialEq, Eq, Default)]
+#[serde(rename_all = "snake_case")]
+pub enum Mode {
+    /// One factorization per frequency, contact iterations on the condensed system.
+    #[default]
+    Fast,
+    /// The thesis's multi-pass UEXTERNALDB scheme (§4.3.2).
+    Thesis,
+}
+
+/// Amplitude update rule (the library's, through its iteration store).
+#[derive(Debug, Clone, Copy, Deserialize, Serialize, PartialEq, Eq, Default)]
+#[serde(rename_all = "snake_case")]
+pub enum SchemeName {
+    /// a ← a*.
+    Direct,
+    /// a ← (a + a*)/2 (Fig. 4.14).
+    Relaxation,
+    /// Secant on ln a with bracketing (library default).
+    #[default]
+    Secant,
+}
+
+/// Amplitude-consistency iteration.
+#[derive(Debug, Clone, Copy, Deserialize, Serialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct IterationSpec {
+    #[serde(default)]
+    pub mode: Mode,
+    /// Relative amplitude tolerance |a − a*| ≤ tol·max(a*, floor).
+    #[serde(default = "default_tolerance")]
+    pub tolerance: f64,
+    #[serde(default)]
+    pub scheme: SchemeName,
+    /// Most passes (thesis) or iterations per frequency (fast).
+    #[serde(default = "default_max_passes")]
+    pub max_passes: usize,
+    /// Amplitude estimate (length) of the first frequency increment.
+    #[serde(default = "default_initial_amplitude")]
+    pub initial_amplitude: f64,
+}
+
+fn default_tolerance() -> f64 {
+    1e-3
+}
+fn default_max_passes() -> usize {
+    50
+}
+fn default_initial_amplitude() -> f64 {
+    1e-9
+}
+
+impl Default for IterationSpec {
+    fn default() -> Self {
+        IterationSpec {
+            mode: Mode::default(),
+            tolerance: default_tolerance(),
+            scheme: SchemeName::default(),
+            max_passes: default_max_passes(),
+            initial_amplitude: default_initial_amplitude(),
+        }
+    }
+}
+
+/// A named output: the displacement of the body's node nearest `at` along `direction`.
+#[derive(Debug, Clone, Deserialize, Serialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct OutputSpec {
+    pub name: String,
+    pub body: String,
+    /// Point (length); ignored for a mass body.
+    pub at: Option<[f64; 3]>,
+    pub direction: [f64; 3],
+}
+
+/// Physics and output switches: the engine runs only what is on.
+#[derive(Debug, Clone, Copy, Deserialize, Serialize, PartialEq, Eq)]
+#[serde(deny_unknown_fields, default)]
+pub struct Effects {
+    /// Static step with the library's normal law by Newton (open points stay open);
+    /// off: constant normal springs, one linear static solve, no open/close.
+    pub normal_contact_nonlinearity: bool,
+    /// Tangential k* from the library's linearization; off: constant k_T0 and no
+    /// linearization calls at all.
+    pub tangential_microslip: bool,
+    /// Coulomb sliding allowed; off: the amplitude handed to the linearization is
+    /// capped at the slip limit δ* (and the cap is counted in the run log).
+    pub macroslip: bool,
+    /// Equivalent contact damping d* in the dynamic stiffness; off: d* = 0.
+    pub contact_damping: bool,
+    /// Rayleigh damping of the materials and the springs' dashpots; off: none.
+    pub material_damping: bool,
+    /// points.csv: per point and frequency amplitude, k*, d*, energy, A/δ*.
+    pub point_energy_output: bool,
+    /// Regime (stick/microslip/sliding) per point and frequency, stick_slip.csv/svg.
+    pub stick_slip_map: bool,
+}
+
+impl Default for Effects {
+    fn default() -> Self {
+        Effects {
+            normal_contact_nonlinearity: true,
+            tangential_microslip: true,
+            macroslip: true,
+            contact_damping: true,
+            material_damping: true,
+            point_energy_output: false,
+            stick_slip_map: false,
+        }
+    }
+}

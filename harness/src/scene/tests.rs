@@ -1,0 +1,146 @@
+//! Scene parsing and validation: a valid scene round-trips; bad ones name file, line
+//! and key.
+
+use super::*;
+
+pub(crate) const GOOD: &str = r#"
+title = "two plates"
+[units]
+length = "mm"
+force = "N"
+time = "s"
+mass = "t"
+
+[materials.steel]
+E = 210000.0
+nu = 0.3
+rho = 7.85e-9
+
+[[bodies]]
+name = "lower"
+kind = "box"
+origin = [0.0, 0.0, 0.0]
+size = [20.0, 5.0, 1.0]
+divisions = [4, 1, 1]
+material = "steel"
+
+[[bodies]]
+name = "upper"
+kind = "box"
+origin = [0.0, 0.0, 1.0]
+size = [20.0, 5.0, 1.0]
+divisions = [4, 1, 1]
+material = "steel"
+
+[[interfaces]]
+name = "joint"
+between = ["lower", "upper"]
+law = "mindlin"
+mu = 0.3
+k_t0_per_area = 1e4
+normal_law = "linear"
+normal_stiffness_per_area = 1e5
+
+[[clamp]]
+body = "lower"
+face = "x_min"
+
+[[excitation]]
+kind = "point"
+body = "upper"
+at = [20.0, 2.5, 2.0]
+direction = [0.0, 0.0, 1.0]
+amplitude = 1.0
+
+[sweep]
+f_min = 100.0
+f_max = 200.0
+count = 3
+
+[[outputs]]
+name = "tip"
+body = "upper"
+at = [20.0, 2.5, 2.0]
+direction = [0.0, 0.0, 1.0]
+"#;
+
+fn err(text: &str) -> SceneError {
+    Scene::parse("bad.toml", text).unwrap_err()
+}
+
+fn line_of(text: &str, needle: &str) -> usize {
+    text.lines().position(|l| l.contains(needle)).unwrap() + 1
+}
+
+#[test]
+fn good_scene_parses_with_defaults() {
+    let s = Scene::parse("good.toml", GOOD).unwrap();
+    assert_eq!(s.spec.bodies.len(), 2);
+    assert_eq!(s.spec.iteration.mode, Mode::Fast);
+    assert!(s.spec.effects.contact_damping && !s.spec.effects.point_energy_output);
+    assert_eq!(s.frequencies(), vec![100.0, 150.0, 200.0]);
+}
+
+#[test]
+fn type_error_names_line_and_key() {
+    let text = GOOD.replace("nu = 0.3", "nu = \"soft\"");
+    let e = err(&text);
+    assert_eq!(e.file, "bad.toml");
+    assert_eq!(e.line, line_of(&text, "nu = \"soft\""));
+    assert_eq!(e.key, "materials.steel.nu");
+    assert!(e.to_string().starts_with(&format!("bad.toml:{}:", e.line)));
+}
+
+#[test]
+fn unknown_and_missing_keys_are_named() {
+    let text = GOOD.replace("count = 3", "count = 3\ncuont = 4");
+    let e = err(&text);
+    assert!(e.message.contains("cuont"), "{e}");
+    assert_eq!(e.key, "sweep.cuont");
+    assert_eq!(e.line, line_of(&text, "cuont"));
+    let text = GOOD.replace("mu = 0.3\n", "");
+    let e = err(&text);
+    assert_eq!(e.key, "interfaces[0].mu", "{e}");
+    assert_eq!(e.line, line_of(&text, "[[interfaces]]"));
+}
+
+#[test]
+fn validation_errors_point_at_the_value() {
+    let text = GOOD.replace(
+        "size = [20.0, 5.0, 1.0]\ndivisions = [4, 1, 1]\nmaterial = \"steel\"\n\n[[interfaces]]",
+        "size = [20.0, -5.0, 1.0]\ndivisions = [4, 1, 1]\nmaterial = \"steel\"\n\n[[interfaces]]",
+    );
+    let e = err(&text);
+    assert_eq!(e.key, "bodies[1].size[1]");
+    assert_eq!(e.line, line_of(&text, "-5.0"));
+    let text = GOOD.replace(
+        "material = \"steel\"\n\n[[bodies]]",
+        "material = \"stel\"\n\n[[bodies]]",
+    );
+    let e = err(&text);
+    assert_eq!(e.key, "bodies[0].material");
+    assert!(e.message.contains("stel"));
+    assert_eq!(e.line, line_of(&text, "\"stel\""));
+    let text = GOOD.replace(
+        "between = [\"lower\", \"upper\"]",
+        "between = [\"lower\", \"top\"]",
+    );
+    let e = err(&text);
+    assert_eq!(e.key, "interfaces[0].between[1]");
+    let text = GOOD.replace("f_max = 200.0", "f_max = 50.0");
+    assert_eq!(err(&text).key, "sweep.f_max");
+}
+
+#[test]
+fn syntax_error_has_a_line() {
+    let text = GOOD.replace("count = 3", "count = = 3");
+    let e = err(&text);
+    assert_eq!(e.line, line_of(&text, "count = = 3"));
+}
+
+#[test]
+fn log_spacing() {
+    let text = GOOD.replace("count = 3", "count = 3\nspacing = \"log\"");
+    let f = Scene::parse("x", &text).unwrap().frequencies();
+    approx::assert_relative_eq!(f[1], (100.0f64 * 200.0).sqrt(), max_relative = 1e-14);
+}
