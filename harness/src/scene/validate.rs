@@ -390,7 +390,7 @@ pub fn validate(s: &SceneFile) -> Vec<Problem> {
                 c.vec3(p.key("at"), o.at.as_ref().unwrap());
             }
             Some(BodyKind::Mass) => c.forbid(p.key("at"), &o.at, "for a mass body"),
-            None => {}
+            _ => {}
         }
         c.direction(p.key("direction"), &o.direction);
     }
