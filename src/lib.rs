@@ -14,6 +14,7 @@
 //! 6. `ffi`: the C ABI (`jointlin_*`), the only unsafe code.
 
 pub mod error;
+pub mod ffi;
 pub mod hysteresis;
 pub mod iterate;
 pub mod law;

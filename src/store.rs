@@ -439,9 +439,9 @@ impl Store {
         if rec.estimate_pass != pass {
             let floor = self.config.floor();
             let fallback = previous.unwrap_or([self.config.initial_amplitude; 2]);
-            for d in 0..2 {
+            for (d, &back) in fallback.iter().enumerate() {
                 rec.estimate[d] = if rec.history[d].is_empty() {
-                    fallback[d]
+                    back
                 } else {
                     let h: Vec<(f64, f64)> = rec.history[d]
                         .iter()
