@@ -921,6 +921,20 @@ mod solve_tests {
         assert!(secant.linearizations <= 8, "{}", secant.linearizations);
         assert!(relaxed.linearizations >= 30, "{}", relaxed.linearizations);
         assert!(4 * secant.linearizations < relaxed.linearizations);
+        // The initial estimate only changes the path: from 1e-6 and 1e6 times the answer
+        // the bracket expansion (a decade per step at most) still lands on it.
+        for factor in [1e-6, 1e6] {
+            let o = Options {
+                initial: Some(factor * reference),
+                ..opts(Scheme::Secant, tol)
+            };
+            let far = solve_point(&p, &o).unwrap();
+            assert!(
+                (far.amplitude - reference).abs() <= bound,
+                "{factor}: {far:?}"
+            );
+            assert!(far.linearizations <= 20, "{factor}: {}", far.linearizations);
+        }
         // The amplitude is the response of (4.2) with the returned linearization.
         let lin = secant.linearization;
         let z = (lin.k_star - p.mass * p.omega.powi(2)).hypot(p.omega * lin.d_star);

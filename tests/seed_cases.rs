@@ -163,3 +163,22 @@ fn block_slip_case_is_reported_as_without_first_harmonic_solution() {
         ref other => panic!("{other:?}"),
     }
 }
+
+#[test]
+fn duffing_lower_and_upper_branches_are_both_attractors() {
+    // Why the thesis's 0.395 is the lower root: both outer branches are stable, and the
+    // initial state decides. From x(0) = 0.2 (Appendix B) RK4 settles at 0.3956 (lower);
+    // from x(0) = 1.5 at rest it settles on the upper branch, measured 1.8080 vs the
+    // first-order 1.767 (2.3 % apart: the third harmonic grows with the amplitude). The
+    // middle root 1.433 is not reached from either.
+    let d = Duffing::appendix_b();
+    let roots = d.hbm_amplitudes();
+    let h = 2.0 * PI / d.omega / DUFFING_STEPS_PER_PERIOD;
+    let (upper, spread) = d.rk4_steady_max(1.5, h, DUFFING_SETTLE, 5);
+    assert!(spread < 1e-12);
+    assert!(
+        ((upper - roots[2]) / roots[2]).abs() < 0.03,
+        "{upper} vs {roots:?}"
+    );
+    assert!((upper - roots[1]).abs() > 0.3);
+}

@@ -4,10 +4,12 @@
 //! `cargo run --release --example seed_cases -- --json` prints one JSON object.
 //!
 //! Duffing (4.1, Appendix B): at ω = 10 the first-order balance has three amplitudes
-//! (0.3955, 1.43, 1.77). The thesis's 0.395 is the smallest, the lower, non-resonant branch:
-//! the forcing lies above the (hardening) resonance, where the lower and upper branches are
-//! stable and the middle one is not; the thesis's own Runge–Kutta run from x(0) = 0.2 at rest
-//! settles at 0.393, on the lower branch, which is the one it compares with.
+//! (0.3948, 1.433, 1.767). The thesis's 0.395 is the smallest, the lower, non-resonant
+//! branch. The forcing lies above the hardening resonance, where the lower and the upper
+//! branch are both stable and the middle one is not, so the initial state decides: from
+//! x(0) = 0.2 at rest (Appendix B) the motion settles on the lower branch (our RK4: 0.3956;
+//! the thesis's: 0.393), and that is the root the thesis compares with. From x(0) = 1.5 our
+//! RK4 settles on the upper branch instead (1.808; see tests/seed_cases.rs).
 
 mod cases;
 
