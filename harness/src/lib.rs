@@ -15,7 +15,9 @@
 // would hide the maths.
 #![allow(clippy::needless_range_loop)]
 
+pub mod capi;
 pub mod fe;
+pub mod model;
 pub mod scene;
 pub mod solve;
 

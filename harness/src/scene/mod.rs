@@ -69,4 +69,4 @@ impl Scene {
 }
 
 #[cfg(test)]
-mod tests;
+pub(crate) mod tests;

@@ -1,0 +1,369 @@
+//! Scene → [`Problem`]: meshes the boxes, adds lumped masses on a fixed ground node each,
+//! finds the contact pairs, assembles K and M, material damping, loads and outputs.
+
+use std::collections::BTreeMap;
+
+use nalgebra::{Complex, Matrix3, Vector3};
+
+use super::{BuildError, ContactPoint, Interface, Output, Problem};
+use crate::fe::assembly::{assemble, System};
+use crate::fe::contact_pairs::find_pairs;
+use crate::fe::csc::Csc;
+use crate::fe::hex8::{self, Formulation};
+use crate::fe::mesh::{BoxSpec, Face, Material, Model};
+use crate::fe::surface::{add_pressure, nodal_areas};
+use crate::scene::validate::GROUND;
+use crate::scene::*;
+
+/// Relative tolerance for coincident interface nodes (of the smallest element size).
+const PAIR_TOL: f64 = 1e-6;
+
+/// A body of the model.
+#[derive(Debug, Clone, Copy)]
+enum BodyRef {
+    Box(usize),
+    /// A point mass: its fixed ground node, its own node, mass, and the index of its
+    /// ground pair among the pairs given to `assemble`.
+    Mass {
+        ground: usize,
+        node: usize,
+        mass: f64,
+        pair: usize,
+    },
+}
+
+fn face(f: FaceName) -> Face {
+    match f {
+        FaceName::XMin => Face::XMin,
+        FaceName::XMax => Face::XMax,
+        FaceName::YMin => Face::YMin,
+        FaceName::YMax => Face::YMax,
+        FaceName::ZMin => Face::ZMin,
+        FaceName::ZMax => Face::ZMax,
+    }
+}
+
+fn unit(v: [f64; 3]) -> Vector3<f64> {
+    Vector3::from(v).normalize()
+}
+
+/// The node of `body` nearest to `p` (a mass body: its node).
+fn nearest(model: &Model, body: BodyRef, p: Option<[f64; 3]>) -> usize {
+    match body {
+        BodyRef::Mass { node, .. } => node,
+        BodyRef::Box(b) => {
+            let b = model.bodies[b];
+            let p = p.expect("validated: `at` present for boxes");
+            (b.first_node..b.first_node + b.n_nodes())
+                .min_by(|&x, &y| {
+                    let d = |n: usize| {
+                        (0..3)
+                            .map(|c| (model.nodes[n][c] - p[c]).powi(2))
+                            .sum::<f64>()
+                    };
+                    d(x).total_cmp(&d(y))
+                })
+                .expect("a box has nodes")
+        }
+    }
+}
+
+/// Builds the problem of a validated scene.
+pub fn build(scene: &Scene) -> Result<Problem, BuildError> {
+    let s = &scene.spec;
+    let names: Vec<&String> = s.materials.keys().collect();
+    let mats = s
+        .materials
+        .values()
+        .map(|m| Material::new(m.e, m.nu, m.rho))
+        .collect::<Result<Vec<_>, _>>()?;
+    let mat_index = |n: &str| names.iter().position(|m| *m == n).expect("validated");
+    let mut model = Model::new(mats);
+
+    // Bodies: boxes meshed, masses as (ground, node) with a ground pair.
+    let mut bodies: BTreeMap<&str, BodyRef> = BTreeMap::new();
+    let mut pairs: Vec<[usize; 2]> = Vec::new();
+    for b in &s.bodies {
+        let r = match b.kind {
+            BodyKind::Box => BodyRef::Box(model.add_box(BoxSpec {
+                origin: b.origin.expect("validated"),
+                size: b.size.expect("validated"),
+                divisions: b.divisions.expect("validated"),
+                material: mat_index(b.material.as_deref().expect("validated")),
+            })?),
+            BodyKind::Mass => {
+                let p = b.position.expect("validated");
+                let ground = model.nodes.len();
+                model.nodes.push(p);
+                model.nodes.push(p);
+                model.fixed.resize(model.n_dofs(), false);
+                model.loads.resize(model.n_dofs(), 0.0);
+                model.fix(&[ground], [true; 3])?;
+                pairs.push([ground, ground + 1]);
+                BodyRef::Mass {
+                    ground,
+                    node: ground + 1,
+                    mass: b.mass.expect("validated"),
+                    pair: pairs.len() - 1,
+                }
+            }
+        };
+        bodies.insert(&b.name, r);
+    }
+    let body = |n: &str| bodies[n];
+
+    // Clamps.
+    for c in &s.clamp {
+        match body(&c.body) {
+            BodyRef::Box(b) => {
+                let nodes = model.bodies[b].face_nodes(face(c.face.expect("validated")));
+                model.fix(&nodes, c.components)?;
+            }
+            BodyRef::Mass { node, .. } => model.fix(&[node], c.components)?,
+        }
+    }
+
+    // Interfaces and their contact pairs (before assembly: the pattern needs them).
+    let mut interfaces = Vec::new();
+    let mut raw_points = Vec::new(); // (nodes, frame, area, interface)
+    for (i, f) in s.interfaces.iter().enumerate() {
+        let [lo, hi] = &f.between;
+        let material_of = |n: &str| match body(n) {
+            BodyRef::Box(b) => {
+                let m = &model.materials[model.bodies[b].spec.material];
+                Some((m.youngs_modulus, m.poisson_ratio))
+            }
+            BodyRef::Mass { .. } => None,
+        };
+        let materials = if lo == GROUND {
+            None
+        } else {
+            material_of(lo).zip(material_of(hi)).map(|(a, b)| [a, b])
+        };
+        interfaces.push(Interface {
+            name: f.name.clone(),
+            law: f.law,
+            rule: f.rule,
+            mu: f.mu,
+            k_t0_per_area: f.k_t0_per_area,
+            normal_law: f.normal_law,
+            normal_stiffness_per_area: f.normal_stiffness_per_area,
+            hertz_radius: f.hertz_radius,
+            materials,
+        });
+        if lo == GROUND {
+            let BodyRef::Mass { ground, node, .. } = body(hi) else {
+                unreachable!("validated: ground pairs with a mass body")
+            };
+            raw_points.push(([ground, node], frame_z(), f.area.expect("validated"), i));
+            continue;
+        }
+        let (BodyRef::Box(a), BodyRef::Box(b)) = (body(lo), body(hi)) else {
+            unreachable!("validated: box interfaces join boxes")
+        };
+        let found = find_pairs(&model, a, b, PAIR_TOL).map_err(|source| BuildError::Pairs {
+            name: f.name.clone(),
+            source,
+        })?;
+        for p in found {
+            let all_fixed = p
+                .nodes
+                .iter()
+                .all(|&n| (0..3).all(|c| model.fixed[3 * n + c]));
+            if !all_fixed {
+                raw_points.push((p.nodes, p.frame, p.area, i));
+            }
+        }
+    }
+    let first_contact = pairs.len();
+    pairs.extend(raw_points.iter().map(|r| r.0));
+
+    let mut sys = assemble(&model, Formulation::IncompatibleModes, &pairs)?;
+
+    // Lumped masses and springs (blocks on the ground pair: the ground is fixed, so
+    // only the mass node's 3×3 block remains).
+    let mut dash = Csc::<f64>::zeros(sys.pattern.clone());
+    let mut any_dash = false;
+    for b in &s.bodies {
+        if let BodyRef::Mass { mass, pair, .. } = body(&b.name) {
+            sys.pairs.add(
+                &mut sys.m.values,
+                pair,
+                &Matrix3::from_diagonal_element(mass),
+            );
+        }
+    }
+    for sp in &s.springs {
+        let BodyRef::Mass { pair, .. } = body(&sp.body) else {
+            unreachable!("validated: springs on masses")
+        };
+        let d = unit(sp.direction);
+        let ddt = d * d.transpose();
+        sys.pairs
+            .add(&mut sys.k.values, pair, &(ddt * sp.stiffness));
+        if sp.damping > 0.0 {
+            sys.pairs.add(&mut dash.values, pair, &(ddt * sp.damping));
+            any_dash = true;
+        }
+    }
+    let damping = if s.effects.material_damping {
+        let mut d = material_damping(&model, &sys, &s.materials, &names)?;
+        if any_dash {
+            let dd = d.get_or_insert_with(|| Csc::zeros(sys.pattern.clone()));
+            for (a, b) in dd.values.iter_mut().zip(&dash.values) {
+                *a += b;
+            }
+        }
+        d
+    } else {
+        None
+    };
+
+    // Contact points with their B rows.
+    let contacts = raw_points
+        .iter()
+        .enumerate()
+        .map(|(k, &(nodes, frame, area, interface))| {
+            let rows = std::array::from_fn(|c| {
+                let mut r = Vec::new();
+                for (side, sign) in [(0, -1.0), (1, 1.0)] {
+                    for g in 0..3 {
+                        let w = sign * frame[(g, c)];
+                        if let Some(f) = sys.dofs.free(3 * nodes[side] + g) {
+                            if w != 0.0 {
+                                r.push((f, w));
+                            }
+                        }
+                    }
+                }
+                r
+            });
+            ContactPoint {
+                pair: first_contact + k,
+                nodes,
+                frame,
+                area,
+                interface,
+                position: model.nodes[nodes[0]],
+                rows,
+            }
+        })
+        .collect();
+
+    // Preload.
+    let mut pre = vec![0.0; model.n_dofs()];
+    for l in &s.preload {
+        match (l.kind, body(&l.body)) {
+            (PreloadKind::Pressure, BodyRef::Box(b)) => {
+                let quads =
+                    model.bodies[b].face_quads(face(l.face.expect("validated")), &model.elements);
+                add_pressure(&model, &quads, l.pressure.expect("validated"), &mut pre);
+            }
+            (PreloadKind::Force, r) => {
+                let n = nearest(&model, r, l.at);
+                let f = l.force.expect("validated");
+                for c in 0..3 {
+                    pre[3 * n + c] += f[c];
+                }
+            }
+            (PreloadKind::Pressure, BodyRef::Mass { .. }) => unreachable!("validated"),
+        }
+    }
+    let preload = sys.dofs.restrict(&pre);
+
+    // Excitation.
+    let mut exc = vec![Complex::new(0.0, 0.0); model.n_dofs()];
+    for e in &s.excitation {
+        let d = unit(e.direction);
+        let amp = Complex::from_polar(e.amplitude, e.phase_deg.to_radians());
+        let r = body(&e.body);
+        let loads: Vec<(usize, f64)> = match (e.kind, r) {
+            (ExcitationKind::Point, _) => vec![(nearest(&model, r, e.at), 1.0)],
+            (ExcitationKind::Face, BodyRef::Box(b)) => {
+                let quads =
+                    model.bodies[b].face_quads(face(e.face.expect("validated")), &model.elements);
+                nodal_areas(&model, &quads)
+            }
+            (ExcitationKind::Face, BodyRef::Mass { .. }) => unreachable!("validated"),
+        };
+        for (n, w) in loads {
+            for c in 0..3 {
+                exc[3 * n + c] += amp * (w * d[c]);
+            }
+        }
+    }
+    let excitation = sys.dofs.restrict(&exc);
+
+    let outputs = s
+        .outputs
+        .iter()
+        .map(|o| {
+            let n = nearest(&model, body(&o.body), o.at);
+            let d = unit(o.direction);
+            let dofs = (0..3)
+                .filter_map(|c| sys.dofs.free(3 * n + c).map(|f| (f, d[c])))
+                .filter(|&(_, w)| w != 0.0)
+                .collect();
+            Output {
+                name: o.name.clone(),
+                node: n,
+                dofs,
+            }
+        })
+        .collect();
+
+    Ok(Problem {
+        model,
+        sys,
+        damping,
+        interfaces,
+        contacts,
+        preload,
+        excitation,
+        outputs,
+    })
+}
+
+/// Frame with n = +z, t₁ = +x, t₂ = +y (columns).
+fn frame_z() -> Matrix3<f64> {
+    Matrix3::new(0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 1.0, 0.0, 0.0)
+}
+
+/// D = Σₑ (αₑ Mₑ + βₑ Kₑ) with each element's material's Rayleigh coefficients; `None`
+/// when every α and β is zero.
+fn material_damping(
+    model: &Model,
+    sys: &System,
+    specs: &BTreeMap<String, MaterialSpec>,
+    names: &[&String],
+) -> Result<Option<Csc<f64>>, BuildError> {
+    let coef: Vec<(f64, f64)> = names
+        .iter()
+        .map(|n| (specs[*n].rayleigh_alpha, specs[*n].rayleigh_beta))
+        .collect();
+    if coef.iter().all(|&(a, b)| a == 0.0 && b == 0.0) {
+        return Ok(None);
+    }
+    let mut d = Csc::<f64>::zeros(sys.pattern.clone());
+    for (e, el) in model.elements.iter().enumerate() {
+        let (alpha, beta) = coef[el.material];
+        if alpha == 0.0 && beta == 0.0 {
+            continue;
+        }
+        let x = model.element_coords(e);
+        let mat = &model.materials[el.material];
+        let wrap = |source| crate::fe::assembly::AssemblyError::Element { element: e, source };
+        let ke = hex8::stiffness(&x, mat, Formulation::IncompatibleModes).map_err(wrap)?;
+        let me = hex8::mass(&x, mat.density).map_err(wrap)?;
+        let free: Vec<(usize, usize)> = (0..24)
+            .filter_map(|l| sys.dofs.free(3 * el.nodes[l / 3] + l % 3).map(|f| (l, f)))
+            .collect();
+        for &(lc, c) in &free {
+            for &(lr, r) in &free {
+                let slot = sys.pattern.find(r, c).expect("element entry in pattern");
+                d.values[slot] += alpha * me[(lr, lc)] + beta * ke[(lr, lc)];
+            }
+        }
+    }
+    Ok(Some(d))
+}

@@ -1,0 +1,122 @@
+//! The assembled problem of a scene: mesh and lumped bodies, K, M, material damping,
+//! contact points with frames and areas, preload and excitation vectors, outputs.
+//!
+//! Built by [`build`] from a validated [`Scene`]. Units are the scene's. Contact points
+//! follow `fe::contact_pairs`: δ = u_upper − u_lower, frame Q = [n t₁ t₂] with n from the
+//! lower body into the upper one; a ground–mass interface has the fixed ground node as
+//! its lower side.
+
+mod build;
+
+pub use build::build;
+
+use nalgebra::{Complex, Matrix3};
+use thiserror::Error;
+
+use crate::fe::assembly::{AssemblyError, System};
+use crate::fe::contact_pairs::PairError;
+use crate::fe::csc::Csc;
+use crate::fe::mesh::{MeshError, Model};
+use crate::scene::{LawName, NormalLawName, RuleName};
+
+/// Errors building a problem from a (valid) scene: mesh-level inconsistencies.
+#[derive(Debug, Error)]
+pub enum BuildError {
+    #[error(transparent)]
+    Mesh(#[from] MeshError),
+    #[error("interface `{name}`: {source}")]
+    Pairs {
+        name: String,
+        #[source]
+        source: PairError,
+    },
+    #[error(transparent)]
+    Assembly(#[from] AssemblyError),
+    #[error("{0}")]
+    Other(String),
+}
+
+/// Contact data of one interface (stress form: per unit area).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Interface {
+    pub name: String,
+    pub law: LawName,
+    pub rule: RuleName,
+    /// Friction coefficient μ.
+    pub mu: f64,
+    /// k_T0 per area (force/length³).
+    pub k_t0_per_area: f64,
+    pub normal_law: NormalLawName,
+    /// Linear normal stiffness per area (force/length³), if given.
+    pub normal_stiffness_per_area: Option<f64>,
+    /// Hertz effective radius r* (length).
+    pub hertz_radius: Option<f64>,
+    /// Materials (E, ν) of the lower and upper body (Hertz E*).
+    pub materials: Option<[(f64, f64); 2]>,
+}
+
+/// One contact point: a node pair with a local frame and a tributary area.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ContactPoint {
+    /// Index of the pair in `System::pairs`.
+    pub pair: usize,
+    /// `[lower, upper]` node ids.
+    pub nodes: [usize; 2],
+    /// Columns n, t₁, t₂ (global axes).
+    pub frame: Matrix3<f64>,
+    /// Tributary area (length²).
+    pub area: f64,
+    /// Index into `Problem::interfaces`.
+    pub interface: usize,
+    /// Position (length), for reports.
+    pub position: [f64; 3],
+    /// Local relative displacement component c (n, t₁, t₂) = Σ w·u[free]: the sparse rows
+    /// of the map B (u_free → Qᵀ(u_upper − u_lower)); fixed DOFs are left out.
+    pub rows: [Vec<(usize, f64)>; 3],
+}
+
+impl ContactPoint {
+    /// Local component `c` of the relative displacement for free-DOF vector `u`.
+    pub fn relative<T>(&self, c: usize, u: &[T]) -> T
+    where
+        T: Copy + std::ops::Mul<f64, Output = T> + std::iter::Sum<T>,
+    {
+        self.rows[c].iter().map(|&(i, w)| u[i] * w).sum()
+    }
+}
+
+/// A named output: displacement along a direction at one node, as free-DOF weights.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Output {
+    pub name: String,
+    pub node: usize,
+    pub dofs: Vec<(usize, f64)>,
+}
+
+impl Output {
+    /// The output's complex displacement for free-DOF vector `u`.
+    pub fn value(&self, u: &[Complex<f64>]) -> Complex<f64> {
+        self.dofs.iter().map(|&(i, w)| u[i] * w).sum()
+    }
+}
+
+/// Everything the static and steady-state steps need.
+#[derive(Debug, Clone)]
+pub struct Problem {
+    pub model: Model,
+    /// K and M (with lumped masses and springs), pattern with room for all pair blocks.
+    pub sys: System,
+    /// Material (Rayleigh, per material) plus dashpot damping; `None` when the
+    /// `material_damping` effect is off or nothing damps.
+    pub damping: Option<Csc<f64>>,
+    pub interfaces: Vec<Interface>,
+    pub contacts: Vec<ContactPoint>,
+    /// Static preload on the free DOFs (force).
+    pub preload: Vec<f64>,
+    /// Harmonic excitation amplitude on the free DOFs (force, complex for phase).
+    pub excitation: Vec<Complex<f64>>,
+    pub outputs: Vec<Output>,
+}
+
+#[cfg(test)]
+pub(crate) mod tests;

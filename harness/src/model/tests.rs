@@ -1,0 +1,102 @@
+//! Scene → problem: counts, load resultants, damping, lumped masses.
+
+use super::*;
+use crate::scene::Scene;
+
+fn good() -> Scene {
+    Scene::parse("good.toml", crate::scene::tests::GOOD).unwrap()
+}
+
+#[test]
+fn two_plates_build() {
+    let p = build(&good()).unwrap();
+    // 5×2 interface nodes; only the lower plate is clamped, so every pair can move.
+    assert_eq!(p.contacts.len(), 10);
+    let area: f64 = p.contacts.iter().map(|c| c.area).sum();
+    approx::assert_relative_eq!(area, 100.0, max_relative = 1e-14);
+    // Relative normal displacement row: +1 on the upper node's z, −1 on the lower's.
+    let c = p.contacts.last().unwrap(); // at x = 20: both nodes free
+    let mut u = vec![0.0; p.sys.dofs.n_free()];
+    u[p.sys.dofs.free(3 * c.nodes[1] + 2).unwrap()] = 2.0;
+    u[p.sys.dofs.free(3 * c.nodes[0] + 2).unwrap()] = 0.5;
+    assert_eq!(c.relative(0, &u), 1.5);
+    assert_eq!(c.relative(1, &u), 0.0);
+    // Unit point force along z; no damping given.
+    let total: Complex<f64> = p.excitation.iter().sum();
+    assert_eq!(total, Complex::new(1.0, 0.0));
+    assert!(p.damping.is_none());
+    assert_eq!(p.outputs[0].dofs.len(), 1);
+}
+
+#[test]
+fn pressure_resultant_and_rayleigh() {
+    let text = crate::scene::tests::GOOD
+        .replace("rho = 7.85e-9", "rho = 7.85e-9\nrayleigh_alpha = 3.0\nrayleigh_beta = 2e-6")
+        + "\n[[preload]]\nkind = \"pressure\"\nbody = \"upper\"\nface = \"z_max\"\npressure = 2.0\n";
+    let p = build(&Scene::parse("x", &text).unwrap()).unwrap();
+    // Resultant of 2 N/mm² on 20×5 mm² in −z.
+    let fz: f64 = (0..p.sys.dofs.n_free())
+        .filter(|&f| p.sys.dofs.full(f) % 3 == 2)
+        .map(|f| p.preload[f])
+        .sum();
+    // Upper body is not clamped: the whole −200 N arrives.
+    approx::assert_relative_eq!(fz, -200.0, max_relative = 1e-13);
+    // One material: per-element Rayleigh equals αM + βK of the assembled system.
+    let d = p.damping.unwrap();
+    let r = p.sys.rayleigh(3.0, 2e-6);
+    let scale = r.values.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+    for (a, b) in d.values.iter().zip(&r.values) {
+        assert!((a - b).abs() <= 1e-13 * scale);
+    }
+}
+
+pub(crate) const BLOCK: &str = r#"
+[units]
+length = "mm"
+force = "N"
+time = "s"
+mass = "t"
+[[bodies]]
+name = "block"
+kind = "mass"
+position = [0.0, 0.0, 0.0]
+mass = 0.002
+[[interfaces]]
+name = "plane"
+between = ["ground", "block"]
+law = "mindlin"
+mu = 0.3
+k_t0_per_area = 1282.7
+normal_law = "linear"
+normal_stiffness_per_area = 1e5
+area = 1.0
+[[preload]]
+kind = "force"
+body = "block"
+force = [0.0, 0.0, -2.0]
+[[excitation]]
+kind = "point"
+body = "block"
+direction = [1.0, 0.0, 0.0]
+amplitude = 0.5
+[sweep]
+f_min = 0.2069
+f_max = 0.2069
+count = 1
+[[outputs]]
+name = "x"
+body = "block"
+direction = [1.0, 0.0, 0.0]
+"#;
+
+#[test]
+fn lumped_mass_on_ground() {
+    let p = build(&Scene::parse("block.toml", BLOCK).unwrap()).unwrap();
+    assert_eq!(p.sys.dofs.n_free(), 3);
+    assert_eq!(p.contacts.len(), 1);
+    let m = p.sys.m.to_dense();
+    assert_eq!(m, nalgebra::DMatrix::identity(3, 3) * 0.002);
+    assert_eq!(p.preload, vec![0.0, 0.0, -2.0]);
+    // δ = u_block − u_ground: the tangent-1 row picks u_x with weight +1.
+    assert_eq!(p.contacts[0].rows[1], vec![(0, 1.0)]);
+}
