@@ -8,7 +8,13 @@ use jointlin::law::TangentialLaw;
 use jointlin::linearize::{linearize, Contact, Method};
 
 fn block() -> Contact {
-    Contact { law: TangentialLaw::Mindlin, rule: Rule::Thesis, mu: 0.3, normal_force: 2.0, k_t0: 1282.7 }
+    Contact {
+        law: TangentialLaw::Mindlin,
+        rule: Rule::Thesis,
+        mu: 0.3,
+        normal_force: 2.0,
+        k_t0: 1282.7,
+    }
 }
 
 fn options(c: &mut Criterion) {
@@ -24,7 +30,9 @@ fn options(c: &mut Criterion) {
     for (ratio_name, ratio) in [("microslip", 0.5), ("sliding", 2.0)] {
         for (name, method) in methods {
             group.bench_with_input(BenchmarkId::new(name, ratio_name), &ratio, |b, &r| {
-                b.iter(|| linearize(black_box(&contact), black_box(r * delta_star), 1.3, method).unwrap())
+                b.iter(|| {
+                    linearize(black_box(&contact), black_box(r * delta_star), 1.3, method).unwrap()
+                })
             });
         }
     }

@@ -16,7 +16,13 @@ const RATIOS: [f64; 6] = [0.01, 0.3, 0.8, 0.9, 2.0, 20.0];
 const TARGET: f64 = 1e-8;
 
 fn contacts() -> [Contact; 2] {
-    let block = |rule| Contact { law: TangentialLaw::Mindlin, rule, mu: 0.3, normal_force: 2.0, k_t0: 1282.7 };
+    let block = |rule| Contact {
+        law: TangentialLaw::Mindlin,
+        rule,
+        mu: 0.3,
+        normal_force: 2.0,
+        k_t0: 1282.7,
+    };
     [block(Rule::Thesis), block(Rule::Masing)]
 }
 
@@ -29,7 +35,9 @@ fn worst_error(method: Method) -> f64 {
             let reference = linearize(&c, r * d, 1.3, Method::Graded { points: 64 }).unwrap();
             let got = linearize(&c, r * d, 1.3, method).unwrap();
             let ek = ((got.k_star - reference.k_star) / reference.k_star).abs();
-            let ee = ((got.energy_per_cycle - reference.energy_per_cycle) / reference.energy_per_cycle).abs();
+            let ee = ((got.energy_per_cycle - reference.energy_per_cycle)
+                / reference.energy_per_cycle)
+                .abs();
             worst = worst.max(ek).max(ee);
         }
     }
@@ -71,15 +79,28 @@ fn cost_ns(method: Method) -> f64 {
 fn main() {
     let mut rows: Vec<(String, Method)> = vec![];
     for points in [4, 6, 8, 12, 16] {
-        let tag = if Method::default() == (Method::Graded { points }) { " (default)" } else { "" };
-        rows.push((format!("graded Gauss, {points} pts/panel{tag}"), Method::Graded { points }));
+        let tag = if Method::default() == (Method::Graded { points }) {
+            " (default)"
+        } else {
+            ""
+        };
+        rows.push((
+            format!("graded Gauss, {points} pts/panel{tag}"),
+            Method::Graded { points },
+        ));
     }
     for points in [8, 16, 32, 64, 128] {
-        rows.push((format!("plain Gauss, {points} pts"), Method::Gauss { points }));
+        rows.push((
+            format!("plain Gauss, {points} pts"),
+            Method::Gauss { points },
+        ));
     }
     for k in [4, 6, 8, 10, 12, 14, 16] {
         let n = 1usize << k;
-        rows.push((format!("Simpson (thesis), {n} intervals"), Method::Simpson { intervals: n }));
+        rows.push((
+            format!("Simpson (thesis), {n} intervals"),
+            Method::Simpson { intervals: n },
+        ));
     }
     println!("| method | worst rel. error (k*, energy) | ns per call |");
     println!("|---|---:|---:|");
@@ -89,8 +110,13 @@ fn main() {
         println!("| {name} | {err:.1e} | {ns:.0} |");
         measured.push((method, err, ns));
     }
-    let default = measured.iter().find(|m| m.0 == Method::default()).expect("default row");
-    let simpson = measured.iter().find(|m| matches!(m.0, Method::Simpson { .. }) && m.1 <= TARGET);
+    let default = measured
+        .iter()
+        .find(|m| m.0 == Method::default())
+        .expect("default row");
+    let simpson = measured
+        .iter()
+        .find(|m| matches!(m.0, Method::Simpson { .. }) && m.1 <= TARGET);
     println!();
     match simpson {
         Some((Method::Simpson { intervals }, err, ns)) => println!(
