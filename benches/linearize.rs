@@ -39,5 +39,36 @@ fn options(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, options);
+/// The C entry point a host calls: `jointlin_linearize` with the default method (NULL),
+/// including the panic boundary and input checks.
+fn c_api(c: &mut Criterion) {
+    use jointlin::ffi::linearize::{jointlin_contact, jointlin_linearization};
+    let contact = jointlin_contact {
+        law: 0,
+        rule: 0,
+        mu: 0.3,
+        normal_force: 2.0,
+        k_t0: 1282.7,
+    };
+    let delta_star = 1.5 * 0.6 / 1282.7;
+    let mut out = jointlin_linearization::default();
+    c.bench_function("jointlin_linearize/default/microslip", |b| {
+        b.iter(|| {
+            // SAFETY: valid pointers to live locals; NULL method selects the default.
+            let status = unsafe {
+                jointlin::ffi::linearize::jointlin_linearize(
+                    &contact,
+                    black_box(0.5 * delta_star),
+                    1.3,
+                    std::ptr::null(),
+                    &mut out,
+                )
+            };
+            assert_eq!(status, 0);
+            black_box(out.k_star)
+        })
+    });
+}
+
+criterion_group!(benches, options, c_api);
 criterion_main!(benches);
