@@ -128,18 +128,6 @@ pub fn build(scene: &Scene) -> Result<Problem, BuildError> {
     let mut raw_points = Vec::new(); // (nodes, frame, area, interface)
     for (i, f) in s.interfaces.iter().enumerate() {
         let [lo, hi] = &f.between;
-        let material_of = |n: &str| match body(n) {
-            BodyRef::Box(b) => {
-                let m = &model.materials[model.bodies[b].spec.material];
-                Some((m.youngs_modulus, m.poisson_ratio))
-            }
-            BodyRef::Mass { .. } => None,
-        };
-        let materials = if lo == GROUND {
-            None
-        } else {
-            material_of(lo).zip(material_of(hi)).map(|(a, b)| [a, b])
-        };
         interfaces.push(Interface {
             name: f.name.clone(),
             law: f.law,
@@ -149,7 +137,7 @@ pub fn build(scene: &Scene) -> Result<Problem, BuildError> {
             normal_law: f.normal_law,
             normal_stiffness_per_area: f.normal_stiffness_per_area,
             hertz_radius: f.hertz_radius,
-            materials,
+            hertz_e_star: f.hertz_e_star,
         });
         if lo == GROUND {
             let BodyRef::Mass { ground, node, .. } = body(hi) else {

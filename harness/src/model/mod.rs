@@ -51,8 +51,8 @@ pub struct Interface {
     pub normal_stiffness_per_area: Option<f64>,
     /// Hertz effective radius r* (length).
     pub hertz_radius: Option<f64>,
-    /// Materials (E, ν) of the lower and upper body (Hertz E*).
-    pub materials: Option<[(f64, f64); 2]>,
+    /// Hertz effective modulus E* (force/length²).
+    pub hertz_e_star: Option<f64>,
 }
 
 /// One contact point: a node pair with a local frame and a tributary area.

@@ -126,8 +126,8 @@ pub enum RuleName {
 pub enum NormalLawName {
     /// p = k_N·h for overclosure h > 0: `normal_stiffness_per_area` (force/length³).
     Linear,
-    /// Hertz (2.34) per point: `hertz_radius` r* (length), E* from the two materials
-    /// (2.31), spread over the point's tributary area.
+    /// Hertz (2.34) per point: `hertz_radius` r* (length) and `hertz_e_star` E*
+    /// (force/length², (2.31)), spread over the point's tributary area.
     Hertz,
 }
 
@@ -152,6 +152,8 @@ pub struct InterfaceSpec {
     pub normal_stiffness_per_area: Option<f64>,
     /// Hertz effective radius r* (length), for `normal_law = "hertz"`.
     pub hertz_radius: Option<f64>,
+    /// Hertz effective modulus E* (force/length²), for `normal_law = "hertz"`.
+    pub hertz_e_star: Option<f64>,
     /// Contact area (length²) of a ground–mass interface (box interfaces use the
     /// nodes' tributary areas).
     pub area: Option<f64>,

@@ -185,14 +185,13 @@ pub fn validate(s: &SceneFile) -> Vec<Problem> {
         }
         let [lo, hi] = &f.between;
         let hi_kind = check_body(&mut c, p.key("between").index(1), hi);
-        let lo_kind = if lo == GROUND {
+        if lo == GROUND {
             if hi_kind.is_some_and(|k| k != BodyKind::Mass) {
                 c.fail(
                     p.key("between").index(0),
                     "`ground` can only be the lower side of a mass body",
                 );
             }
-            None
         } else {
             let k = check_body(&mut c, p.key("between").index(0), lo);
             if k.is_some() && (k != Some(BodyKind::Box) || hi_kind != Some(BodyKind::Box)) {
@@ -201,8 +200,7 @@ pub fn validate(s: &SceneFile) -> Vec<Problem> {
                     "an interface joins two boxes, or `ground` and a mass body",
                 );
             }
-            k
-        };
+        }
         if lo == hi {
             c.fail(p.key("between"), "an interface needs two different bodies");
         }
@@ -233,11 +231,12 @@ pub fn validate(s: &SceneFile) -> Vec<Problem> {
                 ) {
                     c.positive(p.key("hertz_radius"), f.hertz_radius.unwrap());
                 }
-                if lumped || lo_kind != Some(BodyKind::Box) {
-                    c.fail(
-                        p.key("normal_law"),
-                        "hertz needs two box bodies (E* comes from their materials)",
-                    );
+                if c.require(
+                    p.key("hertz_e_star"),
+                    &f.hertz_e_star,
+                    "for normal_law = \"hertz\"",
+                ) {
+                    c.positive(p.key("hertz_e_star"), f.hertz_e_star.unwrap());
                 }
                 if !s.effects.normal_contact_nonlinearity {
                     c.require(

@@ -1,4 +1,6 @@
-//! Linear solvers: UMFPACK (complex, 64-bit indices) and the modal eigensolver on top.
+//! Linear solvers (UMFPACK, modal), the static preload step and the steady-state sweep.
 
+pub mod contact;
 pub mod modal;
+pub mod static_step;
 pub mod umfpack;

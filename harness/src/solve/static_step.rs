@@ -1,0 +1,310 @@
+//! The static preload step: K u + f_c(u) = f_pre by Newton's method, with the contact
+//! law of every point from UINTER (LINPER = 0, KSTEP = 1, one increment), as Abaqus
+//! would call it. The converged pressures are the operating point of the steady-state
+//! step; points open here stay open there.
+//!
+//! Per point, with δ = Qᵀ(u_upper − u_lower) = (δ_n, δ_t₁, δ_t₂): RDISP = S δ with
+//! S = diag(−1, 1, 1) (overclosure h = −δ_n), the internal force on the upper node is
+//! Q S STRESS · area (minus that on the lower one) and its tangent Q S DDSDDR S Qᵀ · area.
+//!
+//! With `normal_contact_nonlinearity` off there is no Newton and no C-API call: constant
+//! normal springs (`normal_stiffness_per_area`) and stick springs k_T0, one linear solve,
+//! pressure = k_N·h (a point in tension counts as open).
+
+use nalgebra::{Complex, Matrix3};
+use thiserror::Error;
+
+use crate::capi::{self, CapiError, UinterPoint, NSTATV};
+use crate::fe::pair_blocks::to_global;
+use crate::model::{ContactPoint, Problem};
+use crate::solve::contact::{interface_props, normal_stiffness};
+use crate::solve::umfpack::{to_complex, Symbolic, UmfpackError};
+
+/// Newton stops when ‖R‖ ≤ this × ‖f_pre‖ (round-off of K u with cond(K) ~1e8 is far
+/// below; penalty laws converge in a few steps).
+pub const RESIDUAL_TOL: f64 = 1e-9;
+/// Most Newton iterations.
+pub const MAX_NEWTON: usize = 60;
+/// Backtracking halvings per Newton step.
+const MAX_HALVINGS: usize = 12;
+/// Probe overclosure (relative to the model's size) used for the first tangent: at u = 0
+/// every point is just touching and Hertz has no stiffness, so the first Newton matrix
+/// takes the points' tangent at this small penetration.
+const PROBE_REL: f64 = 1e-7;
+
+/// Errors of the static step.
+#[derive(Debug, Error)]
+pub enum StaticError {
+    #[error(transparent)]
+    Capi(#[from] CapiError),
+    #[error(transparent)]
+    Umfpack(#[from] UmfpackError),
+    #[error(
+        "static Newton did not converge in {iterations} iterations (‖R‖/‖f‖ = {residual:.3e})"
+    )]
+    NotConverged { iterations: usize, residual: f64 },
+}
+
+/// The converged preload state.
+#[derive(Debug, Clone)]
+pub struct StaticState {
+    /// Displacements on the free DOFs.
+    pub u: Vec<f64>,
+    /// Contact pressure per point (force/length², ≥ 0).
+    pub pressure: Vec<f64>,
+    /// dp/dh per point at the operating point (force/length³), 0 when open.
+    pub normal_stiffness: Vec<f64>,
+    pub closed: Vec<bool>,
+    /// STATEV per point after the step (p0, h0, closed flag, hysteresis).
+    pub statev: Vec<[f64; NSTATV]>,
+    pub newton_iterations: usize,
+    /// ‖R‖/‖f_pre‖ at the end.
+    pub residual: f64,
+}
+
+/// Local relative displacement (δ_n, δ_t₁, δ_t₂) of a point.
+fn local(c: &ContactPoint, u: &[f64]) -> [f64; 3] {
+    std::array::from_fn(|k| c.relative(k, u))
+}
+
+fn s_flip(v: [f64; 3]) -> [f64; 3] {
+    [-v[0], v[1], v[2]]
+}
+
+fn norm(v: &[f64]) -> f64 {
+    v.iter().map(|x| x * x).sum::<f64>().sqrt()
+}
+
+/// A point as UINTER sees it.
+pub fn uinter_point<'a>(p: &'a Problem, c: &ContactPoint, props: &'a [f64; 12]) -> UinterPoint<'a> {
+    UinterPoint {
+        name: &p.interfaces[c.interface].name,
+        props,
+        coords: c.position,
+        area: c.area,
+    }
+}
+
+struct Eval {
+    residual: Vec<f64>,
+    /// Local tangent (in δ coordinates) per point, × area.
+    tangents: Vec<Matrix3<f64>>,
+    out: Vec<capi::UinterOut>,
+    statev: Vec<[f64; NSTATV]>,
+}
+
+/// Residual K u + f_c(u) − f and per-point tangents, one UINTER call per point.
+fn evaluate(
+    p: &Problem,
+    props: &[[f64; 12]],
+    u: &[f64],
+    probe: Option<f64>,
+) -> Result<Eval, CapiError> {
+    let mut r = p.sys.k.mul_vec(u);
+    for (ri, fi) in r.iter_mut().zip(&p.preload) {
+        *ri -= fi;
+    }
+    let mut tangents = Vec::with_capacity(p.contacts.len());
+    let mut outs = Vec::with_capacity(p.contacts.len());
+    let mut statevs = Vec::with_capacity(p.contacts.len());
+    for c in &p.contacts {
+        let pr = &props[c.interface];
+        let pt = uinter_point(p, c, pr);
+        let rdisp = match probe {
+            Some(h) => [h, 0.0, 0.0],
+            None => s_flip(local(c, u)),
+        };
+        let mut sv = [0.0; NSTATV];
+        let out = capi::uinter_general(&pt, &mut sv, rdisp, rdisp, 1, 1)?;
+        if probe.is_none() {
+            let f = s_flip(out.stress);
+            for k in 0..3 {
+                for &(i, w) in &c.rows[k] {
+                    r[i] += w * f[k] * c.area;
+                }
+            }
+        }
+        let d = Matrix3::from_fn(|i, j| out.ddsddr[i][j]);
+        let s = Matrix3::from_diagonal(&nalgebra::Vector3::new(-1.0, 1.0, 1.0));
+        tangents.push(s * d * s * c.area);
+        outs.push(out);
+        statevs.push(sv);
+    }
+    Ok(Eval {
+        residual: r,
+        tangents,
+        out: outs,
+        statev: statevs,
+    })
+}
+
+/// Solves the preload step.
+pub fn solve(p: &Problem, nonlinear: bool) -> Result<StaticState, StaticError> {
+    let props: Vec<[f64; 12]> = p.interfaces.iter().map(interface_props).collect();
+    let sym = Symbolic::new(p.sys.pattern.clone())?;
+    let n = p.sys.dofs.n_free();
+    let fnorm = norm(&p.preload).max(f64::MIN_POSITIVE);
+    let tangent_matrix = |tangents: &[Matrix3<f64>]| {
+        let mut kt = to_complex(&p.sys.k);
+        for (c, t) in p.contacts.iter().zip(tangents) {
+            let g = to_global(&c.frame, &t.map(|v| Complex::new(v, 0.0)));
+            p.sys.pairs.add(&mut kt.values, c.pair, &g);
+        }
+        kt
+    };
+    let solve_with =
+        |kt: &crate::fe::csc::Csc<Complex<f64>>, rhs: &[f64]| -> Result<Vec<f64>, UmfpackError> {
+            let b: Vec<Complex<f64>> = rhs.iter().map(|&v| Complex::new(v, 0.0)).collect();
+            Ok(sym.factor(kt)?.solve(&b)?.iter().map(|z| z.re).collect())
+        };
+
+    if !nonlinear {
+        // Constant springs: k_N normal, k_T0 tangential (stick), no C-API call.
+        let tangents: Vec<Matrix3<f64>> = p
+            .contacts
+            .iter()
+            .map(|c| {
+                let i = &p.interfaces[c.interface];
+                let kn = normal_stiffness(i);
+                Matrix3::from_diagonal(&nalgebra::Vector3::new(
+                    kn,
+                    i.k_t0_per_area,
+                    i.k_t0_per_area,
+                )) * c.area
+            })
+            .collect();
+        let u = solve_with(&tangent_matrix(&tangents), &p.preload)?;
+        let mut pressure = Vec::new();
+        let mut closed = Vec::new();
+        let mut kn = Vec::new();
+        let mut statev = Vec::new();
+        for c in &p.contacts {
+            let i = &p.interfaces[c.interface];
+            let h = -c.relative(0, &u);
+            let pr = (normal_stiffness(i) * h).max(0.0);
+            pressure.push(pr);
+            closed.push(pr > 0.0);
+            kn.push(normal_stiffness(i));
+            statev.push([0.0; NSTATV]);
+        }
+        return Ok(StaticState {
+            u,
+            pressure,
+            normal_stiffness: kn,
+            closed,
+            statev,
+            newton_iterations: 0,
+            residual: 0.0,
+        });
+    }
+
+    // Size of the model, for the probe overclosure.
+    let extent = p
+        .model
+        .nodes
+        .iter()
+        .flat_map(|x| x.iter().copied())
+        .fold(0.0f64, |a, v| a.max(v.abs()))
+        .max(1.0);
+    let mut u = vec![0.0; n];
+    let probe = evaluate(p, &props, &u, Some(PROBE_REL * extent))?;
+    let mut ev = evaluate(p, &props, &u, None)?;
+    let mut tangents = probe.tangents;
+    let mut res = norm(&ev.residual) / fnorm;
+    for it in 1..=MAX_NEWTON {
+        let neg: Vec<f64> = ev.residual.iter().map(|v| -v).collect();
+        let du = solve_with(&tangent_matrix(&tangents), &neg)?;
+        let mut step = 1.0;
+        let mut accepted = None;
+        for _ in 0..=MAX_HALVINGS {
+            let trial: Vec<f64> = u.iter().zip(&du).map(|(a, b)| a + step * b).collect();
+            let e = evaluate(p, &props, &trial, None)?;
+            let r = norm(&e.residual) / fnorm;
+            if r < res || it == 1 {
+                accepted = Some((trial, e, r));
+                break;
+            }
+            step *= 0.5;
+        }
+        let Some((trial, e, r)) = accepted else {
+            return Err(StaticError::NotConverged {
+                iterations: it,
+                residual: res,
+            });
+        };
+        let moved = step * norm(&du);
+        u = trial;
+        ev = e;
+        res = r;
+        tangents = ev.tangents.clone();
+        if res <= RESIDUAL_TOL || (moved <= 1e-14 * norm(&u).max(f64::MIN_POSITIVE) && res < 1e-6) {
+            let pressure = ev.out.iter().map(|o| o.stress[0].max(0.0)).collect();
+            let normal_stiffness = ev
+                .out
+                .iter()
+                .map(|o| if o.closed { o.ddsddr[0][0] } else { 0.0 })
+                .collect();
+            let closed = ev.out.iter().map(|o| o.closed).collect();
+            return Ok(StaticState {
+                u,
+                pressure,
+                normal_stiffness,
+                closed,
+                statev: ev.statev,
+                newton_iterations: it,
+                residual: res,
+            });
+        }
+    }
+    Err(StaticError::NotConverged {
+        iterations: MAX_NEWTON,
+        residual: res,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::build;
+    use crate::scene::Scene;
+
+    #[test]
+    fn block_preload_gives_the_normal_force_as_pressure() {
+        let p = build(&Scene::parse("b", crate::model::tests::BLOCK).unwrap()).unwrap();
+        let s = solve(&p, true).unwrap();
+        // 2 N on area 1: p = 2, h = p/k_N = 2e-5 (linear law, exact after the active set).
+        approx::assert_relative_eq!(s.pressure[0], 2.0, max_relative = 1e-9);
+        approx::assert_relative_eq!(-s.u[2], 2e-5, max_relative = 1e-9);
+        assert!(s.closed[0] && s.normal_stiffness[0] == 1e5);
+        assert!(s.newton_iterations <= 3, "{}", s.newton_iterations);
+    }
+
+    #[test]
+    fn pressed_plates_carry_the_pressure_and_hertz_converges() {
+        // Two plates pressed together by 1 N/mm² top and bottom: the interface carries
+        // 1 N/mm² on average (total 100 N over 20×5 mm²).
+        let base = crate::scene::tests::GOOD.to_string()
+            + "\n[[preload]]\nkind = \"pressure\"\nbody = \"upper\"\nface = \"z_max\"\npressure = 1.0\n\
+               [[preload]]\nkind = \"pressure\"\nbody = \"lower\"\nface = \"z_min\"\npressure = 1.0\n";
+        for text in [
+            base.clone(),
+            base.replace(
+                "normal_law = \"linear\"\nnormal_stiffness_per_area = 1e5",
+                "normal_law = \"hertz\"\nhertz_radius = 1.0\nhertz_e_star = 115000.0",
+            ),
+        ] {
+            let p = build(&Scene::parse("x", &text).unwrap()).unwrap();
+            let s = solve(&p, true).unwrap();
+            let total: f64 = p
+                .contacts
+                .iter()
+                .zip(&s.pressure)
+                .map(|(c, pr)| c.area * pr)
+                .sum();
+            // Force balance on the upper plate: the contact carries the whole 100 N
+            // (to the Newton tolerance).
+            approx::assert_relative_eq!(total, 100.0, max_relative = 1e-6);
+            assert!(s.residual <= RESIDUAL_TOL);
+        }
+    }
+}
