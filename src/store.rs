@@ -85,6 +85,14 @@ pub struct StoreConfig {
 /// Default relative tolerance on the amplitude (0.1 %: well below the 3–9 % model error
 /// of the linearization itself, model.md §8).
 pub const DEFAULT_RTOL: f64 = 1e-3;
+/// Pairs of a point's (estimate, computed) history handed to [`next_estimate`]. Between two
+/// passes the *other* points' amplitudes change too, so the map a ↦ a*(a) of one point
+/// drifts: older pairs (and brackets built from them) are stale and made the bracketing
+/// secant stall on a coupled two-point sweep (tests/ffi_sweep.rs: no convergence in 15
+/// passes with the full history, 5 passes + final with the last two). The full history is
+/// kept (restart file, status).
+pub const HISTORY_WINDOW: usize = 2;
+
 /// Default bound on iteration passes (the thesis's beam needed 5, Fig. 4.33).
 pub const DEFAULT_MAX_PASSES: u32 = 20;
 
@@ -443,7 +451,8 @@ impl Store {
                 rec.estimate[d] = if rec.history[d].is_empty() {
                     back
                 } else {
-                    let h: Vec<(f64, f64)> = rec.history[d]
+                    let hist = &rec.history[d];
+                    let h: Vec<(f64, f64)> = hist[hist.len().saturating_sub(HISTORY_WINDOW)..]
                         .iter()
                         .map(|&(a, b)| (a.max(floor), b.max(floor)))
                         .collect();

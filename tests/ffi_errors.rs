@@ -19,6 +19,9 @@ const BAD: [f64; 3] = [f64::NAN, f64::INFINITY, f64::NEG_INFINITY];
 /// Sentinel left in outputs to prove they were not written.
 const SENTINEL: f64 = 12345.0;
 
+/// One way of spoiling a UINTER input.
+type Case = Box<dyn Fn(&mut Uinter)>;
+
 fn block() -> jointlin_contact {
     jointlin_contact {
         law: JOINTLIN_LAW_MINDLIN,
@@ -567,7 +570,7 @@ fn uinter_rejects_every_null_pointer_without_writing() {
         let store = new_store(1e-4, 1e-3, JOINTLIN_KINC_ORIGINAL);
         assert_eq!(uexternaldb(store, 0, 0, 1, 0), 0);
         assert_eq!(uexternaldb(store, 1, 0, 1, 1), 0);
-        for at in 0..UINTER_POINTERS.len() {
+        for (at, name) in UINTER_POINTERS.iter().enumerate() {
             let mut u = closed_point();
             u.linper = linper;
             u.stress[0] = 2.0;
@@ -575,10 +578,9 @@ fn uinter_rejects_every_null_pointer_without_writing() {
             assert_eq!(
                 uinter_with_null(&mut u, store, at),
                 JOINTLIN_ERR_NULL,
-                "{}",
-                UINTER_POINTERS[at]
+                "{name}"
             );
-            assert_eq!(u.outputs(), before, "{}", UINTER_POINTERS[at]);
+            assert_eq!(u.outputs(), before, "{name}");
         }
         // The store may be NULL only at LINPER = 0.
         let mut u = closed_point();
@@ -638,7 +640,7 @@ fn uinter_rejects_non_finite_in_every_double_input_without_writing() {
     assert_eq!(uexternaldb(store, 1, 0, 1, 1), 0);
     for linper in [0, 1] {
         for bad in BAD {
-            let mut cases: Vec<Box<dyn Fn(&mut Uinter)>> = vec![
+            let mut cases: Vec<Case> = vec![
                 Box::new(move |u| u.dtime = bad),
                 Box::new(move |u| u.freqr = bad),
                 Box::new(move |u| u.area = bad),

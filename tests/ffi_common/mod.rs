@@ -110,8 +110,8 @@ impl Uinter {
 
     /// Moves the slips to `rdisp` (increments from the current values) and calls LINPER = 0.
     pub fn step_to(&mut self, rdisp: [f64; 3]) -> i32 {
-        for i in 0..3 {
-            self.drdisp[i] = rdisp[i] - self.rdisp[i];
+        for ((d, new), old) in self.drdisp.iter_mut().zip(rdisp).zip(self.rdisp) {
+            *d = new - old;
         }
         self.rdisp = rdisp;
         self.linper = 0;
