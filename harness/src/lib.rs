@@ -18,6 +18,7 @@
 pub mod capi;
 pub mod fe;
 pub mod model;
+pub mod run;
 pub mod scene;
 pub mod solve;
 

@@ -1,6 +1,8 @@
 //! Linear solvers (UMFPACK, modal), the static preload step and the steady-state sweep.
 
 pub mod contact;
+pub mod dense;
 pub mod modal;
 pub mod static_step;
+pub mod sweep;
 pub mod umfpack;

@@ -1,0 +1,189 @@
+//! One study from scene to results: build the problem, the static preload step, the
+//! steady-state sweep in the scene's mode and, when the FRF plot asks for it, the
+//! reference sweep without contact damping. Records which effects are active and what
+//! each step cost.
+
+use std::time::Instant;
+
+use serde::Serialize;
+use thiserror::Error;
+
+use crate::capi::{self, CallCounts};
+use crate::model::{build, BuildError, Problem};
+use crate::scene::{Effects, Mode, Scene};
+use crate::solve::static_step::{self, StaticError, StaticState};
+use crate::solve::sweep::{self, Options, SweepError, SweepResult};
+
+/// Errors of a run.
+#[derive(Debug, Error)]
+pub enum RunError {
+    #[error("building the model: {0}")]
+    Build(#[from] BuildError),
+    #[error("static preload step: {0}")]
+    Static(#[from] StaticError),
+    #[error("steady-state step: {0}")]
+    Sweep(#[from] SweepError),
+}
+
+/// What to run besides the scene's own sweep.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct Extras {
+    /// Also sweep without contact damping (fast mode) for the FRF comparison plot; only
+    /// done when the scene has contact damping on.
+    pub reference_without_damping: bool,
+}
+
+/// An effect, whether it is on, and what it cost.
+#[derive(Debug, Clone, Serialize)]
+pub struct EffectLog {
+    pub name: &'static str,
+    pub active: bool,
+    /// Seconds spent in the work this effect switches on (0 when off).
+    pub seconds: f64,
+    /// What that work was.
+    pub work: String,
+}
+
+/// Everything a run produced.
+#[derive(Debug)]
+pub struct RunResult {
+    pub problem: Problem,
+    pub stat: StaticState,
+    pub main: SweepResult,
+    pub reference: Option<SweepResult>,
+    pub effects: Vec<EffectLog>,
+    /// C-API calls made by the run (this thread).
+    pub calls: CallCounts,
+    /// Seconds: build, static step, main sweep, reference sweep.
+    pub seconds: [f64; 4],
+}
+
+fn sum(r: &SweepResult, keys: &[&str]) -> f64 {
+    keys.iter()
+        .map(|k| r.timings.get(*k).copied().unwrap_or(0.0))
+        .sum()
+}
+
+/// Runs a scene. `progress(label, done, total)` is called per frequency of each pass.
+pub fn run(
+    scene: &Scene,
+    extras: Extras,
+    progress: &dyn Fn(&str, usize, usize),
+) -> Result<RunResult, RunError> {
+    let calls0 = capi::counts();
+    let spec = &scene.spec;
+    let eff: Effects = spec.effects;
+    let t = Instant::now();
+    let problem = build(scene)?;
+    let t_build = t.elapsed().as_secs_f64();
+    let t = Instant::now();
+    let stat = static_step::solve(&problem, eff.normal_contact_nonlinearity)?;
+    let t_static = t.elapsed().as_secs_f64();
+    let freqs = scene.frequencies();
+    let opts = Options::from_scene(spec.iteration, eff);
+    let t = Instant::now();
+    let main = sweep::run(&problem, &stat, &freqs, &opts, progress)?;
+    let t_main = t.elapsed().as_secs_f64();
+    let t = Instant::now();
+    let reference =
+        if extras.reference_without_damping && eff.contact_damping && eff.tangential_microslip {
+            let mut o = opts;
+            o.effects.contact_damping = false;
+            o.point_results = false;
+            o.iteration.mode = Mode::Fast;
+            Some(sweep::run(&problem, &stat, &freqs, &o, &|l, i, n| {
+                progress(&format!("reference without contact damping: {l}"), i, n)
+            })?)
+        } else {
+            None
+        };
+    let t_ref = t.elapsed().as_secs_f64();
+    let c1 = capi::counts();
+    let calls = CallCounts {
+        linearize: c1.linearize - calls0.linearize,
+        uinter_general: c1.uinter_general - calls0.uinter_general,
+        uinter_linear: c1.uinter_linear - calls0.uinter_linear,
+        uexternaldb: c1.uexternaldb - calls0.uexternaldb,
+        store: c1.store - calls0.store,
+    };
+    let contact_iter = sum(
+        &main,
+        &[
+            "linearization (C API)",
+            "condensed iterations",
+            "receptance solves",
+            "store (C API)",
+        ],
+    );
+    let effects = vec![
+        EffectLog {
+            name: "normal_contact_nonlinearity",
+            active: eff.normal_contact_nonlinearity,
+            seconds: if eff.normal_contact_nonlinearity { t_static } else { 0.0 },
+            work: format!(
+                "static Newton with UINTER LINPER=0: {} iterations, {} calls",
+                stat.newton_iterations, calls.uinter_general
+            ),
+        },
+        EffectLog {
+            name: "tangential_microslip",
+            active: eff.tangential_microslip,
+            seconds: if eff.tangential_microslip { contact_iter } else { 0.0 },
+            work: format!(
+                "k*(A) by {} jointlin_linearize + {} UINTER LINPER=1 calls, receptances and contact iterations",
+                calls.linearize, calls.uinter_linear
+            ),
+        },
+        EffectLog {
+            name: "macroslip",
+            active: eff.macroslip,
+            seconds: 0.0,
+            work: if eff.macroslip {
+                "Coulomb sliding inside the library's loops (no extra work)".into()
+            } else {
+                format!("amplitudes capped at δ*: {} caps", main.macroslip_caps)
+            },
+        },
+        EffectLog {
+            name: "contact_damping",
+            active: eff.contact_damping,
+            seconds: t_ref,
+            work: if reference.is_some() {
+                "d* in the dynamic stiffness; reference sweep without it for the FRF plot".into()
+            } else {
+                "d* in the dynamic stiffness".into()
+            },
+        },
+        EffectLog {
+            name: "material_damping",
+            active: eff.material_damping,
+            seconds: 0.0,
+            work: if problem.damping.is_some() && eff.material_damping {
+                "Rayleigh/dashpot D assembled once with the model".into()
+            } else {
+                "none".into()
+            },
+        },
+        EffectLog {
+            name: "point_energy_output",
+            active: eff.point_energy_output,
+            seconds: sum(&main, &["point outputs", "reporting and point outputs"]),
+            work: "per-point amplitude, k*, d*, energy, A/δ* (points.csv)".into(),
+        },
+        EffectLog {
+            name: "stick_slip_map",
+            active: eff.stick_slip_map,
+            seconds: 0.0,
+            work: "regime per point and frequency (stick_slip.csv/svg), from the point results".into(),
+        },
+    ];
+    Ok(RunResult {
+        problem,
+        stat,
+        main,
+        reference,
+        effects,
+        calls,
+        seconds: [t_build, t_static, t_main, t_ref],
+    })
+}

@@ -1,0 +1,266 @@
+//! Fast mode: per frequency one numeric factorization, contact iterations on the
+//! condensed system.
+//!
+//! With S₀ = S(ω, κ₀) for a reference contact state κ₀ (the previous frequency's converged
+//! one; iωd* = A_hys/(πA²)·i does not depend on ω, so κ carries over unchanged) and
+//! the contact map B (rows: tangential relative displacements of the active points),
+//! S(ω, κ) = S₀ + Bᵀ Δ B with Δ = diag((κ − κ₀)·area). Then r = B û solves
+//!
+//!   (I + G Δ) r = r₀,   G = B S₀⁻¹ Bᵀ (receptance, m × m),  r₀ = B S₀⁻¹ f̂,
+//!
+//! and outputs are ŷ = C S₀⁻¹ f̂ − (C S₀⁻¹ Bᵀ) Δ r. G comes from m solves with the one
+//! factorization (column by column into scratch: memory O(n + m²)); every contact
+//! iteration is then a dense m × m solve plus m `jointlin_linearize` calls. Amplitudes
+//! a = |r| are iterated to consistency with Anderson acceleration in ln a; convergence is
+//! the store's test |a − a*| ≤ rtol·max(a, a*) + atol per point and direction.
+
+use std::time::Instant;
+
+use super::anderson::Anderson;
+use super::{Options, PassRecord, PointFreq, Setup, SweepError, SweepResult, C64};
+use crate::capi::{self, Linearized, Tangential};
+use crate::solve::contact::tangential;
+use crate::solve::dense::lu_solve_in_place;
+
+/// Anderson history depth.
+const DEPTH: usize = 5;
+/// Amplitudes below this fraction of the largest one are handed to the linearization as
+/// exactly 0 (k* = k_T0, d* = 0: the A → 0 limit, where relative differences of 1e-15 are
+/// below round-off) and floored there before taking logs. Without it a direction that is
+/// never excited (amplitude 0) would drive ln a to −∞.
+const ZERO_AMP_REL: f64 = 1e-15;
+
+/// Runs the fast sweep.
+pub fn sweep(
+    setup: &mut Setup,
+    freqs: &[f64],
+    opts: &Options,
+    progress: &dyn Fn(&str, usize, usize),
+) -> Result<SweepResult, SweepError> {
+    let p = setup.problem;
+    let eff = opts.effects;
+    let it = opts.iteration;
+    let na = setup.active.len();
+    let m = 2 * na;
+    let n = p.sys.dofs.n_free();
+    let nout = p.outputs.len();
+    let mut res = SweepResult {
+        freqs: freqs.to_vec(),
+        ..Default::default()
+    };
+    let tang: Vec<Tangential> = setup
+        .active
+        .iter()
+        .map(|&i| {
+            let c = &p.contacts[i];
+            tangential(&p.interfaces[c.interface], setup.pressure[i])
+        })
+        .collect();
+    let area: Vec<f64> = setup.active.iter().map(|&i| p.contacts[i].area).collect();
+    // δ* per active point, only when macroslip is off (A = 0 gives δ* and k_T0).
+    let t0 = Instant::now();
+    let slip_limit: Vec<f64> = if eff.macroslip {
+        Vec::new()
+    } else {
+        tang.iter()
+            .map(|t| capi::linearize(t, 0.0, 1.0).map(|l| l.slip_limit))
+            .collect::<Result<_, _>>()?
+    };
+    res.time("linearization (C API)", t0);
+
+    // Scratch, allocated once per sweep.
+    let mut b = vec![C64::new(0.0, 0.0); n];
+    let mut x = vec![C64::new(0.0, 0.0); n];
+    let mut g = vec![C64::new(0.0, 0.0); m * m];
+    let mut o = vec![C64::new(0.0, 0.0); nout * m];
+    let mut r0 = vec![C64::new(0.0, 0.0); m];
+    let mut o0 = vec![C64::new(0.0, 0.0); nout];
+    let mut work = vec![C64::new(0.0, 0.0); m * m];
+    let mut r = vec![C64::new(0.0, 0.0); m];
+    let mut delta = vec![C64::new(0.0, 0.0); m];
+    let mut lin = vec![Linearized::default(); m];
+    let mut a = vec![it.initial_amplitude; m];
+    let mut a_star = vec![0.0; m];
+    let mut kappa0 = vec![[C64::new(0.0, 0.0); 2]; na];
+    let active = setup.active.clone();
+    let row = |j: usize| &p.contacts[active[j / 2]].rows[1 + j % 2];
+
+    let linearize_all = |a: &[f64],
+                         omega: f64,
+                         lin: &mut [Linearized],
+                         caps: &mut usize|
+     -> Result<(), capi::CapiError> {
+        let floor = ZERO_AMP_REL * a.iter().fold(0.0f64, |x, &y| x.max(y));
+        for j in 0..m {
+            let mut amp = if a[j] < floor { 0.0 } else { a[j] };
+            if !eff.macroslip && amp > slip_limit[j / 2] {
+                amp = slip_limit[j / 2];
+                *caps += 1;
+            }
+            lin[j] = capi::linearize(&tang[j / 2], amp, omega)?;
+        }
+        Ok(())
+    };
+    let kappa_of = |l: &Linearized, omega: f64| {
+        C64::new(
+            l.k_star,
+            if eff.contact_damping {
+                omega * l.d_star
+            } else {
+                0.0
+            },
+        )
+    };
+
+    for (fi, &f) in freqs.iter().enumerate() {
+        progress("frequency", fi + 1, freqs.len());
+        let omega = 2.0 * std::f64::consts::PI * f;
+        if fi == 0 && m > 0 {
+            let t = Instant::now();
+            linearize_all(&a, omega, &mut lin, &mut res.macroslip_caps)?;
+            res.time("linearization (C API)", t);
+            for j in 0..m {
+                kappa0[j / 2][j % 2] = kappa_of(&lin[j], omega);
+            }
+        }
+        let t = Instant::now();
+        setup.fill(omega, &kappa0);
+        let num = setup
+            .symbolic
+            .factor(&setup.s)
+            .map_err(|source| SweepError::Umfpack { freq: f, source })?;
+        res.factorizations += 1;
+        res.time("factorization", t);
+
+        let t = Instant::now();
+        let umf = |e| SweepError::Umfpack { freq: f, source: e };
+        num.solve_into(&p.excitation, &mut x).map_err(umf)?;
+        for j in 0..m {
+            r0[j] = row(j).iter().map(|&(i, w)| x[i] * w).sum();
+        }
+        for (k, out) in p.outputs.iter().enumerate() {
+            o0[k] = out.value(&x);
+        }
+        for j in 0..m {
+            for &(i, w) in row(j) {
+                b[i] = C64::new(w, 0.0);
+            }
+            num.solve_into(&b, &mut x).map_err(umf)?;
+            for &(i, _) in row(j) {
+                b[i] = C64::new(0.0, 0.0);
+            }
+            for k in 0..m {
+                g[k + m * j] = row(k).iter().map(|&(i, w)| x[i] * w).sum();
+            }
+            for (k, out) in p.outputs.iter().enumerate() {
+                o[k + nout * j] = out.value(&x);
+            }
+        }
+        drop(num);
+        res.time("receptance solves", t);
+
+        let mut acc = Anderson::new(DEPTH);
+        let mut iterations = 0;
+        let mut converged = m == 0;
+        r.copy_from_slice(&r0);
+        delta.iter_mut().for_each(|d| *d = C64::new(0.0, 0.0));
+        while m > 0 && iterations < it.max_passes {
+            iterations += 1;
+            let t = Instant::now();
+            linearize_all(&a, omega, &mut lin, &mut res.macroslip_caps)?;
+            res.time("linearization (C API)", t);
+            let t = Instant::now();
+            for j in 0..m {
+                delta[j] = (kappa_of(&lin[j], omega) - kappa0[j / 2][j % 2]) * area[j / 2];
+            }
+            for jc in 0..m {
+                for k in 0..m {
+                    work[k + m * jc] = g[k + m * jc] * delta[jc];
+                }
+                work[jc + m * jc] += C64::new(1.0, 0.0);
+            }
+            r.copy_from_slice(&r0);
+            if !lu_solve_in_place(&mut work, m, &mut r) {
+                return Err(SweepError::Condensed { freq: f });
+            }
+            for j in 0..m {
+                a_star[j] = r[j].norm();
+            }
+            let atol = super::atol(&it);
+            converged = a
+                .iter()
+                .zip(&a_star)
+                .all(|(&e, &c)| (e - c).abs() <= it.tolerance * e.max(c) + atol);
+            res.time("condensed iterations", t);
+            if converged {
+                break;
+            }
+            let floor = ZERO_AMP_REL
+                * a.iter()
+                    .chain(&a_star)
+                    .fold(f64::MIN_POSITIVE, |x, &y| x.max(y));
+            let xs: Vec<f64> = a.iter().map(|v| v.max(floor).ln()).collect();
+            let gs: Vec<f64> = a_star.iter().map(|v| v.max(floor).ln()).collect();
+            a = acc.next(&xs, &gs).iter().map(|v| v.exp()).collect();
+        }
+
+        // Outputs ŷ = o₀ − O Δ r.
+        let outs: Vec<C64> = (0..nout)
+            .map(|k| {
+                o0[k]
+                    - (0..m)
+                        .map(|j| o[k + nout * j] * delta[j] * r[j])
+                        .sum::<C64>()
+            })
+            .collect();
+        res.outputs.push(outs);
+        let mut power = 0.0;
+        let t = Instant::now();
+        let mut pts = Vec::new();
+        if opts.point_results {
+            pts = vec![PointFreq::default(); p.contacts.len()];
+        }
+        for q in 0..na {
+            let e = if eff.contact_damping {
+                (lin[2 * q].energy_per_cycle + lin[2 * q + 1].energy_per_cycle) * area[q]
+            } else {
+                0.0
+            };
+            power += e * f;
+            if opts.point_results {
+                let (l1, l2) = (&lin[2 * q], &lin[2 * q + 1]);
+                pts[active[q]] = PointFreq {
+                    amplitude: [a_star[2 * q], a_star[2 * q + 1]],
+                    k_star: [l1.k_star, l2.k_star],
+                    d_star: if eff.contact_damping {
+                        [l1.d_star, l2.d_star]
+                    } else {
+                        [0.0; 2]
+                    },
+                    energy: e,
+                    ratio: [l1.amplitude_ratio, l2.amplitude_ratio],
+                    regime: [l1.regime, l2.regime],
+                };
+            }
+        }
+        if opts.point_results {
+            res.points.push(pts);
+            res.time("point outputs", t);
+        }
+        res.power.push(power);
+        res.iterations.push(iterations);
+        res.converged.push(converged);
+        // Next frequency starts from this converged state.
+        for j in 0..m {
+            kappa0[j / 2][j % 2] = kappa_of(&lin[j], omega);
+        }
+    }
+    let nconv = res.converged.iter().filter(|&&c| c).count();
+    res.passes.push(PassRecord {
+        pass: 1,
+        kind: "fast".into(),
+        frequencies: freqs.to_vec(),
+        converged: nconv,
+    });
+    Ok(res)
+}

@@ -1,0 +1,259 @@
+//! The steady-state step: per frequency f (ω = 2πf)
+//!
+//!   (K + K_c(k*) + iω(D + D_c(d*)) − ω²M) û = f̂,   u(t) = Re(û e^{iωt}),
+//!
+//! with the contact springs of every closed point: k_N along n (from the static step) and,
+//! per tangential direction, κ = k* + iω d* (per area, × tributary area) from the C API for
+//! the point's amplitude |δ̂_t|. Open points stay open (no springs). Two modes:
+//! - [`fast`]: one factorization per frequency, contact iteration on the condensed system;
+//! - [`thesis`]: the multi-pass UEXTERNALDB scheme through the library's store.
+//!
+//! [`Setup`] holds what both share: the symbolic analysis (once per sweep), the frequency-
+//! independent real part, the per-point unit blocks, and the scratch matrix S(ω).
+
+pub mod anderson;
+pub mod fast;
+pub mod thesis;
+
+use std::collections::BTreeMap;
+use std::time::Instant;
+
+use nalgebra::{Complex, Matrix3, Vector3};
+use serde::Serialize;
+use thiserror::Error;
+
+use crate::capi::CapiError;
+use crate::fe::csc::Csc;
+use crate::fe::pair_blocks::to_global;
+use crate::model::Problem;
+use crate::scene::{Effects, IterationSpec};
+use crate::solve::contact::normal_stiffness;
+use crate::solve::static_step::StaticState;
+use crate::solve::umfpack::{Symbolic, UmfpackError};
+
+pub type C64 = Complex<f64>;
+
+/// Absolute amplitude tolerance, relative to the initial amplitude estimate: both modes
+/// accept |a − a*| ≤ rtol·max(a, a*) + atol. Without it a direction that is never
+/// excited (a* = 0) could never converge in relative terms.
+pub const ATOL_REL: f64 = 1e-6;
+
+/// atol (length) for an iteration spec.
+pub fn atol(it: &IterationSpec) -> f64 {
+    ATOL_REL * it.initial_amplitude
+}
+
+/// Errors of a sweep.
+#[derive(Debug, Error)]
+pub enum SweepError {
+    #[error(transparent)]
+    Capi(#[from] CapiError),
+    #[error("at {freq} Hz: {source}")]
+    Umfpack {
+        freq: f64,
+        #[source]
+        source: UmfpackError,
+    },
+    #[error("at {freq} Hz: the condensed contact system is singular")]
+    Condensed { freq: f64 },
+}
+
+/// What the sweep is asked to do (from the scene's iteration table and effects).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Options {
+    pub iteration: IterationSpec,
+    pub effects: Effects,
+    /// Per-point results (points.csv, stick/slip map).
+    pub point_results: bool,
+}
+
+impl Options {
+    pub fn from_scene(iteration: IterationSpec, effects: Effects) -> Self {
+        Options {
+            iteration,
+            effects,
+            point_results: effects.point_energy_output || effects.stick_slip_map,
+        }
+    }
+}
+
+/// One contact point at one frequency.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
+pub struct PointFreq {
+    /// Computed tangential amplitudes |δ̂_t₁|, |δ̂_t₂| (length).
+    pub amplitude: [f64; 2],
+    /// k* per area (force/length³).
+    pub k_star: [f64; 2],
+    /// d* per area (force·time/length³); 0 without contact damping.
+    pub d_star: [f64; 2],
+    /// Energy dissipated per cycle by the point, both directions (force·length).
+    pub energy: f64,
+    /// A/δ* per direction.
+    pub ratio: [f64; 2],
+    /// JOINTLIN_REGIME_* per direction.
+    pub regime: [i32; 2],
+}
+
+/// One pass of the thesis scheme (Fig. 4.33) or, in fast mode, the whole sweep.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct PassRecord {
+    pub pass: i32,
+    /// "first", "rerun", "final" (thesis) or "fast".
+    pub kind: String,
+    /// Frequencies (Hz) run in the pass.
+    pub frequencies: Vec<f64>,
+    pub converged: usize,
+}
+
+/// Results of a sweep.
+#[derive(Debug, Clone, Default)]
+pub struct SweepResult {
+    pub freqs: Vec<f64>,
+    /// [frequency][output] complex displacement amplitude.
+    pub outputs: Vec<Vec<C64>>,
+    /// Power dissipated in the joints (force·length/time): Σ energy per cycle × f.
+    pub power: Vec<f64>,
+    /// [frequency][contact point]; empty unless per-point results were asked for.
+    pub points: Vec<Vec<PointFreq>>,
+    /// Fast: contact iterations per frequency; thesis: passes that ran the frequency.
+    pub iterations: Vec<usize>,
+    pub converged: Vec<bool>,
+    pub passes: Vec<PassRecord>,
+    pub factorizations: usize,
+    /// Amplitudes capped at δ* because macroslip is off.
+    pub macroslip_caps: usize,
+    /// Seconds per named cost.
+    pub timings: BTreeMap<String, f64>,
+}
+
+impl SweepResult {
+    pub(crate) fn time(&mut self, key: &str, since: Instant) {
+        *self.timings.entry(key.to_string()).or_default() += since.elapsed().as_secs_f64();
+    }
+}
+
+/// Shared per-sweep data.
+pub struct Setup<'a> {
+    pub problem: &'a Problem,
+    pub symbolic: Symbolic,
+    /// K + normal springs (+ stick springs k_T0 when microslip is off), on the pattern.
+    pub base: Vec<f64>,
+    /// Contact indices with varying tangential springs (closed, microslip on).
+    pub active: Vec<usize>,
+    /// Per active point: global unit blocks t₁t₁ᵀA and t₂t₂ᵀA.
+    pub unit_blocks: Vec<[Matrix3<f64>; 2]>,
+    /// Base pressure per contact point.
+    pub pressure: Vec<f64>,
+    pub damping: Option<&'a Csc<f64>>,
+    /// S(ω) scratch.
+    pub s: Csc<C64>,
+}
+
+impl<'a> Setup<'a> {
+    /// Symbolic analysis and the frequency-independent part.
+    pub fn new(
+        problem: &'a Problem,
+        stat: &StaticState,
+        effects: &Effects,
+    ) -> Result<Self, UmfpackError> {
+        let symbolic = Symbolic::new(problem.sys.pattern.clone())?;
+        let mut base = problem.sys.k.values.clone();
+        let mut active = Vec::new();
+        let mut unit_blocks = Vec::new();
+        for (i, c) in problem.contacts.iter().enumerate() {
+            if !stat.closed[i] {
+                continue;
+            }
+            let itf = &problem.interfaces[c.interface];
+            let kn = if effects.normal_contact_nonlinearity {
+                stat.normal_stiffness[i]
+            } else {
+                normal_stiffness(itf)
+            };
+            let kt = if effects.tangential_microslip {
+                0.0
+            } else {
+                itf.k_t0_per_area
+            };
+            let local = Matrix3::from_diagonal(&Vector3::new(kn, kt, kt)) * c.area;
+            problem
+                .sys
+                .pairs
+                .add(&mut base, c.pair, &to_global(&c.frame, &local));
+            if effects.tangential_microslip {
+                active.push(i);
+                let unit = |d: usize| {
+                    let t = c.frame.column(d);
+                    t * t.transpose() * c.area
+                };
+                unit_blocks.push([unit(1), unit(2)]);
+            }
+        }
+        let damping = if effects.material_damping {
+            problem.damping.as_ref()
+        } else {
+            None
+        };
+        Ok(Setup {
+            problem,
+            symbolic,
+            base,
+            active,
+            unit_blocks,
+            pressure: stat.pressure.clone(),
+            damping,
+            s: problem.sys.complex_zeros(),
+        })
+    }
+
+    /// Writes S(ω) with tangential κ (per area) for every active point into `self.s`.
+    pub fn fill(&mut self, omega: f64, kappa: &[[C64; 2]]) {
+        let w2 = omega * omega;
+        let m = &self.problem.sys.m.values;
+        for ((s, k), mv) in self.s.values.iter_mut().zip(&self.base).zip(m) {
+            *s = C64::new(k - w2 * mv, 0.0);
+        }
+        if let Some(d) = self.damping {
+            for (s, dv) in self.s.values.iter_mut().zip(&d.values) {
+                s.im += omega * dv;
+            }
+        }
+        for (j, &i) in self.active.iter().enumerate() {
+            let [b1, b2] = &self.unit_blocks[j];
+            let blk: Matrix3<C64> = b1.map(|v| kappa[j][0] * v) + b2.map(|v| kappa[j][1] * v);
+            self.problem
+                .sys
+                .pairs
+                .add(&mut self.s.values, self.problem.contacts[i].pair, &blk);
+        }
+    }
+
+    /// Tangential relative displacement amplitudes (complex) of active point j.
+    pub fn tangential(&self, j: usize, u: &[C64]) -> [C64; 2] {
+        let c = &self.problem.contacts[self.active[j]];
+        [c.relative(1, u), c.relative(2, u)]
+    }
+}
+
+/// Runs the scene's mode.
+pub fn run(
+    problem: &Problem,
+    stat: &StaticState,
+    freqs: &[f64],
+    opts: &Options,
+    progress: &dyn Fn(&str, usize, usize),
+) -> Result<SweepResult, SweepError> {
+    let t = Instant::now();
+    let mut setup =
+        Setup::new(problem, stat, &opts.effects).map_err(|source| SweepError::Umfpack {
+            freq: freqs.first().copied().unwrap_or(0.0),
+            source,
+        })?;
+    let analysis = t.elapsed().as_secs_f64();
+    let mut r = match opts.iteration.mode {
+        crate::scene::Mode::Fast => fast::sweep(&mut setup, freqs, opts, progress)?,
+        crate::scene::Mode::Thesis => thesis::sweep(&mut setup, stat, freqs, opts, progress)?,
+    };
+    *r.timings.entry("symbolic analysis".into()).or_default() += analysis;
+    Ok(r)
+}

@@ -1,0 +1,245 @@
+//! Thesis mode: the UEXTERNALDB-style multi-pass scheme of §4.3.2 (Fig. 4.27, 4.33), run
+//! through the library's store exactly as Abaqus would drive UINTER and UEXTERNALDB.
+//!
+//! Each pass is one "analysis" (LOP 0 … LOP 3) whose step 2 (LOP 5/6) is the steady-state
+//! step; every frequency increment KINC is LOP 1, one UINTER call (LINPER = 1) per closed
+//! point — k* in DDSDDR, d* in DVISCOUS for the store's amplitude estimate — one
+//! factorization and solve, the computed amplitudes reported to the store, LOP 2. The
+//! store decides what runs next: pass 1 all frequencies (the first with the initial
+//! estimate, each later one with the previous increment's amplitude), then re-runs of the
+//! increments out of tolerance, then one final pass over all of them. The static step
+//! (step 1) is solved once before the first pass and reused by the re-runs, as an Abaqus
+//! restart from the end of step 1 would.
+
+use std::time::Instant;
+
+use super::{Options, PassRecord, PointFreq, Setup, SweepError, SweepResult, C64};
+use crate::capi::{self, Action, Store, NSTATV};
+use crate::solve::contact::{interface_props, tangential};
+use crate::solve::static_step::{uinter_point, StaticState};
+
+/// KSTEP of the steady-state step (step 1 is the static preload).
+pub const SWEEP_STEP: i32 = 2;
+
+/// Runs the thesis sweep.
+pub fn sweep(
+    setup: &mut Setup,
+    stat: &StaticState,
+    freqs: &[f64],
+    opts: &Options,
+    progress: &dyn Fn(&str, usize, usize),
+) -> Result<SweepResult, SweepError> {
+    let p = setup.problem;
+    let eff = opts.effects;
+    let it = opts.iteration;
+    let na = setup.active.len();
+    let nf = freqs.len();
+    let mut res = SweepResult {
+        freqs: freqs.to_vec(),
+        outputs: vec![Vec::new(); nf],
+        power: vec![0.0; nf],
+        iterations: vec![0; nf],
+        converged: vec![na == 0; nf],
+        ..Default::default()
+    };
+    if opts.point_results {
+        res.points = vec![vec![PointFreq::default(); p.contacts.len()]; nf];
+    }
+    let props: Vec<[f64; 12]> = p.interfaces.iter().map(interface_props).collect();
+    let mut statev: Vec<[f64; NSTATV]> = setup.active.iter().map(|&i| stat.statev[i]).collect();
+    // A host that never ran LINPER = 0 (normal nonlinearity off) hands p0 in STATEV as
+    // the library reads it: closed flag and base pressure.
+    if !eff.normal_contact_nonlinearity {
+        for (sv, &i) in statev.iter_mut().zip(&setup.active) {
+            sv[1] = stat.pressure[i];
+            sv[3] = 1.0;
+        }
+    }
+    let slip_limit: Vec<f64> = if eff.macroslip {
+        Vec::new()
+    } else {
+        setup
+            .active
+            .iter()
+            .map(|&i| {
+                let c = &p.contacts[i];
+                capi::linearize(
+                    &tangential(&p.interfaces[c.interface], stat.pressure[i]),
+                    0.0,
+                    1.0,
+                )
+                .map(|l| l.slip_limit)
+            })
+            .collect::<Result<_, _>>()?
+    };
+
+    let mut x = vec![C64::new(0.0, 0.0); p.sys.dofs.n_free()];
+    let mut kappa = vec![[C64::new(0.0, 0.0); 2]; na];
+    let mut ids = vec![0i64; na];
+    let mut outs = vec![capi::UinterOut::default(); na];
+
+    // Without varying contact springs there is nothing to iterate: one linear sweep.
+    if na == 0 {
+        for (fi, &f) in freqs.iter().enumerate() {
+            progress("frequency", fi + 1, nf);
+            let omega = 2.0 * std::f64::consts::PI * f;
+            solve_one(setup, omega, &kappa, &mut x, &mut res, f)?;
+            res.outputs[fi] = p.outputs.iter().map(|o| o.value(&x)).collect();
+        }
+        res.passes.push(PassRecord {
+            pass: 1,
+            kind: "linear".into(),
+            frequencies: freqs.to_vec(),
+            converged: nf,
+        });
+        return Ok(res);
+    }
+
+    let t = Instant::now();
+    let store = Store::new(
+        it.initial_amplitude,
+        it.tolerance,
+        super::atol(&it),
+        it.scheme,
+        it.max_passes,
+        SWEEP_STEP,
+    )?;
+    res.time("store (C API)", t);
+    loop {
+        let t = Instant::now();
+        let (action, pass) = store.next_action()?;
+        res.time("store (C API)", t);
+        let (kind, list): (&str, Vec<i32>) = match action {
+            Action::RunSweep => ("first", (1..=nf as i32).collect()),
+            Action::RunPass(l) => ("rerun", l),
+            Action::RunFinal(l) => ("final", l),
+            Action::Done => break,
+            Action::Failed(l) => {
+                res.converged.iter_mut().for_each(|c| *c = true);
+                for k in l {
+                    res.converged[k as usize - 1] = false;
+                }
+                break;
+            }
+            Action::Running => unreachable!("no pass is open between analyses"),
+        };
+        store.external_db(0, 0, 0)?;
+        store.external_db(5, SWEEP_STEP, 0)?;
+        for (li, &kinc) in list.iter().enumerate() {
+            progress(&format!("pass {pass} ({kind})"), li + 1, list.len());
+            let fi = kinc as usize - 1;
+            let f = freqs[fi];
+            let omega = 2.0 * std::f64::consts::PI * f;
+            store.external_db(1, SWEEP_STEP, kinc)?;
+            let t = Instant::now();
+            for (j, &i) in setup.active.iter().enumerate() {
+                let c = &p.contacts[i];
+                let pt = uinter_point(p, c, &props[c.interface]);
+                let o = capi::uinter_linear(&store, &pt, &mut statev[j], f, SWEEP_STEP, kinc)?;
+                ids[j] = o.report.point;
+                kappa[j] = std::array::from_fn(|d| {
+                    let damp = if eff.contact_damping {
+                        omega * o.dviscous[1 + d][1 + d]
+                    } else {
+                        0.0
+                    };
+                    C64::new(o.ddsddr[1 + d][1 + d], damp)
+                });
+                outs[j] = o;
+            }
+            res.time("linearization (C API)", t);
+            solve_one(setup, omega, &kappa, &mut x, &mut res, f)?;
+            let t = Instant::now();
+            let mut power = 0.0;
+            for (j, &i) in setup.active.iter().enumerate() {
+                let d = setup.tangential(j, &x);
+                let mut amp = [d[0].norm(), d[1].norm()];
+                if !eff.macroslip {
+                    for v in amp.iter_mut() {
+                        if *v > slip_limit[j] {
+                            *v = slip_limit[j];
+                            res.macroslip_caps += 1;
+                        }
+                    }
+                }
+                store.report(ids[j], kinc, amp)?;
+                let c = &p.contacts[i];
+                let e = if eff.contact_damping {
+                    outs[j].report.energy_per_cycle * c.area
+                } else {
+                    0.0
+                };
+                power += e * f;
+                if opts.point_results {
+                    let rep = &outs[j].report;
+                    // A/δ* is not in the UINTER report: one jointlin_linearize per
+                    // direction, only because per-point output was asked for.
+                    let tg = tangential(&p.interfaces[c.interface], stat.pressure[i]);
+                    let ratio = [
+                        capi::linearize(&tg, rep.amplitude[0], omega)?.amplitude_ratio,
+                        capi::linearize(&tg, rep.amplitude[1], omega)?.amplitude_ratio,
+                    ];
+                    res.points[fi][i] = PointFreq {
+                        amplitude: amp,
+                        k_star: rep.k_star,
+                        d_star: if eff.contact_damping {
+                            rep.d_star
+                        } else {
+                            [0.0; 2]
+                        },
+                        energy: e,
+                        ratio,
+                        regime: rep.regime,
+                    };
+                }
+            }
+            res.time("reporting and point outputs", t);
+            res.power[fi] = power;
+            res.outputs[fi] = p.outputs.iter().map(|o| o.value(&x)).collect();
+            res.iterations[fi] += 1;
+            store.external_db(2, SWEEP_STEP, kinc)?;
+        }
+        store.external_db(6, SWEEP_STEP, 0)?;
+        store.external_db(3, SWEEP_STEP, 0)?;
+        let stats = store.pass_stats(pass)?;
+        if kind == "final" {
+            // The final pass confirms convergence increment by increment.
+            for &k in &list {
+                res.converged[k as usize - 1] = true;
+            }
+        }
+        res.passes.push(PassRecord {
+            pass,
+            kind: kind.into(),
+            frequencies: list.iter().map(|&k| freqs[k as usize - 1]).collect(),
+            converged: stats.increments_converged as usize,
+        });
+    }
+    // A final pass that found an increment out of tolerance turns into a re-run; what
+    // the store left unconverged was marked above.
+    Ok(res)
+}
+
+/// Fills S(ω, κ), factors it and solves for the excitation into `x`.
+fn solve_one(
+    setup: &mut Setup,
+    omega: f64,
+    kappa: &[[C64; 2]],
+    x: &mut [C64],
+    res: &mut SweepResult,
+    f: f64,
+) -> Result<(), SweepError> {
+    let t = Instant::now();
+    setup.fill(omega, kappa);
+    let num = setup
+        .symbolic
+        .factor(&setup.s)
+        .map_err(|source| SweepError::Umfpack { freq: f, source })?;
+    res.factorizations += 1;
+    res.time("factorization", t);
+    let t = Instant::now();
+    num.solve_into(&setup.problem.excitation, x)
+        .map_err(|source| SweepError::Umfpack { freq: f, source })?;
+    res.time("solves", t);
+    Ok(())
+}
