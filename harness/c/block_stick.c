@@ -11,7 +11,7 @@
  *    LINPER = 0 (STRESS(1) = p on entry, structural damping) are linearized at
  *    FREQR = omega / (2 pi):
  *      ss id freqr p0 a1 a2 kstar1 kstar2 dvisc1 dvisc2 dstruct1 dstruct2 kn
- *         statev52..57
+ *         statev52..57 statev1
  *    then both report A back, the pass ends: "ss_action action pass".
  */
 #include "host.h"

@@ -9,6 +9,7 @@
 #ifndef JOINTLIN_HOST_H
 #define JOINTLIN_HOST_H
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -29,6 +30,16 @@
 /* Mean amplitude of the thesis's stick loop (model.md section 8), the prescribed slip
  * amplitude of the time-domain run and the store's estimate in the steady-state run. */
 #define HOST_AMPLITUDE 4.401e-4
+/* The sweep (sweep.c, sweep.f90): two masses HOST_MASS, each on a contact point to
+ * ground (points 1, 2 at overclosures HOST_H_BLOCK, HOST_H_SECOND: p = 2, 1), coupled
+ * by a spring HOST_KC, force HOST_FORCE on mass 1, at three angular frequencies; the
+ * store starts from a poor estimate and a tight tolerance, so it needs re-run passes. */
+#define HOST_H_SECOND 1.0e-4
+#define HOST_KC 600.0
+#define HOST_SWEEP_OMEGA {1.3, 300.0, 500.0}
+#define HOST_SWEEP_ESTIMATE 1.0e-4
+#define HOST_SWEEP_RTOL 1.0e-6
+#define HOST_SWEEP_MAX_PASSES 30
 #define HOST_NSTATV 57
 #define HOST_NPROPS 12
 

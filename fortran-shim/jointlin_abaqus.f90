@@ -1,0 +1,287 @@
+! jointlin_abaqus: the state the Abaqus-signature shims (uinter.f, uexternaldb.f) share.
+!
+! The iteration store handle lives here, in a module variable. UEXTERNALDB creates it at
+! LOP = 0 (or 4) of the first analysis in the process, from a small configuration file:
+! the file named by the environment variable JOINTLIN_CONFIG, else ./jointlin.cfg. No
+! file: no store; UINTER then works in general steps (LINPER = 0) and stops the analysis
+! with a message at LINPER = 1. The handle is never freed by the shims (an Abaqus job ends
+! with its process); hosts that outlive the analysis call jl_close. UEXTERNALDB is called
+! by one thread; UINTER, called by many, only reads the handle.
+!
+! Configuration file: one "key = value" per line; "#" or "!" starts a comment; keys and
+! word values are case-insensitive; unset keys keep the C API defaults
+! (jointlin_store_config_default).
+!
+!   initial_amplitude = 4.4e-4     ! amplitude estimate of the first increment (required)
+!   rtol = 1e-3                    ! relative tolerance
+!   atol = 0                       ! absolute tolerance (length)
+!   scheme = secant                ! direct | relaxation | secant
+!   max_passes = 20                ! iteration passes before giving up
+!   sweep_step = 0                 ! KSTEP of the steady-state step (0 = every step)
+!   kinc_numbering = sequential    ! original | sequential (a new job per re-run pass)
+!   restart_file = jointlin.restart  ! store file: written at LOP 2 (LRESTART >= 1) and 3,
+!                                  ! read at LOP 4, and at LOP 0 when it exists
+!   action_file = jointlin.next    ! written at LOP 3: "action NAME", "pass N",
+!                                  ! "increments k1 k2 ..." (for a driver script)
+!
+! With restart_file set, every pass can be a separate Abaqus job: the first LOP 0 of a
+! job restores the store from the file when it exists (delete it to start over).
+!
+! Errors of the C API stop the analysis through Abaqus's STDB_ABQERR (LOP = -3) with the
+! detail from jointlin_last_error; outside Abaqus link abaqus_standin.f, which provides a
+! stand-in STDB_ABQERR.
+module jointlin_abaqus
+  use, intrinsic :: iso_c_binding
+  use, intrinsic :: iso_fortran_env, only: error_unit
+  use jointlin
+  implicit none
+  private
+  public :: jl_store, jl_open, jl_close, jl_check, jl_error_text, jl_report, jl_after_pass
+
+  !> The store shared by UINTER and UEXTERNALDB (c_null_ptr until LOP 0 created it).
+  type(c_ptr), save :: handle = c_null_ptr
+  !> 1 once jl_open looked for the configuration (found or not).
+  logical, save :: opened = .false.
+  character(len=1024), save :: action_file = ' '
+
+contains
+
+  !> The store handle (c_null_ptr when there is none).
+  function jl_store() result(h)
+    type(c_ptr) :: h
+    h = handle
+  end function jl_store
+
+  !> The message of a status code plus the detail of the last failing call on this thread.
+  function jl_error_text(status) result(text)
+    integer(c_int32_t), intent(in) :: status
+    character(len=:), allocatable :: text
+    character(kind=c_char), pointer :: msg(:)
+    character(kind=c_char) :: buf(512)
+    integer(c_size_t) :: n, i
+    integer :: m
+    m = 0
+    call c_f_pointer(jointlin_status_message(status), msg, [256])
+    do while (m < 256)
+       if (msg(m + 1) == c_null_char) exit
+       m = m + 1
+    end do
+    allocate (character(len=m) :: text)
+    do i = 1, m
+       text(i:i) = msg(i)
+    end do
+    n = jointlin_last_error(buf, int(size(buf), c_size_t))
+    n = min(n, int(size(buf) - 1, c_size_t))
+    if (n > 0) then
+       text = text // ' ('
+       do i = 1, n
+          text = text // buf(i)
+       end do
+       text = text // ')'
+    end if
+  end function jl_error_text
+
+  !> Stops the analysis (STDB_ABQERR, LOP = -3) when `status` is not JOINTLIN_OK.
+  subroutine jl_check(status, where)
+    integer(c_int32_t), intent(in) :: status
+    character(len=*), intent(in) :: where
+    external :: stdb_abqerr
+    integer :: intv(1)
+    real(c_double) :: realv(1)
+    character(len=8) :: charv(1)
+    character(len=:), allocatable :: text
+    integer :: i
+    if (status == JOINTLIN_OK) return
+    text = 'jointlin ' // where // ': ' // jl_error_text(status)
+    do i = 1, len(text)
+       if (text(i:i) == '%') text(i:i) = ' ' ! STDB_ABQERR substitutes %I, %R, %S
+    end do
+    intv = status
+    realv = 0
+    charv = ' '
+    call stdb_abqerr(-3, text(1:min(len(text), 500)), intv, realv, charv)
+  end subroutine jl_check
+
+  !> Creates the store at the first LOP 0 or 4 of the process (see the module header).
+  subroutine jl_open(lop)
+    integer, intent(in) :: lop
+    type(jointlin_store_config) :: config
+    character(len=1024) :: restart, path
+    ! The store copies the path bytes; the buffer only has to outlive jointlin_store_new.
+    character(kind=c_char), target :: rbuf(1024)
+    integer :: plen, status, i
+    logical :: exists
+    if (opened) return
+    opened = .true.
+    call get_environment_variable('JOINTLIN_CONFIG', path, plen, status)
+    if (status /= 0 .or. plen == 0) path = 'jointlin.cfg'
+    inquire (file=trim(path), exist=exists)
+    if (.not. exists) then
+       write (error_unit, '(3a)') 'jointlin: no configuration file ', trim(path), &
+            ': no iteration store (LINPER = 1 will stop the analysis)'
+       return
+    end if
+    call jl_check(jointlin_store_config_default(config), 'configuration defaults')
+    restart = ' '
+    call read_config(trim(path), config, restart)
+    if (len_trim(restart) > 0) then
+       do i = 1, len_trim(restart)
+          rbuf(i) = restart(i:i)
+       end do
+       config%restart_path = c_loc(rbuf)
+       config%restart_path_len = int(len_trim(restart), c_size_t)
+    end if
+    call jl_check(jointlin_store_new(config, handle), 'store from ' // trim(path))
+    if (lop == 0 .and. len_trim(restart) > 0) then
+       inquire (file=trim(restart), exist=exists)
+       if (exists) then
+          call jl_check(jointlin_store_restore(handle), 'restore from ' // trim(restart))
+       end if
+    end if
+  end subroutine jl_open
+
+  !> Frees the store (for hosts that outlive the analysis); the next LOP 0 creates a new
+  !> one from the configuration (and its restart file).
+  subroutine jl_close()
+    call jointlin_store_free(handle)
+    handle = c_null_ptr
+    opened = .false.
+  end subroutine jl_close
+
+  !> Reports the amplitudes computed for store point `point` (STATEV(1) of its UINTER
+  !> call) in increment `kinc` (e.g. from URDFIL, or a host's own solver).
+  subroutine jl_report(point, kinc, amp)
+    integer(c_int64_t), intent(in) :: point
+    integer, intent(in) :: kinc
+    real(c_double), intent(in) :: amp(2)
+    call jl_check(jointlin_store_report(handle, point, int(kinc, c_int32_t), amp), 'report')
+  end subroutine jl_report
+
+  !> After LOP 3: logs the next action to stderr and writes the action file if configured.
+  subroutine jl_after_pass()
+    integer(c_int32_t) :: action, pass
+    integer(c_int32_t), allocatable :: kinc(:)
+    integer(c_size_t) :: count
+    integer(c_int32_t) :: status
+    character(len=10), parameter :: names(0:5) = [character(len=10) :: 'RUNNING', &
+         'RUN_SWEEP', 'RUN_PASS', 'RUN_FINAL', 'DONE', 'FAILED']
+    integer :: u
+    call jl_check(jointlin_store_next_action(handle, action, pass), 'next action')
+    allocate (kinc(1))
+    status = jointlin_store_rerun_increments(handle, kinc, 0_c_size_t, count)
+    if (status /= JOINTLIN_OK .and. status /= JOINTLIN_ERR_SIZE) call jl_check(status, 'rerun')
+    deallocate (kinc)
+    allocate (kinc(max(count, 1_c_size_t)))
+    call jl_check(jointlin_store_rerun_increments(handle, kinc, int(size(kinc), c_size_t), &
+         count), 'rerun increments')
+    write (error_unit, '(a,a,a,i0,a,i0,a)') 'jointlin: next action ', &
+         trim(names(action)), ' (pass ', pass, ', ', count, ' increments)'
+    if (len_trim(action_file) > 0) then
+       open (newunit=u, file=trim(action_file), status='replace', action='write')
+       write (u, '(2a)') 'action ', trim(names(action))
+       write (u, '(a,i0)') 'pass ', pass
+       write (u, '(a)', advance='no') 'increments'
+       if (count > 0) write (u, '(*(1x,i0))', advance='no') kinc(1:count)
+       write (u, '(a)') ''
+       close (u)
+    end if
+  end subroutine jl_after_pass
+
+  subroutine read_config(path, config, restart)
+    character(len=*), intent(in) :: path
+    type(jointlin_store_config), intent(inout) :: config
+    character(len=*), intent(inout) :: restart
+    character(len=1024) :: line, key, value
+    integer :: u, ios, eq, c, nline
+    open (newunit=u, file=path, status='old', action='read', iostat=ios)
+    if (ios /= 0) call fail('cannot open')
+    nline = 0
+    do
+       read (u, '(a)', iostat=ios) line
+       if (ios /= 0) exit
+       nline = nline + 1
+       c = scan(line, '#!')
+       if (c > 0) line(c:) = ' '
+       if (len_trim(line) == 0) cycle
+       eq = index(line, '=')
+       if (eq == 0) call fail('line without "="')
+       key = lower(adjustl(line(:eq - 1)))
+       value = adjustl(line(eq + 1:))
+       select case (trim(key))
+       case ('initial_amplitude')
+          config%initial_amplitude = real_value()
+       case ('rtol')
+          config%rtol = real_value()
+       case ('atol')
+          config%atol = real_value()
+       case ('scheme')
+          select case (lower(value))
+          case ('direct')
+             config%scheme = JOINTLIN_SCHEME_DIRECT
+          case ('relaxation')
+             config%scheme = JOINTLIN_SCHEME_RELAXATION
+          case ('secant')
+             config%scheme = JOINTLIN_SCHEME_SECANT
+          case default
+             call fail('scheme must be direct, relaxation or secant')
+          end select
+       case ('max_passes')
+          config%max_passes = int_value()
+       case ('sweep_step')
+          config%sweep_step = int_value()
+       case ('kinc_numbering')
+          select case (lower(value))
+          case ('original')
+             config%kinc_numbering = JOINTLIN_KINC_ORIGINAL
+          case ('sequential')
+             config%kinc_numbering = JOINTLIN_KINC_SEQUENTIAL
+          case default
+             call fail('kinc_numbering must be original or sequential')
+          end select
+       case ('restart_file')
+          restart = trim(value)
+       case ('action_file')
+          action_file = trim(value)
+       case default
+          call fail('unknown key "' // trim(key) // '"')
+       end select
+    end do
+    close (u)
+  contains
+    function real_value() result(v)
+      real(c_double) :: v
+      read (value, *, iostat=ios) v
+      if (ios /= 0) call fail('not a number: ' // trim(value))
+    end function real_value
+    function int_value() result(v)
+      integer(c_int32_t) :: v
+      read (value, *, iostat=ios) v
+      if (ios /= 0) call fail('not an integer: ' // trim(value))
+    end function int_value
+    subroutine fail(what)
+      character(len=*), intent(in) :: what
+      character(len=16) :: num
+      external :: stdb_abqerr
+      integer :: intv(1)
+      real(c_double) :: realv(1)
+      character(len=8) :: charv(1)
+      write (num, '(i0)') nline
+      intv = 0
+      realv = 0
+      charv = ' '
+      call stdb_abqerr(-3, 'jointlin: ' // path // ':' // trim(num) // ': ' // what, &
+           intv, realv, charv)
+    end subroutine fail
+  end subroutine read_config
+
+  pure function lower(s) result(t)
+    character(len=*), intent(in) :: s
+    character(len=len_trim(s)) :: t
+    integer :: i, c
+    t = s(1:len(t))
+    do i = 1, len(t)
+       c = iachar(t(i:i))
+       if (c >= iachar('A') .and. c <= iachar('Z')) t(i:i) = achar(c + 32)
+    end do
+  end function lower
+end module jointlin_abaqus
