@@ -1,0 +1,376 @@
+//! The C hosts (harness/c) and the Fortran hosts (harness/fortran, through the
+//! Abaqus-signature shim in fortran-shim) built with gcc/gfortran against the
+//! libjointlin.so of this cargo build, run, and checked number by number against the Rust
+//! API (`jointlin::hysteresis`, `jointlin::linearize`, `jointlin::store`) to 1e-12
+//! relative; then run again under valgrind memcheck (zero errors, nothing definitely
+//! lost) when valgrind is installed.
+
+mod hosts_common;
+
+use std::f64::consts::PI;
+use std::path::PathBuf;
+use std::process::Command;
+use std::sync::OnceLock;
+
+use hosts_common::*;
+use jointlin::hysteresis::{PointState, Rule};
+use jointlin::iterate::Scheme;
+use jointlin::law::TangentialLaw;
+use jointlin::linearize::{linearize, Contact, Method};
+use jointlin::store::{Action, KincNumbering, PointKey, Store, StoreConfig};
+use nalgebra::Complex;
+
+// The hosts' data (harness/c/host.h, harness/fortran/host_data.f90).
+const MU: f64 = 0.3;
+const KT0: f64 = 1282.7;
+const KN: f64 = 1.0e4;
+const H_BLOCK: f64 = 2.0e-4;
+const H_SECOND: f64 = 1.0e-4;
+const MASS: f64 = 0.002;
+const OMEGA: f64 = 1.3;
+const FORCE: f64 = 0.5;
+const AMPLITUDE: f64 = 4.401e-4;
+const KC: f64 = 600.0;
+const SWEEP_OMEGA: [f64; 3] = [1.3, 300.0, 500.0];
+const STEPS: usize = 48;
+const CYCLES: usize = 3;
+
+struct Programs {
+    c: PathBuf,
+    fortran: PathBuf,
+}
+
+/// Builds both host sets once per test binary.
+fn programs() -> &'static Programs {
+    static P: OnceLock<Programs> = OnceLock::new();
+    P.get_or_init(|| {
+        let dir = build_dir("hosts");
+        let lib = lib_dir();
+        let c = dir.join("c");
+        make(
+            "harness/c/Makefile",
+            &[
+                ("BUILD", &c),
+                ("JOINTLIN_LIBDIR", &lib),
+                ("JOINTLIN_INCDIR", &root().join("include")),
+            ],
+        );
+        let shim = build_shim(&dir);
+        let fortran = dir.join("fortran");
+        make(
+            "harness/fortran/Makefile",
+            &[
+                ("BUILD", &fortran),
+                ("SHIM", &shim),
+                ("JOINTLIN_LIBDIR", &lib),
+            ],
+        );
+        Programs { c, fortran }
+    })
+}
+
+/// The command that runs a Fortran host: its store configuration (harness/fortran/*.cfg)
+/// through JOINTLIN_CONFIG, in a fresh working directory (restart and action files).
+fn command(program: PathBuf, fortran: bool, under_valgrind: bool) -> Command {
+    let name = program.file_name().unwrap().to_string_lossy().into_owned();
+    let mut cmd = if under_valgrind {
+        valgrind(&program)
+    } else {
+        Command::new(&program)
+    };
+    let kind = if fortran { "fortran" } else { "c" };
+    cmd.current_dir(scratch(&format!("{kind}-{name}-{under_valgrind}")));
+    if fortran {
+        cmd.env(
+            "JOINTLIN_CONFIG",
+            root().join(format!("harness/fortran/{name}.cfg")),
+        );
+    }
+    cmd
+}
+
+fn run_host(fortran: bool, name: &str) -> Vec<Record> {
+    let p = programs();
+    let dir = if fortran { &p.fortran } else { &p.c };
+    parse(&run_ok(&mut command(dir.join(name), fortran, false)).stdout)
+}
+
+fn rec(name: &str, values: Vec<f64>) -> Record {
+    Record {
+        name: name.into(),
+        values,
+    }
+}
+
+fn contact(pressure: f64) -> Contact {
+    Contact {
+        law: TangentialLaw::Mindlin,
+        rule: Rule::Thesis,
+        mu: MU,
+        normal_force: pressure, // stress form with AREA = 1
+        k_t0: KT0,
+    }
+}
+
+/// The Rust API's version of block_stick, fed with the slips and the frequency the host
+/// printed (so that only the library's numbers are compared, not the hosts' sin/cos).
+fn block_stick_reference(host: &[Record]) -> Vec<Record> {
+    let mut want = Vec::new();
+    let p = KN * H_BLOCK; // linear normal law p = k_N h
+    let point = contact(p).point().unwrap().expect("closed contact");
+    let mut states = [PointState::virgin(Rule::Thesis, 0.0); 2];
+    let mut dissipation = 0.0;
+    let td: Vec<_> = host.iter().filter(|r| r.name == "td").collect();
+    assert_eq!(td.len(), CYCLES * STEPS, "time-domain increments");
+    let dt = 2.0 * PI / (OMEGA * STEPS as f64);
+    for (k, r) in td.iter().enumerate() {
+        let t = (k + 1) as f64 * dt;
+        let s = [r.values[2], r.values[3]];
+        // The prescribed loop, to the last bits of the hosts' own sin/cos.
+        assert!(
+            (s[0] - AMPLITUDE * (OMEGA * t).sin()).abs() < 1e-18,
+            "slip 1 {k}"
+        );
+        assert!((s[1] - 0.5 * AMPLITUDE * (1.0 - (OMEGA * t).cos())).abs() < 1e-18);
+        let mut out = vec![(k + 1) as f64, r.values[1], s[0], s[1], p];
+        let mut tangents = Vec::new();
+        let mut sfd = 0.0;
+        for i in 0..2 {
+            let (next, step) = point.step(&states[i], s[i]).unwrap();
+            states[i] = next;
+            out.push(step.force);
+            tangents.push(step.tangent);
+            sfd += step.dissipated;
+        }
+        dissipation += sfd;
+        out.extend(tangents);
+        out.extend([sfd, dissipation]);
+        want.push(rec("td", out));
+    }
+    // Steady state: both points at the store's estimate (the initial amplitude).
+    let freqr = host.iter().find(|r| r.name == "ss").unwrap().values[1];
+    assert!((freqr - OMEGA / (2.0 * PI)).abs() < 1e-15);
+    let omega = 2.0 * PI * freqr; // as jointlin_uinter turns FREQR into omega
+    let l = linearize(&contact(p), AMPLITUDE, omega, Method::default()).unwrap();
+    assert!(l.k_star > 0.0 && l.k_star < KT0 && l.d_star > 0.0);
+    let energy = 0.0 + l.energy_per_cycle + l.energy_per_cycle;
+    for (id, structural) in [(1.0, false), (2.0, true)] {
+        let (dv, ds) = if structural {
+            (0.0, omega * l.d_star)
+        } else {
+            (l.d_star, 0.0)
+        };
+        want.push(rec(
+            "ss",
+            vec![
+                id,
+                freqr,
+                p,
+                AMPLITUDE,
+                AMPLITUDE,
+                l.k_star,
+                l.k_star,
+                dv,
+                dv,
+                ds,
+                ds,
+                KN,
+                l.k_star,
+                l.k_star,
+                l.d_star,
+                l.d_star,
+                energy,
+                energy * freqr,
+                id,
+            ],
+        ));
+    }
+    // One pass, every point converged (reported = estimate): the final pass is next.
+    want.push(rec("ss_action", vec![3.0, 2.0]));
+    want
+}
+
+fn action_code(a: &Action) -> (f64, Vec<i32>) {
+    match a {
+        Action::RunSweep => (1.0, vec![]),
+        Action::RunPass(l) => (2.0, l.clone()),
+        Action::RunFinal(l) => (3.0, l.clone()),
+        Action::Done => (4.0, vec![]),
+        Action::Failed(l) => (5.0, l.clone()),
+    }
+}
+
+/// The Rust API's version of the sweep hosts: the same store decisions, the same
+/// linearizations, the same 2×2 complex solves.
+fn sweep_reference(numbering: KincNumbering) -> Vec<Record> {
+    let mut want = Vec::new();
+    let pressures = [KN * H_BLOCK, KN * H_SECOND];
+    for (j, p) in pressures.iter().enumerate() {
+        want.push(rec("preload", vec![(j + 1) as f64, *p]));
+    }
+    let store = Store::new(StoreConfig {
+        initial_amplitude: 1e-4,
+        rtol: 1e-6,
+        atol: 0.0,
+        scheme: Scheme::Secant,
+        max_passes: 30,
+        sweep_step: 2,
+        numbering,
+        restart_path: None,
+    })
+    .unwrap();
+    let keys: Vec<_> = (0..2)
+        .map(|j| PointKey::new(b"SWEEP-PAIR", 0, &[10.0 * j as f64, 0.0, 0.0]).unwrap())
+        .collect();
+    loop {
+        let (action, pass) = store.next_action().unwrap().expect("no pass running");
+        let (code, list) = action_code(&action);
+        let mut next = vec![code, pass as f64, list.len() as f64];
+        next.extend(list.iter().map(|&k| k as f64));
+        want.push(rec("next", next));
+        let list: Vec<i32> = match action {
+            Action::RunSweep => vec![1, 2, 3],
+            Action::RunPass(l) | Action::RunFinal(l) => l,
+            Action::Done | Action::Failed(_) => break,
+        };
+        store.external_db(0, 0, 0, 0).unwrap();
+        store.external_db(5, 0, 2, 0).unwrap();
+        for (i, &kinc) in list.iter().enumerate() {
+            let call_kinc = match numbering {
+                KincNumbering::Original => kinc,
+                KincNumbering::Sequential => i as i32 + 1,
+            };
+            let omega_k = SWEEP_OMEGA[kinc as usize - 1];
+            let omega = 2.0 * PI * (omega_k / (2.0 * PI)); // host FREQR -> jointlin omega
+            store.external_db(1, 0, 2, call_kinc).unwrap();
+            let mut lin = Vec::new();
+            for (j, key) in keys.iter().enumerate() {
+                let id = store.register(key.clone()).unwrap();
+                let est = store.estimate(id, call_kinc, 1).unwrap()[0];
+                let l = linearize(&contact(pressures[j]), est, omega, Method::default()).unwrap();
+                lin.push((id, est, l.k_star, l.d_star));
+            }
+            let dyn_stiffness = |j: usize| {
+                Complex::new(KC + lin[j].2 - MASS * omega_k * omega_k, omega_k * lin[j].3)
+            };
+            let (z11, z22, z12) = (dyn_stiffness(0), dyn_stiffness(1), Complex::new(-KC, 0.0));
+            let det = z11 * z22 - z12 * z12;
+            let x = [z22 * FORCE / det, -z12 * FORCE / det];
+            for (j, &(id, est, k, d)) in lin.iter().enumerate() {
+                let amp = x[j].norm();
+                store.report(id, call_kinc, [amp, 0.0]).unwrap();
+                want.push(rec(
+                    "inc",
+                    vec![pass as f64, kinc as f64, id as f64, est, k, d, amp],
+                ));
+            }
+            store.external_db(2, 0, 2, call_kinc).unwrap();
+        }
+        store.external_db(6, 0, 2, 0).unwrap();
+        store.external_db(3, 0, 0, 0).unwrap();
+        let st = store.pass_stats(pass).unwrap().unwrap();
+        want.push(rec(
+            "stats",
+            vec![
+                st.number as f64,
+                st.kind as i32 as f64,
+                st.increments_run as f64,
+                st.increments_converged as f64,
+                st.evaluations as f64,
+                st.not_reported as f64,
+            ],
+        ));
+    }
+    want.push(rec("points", vec![store.point_count().unwrap() as f64]));
+    want
+}
+
+fn check_sweep(host: &str, got: &[Record], numbering: KincNumbering) {
+    let want = sweep_reference(numbering);
+    assert_records(host, got, &want);
+    // The multi-pass logic really ran: re-run passes, then the final pass, then done.
+    let passes = want.iter().filter(|r| r.name == "stats").count();
+    assert!(passes >= 3, "{host}: only {passes} passes");
+    let last = want.iter().rev().find(|r| r.name == "next").unwrap();
+    assert_eq!(last.values[0], 4.0, "{host}: the iteration ends DONE");
+}
+
+#[test]
+fn c_block_stick_matches_the_rust_api() {
+    let got = run_host(false, "block_stick");
+    assert_records("C block_stick", &got, &block_stick_reference(&got));
+}
+
+#[test]
+fn fortran_block_stick_through_uinter_matches_the_rust_api() {
+    let got = run_host(true, "block_stick");
+    assert_records("Fortran block_stick", &got, &block_stick_reference(&got));
+}
+
+#[test]
+fn c_sweep_matches_the_rust_store() {
+    let got = run_host(false, "sweep");
+    check_sweep("C sweep", &got, KincNumbering::Original);
+}
+
+#[test]
+fn fortran_sweep_as_separate_jobs_matches_the_rust_store() {
+    let got = run_host(true, "sweep");
+    check_sweep("Fortran sweep", &got, KincNumbering::Sequential);
+}
+
+#[test]
+fn hosts_link_the_shared_library_with_an_rpath() {
+    let p = programs();
+    for exe in [p.c.join("sweep"), p.fortran.join("sweep")] {
+        let out = run_ok(Command::new("readelf").arg("-d").arg(&exe));
+        let dynamic = String::from_utf8_lossy(&out.stdout);
+        assert!(
+            dynamic.contains("Shared library: [libjointlin.so]"),
+            "{} does not load libjointlin.so:\n{dynamic}",
+            exe.display()
+        );
+        assert!(
+            dynamic.contains(&lib_dir().display().to_string()),
+            "{} has no rpath to {}:\n{dynamic}",
+            exe.display(),
+            lib_dir().display()
+        );
+    }
+}
+
+fn memcheck(fortran: bool, name: &str) {
+    if !valgrind_available() {
+        eprintln!("valgrind not installed: memcheck of {name} skipped");
+        return;
+    }
+    let p = programs();
+    let dir = if fortran { &p.fortran } else { &p.c };
+    let out = run_ok(&mut command(dir.join(name), fortran, true));
+    // The run under valgrind prints the same records.
+    assert_eq!(
+        parse(&out.stdout),
+        run_host(fortran, name),
+        "{name} under valgrind"
+    );
+}
+
+#[test]
+fn c_block_stick_is_clean_under_valgrind() {
+    memcheck(false, "block_stick");
+}
+
+#[test]
+fn c_sweep_is_clean_under_valgrind() {
+    memcheck(false, "sweep");
+}
+
+#[test]
+fn fortran_block_stick_is_clean_under_valgrind() {
+    memcheck(true, "block_stick");
+}
+
+#[test]
+fn fortran_sweep_is_clean_under_valgrind() {
+    memcheck(true, "sweep");
+}
