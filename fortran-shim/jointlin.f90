@@ -180,6 +180,8 @@ module jointlin
        integer(c_int32_t) :: jointlin_linearize
      end function jointlin_linearize
 
+     ! C allows state_out == state; Fortran forbids passing one array as both (state is
+     ! intent(in)): step a copy, or call with state_out = a second array.
      function jointlin_point_step(contact, state, slip, state_out, out) &
           bind(C, name='jointlin_point_step')
        import :: c_int32_t, c_double, jointlin_contact, jointlin_step

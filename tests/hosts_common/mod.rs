@@ -23,21 +23,42 @@ fn exe_dir() -> PathBuf {
 }
 
 /// The directory holding the libjointlin.so that `cargo test` built with this test
-/// binary: target/<profile>/deps (or target/<profile> when cargo uplifted it).
+/// binary: target/<profile>/deps (or target/<profile> when cargo uplifted it). `cargo
+/// test` builds the cdylib with the package's tests; should it be missing (another test
+/// runner), `cargo build --lib` builds it into the same target directory and profile.
 pub fn lib_dir() -> PathBuf {
-    let deps = exe_dir();
-    let candidates = [deps.clone(), deps.parent().unwrap().to_path_buf()];
-    candidates
-        .iter()
-        .find(|d| d.join("libjointlin.so").is_file())
-        .unwrap_or_else(|| {
+    static DIR: std::sync::OnceLock<PathBuf> = std::sync::OnceLock::new();
+    DIR.get_or_init(|| {
+        let deps = exe_dir();
+        let profile_dir = deps.parent().unwrap().to_path_buf();
+        let find = || {
+            [deps.clone(), profile_dir.clone()]
+                .into_iter()
+                .find(|d| d.join("libjointlin.so").is_file())
+        };
+        if let Some(d) = find() {
+            return d;
+        }
+        let profile = profile_dir
+            .file_name()
+            .unwrap()
+            .to_string_lossy()
+            .into_owned();
+        let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
+        let mut cmd = Command::new(cargo);
+        cmd.args(["build", "-p", "jointlin", "--lib", "--profile"])
+            .arg(if profile == "debug" { "dev" } else { &profile })
+            .env("CARGO_TARGET_DIR", profile_dir.parent().unwrap())
+            .current_dir(root());
+        run_ok(&mut cmd);
+        find().unwrap_or_else(|| {
             panic!(
-                "libjointlin.so not found next to the test binary ({}): cargo builds the \
-                 cdylib with the package's tests; run `cargo build -p jointlin --lib`",
+                "libjointlin.so not found in {} after cargo build",
                 deps.display()
             )
         })
-        .clone()
+    })
+    .clone()
 }
 
 /// A per-suite build directory under target/<profile>/jointlin-hosts.
