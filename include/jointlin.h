@@ -729,11 +729,12 @@ int32_t jointlin_store_next_action(const struct jointlin_store *store,
  * Lists the sweep increments (KINC of pass 1, ascending) of the next action: to re-run
  * (RUN_PASS), all of them (RUN_FINAL), or those left unconverged (FAILED); none otherwise.
  * `*count` receives the number of increments. When it exceeds `cap`, the call returns
- * JOINTLIN_ERR_SIZE, writes `*count` only (so the caller can size its buffer; `cap` may be
- * 0) and leaves `kinc` untouched.
+ * JOINTLIN_ERR_SIZE, writes `*count` only (so the caller can size its buffer) and leaves
+ * `kinc` untouched. With `cap` = 0, `kinc` may be NULL (a pure size query).
  *
  * # Safety
- * `store` a live handle; `kinc` points to `cap` writable ints; `count` writable.
+ * `store` a live handle; `kinc` points to `cap` writable ints (or is NULL when `cap` is 0);
+ * `count` writable.
  */
 int32_t jointlin_store_rerun_increments(const struct jointlin_store *store,
                                         int32_t *kinc,

@@ -472,6 +472,13 @@ fn store_functions_reject_null_and_non_finite() {
             n, 1,
             "the size is reported even when the buffer is too small"
         );
+        n = 0;
+        assert_eq!(
+            jointlin_store_rerun_increments(store, null_mut(), 0, &mut n),
+            JOINTLIN_ERR_SIZE,
+            "a NULL buffer with cap 0 is a size query"
+        );
+        assert_eq!(n, 1);
         assert_eq!(
             jointlin_store_pass_stats(store, 2, &mut stats),
             JOINTLIN_ERR_OUT_OF_RANGE

@@ -398,11 +398,12 @@ fn action_code(a: &Action) -> i32 {
 /// Lists the sweep increments (KINC of pass 1, ascending) of the next action: to re-run
 /// (RUN_PASS), all of them (RUN_FINAL), or those left unconverged (FAILED); none otherwise.
 /// `*count` receives the number of increments. When it exceeds `cap`, the call returns
-/// JOINTLIN_ERR_SIZE, writes `*count` only (so the caller can size its buffer; `cap` may be
-/// 0) and leaves `kinc` untouched.
+/// JOINTLIN_ERR_SIZE, writes `*count` only (so the caller can size its buffer) and leaves
+/// `kinc` untouched. With `cap` = 0, `kinc` may be NULL (a pure size query).
 ///
 /// # Safety
-/// `store` a live handle; `kinc` points to `cap` writable ints; `count` writable.
+/// `store` a live handle; `kinc` points to `cap` writable ints (or is NULL when `cap` is 0);
+/// `count` writable.
 #[no_mangle]
 pub unsafe extern "C" fn jointlin_store_rerun_increments(
     store: *const jointlin_store,
@@ -413,7 +414,9 @@ pub unsafe extern "C" fn jointlin_store_rerun_increments(
     boundary("jointlin_store_rerun_increments", || {
         // SAFETY: checked by the helpers.
         let s = unsafe { store_ref(store) }?;
-        check_ptr(kinc, "kinc")?;
+        if cap > 0 {
+            check_ptr(kinc, "kinc")?;
+        }
         check_ptr(count, "count")?;
         let list = match s.next_action()? {
             Some((Action::RunPass(l) | Action::RunFinal(l) | Action::Failed(l), _)) => l,
@@ -427,8 +430,10 @@ pub unsafe extern "C" fn jointlin_store_rerun_increments(
                 format!("{} increments do not fit in {cap}", list.len()),
             ));
         }
-        // SAFETY: checked; cap >= len writable ints by contract.
-        unsafe { std::ptr::copy_nonoverlapping(list.as_ptr(), kinc, list.len()) };
+        if !list.is_empty() {
+            // SAFETY: cap >= len > 0, so kinc was checked non-NULL; cap writable ints by contract.
+            unsafe { std::ptr::copy_nonoverlapping(list.as_ptr(), kinc, list.len()) };
+        }
         Ok(())
     })
 }
