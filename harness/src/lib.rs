@@ -15,9 +15,11 @@
 // would hide the maths.
 #![allow(clippy::needless_range_loop)]
 
+pub mod bench;
 pub mod capi;
 pub mod fe;
 pub mod model;
+pub mod report;
 pub mod run;
 pub mod scene;
 pub mod solve;

@@ -1,9 +1,258 @@
-//! The `jointlin` command-line host. Placeholder until the CLI is written; the FE
-//! foundation lives in the library (`jointlin_harness`).
+//! The `jointlin` command: runs scenes through the harness (which reaches the library
+//! only through its C API), lists modes, and benchmarks the sweep modes.
 
-fn main() {
-    println!(
-        "jointlin harness {}: FE foundation only, no CLI yet",
-        env!("CARGO_PKG_VERSION")
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use clap::{Parser, Subcommand, ValueEnum};
+use indicatif::{ProgressBar, ProgressStyle};
+
+use jointlin_harness::bench;
+use jointlin_harness::report::{self, ReportOptions};
+use jointlin_harness::run::{run, Extras};
+use jointlin_harness::scene::{Mode, Scene};
+
+#[derive(Parser)]
+#[command(
+    name = "jointlin",
+    version,
+    about = "Frequency-domain joint contact studies: scenes → static preload → steady-state sweeps with linearized contact (k*, d*) through the jointlin C API"
+)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+enum ModeArg {
+    Fast,
+    Thesis,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Run a scene: static preload step, steady-state sweep, reports.
+    ///
+    /// Steps: (1) the static preload step solves K u + f_c(u) = f_pre by Newton with the
+    /// library's normal law (UINTER, LINPER = 0); open points stay open. (2) The
+    /// steady-state step solves (K + K_c(k*) + iω(D + D_c(d*)) − ω²M) û = f̂ per frequency,
+    /// k* and d* per point and tangential direction from the library for the point's
+    /// amplitude, iterated to consistency: mode `fast` (default; one factorization per
+    /// frequency, condensation onto the contact DOFs) or `thesis` (the UEXTERNALDB
+    /// multi-pass scheme of thesis §4.3.2 through the library's store). The scene's
+    /// [effects] table switches physics and outputs on and off; the run log lists the
+    /// active effects and what each cost.
+    ///
+    /// Files written to DIR (only after a valid scene and a successful run; a bad scene
+    /// names file:line:column and key, and nothing is written):
+    ///   results.csv   freq_hz, then per named output <name>_amp and <name>_phase_deg,
+    ///                 then dissipated_power (power lost in the joints, force·length/time)
+    ///   results_without_contact_damping.csv  the same with d* = 0 (fast mode; written
+    ///                 with the plots when the scene has contact damping)
+    ///   points.csv    per contact point and frequency: position, pressure, amplitude,
+    ///                 k*, d* (per area), energy per cycle, A/δ* (effects.point_energy_output)
+    ///   stick_slip.csv/.svg  points per regime over frequency (effects.stick_slip_map)
+    ///   run.json      scene echo, effects with costs, passes, iterations, timings, C-API calls
+    ///   frf.svg       FRF of the outputs with and without contact damping
+    ///   passes.svg    frequencies per pass (thesis mode: Fig. 4.33)
+    #[command(verbatim_doc_comment)]
+    Run {
+        /// Scene file (TOML, see scenes/).
+        scene: PathBuf,
+        /// Output directory (created if missing).
+        #[arg(long)]
+        out: PathBuf,
+        /// Override the scene's iteration mode.
+        #[arg(long, value_enum)]
+        mode: Option<ModeArg>,
+        /// Skip the SVG plots (and the reference sweep without contact damping they need).
+        #[arg(long)]
+        no_plots: bool,
+        /// No progress bar.
+        #[arg(long)]
+        quiet: bool,
+    },
+    /// Validate a scene and print a summary (nothing is run or written).
+    Check { scene: PathBuf },
+    /// Eigenfrequencies of the scene's model with every closed joint stuck (k_T0) after
+    /// the static step: where to put the sweep.
+    Modes {
+        scene: PathBuf,
+        /// Number of modes.
+        #[arg(long, default_value_t = 6)]
+        count: usize,
+    },
+    /// Cost of the nonlinear sweep relative to the linear sweep (same model and
+    /// frequencies) for fast and thesis modes at about 1k, 10k and 100k DOF, with peak
+    /// memory (getrusage maxrss). Prints a Markdown table.
+    Bench {
+        /// Approximate DOF counts.
+        #[arg(long, value_delimiter = ',', default_values_t = vec![1_000usize, 10_000, 100_000])]
+        dofs: Vec<usize>,
+        /// Frequencies per sweep.
+        #[arg(long, default_value_t = 20)]
+        freqs: usize,
+        /// Skip thesis mode above this DOF count (it costs passes × frequencies
+        /// factorizations).
+        #[arg(long, default_value_t = 200_000)]
+        thesis_max_dofs: usize,
+    },
+}
+
+fn progress_bar(quiet: bool) -> ProgressBar {
+    if quiet {
+        return ProgressBar::hidden();
+    }
+    let pb = ProgressBar::new(1);
+    pb.set_style(
+        ProgressStyle::with_template("{msg:40} [{bar:40}] {pos}/{len} {elapsed}")
+            .expect("static template")
+            .progress_chars("=> "),
     );
+    pb
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    match cli.command {
+        Command::Run {
+            scene,
+            out,
+            mode,
+            no_plots,
+            quiet,
+        } => {
+            let mut s = match Scene::load(&scene) {
+                Ok(s) => s,
+                Err(e) => {
+                    eprintln!("error: {e}");
+                    return ExitCode::from(2);
+                }
+            };
+            if let Some(m) = mode {
+                s.spec.iteration.mode = match m {
+                    ModeArg::Fast => Mode::Fast,
+                    ModeArg::Thesis => Mode::Thesis,
+                };
+            }
+            let pb = progress_bar(quiet);
+            let r = run(
+                &s,
+                Extras {
+                    reference_without_damping: !no_plots,
+                },
+                &|label, done, total| {
+                    pb.set_length(total as u64);
+                    pb.set_position(done as u64);
+                    pb.set_message(label.to_string());
+                },
+            );
+            pb.finish_and_clear();
+            let r = match r {
+                Ok(r) => r,
+                Err(e) => {
+                    eprintln!("error: {e}");
+                    return ExitCode::from(1);
+                }
+            };
+            eprintln!(
+                "{}: {} free DOFs, {} contact points ({} closed), mode {:?}",
+                s.file,
+                r.problem.sys.dofs.n_free(),
+                r.problem.contacts.len(),
+                r.stat.closed.iter().filter(|&&c| c).count(),
+                s.spec.iteration.mode
+            );
+            eprintln!("effects:");
+            for e in &r.effects {
+                eprintln!(
+                    "  {:28} {:3}  {:8.3} s  {}",
+                    e.name,
+                    if e.active { "on" } else { "off" },
+                    e.seconds,
+                    if e.active { e.work.as_str() } else { "" }
+                );
+            }
+            for p in &r.main.passes {
+                eprintln!(
+                    "pass {} ({}): {} frequencies, {} converged",
+                    p.pass,
+                    p.kind,
+                    p.frequencies.len(),
+                    p.converged
+                );
+            }
+            let unconverged = r.main.converged.iter().filter(|&&c| !c).count();
+            eprintln!(
+                "timings: build {:.3} s, static {:.3} s, sweep {:.3} s, reference {:.3} s; {} factorizations",
+                r.seconds[0], r.seconds[1], r.seconds[2], r.seconds[3], r.main.factorizations
+            );
+            match report::write_all(&out, &s, &r, ReportOptions { plots: !no_plots }) {
+                Ok(files) => {
+                    for f in files {
+                        eprintln!("wrote {}", f.display());
+                    }
+                }
+                Err(e) => {
+                    eprintln!("error writing reports: {e}");
+                    return ExitCode::from(1);
+                }
+            }
+            if unconverged > 0 {
+                eprintln!("warning: {unconverged} frequencies did not converge (see run.json)");
+            }
+            ExitCode::SUCCESS
+        }
+        Command::Check { scene } => match Scene::load(&scene) {
+            Ok(s) => {
+                println!(
+                    "{}: ok — {} bodies, {} interfaces, {} frequencies ({} to {}), mode {:?}",
+                    s.file,
+                    s.spec.bodies.len(),
+                    s.spec.interfaces.len(),
+                    s.spec.sweep.count,
+                    s.spec.sweep.f_min,
+                    s.spec.sweep.f_max,
+                    s.spec.iteration.mode
+                );
+                ExitCode::SUCCESS
+            }
+            Err(e) => {
+                eprintln!("error: {e}");
+                ExitCode::from(2)
+            }
+        },
+        Command::Modes { scene, count } => {
+            let s = match Scene::load(&scene) {
+                Ok(s) => s,
+                Err(e) => {
+                    eprintln!("error: {e}");
+                    return ExitCode::from(2);
+                }
+            };
+            match bench::stuck_modes(&s, count) {
+                Ok(f) => {
+                    for (i, v) in f.iter().enumerate() {
+                        println!("mode {}: {v:.4} (1/time)", i + 1);
+                    }
+                    ExitCode::SUCCESS
+                }
+                Err(e) => {
+                    eprintln!("error: {e}");
+                    ExitCode::from(1)
+                }
+            }
+        }
+        Command::Bench {
+            dofs,
+            freqs,
+            thesis_max_dofs,
+        } => match bench::table(&dofs, freqs, thesis_max_dofs, &mut std::io::stdout()) {
+            Ok(()) => ExitCode::SUCCESS,
+            Err(e) => {
+                eprintln!("error: {e}");
+                ExitCode::from(1)
+            }
+        },
+    }
 }

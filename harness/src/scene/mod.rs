@@ -50,21 +50,32 @@ impl Scene {
         })
     }
 
-    /// The sweep's frequencies (1/time), ascending.
+    /// The sweep's frequencies (1/time), ascending, duplicates (within 1e-12
+    /// relative) removed.
     pub fn frequencies(&self) -> Vec<f64> {
         let s = &self.spec.sweep;
-        if s.count == 1 {
-            return vec![s.f_min];
+        let mut f: Vec<f64> = if s.count == 1 {
+            vec![s.f_min]
+        } else {
+            (0..s.count)
+                .map(|i| {
+                    let t = i as f64 / (s.count - 1) as f64;
+                    match s.spacing {
+                        Spacing::Linear => s.f_min + t * (s.f_max - s.f_min),
+                        Spacing::Log => s.f_min * (s.f_max / s.f_min).powf(t),
+                    }
+                })
+                .collect()
+        };
+        for b in &s.refine {
+            f.extend(
+                (0..b.count)
+                    .map(|i| b.f_min + (b.f_max - b.f_min) * i as f64 / (b.count - 1) as f64),
+            );
         }
-        (0..s.count)
-            .map(|i| {
-                let t = i as f64 / (s.count - 1) as f64;
-                match s.spacing {
-                    Spacing::Linear => s.f_min + t * (s.f_max - s.f_min),
-                    Spacing::Log => s.f_min * (s.f_max / s.f_min).powf(t),
-                }
-            })
-            .collect()
+        f.sort_by(f64::total_cmp);
+        f.dedup_by(|a, b| (*a - *b).abs() <= 1e-12 * b.abs());
+        f
     }
 }
 

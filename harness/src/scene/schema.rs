@@ -263,8 +263,10 @@ pub enum Spacing {
     Log,
 }
 
-/// The frequencies of the steady-state step (1/time, Hz for seconds).
-#[derive(Debug, Clone, Copy, Deserialize, Serialize, PartialEq)]
+/// The frequencies of the steady-state step (1/time, Hz for seconds): `count` points
+/// from `f_min` to `f_max`, plus the points of any `refine` bands (e.g. around
+/// resonances), merged in ascending order.
+#[derive(Debug, Clone, Deserialize, Serialize, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub struct SweepSpec {
     pub f_min: f64,
@@ -272,6 +274,17 @@ pub struct SweepSpec {
     pub count: usize,
     #[serde(default)]
     pub spacing: Spacing,
+    #[serde(default)]
+    pub refine: Vec<BandSpec>,
+}
+
+/// An extra band of frequencies, linearly spaced.
+#[derive(Debug, Clone, Copy, Deserialize, Serialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct BandSpec {
+    pub f_min: f64,
+    pub f_max: f64,
+    pub count: usize,
 }
 
 /// Iteration mode of the steady-state step.

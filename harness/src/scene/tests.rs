@@ -144,3 +144,18 @@ fn log_spacing() {
     let f = Scene::parse("x", &text).unwrap().frequencies();
     approx::assert_relative_eq!(f[1], (100.0f64 * 200.0).sqrt(), max_relative = 1e-14);
 }
+
+#[test]
+fn refine_bands_merge_sorted() {
+    let text = GOOD.replace(
+        "count = 3",
+        "count = 3\nrefine = [{ f_min = 140.0, f_max = 160.0, count = 3 }]",
+    );
+    let f = Scene::parse("x", &text).unwrap().frequencies();
+    assert_eq!(f, vec![100.0, 140.0, 150.0, 160.0, 200.0]);
+    let bad = GOOD.replace(
+        "count = 3",
+        "count = 3\nrefine = [{ f_min = 140.0, f_max = 130.0, count = 3 }]",
+    );
+    assert_eq!(err(&bad).key, "sweep.refine[0].f_max");
+}

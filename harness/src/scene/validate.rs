@@ -355,6 +355,18 @@ pub fn validate(s: &SceneFile) -> Vec<Problem> {
         );
     }
 
+    for (i, b) in s.sweep.refine.iter().enumerate() {
+        let bp = sw.key("refine").index(i);
+        c.positive(bp.key("f_min"), b.f_min);
+        c.positive(bp.key("f_max"), b.f_max);
+        if b.count < 2 {
+            c.fail(bp.key("count"), "a refine band needs count >= 2");
+        }
+        if b.f_max <= b.f_min {
+            c.fail(bp.key("f_max"), "must be > f_min");
+        }
+    }
+
     let it = root.key("iteration");
     let tol = s.iteration.tolerance;
     if !(tol > 0.0 && tol < 1.0) {

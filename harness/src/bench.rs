@@ -1,0 +1,292 @@
+//! `jointlin bench` and `jointlin modes`.
+//!
+//! The benchmark builds three-beam stacks (steel 60×10×(2, 1, 2) mm, clamped at x = 0,
+//! pressed together, tip force in z) meshed for about the requested DOF count, sweeps the
+//! same frequencies around the first bending resonance (i) linearly (every joint stuck at
+//! k_T0: the cost of one linear sweep), (ii) in fast mode and (iii) in thesis mode, and
+//! reports the time ratios and the peak resident memory (getrusage ru_maxrss, which only
+//! grows: the value after each row is the peak so far).
+
+use std::io::Write;
+use std::time::Instant;
+
+use crate::fe::csc::Csc;
+use crate::model::build;
+use crate::scene::{Mode, Scene};
+use crate::solve::modal::{lowest_modes, ModalOptions};
+use crate::solve::static_step;
+use crate::solve::sweep::{self, Options, Setup};
+
+/// Eigenfrequencies (1/time) of the model with every closed joint stuck (k_T0 tangential,
+/// static normal stiffness), after the static step.
+pub fn stuck_modes(scene: &Scene, count: usize) -> Result<Vec<f64>, String> {
+    let p = build(scene).map_err(|e| e.to_string())?;
+    let stat = static_step::solve(&p, scene.spec.effects.normal_contact_nonlinearity)
+        .map_err(|e| e.to_string())?;
+    let mut eff = scene.spec.effects;
+    eff.tangential_microslip = false;
+    let setup = Setup::new(&p, &stat, &eff).map_err(|e| e.to_string())?;
+    let k = Csc {
+        pattern: p.sys.pattern.clone(),
+        values: setup.base.clone(),
+    };
+    let modes = lowest_modes(
+        &k,
+        &p.sys.m,
+        &ModalOptions {
+            n_modes: count.min(p.sys.dofs.n_free()),
+            ..Default::default()
+        },
+    )
+    .map_err(|e| e.to_string())?;
+    Ok(modes.frequencies_hz())
+}
+
+/// Peak resident set size of this process so far (bytes), from getrusage.
+pub fn peak_rss_bytes() -> u64 {
+    // SAFETY: getrusage writes into a zeroed rusage we own.
+    let mut ru: libc_rusage::Rusage = unsafe { std::mem::zeroed() };
+    let ok = unsafe { libc_rusage::getrusage(0, &mut ru) } == 0;
+    if ok {
+        ru.ru_maxrss as u64 * 1024 // Linux: kilobytes
+    } else {
+        0
+    }
+}
+
+/// Minimal getrusage binding (Linux x86_64/aarch64 layout), to avoid a libc dependency.
+mod libc_rusage {
+    #[repr(C)]
+    pub struct Timeval {
+        pub tv_sec: i64,
+        pub tv_usec: i64,
+    }
+    #[repr(C)]
+    pub struct Rusage {
+        pub ru_utime: Timeval,
+        pub ru_stime: Timeval,
+        pub ru_maxrss: i64,
+        pub rest: [i64; 13],
+    }
+    extern "C" {
+        pub fn getrusage(who: i32, usage: *mut Rusage) -> i32;
+    }
+}
+
+/// A three-beam scene with in-plane divisions (nx, ny) and nz per 1 mm of thickness.
+pub fn beam_scene(
+    nx: usize,
+    ny: usize,
+    nz_per_mm: usize,
+    freqs: (f64, f64, usize),
+    mode: Mode,
+) -> Scene {
+    let nz = |t: usize| (t * nz_per_mm).max(1);
+    let text = format!(
+        r#"
+title = "bench"
+[units]
+length = "mm"
+force = "N"
+time = "s"
+mass = "t"
+[materials.steel]
+E = 210000.0
+nu = 0.3
+rho = 7.85e-9
+rayleigh_beta = 2e-6
+[[bodies]]
+name = "bottom"
+kind = "box"
+origin = [0.0, 0.0, 0.0]
+size = [60.0, 10.0, 2.0]
+divisions = [{nx}, {ny}, {n2}]
+material = "steel"
+[[bodies]]
+name = "middle"
+kind = "box"
+origin = [0.0, 0.0, 2.0]
+size = [60.0, 10.0, 1.0]
+divisions = [{nx}, {ny}, {n1}]
+material = "steel"
+[[bodies]]
+name = "top"
+kind = "box"
+origin = [0.0, 0.0, 3.0]
+size = [60.0, 10.0, 2.0]
+divisions = [{nx}, {ny}, {n2}]
+material = "steel"
+[[interfaces]]
+name = "lower"
+between = ["bottom", "middle"]
+law = "mindlin"
+mu = 0.2
+k_t0_per_area = 2e4
+normal_law = "linear"
+normal_stiffness_per_area = 1e6
+[[interfaces]]
+name = "upper"
+between = ["middle", "top"]
+law = "mindlin"
+mu = 0.2
+k_t0_per_area = 2e4
+normal_law = "linear"
+normal_stiffness_per_area = 1e6
+[[preload]]
+kind = "pressure"
+body = "top"
+face = "z_max"
+pressure = 1.0
+[[preload]]
+kind = "pressure"
+body = "bottom"
+face = "z_min"
+pressure = 1.0
+[[clamp]]
+body = "bottom"
+face = "x_min"
+[[clamp]]
+body = "middle"
+face = "x_min"
+[[clamp]]
+body = "top"
+face = "x_min"
+[[excitation]]
+kind = "point"
+body = "top"
+at = [60.0, 5.0, 5.0]
+direction = [0.0, 0.0, 1.0]
+amplitude = 0.5
+[sweep]
+f_min = {f0}
+f_max = {f1}
+count = {n}
+[iteration]
+mode = "{mode}"
+tolerance = 1e-3
+initial_amplitude = 1e-6
+[[outputs]]
+name = "tip"
+body = "middle"
+at = [60.0, 5.0, 3.0]
+direction = [0.0, 0.0, 1.0]
+"#,
+        n2 = nz(2),
+        n1 = nz(1),
+        f0 = freqs.0,
+        f1 = freqs.1,
+        n = freqs.2,
+        mode = match mode {
+            Mode::Fast => "fast",
+            Mode::Thesis => "thesis",
+        },
+    );
+    Scene::parse("bench", &text).expect("the bench scene is valid")
+}
+
+/// Mesh divisions for about `dofs` DOFs: (nx, ny, nz per mm), ny = nx/6 (square
+/// elements in plane), the finest through-thickness division whose count is nearest.
+pub fn divisions_for(dofs: usize) -> (usize, usize, usize) {
+    let count =
+        |(nx, ny, z): (usize, usize, usize)| 3 * (nx + 1) * (ny + 1) * ((2 * z + 1) * 2 + z + 1);
+    let err = |d: usize| (d as f64 / dofs as f64).ln().abs();
+    (1..=4)
+        .flat_map(|z| (6..=600).step_by(6).map(move |nx| (nx, nx / 6, z)))
+        .min_by(|a, b| err(count(*a)).total_cmp(&err(count(*b))))
+        .expect("non-empty search")
+}
+
+/// One benchmark row.
+#[derive(Debug, Clone)]
+pub struct Row {
+    pub dofs: usize,
+    pub points: usize,
+    pub linear_s: f64,
+    pub fast_s: f64,
+    pub thesis_s: Option<f64>,
+    pub fast_iterations: f64,
+    pub thesis_passes: Option<usize>,
+    pub peak_rss_mb: f64,
+}
+
+/// Runs one size.
+pub fn row(dofs: usize, nfreq: usize, with_thesis: bool) -> Result<Row, String> {
+    let (nx, ny, z) = divisions_for(dofs);
+    let probe = beam_scene(nx, ny, z, (1.0, 2.0, 2), Mode::Fast);
+    let f1 = stuck_modes(&probe, 1)?[0];
+    let band = (0.85 * f1, 1.1 * f1, nfreq);
+    let time =
+        |mode: Mode, linear: bool| -> Result<(f64, sweep::SweepResult, usize, usize), String> {
+            let s = beam_scene(nx, ny, z, band, mode);
+            let p = build(&s).map_err(|e| e.to_string())?;
+            let stat = static_step::solve(&p, true).map_err(|e| e.to_string())?;
+            let mut opts = Options::from_scene(s.spec.iteration, s.spec.effects);
+            opts.effects.tangential_microslip = !linear;
+            let t = Instant::now();
+            let r = sweep::run(&p, &stat, &s.frequencies(), &opts, &|_, _, _| {})
+                .map_err(|e| e.to_string())?;
+            Ok((
+                t.elapsed().as_secs_f64(),
+                r,
+                p.sys.dofs.n_free(),
+                p.contacts.len(),
+            ))
+        };
+    let (lin, _, n, pts) = time(Mode::Fast, true)?;
+    let (fast, rf, _, _) = time(Mode::Fast, false)?;
+    let (thesis_s, thesis_passes) = if with_thesis {
+        let (t, r, _, _) = time(Mode::Thesis, false)?;
+        (Some(t), Some(r.passes.len()))
+    } else {
+        (None, None)
+    };
+    Ok(Row {
+        dofs: n,
+        points: pts,
+        linear_s: lin,
+        fast_s: fast,
+        thesis_s,
+        fast_iterations: rf.iterations.iter().sum::<usize>() as f64
+            / rf.iterations.len().max(1) as f64,
+        thesis_passes,
+        peak_rss_mb: peak_rss_bytes() as f64 / 1048576.0,
+    })
+}
+
+/// Prints the benchmark table (Markdown).
+pub fn table(
+    dofs: &[usize],
+    nfreq: usize,
+    thesis_max: usize,
+    out: &mut dyn Write,
+) -> Result<(), String> {
+    let io = |e: std::io::Error| e.to_string();
+    writeln!(
+        out,
+        "| DOF | contact points | linear sweep [s] | fast [s] | fast / linear | fast iterations per frequency | thesis [s] | thesis / linear | thesis passes | peak RSS so far [MB] |"
+    )
+    .map_err(io)?;
+    writeln!(out, "|---|---|---|---|---|---|---|---|---|---|").map_err(io)?;
+    for &d in dofs {
+        let r = row(d, nfreq, d <= thesis_max)?;
+        let th = |v: Option<f64>| v.map_or("—".to_string(), |x| format!("{x:.2}"));
+        writeln!(
+            out,
+            "| {} | {} | {:.2} | {:.2} | {:.2} | {:.1} | {} | {} | {} | {:.0} |",
+            r.dofs,
+            r.points,
+            r.linear_s,
+            r.fast_s,
+            r.fast_s / r.linear_s,
+            r.fast_iterations,
+            th(r.thesis_s),
+            r.thesis_s
+                .map_or("—".to_string(), |t| format!("{:.2}", t / r.linear_s)),
+            r.thesis_passes.map_or("—".to_string(), |p| p.to_string()),
+            r.peak_rss_mb
+        )
+        .map_err(io)?;
+        out.flush().map_err(io)?;
+    }
+    Ok(())
+}

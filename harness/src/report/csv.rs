@@ -1,0 +1,126 @@
+//! results.csv, points.csv and stick_slip.csv.
+//!
+//! results.csv: `freq_hz`, then per named output `<name>_amp` (length) and
+//! `<name>_phase_deg` (degrees, of u = Re(û e^{iωt})), then `dissipated_power` (power
+//! dissipated in the joints, force·length/time: mW for N, mm, s).
+
+use std::fmt::Write as _;
+
+use crate::capi::{
+    JOINTLIN_REGIME_MICROSLIP, JOINTLIN_REGIME_OPEN, JOINTLIN_REGIME_SLIDING, JOINTLIN_REGIME_STICK,
+};
+use crate::model::Problem;
+use crate::solve::sweep::SweepResult;
+
+/// results.csv text.
+pub fn results(p: &Problem, r: &SweepResult) -> String {
+    let mut s = String::from("freq_hz");
+    for o in &p.outputs {
+        let _ = write!(s, ",{0}_amp,{0}_phase_deg", o.name);
+    }
+    s.push_str(",dissipated_power\n");
+    for (i, f) in r.freqs.iter().enumerate() {
+        let _ = write!(s, "{f:.10e}");
+        for v in &r.outputs[i] {
+            let _ = write!(s, ",{:.10e},{:.6}", v.norm(), v.arg().to_degrees());
+        }
+        let _ = writeln!(s, ",{:.10e}", r.power[i]);
+    }
+    s
+}
+
+/// Regime name.
+pub fn regime_name(code: i32) -> &'static str {
+    match code {
+        JOINTLIN_REGIME_OPEN => "open",
+        JOINTLIN_REGIME_STICK => "stick",
+        JOINTLIN_REGIME_MICROSLIP => "microslip",
+        JOINTLIN_REGIME_SLIDING => "sliding",
+        _ => "unknown",
+    }
+}
+
+/// points.csv text: per contact point and frequency. Open points have all zeros.
+/// Columns: freq_hz, point, interface, x, y, z, closed, pressure, amp_t1, amp_t2,
+/// k_star_t1, k_star_t2 (per area), d_star_t1, d_star_t2 (per area), energy_per_cycle
+/// (force·length), ratio_t1, ratio_t2 (A/δ*), and with the stick/slip map regime_t1,
+/// regime_t2.
+pub fn points(
+    p: &Problem,
+    r: &SweepResult,
+    closed: &[bool],
+    pressure: &[f64],
+    regimes: bool,
+) -> String {
+    let mut s = String::from(
+        "freq_hz,point,interface,x,y,z,closed,pressure,amp_t1,amp_t2,k_star_t1,k_star_t2,d_star_t1,d_star_t2,energy_per_cycle,ratio_t1,ratio_t2",
+    );
+    s.push_str(if regimes {
+        ",regime_t1,regime_t2\n"
+    } else {
+        "\n"
+    });
+    for (fi, f) in r.freqs.iter().enumerate() {
+        for (i, c) in p.contacts.iter().enumerate() {
+            let q = &r.points[fi][i];
+            let x = c.position;
+            let _ = write!(
+                s,
+                "{f:.10e},{i},{},{},{},{},{},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e}",
+                p.interfaces[c.interface].name,
+                x[0],
+                x[1],
+                x[2],
+                u8::from(closed[i]),
+                pressure[i],
+                q.amplitude[0],
+                q.amplitude[1],
+                q.k_star[0],
+                q.k_star[1],
+                q.d_star[0],
+                q.d_star[1],
+                q.energy,
+                q.ratio[0],
+                q.ratio[1],
+            );
+            if regimes {
+                let _ = write!(
+                    s,
+                    ",{},{}",
+                    regime_name(q.regime[0]),
+                    regime_name(q.regime[1])
+                );
+            }
+            s.push('\n');
+        }
+    }
+    s
+}
+
+/// Points per regime (worst of the two directions) per frequency.
+pub fn regime_counts(r: &SweepResult, closed: &[bool]) -> Vec<[usize; 4]> {
+    r.points
+        .iter()
+        .map(|pts| {
+            let mut c = [0usize; 4];
+            for (i, q) in pts.iter().enumerate() {
+                let g = if closed[i] {
+                    q.regime[0].max(q.regime[1])
+                } else {
+                    JOINTLIN_REGIME_OPEN
+                };
+                c[g.clamp(0, 3) as usize] += 1;
+            }
+            c
+        })
+        .collect()
+}
+
+/// stick_slip.csv: freq_hz, open, stick, microslip, sliding (point counts).
+pub fn stick_slip(r: &SweepResult, closed: &[bool]) -> String {
+    let mut s = String::from("freq_hz,open,stick,microslip,sliding\n");
+    for (f, c) in r.freqs.iter().zip(regime_counts(r, closed)) {
+        let _ = writeln!(s, "{f:.10e},{},{},{},{}", c[0], c[1], c[2], c[3]);
+    }
+    s
+}

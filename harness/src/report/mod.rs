@@ -1,0 +1,141 @@
+//! Reports of a run: CSV tables, run.json and SVG plots. Reports read results only.
+
+pub mod csv;
+pub mod svg;
+
+use std::path::{Path, PathBuf};
+
+use serde_json::json;
+
+use crate::run::RunResult;
+use crate::scene::Scene;
+
+/// Which plots to draw.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct ReportOptions {
+    pub plots: bool,
+}
+
+fn write(dir: &Path, name: &str, text: &str, out: &mut Vec<PathBuf>) -> std::io::Result<()> {
+    let p = dir.join(name);
+    std::fs::write(&p, text)?;
+    out.push(p);
+    Ok(())
+}
+
+/// run.json: scene echo, effects (with costs), passes, timings, calls, static step.
+pub fn run_json(scene: &Scene, r: &RunResult) -> serde_json::Value {
+    let m = &r.main;
+    let closed = r.stat.closed.iter().filter(|&&c| c).count();
+    json!({
+        "scene": {
+            "file": scene.file,
+            "spec": scene.spec,
+            "text": scene.text,
+        },
+        "units": scene.spec.units,
+        "effects": r.effects,
+        "model": {
+            "nodes": r.problem.model.nodes.len(),
+            "elements": r.problem.model.elements.len(),
+            "free_dofs": r.problem.sys.dofs.n_free(),
+            "contact_points": r.problem.contacts.len(),
+            "closed_points": closed,
+        },
+        "static_step": {
+            "newton_iterations": r.stat.newton_iterations,
+            "relative_residual": r.stat.residual,
+            "total_contact_force": r.problem.contacts.iter().zip(&r.stat.pressure).map(|(c, p)| c.area * p).sum::<f64>(),
+        },
+        "mode": scene.spec.iteration.mode,
+        "passes": m.passes,
+        "iterations_per_frequency": m.iterations,
+        "converged": m.converged,
+        "all_converged": m.converged.iter().all(|&c| c),
+        "factorizations": m.factorizations,
+        "macroslip_caps": m.macroslip_caps,
+        "timings_s": {
+            "build": r.seconds[0],
+            "static_step": r.seconds[1],
+            "sweep": r.seconds[2],
+            "reference_sweep_without_contact_damping": r.seconds[3],
+            "sweep_breakdown": m.timings,
+        },
+        "c_api_calls": r.calls,
+    })
+}
+
+/// Writes every report into `dir` (created if missing); returns the files written.
+pub fn write_all(
+    dir: &Path,
+    scene: &Scene,
+    r: &RunResult,
+    opts: ReportOptions,
+) -> Result<Vec<PathBuf>, String> {
+    let mut out = Vec::new();
+    let io = |e: std::io::Error| format!("{}: {e}", dir.display());
+    std::fs::create_dir_all(dir).map_err(io)?;
+    let eff = scene.spec.effects;
+    write(
+        dir,
+        "results.csv",
+        &csv::results(&r.problem, &r.main),
+        &mut out,
+    )
+    .map_err(io)?;
+    if let Some(reference) = &r.reference {
+        let text = csv::results(&r.problem, reference);
+        write(dir, "results_without_contact_damping.csv", &text, &mut out).map_err(io)?;
+    }
+    if eff.point_energy_output {
+        let text = csv::points(
+            &r.problem,
+            &r.main,
+            &r.stat.closed,
+            &r.stat.pressure,
+            eff.stick_slip_map,
+        );
+        write(dir, "points.csv", &text, &mut out).map_err(io)?;
+    }
+    if eff.stick_slip_map {
+        write(
+            dir,
+            "stick_slip.csv",
+            &csv::stick_slip(&r.main, &r.stat.closed),
+            &mut out,
+        )
+        .map_err(io)?;
+    }
+    let json = serde_json::to_string_pretty(&run_json(scene, r)).map_err(|e| e.to_string())?;
+    write(dir, "run.json", &json, &mut out).map_err(io)?;
+    if opts.plots {
+        let title = if scene.spec.title.is_empty() {
+            "FRF"
+        } else {
+            &scene.spec.title
+        };
+        let p = dir.join("frf.svg");
+        svg::frf(
+            &p,
+            title,
+            &scene.spec.units.length,
+            &r.problem,
+            &r.main,
+            r.reference.as_ref(),
+        )?;
+        out.push(p);
+        let p = dir.join("passes.svg");
+        svg::passes(&p, &r.main)?;
+        out.push(p);
+        if eff.stick_slip_map {
+            let p = dir.join("stick_slip.svg");
+            svg::stick_slip(
+                &p,
+                &r.main.freqs,
+                &csv::regime_counts(&r.main, &r.stat.closed),
+            )?;
+            out.push(p);
+        }
+    }
+    Ok(out)
+}

@@ -1,0 +1,208 @@
+//! SVG plots with plotters' SVG backend (text is written as SVG <text>, so no font files
+//! are needed): the FRF with and without contact damping, frequencies per pass (Fig.
+//! 4.33), and the stick/slip map.
+
+use plotters::prelude::*;
+
+use crate::model::Problem;
+use crate::solve::sweep::SweepResult;
+
+type Res = Result<(), String>;
+
+fn err<E: std::fmt::Display>(e: E) -> String {
+    e.to_string()
+}
+
+/// FRF amplitude of every output (log scale), with contact damping (solid) and, if given,
+/// without (dashed look: lighter colour).
+pub fn frf(
+    path: &std::path::Path,
+    title: &str,
+    units: &str,
+    p: &Problem,
+    main: &SweepResult,
+    reference: Option<&SweepResult>,
+) -> Res {
+    let root = SVGBackend::new(path, (900, 560)).into_drawing_area();
+    root.fill(&WHITE).map_err(err)?;
+    let f0 = *main.freqs.first().ok_or("no frequencies")?;
+    let f1 = *main.freqs.last().ok_or("no frequencies")?;
+    let mut ymin = f64::INFINITY;
+    let mut ymax = 0.0f64;
+    for r in std::iter::once(main).chain(reference) {
+        for row in &r.outputs {
+            for v in row {
+                let a = v.norm();
+                if a > 0.0 {
+                    ymin = ymin.min(a);
+                    ymax = ymax.max(a);
+                }
+            }
+        }
+    }
+    if ymax <= 0.0 || !ymin.is_finite() {
+        ymin = 1e-12;
+        ymax = 1.0;
+    }
+    let (x0, x1) = if f1 > f0 {
+        (f0, f1)
+    } else {
+        (f0 * 0.9, f0 * 1.1)
+    };
+    let mut chart = ChartBuilder::on(&root)
+        .caption(title, ("sans-serif", 20))
+        .margin(15)
+        .x_label_area_size(45)
+        .y_label_area_size(80)
+        .build_cartesian_2d(x0..x1, (ymin * 0.8..ymax * 1.25).log_scale())
+        .map_err(err)?;
+    chart
+        .configure_mesh()
+        .x_desc("frequency [1/time]")
+        .y_desc(format!("amplitude [{units}]"))
+        .draw()
+        .map_err(err)?;
+    for (k, o) in p.outputs.iter().enumerate() {
+        let color = Palette99::pick(k).to_rgba();
+        let pts: Vec<(f64, f64)> = main
+            .freqs
+            .iter()
+            .zip(&main.outputs)
+            .map(|(f, r)| (*f, r[k].norm().max(ymin)))
+            .collect();
+        chart
+            .draw_series(LineSeries::new(pts, color.stroke_width(2)))
+            .map_err(err)?
+            .label(format!("{} with contact damping", o.name))
+            .legend(move |(x, y)| {
+                PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
+            });
+        if let Some(r) = reference {
+            let light = color.mix(0.45);
+            let pts: Vec<(f64, f64)> = r
+                .freqs
+                .iter()
+                .zip(&r.outputs)
+                .map(|(f, v)| (*f, v[k].norm().max(ymin)))
+                .collect();
+            chart
+                .draw_series(LineSeries::new(pts, light.stroke_width(1)))
+                .map_err(err)?
+                .label(format!("{} without contact damping", o.name))
+                .legend(move |(x, y)| {
+                    PathElement::new(vec![(x, y), (x + 20, y)], light.stroke_width(1))
+                });
+        }
+    }
+    chart
+        .configure_series_labels()
+        .background_style(WHITE.mix(0.85))
+        .border_style(BLACK)
+        .draw()
+        .map_err(err)?;
+    root.present().map_err(err)
+}
+
+/// Frequencies run per pass (thesis: Fig. 4.33; fast: one pass).
+pub fn passes(path: &std::path::Path, r: &SweepResult) -> Res {
+    let root = SVGBackend::new(path, (700, 420)).into_drawing_area();
+    root.fill(&WHITE).map_err(err)?;
+    let n = r.passes.len().max(1);
+    let ymax = r
+        .passes
+        .iter()
+        .map(|p| p.frequencies.len())
+        .max()
+        .unwrap_or(1)
+        .max(1) as f64;
+    let mut chart = ChartBuilder::on(&root)
+        .caption("frequencies per pass", ("sans-serif", 20))
+        .margin(15)
+        .x_label_area_size(40)
+        .y_label_area_size(50)
+        .build_cartesian_2d(0.5f64..n as f64 + 0.5, 0f64..ymax * 1.1)
+        .map_err(err)?;
+    chart
+        .configure_mesh()
+        .x_desc("pass")
+        .y_desc("frequencies")
+        .x_labels(n.min(20))
+        .draw()
+        .map_err(err)?;
+    chart
+        .draw_series(r.passes.iter().enumerate().map(|(i, p)| {
+            let x = i as f64 + 1.0;
+            let color = if p.kind == "final" { GREEN } else { BLUE };
+            Rectangle::new(
+                [(x - 0.35, 0.0), (x + 0.35, p.frequencies.len() as f64)],
+                color.mix(0.7).filled(),
+            )
+        }))
+        .map_err(err)?;
+    chart
+        .draw_series(r.passes.iter().enumerate().map(|(i, p)| {
+            let x = i as f64 + 1.0;
+            Rectangle::new(
+                [(x - 0.35, 0.0), (x + 0.35, p.converged as f64)],
+                BLACK.stroke_width(1),
+            )
+        }))
+        .map_err(err)?;
+    root.present().map_err(err)
+}
+
+/// Points per regime (open, stick, microslip, sliding) over frequency.
+pub fn stick_slip(path: &std::path::Path, freqs: &[f64], counts: &[[usize; 4]]) -> Res {
+    let root = SVGBackend::new(path, (900, 460)).into_drawing_area();
+    root.fill(&WHITE).map_err(err)?;
+    let total = counts.first().map_or(1, |c| c.iter().sum::<usize>()).max(1) as f64;
+    let f0 = freqs.first().copied().unwrap_or(0.0);
+    let f1 = freqs.last().copied().unwrap_or(1.0);
+    let (x0, x1) = if f1 > f0 {
+        (f0, f1)
+    } else {
+        (f0 * 0.9, f0 * 1.1 + 1e-12)
+    };
+    let mut chart = ChartBuilder::on(&root)
+        .caption("contact points per regime", ("sans-serif", 20))
+        .margin(15)
+        .x_label_area_size(40)
+        .y_label_area_size(50)
+        .build_cartesian_2d(x0..x1, 0f64..total * 1.05)
+        .map_err(err)?;
+    chart
+        .configure_mesh()
+        .x_desc("frequency [1/time]")
+        .y_desc("points")
+        .draw()
+        .map_err(err)?;
+    for (g, (name, color)) in [
+        ("open", BLACK),
+        ("stick", BLUE),
+        ("microslip", GREEN),
+        ("sliding", RED),
+    ]
+    .into_iter()
+    .enumerate()
+    {
+        let pts: Vec<(f64, f64)> = freqs
+            .iter()
+            .zip(counts)
+            .map(|(f, c)| (*f, c[g] as f64))
+            .collect();
+        chart
+            .draw_series(LineSeries::new(pts, color.stroke_width(2)))
+            .map_err(err)?
+            .label(name)
+            .legend(move |(x, y)| {
+                PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
+            });
+    }
+    chart
+        .configure_series_labels()
+        .background_style(WHITE.mix(0.85))
+        .border_style(BLACK)
+        .draw()
+        .map_err(err)?;
+    root.present().map_err(err)
+}
