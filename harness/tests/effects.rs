@@ -1,0 +1,90 @@
+//! Switched-off effects cost nothing: C-API calls counted per effect, on the block
+//! scene (fast and thesis modes). And the CLI writes nothing for a bad scene.
+
+use jointlin_harness::capi::CallCounts;
+use jointlin_harness::run::{run, Extras, RunResult};
+use jointlin_harness::scene::{Mode, Scene};
+
+fn block() -> Scene {
+    let p = format!("{}/../scenes/block-stick.toml", env!("CARGO_MANIFEST_DIR"));
+    Scene::load(std::path::Path::new(&p)).unwrap()
+}
+
+fn go(s: &Scene) -> (RunResult, CallCounts) {
+    let r = run(s, Extras::default(), &|_, _, _| {}).unwrap();
+    let c = r.calls;
+    (r, c)
+}
+
+#[test]
+fn switched_off_effects_make_no_calls() {
+    for mode in [Mode::Fast, Mode::Thesis] {
+        let mut s = block();
+        s.spec.iteration.mode = mode;
+        s.spec.effects.point_energy_output = false;
+        s.spec.effects.stick_slip_map = false;
+        let (all, c) = go(&s);
+        assert!(c.uinter_general > 0, "{mode:?}: static step uses UINTER");
+        match mode {
+            Mode::Fast => assert!(c.linearize > 0 && c.uinter_linear == 0),
+            // Thesis mode: k*, d* only through UINTER; no per-point output, no linearize.
+            Mode::Thesis => assert!(c.uinter_linear > 0 && c.linearize == 0 && c.uexternaldb > 0),
+        }
+        assert!(all.main.power[0] > 0.0);
+
+        // No normal nonlinearity: no static Newton, no LINPER = 0 call.
+        let mut t = s.clone();
+        t.spec.effects.normal_contact_nonlinearity = false;
+        let (_, c) = go(&t);
+        assert_eq!(c.uinter_general, 0, "{mode:?}");
+
+        // No microslip: constant k_T0, no linearization of any kind, no store.
+        let mut t = s.clone();
+        t.spec.effects.tangential_microslip = false;
+        let (r, c) = go(&t);
+        assert_eq!((c.linearize, c.uinter_linear, c.uexternaldb, c.store), (0, 0, 0, 0), "{mode:?}");
+        // Stuck block: |k_T0 − mω² + …| A = F̂ → A = 0.5 / (1282.7 − 0.002·1.69) mm.
+        let a = r.main.outputs[0][0].norm();
+        assert!((a / (0.5 / (1282.7 - 0.002 * 1.69)) - 1.0).abs() < 1e-9, "{a}");
+
+        // No contact damping: no d* in the model, no dissipated power reported.
+        let mut t = s.clone();
+        t.spec.effects.contact_damping = false;
+        let (r, _) = go(&t);
+        assert_eq!(r.main.power[0], 0.0);
+
+        // Per-point output asked for: thesis mode then pays 2 linearize calls per point
+        // and run frequency (A/δ* is not in the UINTER report); fast mode pays nothing.
+        let mut t = s.clone();
+        t.spec.effects.point_energy_output = true;
+        let (r, c) = go(&t);
+        let runs: usize = r.main.passes.iter().map(|p| p.frequencies.len()).sum();
+        match mode {
+            Mode::Fast => assert_eq!(c.linearize, all.calls.linearize),
+            Mode::Thesis => assert_eq!(c.linearize as usize, 2 * runs),
+        }
+        assert_eq!(r.main.points.len(), 1);
+    }
+}
+
+#[test]
+fn cli_bad_scene_names_file_line_key_and_writes_nothing() {
+    let dir = std::env::temp_dir().join(format!("jointlin-bad-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    let scene = dir.with_extension("toml");
+    let text = std::fs::read_to_string(format!("{}/../scenes/block-stick.toml", env!("CARGO_MANIFEST_DIR")))
+        .unwrap()
+        .replace("mu = 0.3", "mu = -0.3");
+    std::fs::write(&scene, &text).unwrap();
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_jointlin"))
+        .args(["run", scene.to_str().unwrap(), "--out", dir.to_str().unwrap(), "--quiet"])
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    let line = text.lines().position(|l| l.contains("mu = -0.3")).unwrap() + 1;
+    assert!(!out.status.success());
+    assert!(err.contains(&format!("{}:{line}:", scene.display())), "{err}");
+    assert!(err.contains("interfaces[0].mu"), "{err}");
+    assert!(!dir.exists(), "nothing may be written for a bad scene");
+    std::fs::remove_file(&scene).unwrap();
+}
