@@ -1,0 +1,272 @@
+//! The restart file: a versioned, whitespace-separated token stream; floats as the hex of
+//! their bits so that a round trip is exact.
+
+use super::*;
+
+const MAGIC: &str = "jointlin-store";
+const VERSION: &str = "1";
+
+fn f(out: &mut String, x: f64) {
+    out.push_str(&format!(" {:016x}", x.to_bits()));
+}
+
+fn ints(out: &mut String, list: &[i32]) {
+    out.push_str(&format!(" {}", list.len()));
+    for k in list {
+        out.push_str(&format!(" {k}"));
+    }
+}
+
+pub(super) fn write(keys: &[PointKey], s: &State) -> String {
+    let mut o = format!("{MAGIC} {VERSION}\n");
+    let (code, list): (i32, &[i32]) = match &s.next {
+        Action::RunSweep => (0, &[]),
+        Action::RunPass(l) => (1, l),
+        Action::RunFinal(l) => (2, l),
+        Action::Done => (3, &[]),
+        Action::Failed(l) => (4, l),
+    };
+    o.push_str(&format!("next {code}"));
+    ints(&mut o, list);
+    match &s.phase {
+        Phase::Ready => o.push_str("\nphase 0"),
+        Phase::Running(run) => {
+            o.push_str(&format!("\nphase 1 {} {}", run.number, run.kind as i32));
+            match &run.schedule {
+                None => o.push_str(" 0"),
+                Some(l) => {
+                    o.push_str(" 1");
+                    ints(&mut o, l);
+                }
+            }
+            let ran: Vec<i32> = run.ran.iter().copied().collect();
+            ints(&mut o, &ran);
+        }
+    }
+    o.push_str(&format!("\ncounters {} {}\n", s.iteration_passes, s.step));
+    o.push_str(&format!("stats {}\n", s.stats.len()));
+    for st in &s.stats {
+        o.push_str(&format!(
+            "{} {} {} {} {} {}\n",
+            st.number,
+            st.kind as i32,
+            st.increments_run,
+            st.increments_converged,
+            st.evaluations,
+            st.not_reported
+        ));
+    }
+    o.push_str(&format!("increments {}", s.increments.len()));
+    for (k, ok) in &s.increments {
+        o.push_str(&format!(" {k} {}", u8::from(*ok)));
+    }
+    o.push_str(&format!("\npoints {}\n", keys.len()));
+    for k in keys {
+        let hex: String = k.name.iter().map(|b| format!("{b:02x}")).collect();
+        o.push_str(&format!("{} x{hex} {}", k.node, k.coords.len()));
+        for c in &k.coords {
+            o.push_str(&format!(" {c:016x}"));
+        }
+        o.push('\n');
+    }
+    let n: usize = s.records.iter().map(BTreeMap::len).sum();
+    o.push_str(&format!("records {n}\n"));
+    for (i, recs) in s.records.iter().enumerate() {
+        for (k, r) in recs {
+            o.push_str(&format!("{} {k} {} {}", i + 1, r.estimate_pass, r.dirs));
+            f(&mut o, r.estimate[0]);
+            f(&mut o, r.estimate[1]);
+            o.push_str(&format!(" {}", r.reported_pass));
+            f(&mut o, r.reported[0]);
+            f(&mut o, r.reported[1]);
+            o.push_str(&format!(
+                " {} {} {}",
+                u8::from(r.converged),
+                r.passes,
+                r.reason as i32
+            ));
+            for h in &r.history {
+                o.push_str(&format!(" {}", h.len()));
+                for &(a, b) in h {
+                    f(&mut o, a);
+                    f(&mut o, b);
+                }
+            }
+            o.push('\n');
+        }
+    }
+    o.push_str("end\n");
+    o
+}
+
+struct Tokens<'a>(std::str::SplitWhitespace<'a>);
+
+fn bad(what: &str) -> StoreError {
+    StoreError::Io(format!("corrupt restart file: {what}"))
+}
+
+impl<'a> Tokens<'a> {
+    fn word(&mut self, what: &str) -> Result<&'a str, StoreError> {
+        self.0.next().ok_or_else(|| bad(what))
+    }
+    fn tag(&mut self, tag: &str) -> Result<(), StoreError> {
+        if self.word(tag)? == tag {
+            Ok(())
+        } else {
+            Err(bad(tag))
+        }
+    }
+    fn int<T: std::str::FromStr>(&mut self, what: &str) -> Result<T, StoreError> {
+        self.word(what)?.parse().map_err(|_| bad(what))
+    }
+    fn float(&mut self, what: &str) -> Result<f64, StoreError> {
+        let x = u64::from_str_radix(self.word(what)?, 16).map_err(|_| bad(what))?;
+        Ok(f64::from_bits(x))
+    }
+    fn list(&mut self, what: &str) -> Result<Vec<i32>, StoreError> {
+        let n: usize = self.int(what)?;
+        (0..n).map(|_| self.int(what)).collect()
+    }
+}
+
+pub(super) fn parse(text: &str) -> Result<(Registry, State), StoreError> {
+    let mut t = Tokens(text.split_whitespace());
+    t.tag(MAGIC)?;
+    if t.word("version")? != VERSION {
+        return Err(bad("unsupported version"));
+    }
+    t.tag("next")?;
+    let code: i32 = t.int("next action")?;
+    let list = t.list("next list")?;
+    let next = match code {
+        0 => Action::RunSweep,
+        1 => Action::RunPass(list),
+        2 => Action::RunFinal(list),
+        3 => Action::Done,
+        4 => Action::Failed(list),
+        _ => return Err(bad("next action")),
+    };
+    t.tag("phase")?;
+    let phase = match t.int::<i32>("phase")? {
+        0 => Phase::Ready,
+        1 => {
+            let number = t.int("pass")?;
+            let kind = kind(t.int("kind")?)?;
+            let schedule = match t.int::<i32>("schedule")? {
+                0 => None,
+                _ => Some(t.list("schedule")?),
+            };
+            let ran = t.list("ran")?.into_iter().collect();
+            Phase::Running(Run {
+                number,
+                kind,
+                schedule,
+                open: None,
+                ran,
+            })
+        }
+        _ => return Err(bad("phase")),
+    };
+    t.tag("counters")?;
+    let iteration_passes = t.int("iteration passes")?;
+    let step = t.int("step")?;
+    t.tag("stats")?;
+    let n: usize = t.int("stats")?;
+    let mut stats = Vec::new();
+    for _ in 0..n {
+        stats.push(PassStats {
+            number: t.int("stats")?,
+            kind: kind(t.int("stats")?)?,
+            increments_run: t.int("stats")?,
+            increments_converged: t.int("stats")?,
+            evaluations: t.int("stats")?,
+            not_reported: t.int("stats")?,
+        });
+    }
+    t.tag("increments")?;
+    let n: usize = t.int("increments")?;
+    let mut increments = BTreeMap::new();
+    for _ in 0..n {
+        let k = t.int("increment")?;
+        increments.insert(k, t.int::<u8>("increment flag")? == 1);
+    }
+    t.tag("points")?;
+    let n: usize = t.int("points")?;
+    let mut reg = Registry::default();
+    for i in 0..n {
+        let node = t.int("node")?;
+        let hex = t
+            .word("name")?
+            .strip_prefix('x')
+            .ok_or_else(|| bad("name"))?;
+        if hex.len() % 2 != 0 {
+            return Err(bad("name"));
+        }
+        let name = (0..hex.len() / 2)
+            .map(|j| u8::from_str_radix(&hex[2 * j..2 * j + 2], 16).map_err(|_| bad("name")))
+            .collect::<Result<Vec<u8>, _>>()?;
+        let m: usize = t.int("coordinate count")?;
+        if m > 3 {
+            return Err(bad("coordinate count"));
+        }
+        let coords = (0..m)
+            .map(|_| u64::from_str_radix(t.word("coordinate")?, 16).map_err(|_| bad("coordinate")))
+            .collect::<Result<Vec<u64>, _>>()?;
+        let key = PointKey { name, node, coords };
+        reg.ids.insert(key.clone(), i as i64 + 1);
+        reg.keys.push(key);
+    }
+    t.tag("records")?;
+    let n: usize = t.int("records")?;
+    let mut records: Vec<BTreeMap<i32, Record>> = vec![BTreeMap::new(); reg.keys.len()];
+    for _ in 0..n {
+        let id: usize = t.int("record point")?;
+        let k: i32 = t.int("record increment")?;
+        let mut r = Record {
+            estimate_pass: t.int("record")?,
+            dirs: t.int("record")?,
+            ..Record::default()
+        };
+        r.estimate = [t.float("estimate")?, t.float("estimate")?];
+        r.reported_pass = t.int("record")?;
+        r.reported = [t.float("reported")?, t.float("reported")?];
+        r.converged = t.int::<u8>("record")? == 1;
+        r.passes = t.int("record")?;
+        r.reason = match t.int::<i32>("reason")? {
+            0 => Reason::None,
+            1 => Reason::OutOfTolerance,
+            2 => Reason::NotReported,
+            _ => return Err(bad("reason")),
+        };
+        for d in 0..2 {
+            let m: usize = t.int("history")?;
+            for _ in 0..m {
+                r.history[d].push((t.float("history")?, t.float("history")?));
+            }
+        }
+        if id == 0 || id > records.len() || r.dirs > 2 {
+            return Err(bad("record point"));
+        }
+        records[id - 1].insert(k, r);
+    }
+    t.tag("end")?;
+    let state = State {
+        phase,
+        next,
+        iteration_passes,
+        step,
+        increments,
+        records,
+        stats,
+    };
+    Ok((reg, state))
+}
+
+fn kind(code: i32) -> Result<PassKind, StoreError> {
+    match code {
+        0 => Ok(PassKind::First),
+        1 => Ok(PassKind::Rerun),
+        2 => Ok(PassKind::Final),
+        _ => Err(bad("pass kind")),
+    }
+}
