@@ -42,10 +42,17 @@ fn switched_off_effects_make_no_calls() {
         let mut t = s.clone();
         t.spec.effects.tangential_microslip = false;
         let (r, c) = go(&t);
-        assert_eq!((c.linearize, c.uinter_linear, c.uexternaldb, c.store), (0, 0, 0, 0), "{mode:?}");
+        assert_eq!(
+            (c.linearize, c.uinter_linear, c.uexternaldb, c.store),
+            (0, 0, 0, 0),
+            "{mode:?}"
+        );
         // Stuck block: |k_T0 − mω² + …| A = F̂ → A = 0.5 / (1282.7 − 0.002·1.69) mm.
         let a = r.main.outputs[0][0].norm();
-        assert!((a / (0.5 / (1282.7 - 0.002 * 1.69)) - 1.0).abs() < 1e-9, "{a}");
+        assert!(
+            (a / (0.5 / (1282.7 - 0.002 * 1.69)) - 1.0).abs() < 1e-9,
+            "{a}"
+        );
 
         // No contact damping: no d* in the model, no dissipated power reported.
         let mut t = s.clone();
@@ -72,18 +79,30 @@ fn cli_bad_scene_names_file_line_key_and_writes_nothing() {
     let dir = std::env::temp_dir().join(format!("jointlin-bad-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     let scene = dir.with_extension("toml");
-    let text = std::fs::read_to_string(format!("{}/../scenes/block-stick.toml", env!("CARGO_MANIFEST_DIR")))
-        .unwrap()
-        .replace("mu = 0.3", "mu = -0.3");
+    let text = std::fs::read_to_string(format!(
+        "{}/../scenes/block-stick.toml",
+        env!("CARGO_MANIFEST_DIR")
+    ))
+    .unwrap()
+    .replace("mu = 0.3", "mu = -0.3");
     std::fs::write(&scene, &text).unwrap();
     let out = std::process::Command::new(env!("CARGO_BIN_EXE_jointlin"))
-        .args(["run", scene.to_str().unwrap(), "--out", dir.to_str().unwrap(), "--quiet"])
+        .args([
+            "run",
+            scene.to_str().unwrap(),
+            "--out",
+            dir.to_str().unwrap(),
+            "--quiet",
+        ])
         .output()
         .unwrap();
     let err = String::from_utf8_lossy(&out.stderr);
     let line = text.lines().position(|l| l.contains("mu = -0.3")).unwrap() + 1;
     assert!(!out.status.success());
-    assert!(err.contains(&format!("{}:{line}:", scene.display())), "{err}");
+    assert!(
+        err.contains(&format!("{}:{line}:", scene.display())),
+        "{err}"
+    );
     assert!(err.contains("interfaces[0].mu"), "{err}");
     assert!(!dir.exists(), "nothing may be written for a bad scene");
     std::fs::remove_file(&scene).unwrap();

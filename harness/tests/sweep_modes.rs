@@ -36,3 +36,37 @@ fn block_stick_amplitude_matches_the_thesis_in_both_modes() {
     // Same converged answer within the tolerance (1e-6 relative on the contact amplitude).
     assert!((amps[0] / amps[1] - 1.0).abs() < 1e-5, "{amps:?}");
 }
+
+#[test]
+fn block_slip_amplitude_is_a_first_harmonic_balance() {
+    use jointlin_harness::capi::{linearize, Tangential};
+    use jointlin_harness::scene::{LawName, RuleName};
+    let omega = 2.0 * std::f64::consts::PI * 0.20690142;
+    for mode in [Mode::Fast, Mode::Thesis] {
+        let mut s = scene("block-slip.toml");
+        s.spec.iteration.mode = mode;
+        let r = run(&s, Extras::default(), &quiet).unwrap();
+        assert!(r.main.converged[0], "{mode:?}");
+        let a = r.main.outputs[0][0].norm();
+        // The block's x-balance alone (the normal and y directions decouple):
+        // |k*(A) − mω² + iωd*(A)|·A = F̂, with k*, d* from the library at the same A.
+        let t = Tangential {
+            law: LawName::Mindlin,
+            rule: RuleName::Thesis,
+            mu: 0.3,
+            normal: 2.0,
+            k_t0: 1282.7,
+        };
+        let l = linearize(&t, a, omega).unwrap();
+        let force =
+            a * ((l.k_star - 0.002 * omega * omega).powi(2) + (omega * l.d_star).powi(2)).sqrt();
+        eprintln!(
+            "{mode:?}: A = {a:.5e} mm, A/δ* = {:.2}, |F(A)| = {force:.6} N",
+            l.amplitude_ratio
+        );
+        // rtol 1e-6 on A; the balance holds to that times the local slope (≤ 1e-4).
+        assert!((force / 0.75 - 1.0).abs() < 1e-4, "{mode:?}: {force}");
+        // Beyond the slip limit, below 4μF_N/π: partial slip, not a sliding block.
+        assert!(l.amplitude_ratio > 1.0 && force < 4.0 * 0.6 / std::f64::consts::PI);
+    }
+}
