@@ -3,7 +3,7 @@
 //! d* = A_hys/(π ω A²) (3.14). The structural form is the loss factor η = A_hys/(π k* A²).
 
 use super::loop_shape::LoopShape;
-use super::quadrature::{gauss, simpson};
+use super::quadrature::simpson_or_gauss;
 use crate::hysteresis::Rule;
 use crate::law::Backbone;
 use std::f64::consts::PI;
@@ -29,11 +29,7 @@ pub fn area_by_rule(
     n: usize,
 ) -> f64 {
     let a = shape.amplitude;
-    let f =
-        |x: f64| shape.drop(b, rule, a + x) + shape.drop(b, rule, a - x) - 2.0 * shape.peak_force;
-    if simpson_rule {
-        simpson(n, -a, a, f)
-    } else {
-        gauss(n, -a, a, f)
-    }
+    simpson_or_gauss(simpson_rule, n, -a, a, |x: f64| {
+        shape.drop(b, rule, a + x) + shape.drop(b, rule, a - x) - 2.0 * shape.peak_force
+    })
 }

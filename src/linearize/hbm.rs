@@ -4,7 +4,7 @@
 //! S = ∫ f_L(A sin θ) sin θ dθ = −∫₀^π f_L cos φ dφ (φ = θ + π/2).
 
 use super::loop_shape::LoopShape;
-use super::quadrature::{gauss, simpson};
+use super::quadrature::{gauss, simpson_or_gauss};
 use crate::hysteresis::Rule;
 use crate::law::Backbone;
 use std::f64::consts::{FRAC_1_SQRT_2, PI};
@@ -28,12 +28,9 @@ pub fn in_phase_sum_by_rule(
     n: usize,
 ) -> f64 {
     let a = shape.amplitude;
-    let f = |t: f64| shape.descending(b, rule, a * t.sin()) * t.sin();
-    if simpson_rule {
-        simpson(n, -PI / 2.0, PI / 2.0, f)
-    } else {
-        gauss(n, -PI / 2.0, PI / 2.0, f)
-    }
+    simpson_or_gauss(simpson_rule, n, -PI / 2.0, PI / 2.0, |t: f64| {
+        shape.descending(b, rule, a * t.sin()) * t.sin()
+    })
 }
 
 /// S split at the loop's kinks into closed-form pieces (sliding, elastic, constants) and

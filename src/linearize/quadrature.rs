@@ -61,6 +61,21 @@ pub fn gauss(n: usize, a: f64, b: f64, mut f: impl FnMut(f64) -> f64) -> f64 {
         .sum::<f64>()
 }
 
+/// ∫_a^b f by composite Simpson with `n` intervals (`simpson_rule`) or n-point Gauss.
+pub fn simpson_or_gauss(
+    simpson_rule: bool,
+    n: usize,
+    a: f64,
+    b: f64,
+    f: impl FnMut(f64) -> f64,
+) -> f64 {
+    if simpson_rule {
+        simpson(n, a, b, f)
+    } else {
+        gauss(n, a, b, f)
+    }
+}
+
 /// ∫_a^b f by the composite Simpson rule with `intervals` (even, ≥ 2) sub-intervals.
 pub fn simpson(intervals: usize, a: f64, b: f64, mut f: impl FnMut(f64) -> f64) -> f64 {
     let h = (b - a) / intervals as f64;
