@@ -44,36 +44,63 @@ fn worst_error(method: Method) -> f64 {
     worst
 }
 
-/// Median over 7 batches of the mean wall time per call (ns), cycling through all cases.
-fn cost_ns(method: Method) -> f64 {
+/// Median over 7 batches of the mean wall time per call (ns) of `call`, cycling through
+/// every (contact, amplitude) case.
+fn median_ns(mut call: impl FnMut(&Contact, f64)) -> f64 {
     let cases: Vec<(Contact, f64)> = contacts()
         .into_iter()
         .flat_map(|c| RATIOS.map(|r| (c, r * 1.5 * c.mu * c.normal_force / c.k_t0)))
         .collect();
-    let mut calls = 1usize;
-    loop {
+    let mut batch = |calls: usize| {
         let t = Instant::now();
         for i in 0..calls {
             let (c, a) = cases[i % cases.len()];
-            black_box(linearize(black_box(&c), black_box(a), 1.3, method).unwrap());
+            call(black_box(&c), black_box(a));
         }
-        if t.elapsed().as_millis() >= 20 {
-            break;
-        }
+        t.elapsed()
+    };
+    let mut calls = 1usize;
+    while batch(calls).as_millis() < 20 {
         calls *= 2;
     }
-    let mut batches: Vec<f64> = (0..7)
-        .map(|_| {
-            let t = Instant::now();
-            for i in 0..calls {
-                let (c, a) = cases[i % cases.len()];
-                black_box(linearize(black_box(&c), black_box(a), 1.3, method).unwrap());
-            }
-            t.elapsed().as_nanos() as f64 / calls as f64
-        })
+    let mut ns: Vec<f64> = (0..7)
+        .map(|_| batch(calls).as_nanos() as f64 / calls as f64)
         .collect();
-    batches.sort_by(f64::total_cmp);
-    batches[3]
+    ns.sort_by(f64::total_cmp);
+    ns[3]
+}
+
+fn cost_ns(method: Method) -> f64 {
+    median_ns(|c, a| {
+        black_box(linearize(c, a, 1.3, method).unwrap());
+    })
+}
+
+/// The same cases through the C entry point a host calls (default method: NULL).
+fn c_entry_ns() -> f64 {
+    use jointlin::ffi::linearize::{jointlin_contact, jointlin_linearization};
+    let mut out = jointlin_linearization::default();
+    median_ns(|c, a| {
+        let contact = jointlin_contact {
+            law: 0,
+            rule: i32::from(c.rule == Rule::Masing),
+            mu: c.mu,
+            normal_force: c.normal_force,
+            k_t0: c.k_t0,
+        };
+        // SAFETY: pointers to live locals; a NULL method selects the default.
+        let status = unsafe {
+            jointlin::ffi::linearize::jointlin_linearize(
+                &contact,
+                a,
+                1.3,
+                std::ptr::null(),
+                &mut out,
+            )
+        };
+        assert_eq!(status, 0);
+        black_box(out.k_star);
+    })
 }
 
 fn main() {
@@ -110,6 +137,8 @@ fn main() {
         println!("| {name} | {err:.1e} | {ns:.0} |");
         measured.push((method, err, ns));
     }
+    println!();
+    println!("`jointlin_linearize` (C entry, default method), median over the same cases: {:.0} ns per call.", c_entry_ns());
     let default = measured
         .iter()
         .find(|m| m.0 == Method::default())
