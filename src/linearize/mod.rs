@@ -208,6 +208,14 @@ pub fn linearize_point(
     if !d_star.is_finite() || !eta.is_finite() || !k_star.is_finite() {
         return Err(Error::Overflow("d* or eta (amplitude or omega too small)"));
     }
+    // A/δ* overflows for a huge amplitude on a point with a tiny slip limit (found by
+    // fuzz/jointlin_linearize: k_T0 = 1e300, A = 1e10 gave amplitude_ratio = +inf).
+    let amplitude_ratio = amplitude / delta_star;
+    if !amplitude_ratio.is_finite() {
+        return Err(Error::Overflow(
+            "A/delta* (amplitude far beyond the slip limit)",
+        ));
+    }
     let regime = if shape.slides() {
         Regime::Sliding
     } else if area == 0.0 || matches!(b, Backbone::Jenkins(_)) {
@@ -222,7 +230,7 @@ pub fn linearize_point(
         energy_per_cycle: area,
         peak_force: shape.peak_force,
         slip_limit: delta_star,
-        amplitude_ratio: amplitude / delta_star,
+        amplitude_ratio,
         regime,
     })
 }

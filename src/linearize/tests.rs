@@ -268,6 +268,17 @@ fn hard_inputs_give_finite_answers_or_named_errors() {
         linearize(&c, d, 1.0, Method::Simpson { intervals: 3 }),
         Err(Error::OutOfRange(_))
     ));
+    // A/δ* beyond f64: a named overflow, never +inf in an output (fuzz finding).
+    let tiny = Contact {
+        k_t0: 1e300,
+        ..contact(TangentialLaw::Mindlin, Rule::Thesis)
+    };
+    assert!(matches!(
+        linearize(&tiny, 1e10, 1.0, Method::default()),
+        Err(Error::Overflow(_))
+    ));
+    let ok = linearize(&tiny, 1e-150, 1.0, Method::default()).unwrap();
+    assert!(ok.amplitude_ratio.is_finite() && ok.amplitude_ratio > 1.0);
     c.mu = f64::INFINITY;
     assert!(matches!(
         linearize(&c, d, 1.0, Method::default()),
