@@ -23,5 +23,6 @@ pub mod report;
 pub mod run;
 pub mod scene;
 pub mod solve;
+pub mod time;
 
 pub(crate) mod rng;

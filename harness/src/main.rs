@@ -140,6 +140,7 @@ fn main() -> ExitCode {
                 &s,
                 Extras {
                     reference_without_damping: !no_plots,
+                    condense_max: None,
                 },
                 &|label, done, total| {
                     pb.set_length(total as u64);

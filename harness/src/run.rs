@@ -31,6 +31,8 @@ pub struct Extras {
     /// Also sweep without contact damping (fast mode) for the FRF comparison plot; only
     /// done when the scene has contact damping on.
     pub reference_without_damping: bool,
+    /// Override of the fast mode's condensation limit (contact unknowns).
+    pub condense_max: Option<usize>,
 }
 
 /// An effect, whether it is on, and what it cost.
@@ -80,7 +82,10 @@ pub fn run(
     let stat = static_step::solve(&problem, eff.normal_contact_nonlinearity)?;
     let t_static = t.elapsed().as_secs_f64();
     let freqs = scene.frequencies();
-    let opts = Options::from_scene(spec.iteration, eff);
+    let mut opts = Options::from_scene(spec.iteration, eff);
+    if let Some(c) = extras.condense_max {
+        opts.condense_max = c;
+    }
     let t = Instant::now();
     let main = sweep::run(&problem, &stat, &freqs, &opts, progress)?;
     let t_main = t.elapsed().as_secs_f64();

@@ -53,6 +53,7 @@ pub fn run_json(scene: &Scene, r: &RunResult) -> serde_json::Value {
         "converged": m.converged,
         "all_converged": m.converged.iter().all(|&c| c),
         "factorizations": m.factorizations,
+        "gmres_solves": m.gmres_solves,
         "macroslip_caps": m.macroslip_caps,
         "timings_s": {
             "build": r.seconds[0],

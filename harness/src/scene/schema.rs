@@ -37,6 +37,9 @@ pub struct SceneFile {
     pub outputs: Vec<OutputSpec>,
     #[serde(default)]
     pub effects: Effects,
+    /// Settings of the time-domain reference (`jointlin run --time-domain`); optional.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub time_domain: Option<crate::time::TimeDomainSpec>,
 }
 
 /// The scene's unit system, stated (names only; the numbers must be consistent with

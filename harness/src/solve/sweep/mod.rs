@@ -13,6 +13,7 @@
 
 pub mod anderson;
 pub mod fast;
+pub mod krylov;
 pub mod thesis;
 
 use std::collections::BTreeMap;
@@ -65,6 +66,9 @@ pub struct Options {
     pub effects: Effects,
     /// Per-point results (points.csv, stick/slip map).
     pub point_results: bool,
+    /// Fast mode: condense onto the contact unknowns up to this many (2 per closed
+    /// point), else FGMRES with the factorization as preconditioner.
+    pub condense_max: usize,
 }
 
 impl Options {
@@ -73,6 +77,7 @@ impl Options {
             iteration,
             effects,
             point_results: effects.point_energy_output || effects.stick_slip_map,
+            condense_max: fast::CONDENSE_MAX,
         }
     }
 }
@@ -120,6 +125,8 @@ pub struct SweepResult {
     pub converged: Vec<bool>,
     pub passes: Vec<PassRecord>,
     pub factorizations: usize,
+    /// Fast mode with FGMRES: preconditioner applications (solves) in all.
+    pub gmres_solves: usize,
     /// Amplitudes capped at δ* because macroslip is off.
     pub macroslip_caps: usize,
     /// Seconds per named cost.

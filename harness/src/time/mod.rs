@@ -1,0 +1,128 @@
+//! Time-domain reference: the scene's model integrated in time with the library's stateful
+//! hysteresis (UINTER, LINPER = 0, through the C API — never a second copy of a contact
+//! law), until the motion is periodic, then per output the first harmonic and the peaks
+//! and per contact point the energy dissipated per cycle (∮ F·dδ).
+//!
+//! - [`rk4`]: classical Runge–Kutta (thesis Appendix D, (D.2)) for small systems (lumped
+//!   bodies, ODEs such as the Duffing oscillator); explicit, so the step is kept below the
+//!   stability limit of the stiffest mode.
+//! - [`newmark`]: implicit Newmark, average acceleration (β = 1/4, γ = 1/2), Newton
+//!   iterations on the contact unknowns with tangents from UINTER; trial states are
+//!   evaluated from the committed state and the state is committed once per accepted step.
+//!   One UMFPACK factorization per run (symbolic analysis reused), the contact points
+//!   condensed (receptance G = B K̂₀⁻¹ Bᵀ), so a Newton iteration is an m × m dense solve.
+//! - [`periodic`]: cycle statistics (first harmonic, peaks, energy) and the steady-state
+//!   test (cycle-to-cycle change, extrapolated to the distance from the periodic state).
+//! - [`scene_run`]: a scene's sweep in the time domain (`jointlin run --time-domain`).
+//!
+//! Excitation: f(t) = f_pre + s(t)·Re(f̂ e^{iωt}), s a smooth ramp (C², over
+//! `ramp_cycles`) when starting from rest; u(t) = Re(û e^{iωt}) + … defines the phase of
+//! the extracted first harmonic û = (2/N) Σ u(t_k) e^{−iωt_k} over the last cycle, the same
+//! convention as the frequency-domain sweep.
+
+pub mod contact;
+pub mod newmark;
+pub mod periodic;
+pub mod rk4;
+pub mod scene_run;
+pub mod settings;
+
+pub use settings::{Integrator, Start, TimeDomainSpec, TimeSettings};
+
+use nalgebra::Complex;
+use thiserror::Error;
+
+use crate::capi::CapiError;
+use crate::model::BuildError;
+use crate::solve::static_step::StaticError;
+use crate::solve::umfpack::UmfpackError;
+
+pub type C64 = Complex<f64>;
+
+/// Errors of a time-domain run.
+#[derive(Debug, Error)]
+pub enum TimeError {
+    #[error(transparent)]
+    Capi(#[from] CapiError),
+    #[error(transparent)]
+    Umfpack(#[from] UmfpackError),
+    #[error("building the model: {0}")]
+    Build(#[from] BuildError),
+    #[error("static preload step: {0}")]
+    Static(#[from] StaticError),
+    #[error("Newton did not converge at t = {t:.6e} (|Φ|/|r| = {residual:.3e} after {iterations} iterations)")]
+    Newton {
+        t: f64,
+        residual: f64,
+        iterations: usize,
+    },
+    #[error("the condensed Newton matrix is singular at t = {t:.6e}")]
+    Singular { t: f64 },
+    #[error("the solution is not finite at t = {t:.6e} (unstable step?)")]
+    NonFinite { t: f64 },
+    #[error("time-domain settings: {0}")]
+    Settings(String),
+}
+
+/// The dynamic state on the free DOFs.
+#[derive(Debug, Clone, PartialEq)]
+pub struct State {
+    pub t: f64,
+    pub u: Vec<f64>,
+    pub v: Vec<f64>,
+    pub a: Vec<f64>,
+}
+
+/// C² ramp s(τ) = 10τ³ − 15τ⁴ + 6τ⁵ on [0, 1], 1 after.
+pub fn ramp(t: f64, length: f64) -> f64 {
+    if length <= 0.0 || t >= length {
+        return 1.0;
+    }
+    if t <= 0.0 {
+        return 0.0;
+    }
+    let x = t / length;
+    x * x * x * (10.0 - 15.0 * x + 6.0 * x * x)
+}
+
+/// The load f(t) = f_pre + s(t)·Re(f̂ e^{iωt}) on the free DOFs.
+#[derive(Debug, Clone, Copy)]
+pub struct Forcing<'a> {
+    pub preload: &'a [f64],
+    pub excitation: &'a [C64],
+    /// ω (rad/time).
+    pub omega: f64,
+    /// Ramp length (time); 0 = none.
+    pub ramp: f64,
+}
+
+impl Forcing<'_> {
+    /// f(t) into `out`.
+    pub fn at(&self, t: f64, out: &mut [f64]) {
+        let s = ramp(t, self.ramp);
+        let (sn, cs) = (self.omega * t).sin_cos();
+        for ((o, p), e) in out.iter_mut().zip(self.preload).zip(self.excitation) {
+            *o = p + s * (e.re * cs - e.im * sn);
+        }
+    }
+}
+
+/// One integrator bound to a model, a forcing and a step size.
+pub trait Stepper {
+    /// Step size h.
+    fn h(&self) -> f64;
+    /// Advances `st` to st.t + h and commits the contact points there; returns the
+    /// Newton iterations used (0 for explicit steps).
+    fn step(
+        &mut self,
+        st: &mut State,
+        contacts: &mut contact::Contacts,
+    ) -> Result<usize, TimeError>;
+    /// Steps accepted with a loosened Newton tolerance (implicit integrators).
+    fn loose_steps(&self) -> usize {
+        0
+    }
+}
+
+#[cfg(test)]
+mod tests;

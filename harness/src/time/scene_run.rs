@@ -1,0 +1,400 @@
+//! A scene in the time domain: the static preload step (as in the frequency domain), then
+//! per sweep frequency an integration until the motion is periodic (or `max_cycles`), and
+//! the last cycle's statistics. With `start = "rest"` the first frequency starts from the
+//! static state with the excitation ramped in and every later one continues from the
+//! previous end state (a slow sweep, which follows a branch as a physical sweep would);
+//! with `start = "linear"` every frequency starts from the stuck linear steady state.
+
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+use serde::Serialize;
+
+use super::contact::Contacts;
+use super::newmark::{add_blocks, effective_stiffness, stuck_blocks, Newmark};
+use super::periodic::{change, Cycle, CycleStats, SteadyTest};
+use super::rk4::{max_frequency, stable_steps_per_cycle, SceneRk4};
+use super::settings::AUTO_RK4_MAX_DOFS;
+use super::{Forcing, Integrator, Start, State, Stepper, TimeError, TimeSettings, C64};
+use crate::fe::csc::Csc;
+use crate::model::{build, Problem};
+use crate::scene::Scene;
+use crate::solve::static_step::{self, StaticState};
+use crate::solve::umfpack::{to_complex, Symbolic};
+
+/// The time-domain result at one frequency.
+#[derive(Debug, Clone, Serialize)]
+pub struct FreqResult {
+    /// Excitation frequency (1/time).
+    pub freq: f64,
+    /// "rk4" or "newmark".
+    pub integrator: &'static str,
+    pub steps_per_cycle: usize,
+    /// Cycles integrated at this frequency (ramp included).
+    pub cycles: usize,
+    /// Whether the steady-state test passed (always false with tolerance 0).
+    pub steady: bool,
+    /// Estimated relative distance to the periodic state after the last cycle.
+    pub distance: f64,
+    /// Statistics of the last cycle.
+    pub last: CycleStats,
+    pub steps: usize,
+    pub newton_iterations: usize,
+    /// Newton stops accepted at 1e3 × the tolerance.
+    pub loose_steps: usize,
+    pub uinter_calls: u64,
+    pub seconds: f64,
+}
+
+/// Which integrator `settings` means for a model with `n` free DOFs.
+pub fn integrator_for(settings: &TimeSettings, n: usize) -> Integrator {
+    match settings.integrator {
+        Integrator::Auto if n <= AUTO_RK4_MAX_DOFS => Integrator::Rk4,
+        Integrator::Auto => Integrator::Newmark,
+        i => i,
+    }
+}
+
+/// Material damping as the frequency domain uses it.
+fn damping(p: &Problem) -> Option<&Csc<f64>> {
+    p.damping.as_ref()
+}
+
+/// The initial state at frequency `freq`: the static state (rest) or static plus the stuck
+/// linear steady state (`Start::Linear`).
+pub fn initial_state(
+    p: &Problem,
+    stat: &StaticState,
+    freq: f64,
+    start: Start,
+) -> Result<State, TimeError> {
+    let n = p.sys.dofs.n_free();
+    let mut st = State {
+        t: 0.0,
+        u: stat.u.clone(),
+        v: vec![0.0; n],
+        a: vec![0.0; n],
+    };
+    if start == Start::Linear {
+        let omega = 2.0 * std::f64::consts::PI * freq;
+        let mut k = p.sys.k.values.clone();
+        add_blocks(p, &mut k, &stuck_blocks(p, stat));
+        let mut s = to_complex(&Csc {
+            pattern: p.sys.pattern.clone(),
+            values: k,
+        });
+        for (x, m) in s.values.iter_mut().zip(&p.sys.m.values) {
+            x.re -= omega * omega * m;
+        }
+        if let Some(d) = damping(p) {
+            for (x, dv) in s.values.iter_mut().zip(&d.values) {
+                x.im += omega * dv;
+            }
+        }
+        let sym = Symbolic::new(p.sys.pattern.clone())?;
+        let uhat = sym.factor(&s)?.solve(&p.excitation)?;
+        for i in 0..n {
+            st.u[i] += uhat[i].re;
+            st.v[i] = (C64::new(0.0, omega) * uhat[i]).re;
+        }
+    }
+    Ok(st)
+}
+
+/// Integrates at `freq` from `st` (whose contact state is `contacts`' committed one, at
+/// st.u) until periodic; `ramp` in periods (0 = full excitation at once). Leaves `st` and
+/// `contacts` at the end state.
+pub fn simulate(
+    p: &Problem,
+    stat: &StaticState,
+    contacts: &mut Contacts,
+    st: &mut State,
+    freq: f64,
+    settings: &TimeSettings,
+    ramp_cycles: f64,
+) -> Result<FreqResult, TimeError> {
+    let clock = Instant::now();
+    let calls0 = contacts.calls;
+    let omega = 2.0 * std::f64::consts::PI * freq;
+    let period = 1.0 / freq;
+    let n = p.sys.dofs.n_free();
+    st.t = 0.0;
+    let forcing = Forcing {
+        preload: &p.preload,
+        excitation: &p.excitation,
+        omega,
+        ramp: ramp_cycles * period,
+    };
+    let d = damping(p);
+    // The contacts at st.u (a jump from their committed δ is one increment).
+    let delta = contacts.local(&st.u);
+    contacts.evaluate(&delta, None)?;
+    contacts.commit();
+    // Consistent initial acceleration M a = f − K u − D v − Bᵀ q.
+    let sym = Symbolic::new(p.sys.pattern.clone())?;
+    let mc = to_complex(&p.sys.m);
+    let mnum = sym.factor(&mc)?;
+    let kind = integrator_for(settings, n);
+    let mut steps_per_cycle = settings.steps_per_cycle;
+    let mut k0vals = p.sys.k.values.clone();
+    add_blocks(p, &mut k0vals, &stuck_blocks(p, stat));
+    let k0 = Csc {
+        pattern: p.sys.pattern.clone(),
+        values: k0vals,
+    };
+    if kind == Integrator::Rk4 {
+        let wmax = max_frequency(&mnum, &k0)?;
+        steps_per_cycle = steps_per_cycle.max(stable_steps_per_cycle(omega, wmax));
+    }
+    let h = period / steps_per_cycle as f64;
+    let rk = SceneRk4 {
+        p,
+        m: &mnum,
+        damping: d,
+        forcing,
+        h,
+    };
+    st.a = rk.acceleration(0.0, &st.u.clone(), &st.v.clone(), contacts)?;
+    // Newmark: K̂₀ = K + a₀M + a₁D + Bᵀ K_c0 B, one factorization.
+    let kc0 = stuck_blocks(p, stat);
+    let mut khat = effective_stiffness(p, d, h);
+    add_blocks(p, &mut khat.values, &kc0);
+    let khat_c = to_complex(&khat);
+    let knum;
+    let mut rk_holder;
+    let mut nm_holder;
+    let stepper: &mut dyn Stepper = match kind {
+        Integrator::Newmark => {
+            knum = sym.factor(&khat_c)?;
+            nm_holder = Newmark::new(p, &knum, kc0, d, forcing, h, settings.newton_tolerance)?;
+            &mut nm_holder
+        }
+        _ => {
+            rk_holder = rk;
+            &mut rk_holder
+        }
+    };
+
+    let nout = p.outputs.len();
+    let sample = |u: &[f64]| -> Vec<f64> {
+        p.outputs
+            .iter()
+            .map(|o| o.dofs.iter().map(|&(i, w)| w * u[i]).sum())
+            .collect()
+    };
+    let mut test = SteadyTest::default();
+    let mut prev: Option<CycleStats> = None;
+    let (mut steps, mut newton) = (0usize, 0usize);
+    let mut steady = false;
+    let mut distance = f64::INFINITY;
+    let mut cycles = 0;
+    let ramp_end = ramp_cycles.ceil() as usize;
+    while cycles < settings.max_cycles {
+        let mut cyc = Cycle::new(omega, steps_per_cycle, nout, contacts.dissipated());
+        for _ in 0..steps_per_cycle {
+            let (f_old, d_old) = (contacts.force.clone(), contacts.delta.clone());
+            newton += stepper.step(st, contacts)?;
+            steps += 1;
+            cyc.add_work(&f_old, &contacts.force, &d_old, &contacts.delta);
+            cyc.push(st.t, &sample(&st.u));
+        }
+        cycles += 1;
+        let stats = cyc.finish(&contacts.dissipated());
+        if cycles > ramp_end {
+            if let Some(pr) = &prev {
+                distance = test.push(change(pr, &stats));
+            }
+        }
+        prev = Some(stats);
+        if settings.tolerance > 0.0
+            && cycles >= settings.min_cycles
+            && distance <= settings.tolerance
+        {
+            steady = true;
+            break;
+        }
+    }
+    let loose_steps = stepper.loose_steps();
+    Ok(FreqResult {
+        freq,
+        integrator: if kind == Integrator::Newmark {
+            "newmark"
+        } else {
+            "rk4"
+        },
+        steps_per_cycle,
+        cycles,
+        steady,
+        distance,
+        last: prev.expect("max_cycles ≥ 2"),
+        steps,
+        newton_iterations: newton,
+        loose_steps,
+        uinter_calls: contacts.calls - calls0,
+        seconds: clock.elapsed().as_secs_f64(),
+    })
+}
+
+/// A scene run in the time domain.
+#[derive(Debug)]
+pub struct TimeRun {
+    pub problem: Problem,
+    pub stat: StaticState,
+    pub settings: TimeSettings,
+    pub results: Vec<FreqResult>,
+    pub seconds: f64,
+}
+
+/// Runs the scene's sweep in the time domain. `progress(done, total)` per frequency.
+pub fn run_scene(
+    scene: &Scene,
+    settings: &TimeSettings,
+    progress: &dyn Fn(usize, usize),
+) -> Result<TimeRun, TimeError> {
+    let clock = Instant::now();
+    let problem = build(scene)?;
+    let stat = static_step::solve(&problem, scene.spec.effects.normal_contact_nonlinearity)?;
+    let results = sweep(&problem, &stat, &scene.frequencies(), settings, progress)?;
+    Ok(TimeRun {
+        problem,
+        stat,
+        settings: *settings,
+        results,
+        seconds: clock.elapsed().as_secs_f64(),
+    })
+}
+
+/// Time-domain results at `freqs` for a built problem and its static state.
+pub fn sweep(
+    problem: &Problem,
+    stat: &StaticState,
+    freqs: &[f64],
+    settings: &TimeSettings,
+    progress: &dyn Fn(usize, usize),
+) -> Result<Vec<FreqResult>, TimeError> {
+    let mut results = Vec::new();
+    let mut contacts = Contacts::new(problem, stat)?;
+    let mut st = initial_state(
+        problem,
+        stat,
+        freqs.first().copied().unwrap_or(1.0),
+        Start::Rest,
+    )?;
+    for (i, &f) in freqs.iter().enumerate() {
+        progress(i, freqs.len());
+        let ramp = match settings.start {
+            Start::Rest if i == 0 => settings.ramp_cycles,
+            Start::Rest => 0.0,
+            Start::Linear => {
+                contacts = Contacts::new(problem, stat)?;
+                st = initial_state(problem, stat, f, Start::Linear)?;
+                0.0
+            }
+        };
+        results.push(simulate(
+            problem,
+            stat,
+            &mut contacts,
+            &mut st,
+            f,
+            settings,
+            ramp,
+        )?);
+    }
+    progress(freqs.len(), freqs.len());
+    Ok(results)
+}
+
+/// results_time.csv: freq_hz; per output <name>_amp, <name>_phase_deg (first harmonic,
+/// u ≈ x̄ + Re(û e^{iωt})), <name>_half_range ((max − min)/2), <name>_max, <name>_min;
+/// dissipated_power (Σ energy per cycle × f); energy_per_cycle; energy_trapezoid (check);
+/// integrator, steps_per_cycle, cycles, steady, distance, seconds.
+pub fn results_csv(p: &Problem, r: &[FreqResult]) -> String {
+    let mut s = String::from("freq_hz");
+    for o in &p.outputs {
+        let _ = write!(
+            s,
+            ",{0}_amp,{0}_phase_deg,{0}_half_range,{0}_max,{0}_min",
+            o.name
+        );
+    }
+    s.push_str(",dissipated_power,energy_per_cycle,energy_trapezoid,integrator,steps_per_cycle,cycles,steady,distance,seconds\n");
+    for x in r {
+        let _ = write!(s, "{:.10e}", x.freq);
+        for o in &x.last.outputs {
+            let _ = write!(
+                s,
+                ",{:.10e},{:.6},{:.10e},{:.10e},{:.10e}",
+                o.amplitude,
+                o.phase_deg,
+                o.half_range(),
+                o.max,
+                o.min
+            );
+        }
+        let _ = writeln!(
+            s,
+            ",{:.10e},{:.10e},{:.10e},{},{},{},{},{:.3e},{:.3}",
+            x.last.energy * x.freq,
+            x.last.energy,
+            x.last.energy_trapezoid,
+            x.integrator,
+            x.steps_per_cycle,
+            x.cycles,
+            x.steady,
+            x.distance,
+            x.seconds
+        );
+    }
+    s
+}
+
+/// points_time.csv: freq_hz, point, interface, x, y, z, energy_per_cycle (force·length).
+pub fn points_csv(p: &Problem, r: &[FreqResult]) -> String {
+    let mut s = String::from("freq_hz,point,interface,x,y,z,energy_per_cycle\n");
+    for x in r {
+        for (i, (c, e)) in p.contacts.iter().zip(&x.last.point_energy).enumerate() {
+            let _ = writeln!(
+                s,
+                "{:.10e},{},{},{},{},{},{:.10e}",
+                x.freq,
+                i,
+                p.interfaces[c.interface].name,
+                c.position[0],
+                c.position[1],
+                c.position[2],
+                e
+            );
+        }
+    }
+    s
+}
+
+/// Writes results_time.csv, points_time.csv and run_time.json into `dir`.
+pub fn write(dir: &Path, scene: &Scene, run: &TimeRun) -> std::io::Result<Vec<PathBuf>> {
+    std::fs::create_dir_all(dir)?;
+    let mut files = Vec::new();
+    let mut put = |name: &str, text: String| -> std::io::Result<()> {
+        let f = dir.join(name);
+        std::fs::write(&f, text)?;
+        files.push(f);
+        Ok(())
+    };
+    put("results_time.csv", results_csv(&run.problem, &run.results))?;
+    put("points_time.csv", points_csv(&run.problem, &run.results))?;
+    let json = serde_json::json!({
+        "scene": scene.file,
+        "title": scene.spec.title,
+        "settings": run.settings,
+        "free_dofs": run.problem.sys.dofs.n_free(),
+        "contact_points": run.problem.contacts.len(),
+        "seconds": run.seconds,
+        "frequencies": run.results,
+    });
+    put(
+        "run_time.json",
+        serde_json::to_string_pretty(&json).unwrap_or_default(),
+    )?;
+    Ok(files)
+}
