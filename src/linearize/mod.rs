@@ -100,10 +100,15 @@ impl Contact {
         if limit <= 0.0 || !(limit / self.k_t0).is_normal() {
             return Ok(None);
         }
-        Ok(Some(Point::new(
-            Backbone::new(self.law, limit, self.k_t0)?,
-            self.rule,
-        )))
+        let backbone = Backbone::new(self.law, limit, self.k_t0)?;
+        // μF_N/k_T0 may be a normal double while Mindlin's δ* = 1.5 μF_N/k_T0 is not (fuzz
+        // finding: F_N = 1.5e308, μ = 1, k_T0 = 1 returned slip_limit = +inf at A = 0).
+        if !backbone.slip_limit().is_finite() {
+            return Err(Error::Overflow(
+                "slip limit delta* (mu F_N / k_T0 too large)",
+            ));
+        }
+        Ok(Some(Point::new(backbone, self.rule)))
     }
 }
 

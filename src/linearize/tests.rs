@@ -268,13 +268,23 @@ fn hard_inputs_give_finite_answers_or_named_errors() {
         linearize(&c, d, 1.0, Method::Simpson { intervals: 3 }),
         Err(Error::OutOfRange(_))
     ));
-    // A/δ* beyond f64: a named overflow, never +inf in an output (fuzz finding).
+    // A/δ* or δ* beyond f64: a named overflow, never +inf in an output (fuzz findings).
     let tiny = Contact {
         k_t0: 1e300,
         ..contact(TangentialLaw::Mindlin, Rule::Thesis)
     };
     assert!(matches!(
         linearize(&tiny, 1e10, 1.0, Method::default()),
+        Err(Error::Overflow(_))
+    ));
+    let huge = Contact {
+        mu: 1.0,
+        normal_force: 1.5e308,
+        k_t0: 1.0,
+        ..contact(TangentialLaw::Mindlin, Rule::Thesis)
+    };
+    assert!(matches!(
+        linearize(&huge, 0.0, 1.0, Method::default()),
         Err(Error::Overflow(_))
     ));
     let ok = linearize(&tiny, 1e-150, 1.0, Method::default()).unwrap();
