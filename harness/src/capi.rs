@@ -12,8 +12,9 @@ use std::ptr::{self, NonNull};
 
 use jointlin::ffi::error::{jointlin_last_error, jointlin_status_message, JOINTLIN_OK};
 use jointlin::ffi::linearize::{
-    jointlin_contact, jointlin_linearization, jointlin_linearize, JOINTLIN_LAW_JENKINS,
-    JOINTLIN_LAW_MINDLIN, JOINTLIN_RULE_MASING, JOINTLIN_RULE_THESIS,
+    jointlin_contact, jointlin_linearization, jointlin_linearize, jointlin_method,
+    JOINTLIN_LAW_JENKINS, JOINTLIN_LAW_MINDLIN, JOINTLIN_METHOD_GAUSS, JOINTLIN_METHOD_GRADED,
+    JOINTLIN_METHOD_SIMPSON, JOINTLIN_RULE_MASING, JOINTLIN_RULE_THESIS,
 };
 use jointlin::ffi::store::{
     jointlin_pass_stats, jointlin_store, jointlin_store_config, jointlin_store_config_default,
@@ -65,6 +66,35 @@ pub struct CallCounts {
 
 thread_local! {
     static COUNTS: Cell<CallCounts> = Cell::new(CallCounts::default());
+    static QUADRATURE: Cell<Option<Quadrature>> = const { Cell::new(None) };
+}
+
+/// Quadrature of the loop integrals (`jointlin_method`; PROPS 11/12 for UINTER).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+pub enum Quadrature {
+    /// Graded Gauss–Legendre, points per panel (the library's default with 8).
+    Graded(i32),
+    /// The thesis's composite Simpson rule, intervals.
+    Simpson(i32),
+    /// Plain Gauss–Legendre, points.
+    Gauss(i32),
+}
+
+impl Quadrature {
+    fn code(self) -> (i32, i32) {
+        match self {
+            Quadrature::Graded(n) => (JOINTLIN_METHOD_GRADED, n),
+            Quadrature::Simpson(n) => (JOINTLIN_METHOD_SIMPSON, n),
+            Quadrature::Gauss(n) => (JOINTLIN_METHOD_GAUSS, n),
+        }
+    }
+}
+
+/// Sets the quadrature of this thread's [`linearize`] calls and of the PROPS built by
+/// [`props`] afterwards (`None`: the library's default). For fidelity studies
+/// (`jointlin tradeoff`); returns the previous setting.
+pub fn set_quadrature(q: Option<Quadrature>) -> Option<Quadrature> {
+    QUADRATURE.with(|c| c.replace(q))
 }
 
 /// Calls made on this thread so far.
@@ -159,8 +189,15 @@ pub fn linearize(t: &Tangential, amplitude: f64, omega: f64) -> Result<Linearize
         amplitude_ratio: 0.0,
         regime: 0,
     };
-    // SAFETY: contact and out are valid locals; method NULL = default.
-    let code = unsafe { jointlin_linearize(&contact, amplitude, omega, ptr::null(), &mut out) };
+    let method = QUADRATURE.with(|c| c.get()).map(|q| {
+        let (kind, points) = q.code();
+        jointlin_method { kind, points }
+    });
+    let mptr = method
+        .as_ref()
+        .map_or(ptr::null(), |m| m as *const jointlin_method);
+    // SAFETY: contact and out are valid locals; method NULL = default, else a local.
+    let code = unsafe { jointlin_linearize(&contact, amplitude, omega, mptr, &mut out) };
     check("jointlin_linearize", code)?;
     Ok(Linearized {
         k_star: out.k_star,
@@ -183,7 +220,7 @@ pub enum NormalProps {
 }
 
 /// UINTER PROPS (src/ffi/props.rs): law, rule, μ, k_T0 per area, normal law; viscous
-/// damping output, default quadrature.
+/// damping output; quadrature as set by [`set_quadrature`] (default: the library's).
 pub fn props(
     law: LawName,
     rule: RuleName,
@@ -195,6 +232,9 @@ pub fn props(
         NormalProps::Linear { k_n } => (0.0, k_n, 0.0),
         NormalProps::Hertz { e_star, r_star } => (1.0, e_star, r_star),
     };
+    let (qk, qn) = QUADRATURE
+        .with(|c| c.get())
+        .map_or((0, 0), Quadrature::code);
     [
         law_code(law) as f64,
         rule_code(rule) as f64,
@@ -206,8 +246,8 @@ pub fn props(
         0.0,
         0.0,
         0.0,
-        0.0,
-        0.0,
+        f64::from(qk),
+        f64::from(qn),
     ]
 }
 
@@ -539,6 +579,35 @@ mod tests {
         let bad = linearize(&t, -1.0, 1.3).unwrap_err();
         assert_eq!(counts().linearize, before + 1);
         assert!(bad.detail.contains("amplitude"), "{bad}");
+    }
+
+    #[test]
+    fn quadrature_setting_reaches_the_library() {
+        let t = Tangential {
+            law: LawName::Mindlin,
+            rule: RuleName::Thesis,
+            mu: 0.3,
+            normal: 2.0,
+            k_t0: 1282.7,
+        };
+        // A/δ* = 0.8 (microslip): Simpson with 16 intervals is off by 4e-6 here (README
+        // table: worst 2.5e-2 over A/δ*), the default by < 1e-12, so they must differ.
+        let a = 0.8 * 1.5 * 0.6 / 1282.7;
+        let d = linearize(&t, a, 1.3).unwrap();
+        assert_eq!(set_quadrature(Some(Quadrature::Simpson(16))), None);
+        let s = linearize(&t, a, 1.3).unwrap();
+        let pr = props(
+            LawName::Mindlin,
+            RuleName::Thesis,
+            0.3,
+            1.0,
+            NormalProps::Linear { k_n: 1.0 },
+        );
+        assert_eq!(set_quadrature(None), Some(Quadrature::Simpson(16)));
+        assert_eq!((pr[10], pr[11]), (1.0, 16.0));
+        let rel = (s.k_star / d.k_star - 1.0).abs();
+        assert!(rel > 1e-7 && rel < 5e-2, "{rel}");
+        assert_eq!(linearize(&t, a, 1.3).unwrap(), d);
     }
 
     #[test]
