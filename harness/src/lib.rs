@@ -24,5 +24,7 @@ pub mod run;
 pub mod scene;
 pub mod solve;
 pub mod time;
+pub mod tradeoff;
+pub mod validate;
 
 pub(crate) mod rng;

@@ -71,6 +71,37 @@ enum Command {
         /// No progress bar.
         #[arg(long)]
         quiet: bool,
+        /// Run the time-domain reference instead (UINTER LINPER = 0 with the library's
+        /// hysteresis; RK4 or Newmark, the scene's [time_domain] table): per frequency until
+        /// periodic; writes results_time.csv, points_time.csv, run_time.json.
+        #[arg(long)]
+        time_domain: bool,
+    },
+    /// Frequency domain vs the time-domain reference: block stick and slip, the Duffing
+    /// sweep up and down, coarse three beams. Writes validation.csv and validation.md.
+    Validate {
+        /// Output directory.
+        #[arg(long, default_value = "out/validation")]
+        out: PathBuf,
+        /// Directory with block-stick.toml, block-slip.toml, three-beams.toml.
+        #[arg(long, default_value = "scenes")]
+        scenes: PathBuf,
+        /// Cases (default all): block-stick, block-slip, duffing, three-beams.
+        #[arg(long, value_delimiter = ',')]
+        cases: Vec<String>,
+    },
+    /// One scene at a ladder of fidelities (linear stick, Simpson point counts, iteration
+    /// tolerances, time-domain steps and settling lengths): error against the most
+    /// accurate time-domain run vs wall time. Writes tradeoff.csv, tradeoff.md and the
+    /// Pareto plot tradeoff.svg; prints the frequency- vs time-domain speed ratio.
+    Tradeoff {
+        scene: PathBuf,
+        /// Output directory.
+        #[arg(long, default_value = "out/tradeoff")]
+        out: PathBuf,
+        /// Frequency (1/time); default the scene's only one, else its response peak.
+        #[arg(long)]
+        freq: Option<f64>,
     },
     /// Validate a scene and print a summary (nothing is run or written).
     Check { scene: PathBuf },
@@ -121,6 +152,7 @@ fn main() -> ExitCode {
             mode,
             no_plots,
             quiet,
+            time_domain,
         } => {
             let mut s = match Scene::load(&scene) {
                 Ok(s) => s,
@@ -134,6 +166,9 @@ fn main() -> ExitCode {
                     ModeArg::Fast => Mode::Fast,
                     ModeArg::Thesis => Mode::Thesis,
                 };
+            }
+            if time_domain {
+                return time_domain_run(&s, &out, quiet);
             }
             let pb = progress_bar(quiet);
             let r = run(
@@ -255,5 +290,121 @@ fn main() -> ExitCode {
                 ExitCode::from(1)
             }
         },
+        Command::Validate { out, scenes, cases } => {
+            let cases = match jointlin_harness::validate::Cases::parse(&cases) {
+                Ok(c) => c,
+                Err(e) => {
+                    eprintln!("error: {e}");
+                    return ExitCode::from(2);
+                }
+            };
+            let rep = match jointlin_harness::validate::run(&scenes, cases, &|l| eprintln!("{l}")) {
+                Ok(r) => r,
+                Err(e) => {
+                    eprintln!("error: {e}");
+                    return ExitCode::from(1);
+                }
+            };
+            print!("{}", jointlin_harness::validate::markdown(&rep));
+            match jointlin_harness::validate::write(&out, &rep) {
+                Ok(files) => {
+                    for f in files {
+                        eprintln!("wrote {}", f.display());
+                    }
+                    ExitCode::SUCCESS
+                }
+                Err(e) => {
+                    eprintln!("error writing: {e}");
+                    ExitCode::from(1)
+                }
+            }
+        }
+        Command::Tradeoff { scene, out, freq } => {
+            let s = match Scene::load(&scene) {
+                Ok(s) => s,
+                Err(e) => {
+                    eprintln!("error: {e}");
+                    return ExitCode::from(2);
+                }
+            };
+            let t = match jointlin_harness::tradeoff::study(&s, freq, &|l| eprintln!("{l}")) {
+                Ok(t) => t,
+                Err(e) => {
+                    eprintln!("error: {e}");
+                    return ExitCode::from(1);
+                }
+            };
+            print!("{}", jointlin_harness::tradeoff::markdown(&t));
+            match jointlin_harness::tradeoff::write(&out, &t) {
+                Ok(files) => {
+                    for f in files {
+                        eprintln!("wrote {}", f.display());
+                    }
+                    ExitCode::SUCCESS
+                }
+                Err(e) => {
+                    eprintln!("error writing: {e}");
+                    ExitCode::from(1)
+                }
+            }
+        }
+    }
+}
+
+/// `jointlin run --time-domain`.
+fn time_domain_run(s: &Scene, out: &std::path::Path, quiet: bool) -> ExitCode {
+    use jointlin_harness::time::{scene_run, TimeSettings};
+    let settings = match TimeSettings::from_spec(s.spec.time_domain.as_ref()) {
+        Ok(t) => t,
+        Err(e) => {
+            eprintln!("error: {}: {e}", s.file);
+            return ExitCode::from(2);
+        }
+    };
+    let pb = progress_bar(quiet);
+    let r = scene_run::run_scene(s, &settings, &|done, total| {
+        pb.set_length(total as u64);
+        pb.set_position(done as u64);
+        pb.set_message("time domain");
+    });
+    pb.finish_and_clear();
+    let r = match r {
+        Ok(r) => r,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return ExitCode::from(1);
+        }
+    };
+    eprintln!(
+        "{}: time domain, {} free DOFs, {} contact points, {:.3} s",
+        s.file,
+        r.problem.sys.dofs.n_free(),
+        r.problem.contacts.len(),
+        r.seconds
+    );
+    for x in &r.results {
+        eprintln!(
+            "  {:.6e}: {} {} steps/period, {} cycles ({}), amplitude {:.6e}, energy/cycle {:.6e}, {:.2} s",
+            x.freq,
+            x.integrator,
+            x.steps_per_cycle,
+            x.cycles,
+            if x.steady { "periodic" } else { "not periodic" },
+            x.last.outputs.first().map_or(0.0, |o| o.amplitude),
+            x.last.energy,
+            x.seconds
+        );
+    }
+    match scene_run::write(out, s, &r) {
+        Ok(files) => {
+            for f in files {
+                eprintln!("wrote {}", f.display());
+            }
+            ExitCode::SUCCESS
+        }
+        Err(e) => {
+            eprintln!("error writing reports: {e}");
+            ExitCode::from(1)
+        }
     }
 }

@@ -1,0 +1,416 @@
+//! `jointlin tradeoff SCENE`: one scene at one frequency, run at a ladder of fidelities;
+//! each rung's wall time and its error against the most accurate time-domain run, for two
+//! quantities: the first-harmonic amplitude at the first output point and the total joint
+//! energy per cycle. Written as tradeoff.csv, tradeoff.md and tradeoff.svg (Pareto plot of
+//! error vs wall time).
+//!
+//! Rungs (frequency domain, fast mode, through the C API):
+//! - linear stick: k_T0, no contact damping (no linearization at all);
+//! - the thesis's Simpson rule for k* and the loop area at several interval counts
+//!   (`jointlin_method`), default iteration tolerance;
+//! - the default quadrature at several amplitude-iteration tolerances (the scene's own is
+//!   "default");
+//!
+//! and the time domain (UINTER LINPER = 0): Newmark at several steps per period (settled
+//! to a tolerance), fixed settling lengths, RK4 for small models, and the reference: the
+//! finest step, settled to 1e-7.
+//!
+//! Wall time: the whole computation at that frequency (model build, static step, solve);
+//! frequency-domain rungs are repeated until 0.2 s have passed and averaged.
+
+mod plot;
+
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+use serde::Serialize;
+
+use crate::capi::{set_quadrature, Quadrature};
+use crate::run::{run, Extras};
+use crate::scene::Scene;
+use crate::time::scene_run::{integrator_for, run_scene, FreqResult};
+use crate::time::{Integrator, Start, TimeSettings};
+
+/// One rung of the ladder.
+#[derive(Debug, Clone, Serialize)]
+pub struct Rung {
+    /// "linear", "simpson", "default", "tolerance", "time", "reference".
+    pub family: &'static str,
+    pub label: String,
+    pub seconds: f64,
+    /// First-harmonic amplitude at the first output (length).
+    pub amplitude: f64,
+    /// Total joint energy per cycle (force·length).
+    pub energy: f64,
+    /// |amplitude / reference − 1|.
+    pub amplitude_error: f64,
+    /// |energy / reference − 1| (1 when the rung has no joint dissipation).
+    pub energy_error: f64,
+    /// Converged (frequency domain) or periodic (time domain).
+    pub converged: bool,
+    pub frequency_domain: bool,
+}
+
+/// The study.
+#[derive(Debug, Clone, Serialize)]
+pub struct Tradeoff {
+    pub scene: String,
+    /// Frequency (1/time).
+    pub freq: f64,
+    pub output: String,
+    pub rungs: Vec<Rung>,
+    /// Summary lines (speed ratios).
+    pub summary: Vec<String>,
+}
+
+/// The scene at one frequency.
+pub fn at_frequency(scene: &Scene, f: f64) -> Scene {
+    let mut s = scene.clone();
+    s.spec.sweep.f_min = f;
+    s.spec.sweep.f_max = f;
+    s.spec.sweep.count = 1;
+    s.spec.sweep.refine.clear();
+    s
+}
+
+/// The frequency of the largest response at the first output in the scene's own sweep.
+pub fn peak_frequency(scene: &Scene) -> Result<f64, String> {
+    let r = run(scene, Extras::default(), &|_, _, _| {}).map_err(|e| e.to_string())?;
+    (0..r.main.freqs.len())
+        .max_by(|&a, &b| {
+            r.main.outputs[a][0]
+                .norm()
+                .total_cmp(&r.main.outputs[b][0].norm())
+        })
+        .map(|i| r.main.freqs[i])
+        .ok_or_else(|| "the scene has no frequencies".into())
+}
+
+/// (amplitude, energy, converged, seconds) of the frequency domain, repeated until 0.2 s.
+fn fd(scene: &Scene, q: Option<Quadrature>) -> Result<(f64, f64, bool, f64), String> {
+    let prev = set_quadrature(q);
+    let t = Instant::now();
+    let mut reps = 0;
+    let mut out = (0.0, 0.0, false);
+    let res = loop {
+        let r = match run(scene, Extras::default(), &|_, _, _| {}) {
+            Ok(r) => r,
+            Err(e) => break Err(e.to_string()),
+        };
+        out = (
+            r.main.outputs[0][0].norm(),
+            r.main.power[0] / r.main.freqs[0],
+            r.main.converged[0],
+        );
+        reps += 1;
+        if t.elapsed().as_secs_f64() >= 0.2 {
+            break Ok(());
+        }
+    };
+    set_quadrature(prev);
+    res?;
+    Ok((out.0, out.1, out.2, t.elapsed().as_secs_f64() / reps as f64))
+}
+
+fn td(scene: &Scene, s: &TimeSettings) -> Result<(FreqResult, f64), String> {
+    let t = Instant::now();
+    let r = run_scene(scene, s, &|_, _| {}).map_err(|e| e.to_string())?;
+    let secs = t.elapsed().as_secs_f64();
+    Ok((r.results.into_iter().next().expect("one frequency"), secs))
+}
+
+/// Runs the ladder. `freq`: the frequency (default: the scene's only one, else its peak).
+pub fn study(scene: &Scene, freq: Option<f64>, log: &dyn Fn(&str)) -> Result<Tradeoff, String> {
+    let f = match freq {
+        Some(f) => f,
+        None if scene.frequencies().len() == 1 => scene.frequencies()[0],
+        None => {
+            log("finding the response peak of the scene's sweep");
+            peak_frequency(scene)?
+        }
+    };
+    let base = at_frequency(scene, f);
+    let n_free = crate::model::build(&base)
+        .map_err(|e| e.to_string())?
+        .sys
+        .dofs
+        .n_free();
+    let mut rungs = Vec::new();
+    let mut push_fd = |family, label: String, s: &Scene, q| -> Result<(), String> {
+        log(&label);
+        let (a, e, c, secs) = fd(s, q)?;
+        rungs.push(Rung {
+            family,
+            label,
+            seconds: secs,
+            amplitude: a,
+            energy: e,
+            amplitude_error: 0.0,
+            energy_error: 0.0,
+            converged: c,
+            frequency_domain: true,
+        });
+        Ok(())
+    };
+    let mut lin = base.clone();
+    lin.spec.effects.tangential_microslip = false;
+    lin.spec.effects.contact_damping = false;
+    push_fd(
+        "linear",
+        "linear stick (k_T0, no contact damping)".into(),
+        &lin,
+        None,
+    )?;
+    for n in [4, 16, 64, 256, 1024] {
+        push_fd(
+            "simpson",
+            format!("HBM/EBM, Simpson {n} intervals"),
+            &base,
+            Some(Quadrature::Simpson(n)),
+        )?;
+    }
+    push_fd(
+        "default",
+        format!(
+            "default (graded Gauss, tolerance {:.0e})",
+            base.spec.iteration.tolerance
+        ),
+        &base,
+        None,
+    )?;
+    for tol in [1e-1, 1e-2, 1e-4, 1e-6, 1e-8] {
+        let mut s = base.clone();
+        s.spec.iteration.tolerance = tol;
+        s.spec.iteration.max_passes = s.spec.iteration.max_passes.max(200);
+        push_fd(
+            "tolerance",
+            format!("default quadrature, tolerance {tol:.0e}"),
+            &s,
+            None,
+        )?;
+    }
+
+    // Time domain.
+    let small = integrator_for(&TimeSettings::default(), n_free) == Integrator::Rk4;
+    let (start, ramp) = if small {
+        (Start::Rest, 1.0)
+    } else {
+        (Start::Linear, 0.0)
+    };
+    let base_td = TimeSettings {
+        integrator: Integrator::Newmark,
+        start,
+        ramp_cycles: ramp,
+        tolerance: 1e-4,
+        min_cycles: 3,
+        max_cycles: 4000,
+        ..TimeSettings::default()
+    };
+    let mut td_rungs: Vec<(String, TimeSettings)> = Vec::new();
+    let steps: &[usize] = if small {
+        &[64, 256, 1024, 4096]
+    } else {
+        &[32, 64, 128, 256]
+    };
+    for &n in steps {
+        td_rungs.push((
+            format!("Newmark {n} steps/period, settled to 1e-4"),
+            TimeSettings {
+                steps_per_cycle: n,
+                ..base_td
+            },
+        ));
+    }
+    let mid = steps[2];
+    for cycles in [5usize, 20, 80] {
+        td_rungs.push((
+            format!("Newmark {mid} steps/period, {cycles} cycles"),
+            TimeSettings {
+                steps_per_cycle: mid,
+                tolerance: 0.0,
+                min_cycles: cycles.min(base_td.max_cycles),
+                max_cycles: cycles + ramp as usize,
+                ..base_td
+            },
+        ));
+    }
+    if small {
+        td_rungs.push((
+            "RK4 at its stability limit, settled to 1e-4".into(),
+            TimeSettings {
+                integrator: Integrator::Rk4,
+                steps_per_cycle: 8,
+                ..base_td
+            },
+        ));
+    }
+    let reference = if small {
+        TimeSettings {
+            integrator: Integrator::Rk4,
+            steps_per_cycle: 8,
+            tolerance: 1e-8,
+            max_cycles: 200,
+            ..base_td
+        }
+    } else {
+        TimeSettings {
+            steps_per_cycle: 4 * steps[3],
+            tolerance: 1e-7,
+            max_cycles: 20000,
+            ..base_td
+        }
+    };
+    let mut all = td_rungs;
+    all.push((
+        format!(
+            "reference: {} settled to {:.0e}",
+            if small {
+                "RK4 at its stability limit".to_string()
+            } else {
+                format!("Newmark {} steps/period", reference.steps_per_cycle)
+            },
+            reference.tolerance
+        ),
+        reference,
+    ));
+    let nref = all.len() - 1;
+    for (k, (label, s)) in all.into_iter().enumerate() {
+        log(&label);
+        let (r, secs) = td(&base, &s)?;
+        let label = format!(
+            "{label} ({} cycles × {} steps)",
+            r.cycles, r.steps_per_cycle
+        );
+        rungs.push(Rung {
+            family: if k == nref { "reference" } else { "time" },
+            label,
+            seconds: secs,
+            amplitude: r.last.outputs[0].amplitude,
+            energy: r.last.energy,
+            amplitude_error: 0.0,
+            energy_error: 0.0,
+            converged: r.steady || s.tolerance == 0.0,
+            frequency_domain: false,
+        });
+    }
+    let rf = rungs.last().expect("reference").clone();
+    for r in &mut rungs {
+        r.amplitude_error = (r.amplitude / rf.amplitude - 1.0).abs();
+        r.energy_error = if rf.energy > 0.0 {
+            (r.energy / rf.energy - 1.0).abs()
+        } else {
+            0.0
+        };
+    }
+    let summary = ratios(&rungs);
+    Ok(Tradeoff {
+        scene: scene.file.clone(),
+        freq: f,
+        output: base.spec.outputs[0].name.clone(),
+        rungs,
+        summary,
+    })
+}
+
+/// Speed ratios: for the default frequency-domain rung, the cheapest time-domain rung
+/// (not the reference) at least as accurate in both quantities, and the ratio of wall
+/// times; if none is, the reference's.
+fn ratios(rungs: &[Rung]) -> Vec<String> {
+    let mut out = Vec::new();
+    let Some(d) = rungs.iter().find(|r| r.family == "default") else {
+        return out;
+    };
+    let err = |r: &Rung| r.amplitude_error.max(r.energy_error);
+    let target = err(d);
+    let cheapest = rungs
+        .iter()
+        .filter(|r| r.family == "time" && r.converged && err(r) <= target)
+        .min_by(|a, b| a.seconds.total_cmp(&b.seconds));
+    let reference = rungs
+        .iter()
+        .find(|r| r.family == "reference")
+        .expect("reference");
+    match cheapest {
+        Some(t) => out.push(format!(
+            "frequency domain (default) reaches {:.2e} (max of amplitude and energy error) in {:.4} s; the cheapest time-domain run as accurate, {}, takes {:.2} s: {:.0}× slower",
+            target,
+            d.seconds,
+            t.label,
+            t.seconds,
+            t.seconds / d.seconds
+        )),
+        None => out.push(format!(
+            "frequency domain (default) reaches {:.2e} in {:.4} s; no time-domain rung below the reference is as accurate; the reference takes {:.2} s: {:.0}× slower",
+            target,
+            d.seconds,
+            reference.seconds,
+            reference.seconds / d.seconds
+        )),
+    }
+    out.push(format!(
+        "reference time-domain run vs frequency domain (default): {:.0}× the wall time",
+        reference.seconds / d.seconds
+    ));
+    out
+}
+
+/// tradeoff.csv.
+pub fn csv(t: &Tradeoff) -> String {
+    let mut s = String::from("family,label,frequency_domain,seconds,amplitude,amplitude_error,energy_per_cycle,energy_error,converged\n");
+    for r in &t.rungs {
+        let _ = writeln!(
+            s,
+            "{},\"{}\",{},{:.6e},{:.10e},{:.3e},{:.10e},{:.3e},{}",
+            r.family,
+            r.label,
+            r.frequency_domain,
+            r.seconds,
+            r.amplitude,
+            r.amplitude_error,
+            r.energy,
+            r.energy_error,
+            r.converged
+        );
+    }
+    s
+}
+
+/// tradeoff.md.
+pub fn markdown(t: &Tradeoff) -> String {
+    let mut s = format!(
+        "`{}` at f = {:.6} (1/time). Errors are relative to the reference time-domain run (last row): **amplitude** = first-harmonic amplitude of `{}`, **energy** = total joint energy dissipated per cycle.\n\n",
+        t.scene, t.freq, t.output
+    );
+    s.push_str("| rung | wall time [s] | amplitude | amplitude error | energy per cycle | energy error | converged |\n|---|---:|---:|---:|---:|---:|---|\n");
+    for r in &t.rungs {
+        let _ = writeln!(
+            s,
+            "| {} | {:.4} | {:.5e} | {:.2e} | {:.5e} | {:.2e} | {} |",
+            r.label,
+            r.seconds,
+            r.amplitude,
+            r.amplitude_error,
+            r.energy,
+            r.energy_error,
+            if r.converged { "yes" } else { "no" }
+        );
+    }
+    s.push('\n');
+    for l in &t.summary {
+        let _ = writeln!(s, "- {l}");
+    }
+    s
+}
+
+/// Writes tradeoff.csv, tradeoff.md and tradeoff.svg into `dir`.
+pub fn write(dir: &Path, t: &Tradeoff) -> Result<Vec<PathBuf>, String> {
+    std::fs::create_dir_all(dir).map_err(|e| e.to_string())?;
+    let a = dir.join("tradeoff.csv");
+    let b = dir.join("tradeoff.md");
+    let c = dir.join("tradeoff.svg");
+    std::fs::write(&a, csv(t)).map_err(|e| e.to_string())?;
+    std::fs::write(&b, markdown(t)).map_err(|e| e.to_string())?;
+    plot::pareto(&c, t)?;
+    Ok(vec![a, b, c])
+}

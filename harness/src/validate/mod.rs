@@ -1,0 +1,231 @@
+//! `jointlin validate`: the frequency-domain results against the time-domain reference,
+//! case by case, written as validation.csv and validation.md.
+//!
+//! - block stick (scenes/block-stick.toml): F̂ 0.40–0.55 N at ω = 1.3 rad/s and ω
+//!   0.1–20 rad/s at F̂ = 0.5 N (the thesis: errors below 5 %, Fig. 4.17, 4.18);
+//! - block slip (scenes/block-slip.toml): F̂ 0.70–0.82 N; below 4μF_N/π no sliding
+//!   first-harmonic solution exists (model.md §8), which the table says;
+//! - the Duffing oscillator (Appendix B) swept up and down: first-order harmonic balance
+//!   (closed form, the branch followed) vs RK4 (continued from frequency to frequency),
+//!   with the jump frequencies of both;
+//! - three beams on a coarse mesh at frequencies around both resonances: output amplitude
+//!   and joint energy per cycle, frequency domain vs Newmark.
+//!
+//! Both sides run the same scene through the same C API (the frequency domain LINPER = 1
+//! or jointlin_linearize, the time domain UINTER LINPER = 0).
+
+pub mod beams;
+pub mod block;
+pub mod duffing;
+
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+use serde::Serialize;
+
+/// One compared quantity.
+#[derive(Debug, Clone, Serialize)]
+pub struct Row {
+    pub case: String,
+    /// The varied parameter, e.g. "F = 0.45 N".
+    pub parameter: String,
+    /// What is compared, with its unit.
+    pub quantity: String,
+    /// Frequency-domain value (None when it has no solution).
+    pub frequency_domain: Option<f64>,
+    /// Time-domain value (first harmonic for amplitudes, ∮F dδ for energies).
+    pub time_domain: f64,
+    /// Relative error (FD − TD)/TD.
+    pub error: Option<f64>,
+    /// Second time-domain measure (half peak-to-peak for amplitudes), if any.
+    pub time_domain_half_range: Option<f64>,
+    /// Relative error against it.
+    pub error_half_range: Option<f64>,
+    pub note: String,
+}
+
+impl Row {
+    /// A row with the relative errors filled in.
+    pub fn new(
+        case: &str,
+        parameter: String,
+        quantity: &str,
+        fd: Option<f64>,
+        td: f64,
+        td_half: Option<f64>,
+        note: String,
+    ) -> Row {
+        let rel = |a: f64, b: f64| if b != 0.0 { (a - b) / b } else { f64::NAN };
+        Row {
+            case: case.into(),
+            parameter,
+            quantity: quantity.into(),
+            frequency_domain: fd,
+            time_domain: td,
+            error: fd.map(|f| rel(f, td)),
+            time_domain_half_range: td_half,
+            error_half_range: match (fd, td_half) {
+                (Some(f), Some(h)) => Some(rel(f, h)),
+                _ => None,
+            },
+            note,
+        }
+    }
+}
+
+/// Which cases to run.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Cases {
+    pub block_stick: bool,
+    pub block_slip: bool,
+    pub duffing: bool,
+    pub three_beams: bool,
+}
+
+impl Cases {
+    pub fn all() -> Self {
+        Cases {
+            block_stick: true,
+            block_slip: true,
+            duffing: true,
+            three_beams: true,
+        }
+    }
+
+    /// From names: block-stick, block-slip, duffing, three-beams.
+    pub fn parse(names: &[String]) -> Result<Self, String> {
+        if names.is_empty() {
+            return Ok(Cases::all());
+        }
+        let mut c = Cases {
+            block_stick: false,
+            block_slip: false,
+            duffing: false,
+            three_beams: false,
+        };
+        for n in names {
+            match n.as_str() {
+                "block-stick" => c.block_stick = true,
+                "block-slip" => c.block_slip = true,
+                "duffing" => c.duffing = true,
+                "three-beams" => c.three_beams = true,
+                o => {
+                    return Err(format!(
+                        "unknown case `{o}` (block-stick, block-slip, duffing, three-beams)"
+                    ))
+                }
+            }
+        }
+        Ok(c)
+    }
+}
+
+/// The validation report.
+#[derive(Debug, Default)]
+pub struct Report {
+    pub rows: Vec<Row>,
+    /// Extra lines per case (jumps, existence of solutions, costs).
+    pub notes: Vec<(String, String)>,
+}
+
+/// Runs the cases; `scenes` is the directory holding block-stick.toml, block-slip.toml
+/// and three-beams.toml. `log` receives progress lines.
+pub fn run(scenes: &Path, cases: Cases, log: &dyn Fn(&str)) -> Result<Report, String> {
+    let mut rep = Report::default();
+    if cases.block_stick {
+        block::stick(scenes, &mut rep, log)?;
+    }
+    if cases.block_slip {
+        block::slip(scenes, &mut rep, log)?;
+    }
+    if cases.duffing {
+        duffing::sweep(&mut rep, log)?;
+    }
+    if cases.three_beams {
+        beams::coarse(scenes, &mut rep, log)?;
+    }
+    Ok(rep)
+}
+
+fn fmt_opt(v: Option<f64>, prec: usize) -> String {
+    v.map_or_else(|| "—".into(), |x| format!("{x:.prec$e}"))
+}
+
+fn pct(v: Option<f64>) -> String {
+    v.map_or_else(|| "—".into(), |x| format!("{:+.2}", 100.0 * x))
+}
+
+/// validation.csv.
+pub fn csv(rep: &Report) -> String {
+    let mut s = String::from("case,parameter,quantity,frequency_domain,time_domain,error,time_domain_half_range,error_half_range,note\n");
+    for r in &rep.rows {
+        let o = |v: Option<f64>| v.map_or_else(String::new, |x| format!("{x:.8e}"));
+        let _ = writeln!(
+            s,
+            "{},\"{}\",\"{}\",{},{:.8e},{},{},{},\"{}\"",
+            r.case,
+            r.parameter,
+            r.quantity,
+            o(r.frequency_domain),
+            r.time_domain,
+            o(r.error),
+            o(r.time_domain_half_range),
+            o(r.error_half_range),
+            r.note.replace('"', "'")
+        );
+    }
+    s
+}
+
+/// validation.md: one table per case, then its notes.
+pub fn markdown(rep: &Report) -> String {
+    let mut s = String::new();
+    let mut cases: Vec<&str> = Vec::new();
+    for r in &rep.rows {
+        if !cases.contains(&r.case.as_str()) {
+            cases.push(&r.case);
+        }
+    }
+    for (c, _) in &rep.notes {
+        if !cases.contains(&c.as_str()) {
+            cases.push(c);
+        }
+    }
+    for c in cases {
+        let _ = writeln!(s, "### {c}\n");
+        let rows: Vec<&Row> = rep.rows.iter().filter(|r| r.case == c).collect();
+        if !rows.is_empty() {
+            s.push_str("| parameter | quantity | frequency domain | time domain (1st harmonic / ∮F dδ) | error % | time domain (max−min)/2 | error % | note |\n|---|---|---:|---:|---:|---:|---:|---|\n");
+            for r in rows {
+                let _ = writeln!(
+                    s,
+                    "| {} | {} | {} | {:.4e} | {} | {} | {} | {} |",
+                    r.parameter,
+                    r.quantity,
+                    fmt_opt(r.frequency_domain, 4),
+                    r.time_domain,
+                    pct(r.error),
+                    fmt_opt(r.time_domain_half_range, 4),
+                    pct(r.error_half_range),
+                    r.note
+                );
+            }
+            s.push('\n');
+        }
+        for (_, n) in rep.notes.iter().filter(|(k, _)| k == c) {
+            let _ = writeln!(s, "- {n}");
+        }
+        s.push('\n');
+    }
+    s
+}
+
+/// Writes validation.csv and validation.md.
+pub fn write(dir: &Path, rep: &Report) -> std::io::Result<Vec<PathBuf>> {
+    std::fs::create_dir_all(dir)?;
+    let a = dir.join("validation.csv");
+    let b = dir.join("validation.md");
+    std::fs::write(&a, csv(rep))?;
+    std::fs::write(&b, markdown(rep))?;
+    Ok(vec![a, b])
+}
