@@ -35,6 +35,11 @@ pub const GAMMA: f64 = 0.5;
 pub const MAX_NEWTON: usize = 40;
 /// Backtracking halvings per Newton iteration.
 const MAX_HALVINGS: usize = 10;
+/// A step whose Newton stalls (the contact law is only piecewise smooth: a trial that
+/// crosses a reversal can make Newton cycle between the two sides) is accepted when
+/// ‖Φ‖∞ ≤ this × max|r| and counted in `loose_steps`; far below the 1e-4 … 1e-7
+/// amplitude accuracies the runs aim at.
+pub const LOOSE_TOLERANCE: f64 = 1e-6;
 
 /// Stuck contact stiffness per point (local δ coordinates, × area): diag(k_N, k_T0, k_T0)
 /// for points closed in the static step, 0 for open ones.
@@ -97,7 +102,7 @@ pub struct Newmark<'a, 'n> {
     /// G = B H.
     g: DMatrix<f64>,
     tol: f64,
-    /// Steps whose Newton stopped at MAX_NEWTON with ‖Φ‖ within 1e3 × tol (accepted).
+    /// Steps whose Newton stopped at MAX_NEWTON with ‖Φ‖ within LOOSE_TOLERANCE (accepted).
     pub loose_steps: usize,
 }
 
@@ -256,7 +261,7 @@ impl Stepper for Newmark<'_, '_> {
                 break;
             }
             if iterations == MAX_NEWTON {
-                if res <= 1e3 * self.tol {
+                if res <= LOOSE_TOLERANCE.max(self.tol) {
                     self.loose_steps += 1;
                     break;
                 }

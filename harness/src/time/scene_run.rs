@@ -41,7 +41,7 @@ pub struct FreqResult {
     pub last: CycleStats,
     pub steps: usize,
     pub newton_iterations: usize,
-    /// Newton stops accepted at 1e3 × the tolerance.
+    /// Newton stops accepted at the loose tolerance (newmark::LOOSE_TOLERANCE).
     pub loose_steps: usize,
     pub uinter_calls: u64,
     pub seconds: f64,
