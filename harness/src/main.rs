@@ -125,7 +125,7 @@ enum Command {
         freqs: usize,
         /// Skip thesis mode above this DOF count (it costs passes × frequencies
         /// factorizations).
-        #[arg(long, default_value_t = 200_000)]
+        #[arg(long, default_value_t = 20_000)]
         thesis_max_dofs: usize,
     },
 }

@@ -15,7 +15,9 @@
 //!   Φ(r) = r − B u₀ + G g(r) = 0,   G = B H  (m × m, m = 3 × points),
 //!
 //! by Newton with J = I + G (T(r) − K_c0), T the points' tangents from UINTER (each trial
-//! evaluated from the committed state), with backtracking on ‖Φ‖. The accepted r is
+//! evaluated from the committed state), with backtracking on ‖Φ‖; a Newton that stalls
+//! (trials crossing a reversal, where the tangent jumps from k_T to k_T0, can cycle) goes
+//! on with the stuck-tangent iteration r ← r₀ − G g(r), a contraction. The accepted r is
 //! committed once. Per step: one sparse solve and m UINTER calls per Newton iteration.
 
 use nalgebra::{DMatrix, DVector, Matrix3};
@@ -33,6 +35,8 @@ pub const BETA: f64 = 0.25;
 pub const GAMMA: f64 = 0.5;
 /// Most Newton iterations per step.
 pub const MAX_NEWTON: usize = 40;
+/// Stuck-tangent (fixed-point) iterations after a stalled Newton.
+pub const MAX_FIXED_POINT: usize = 2000;
 /// Backtracking halvings per Newton iteration.
 const MAX_HALVINGS: usize = 10;
 /// A step whose Newton stalls (the contact law is only piecewise smooth: a trial that
@@ -257,10 +261,14 @@ impl Stepper for Newmark<'_, '_> {
         let mut iterations = 0;
         loop {
             let res = phi.amax() / scale;
+            if iterations > 30 && std::env::var("JL_DEBUG").is_ok() && iterations % 10 == 0 {
+                let j = phi.iamax();
+                eprintln!("it {iterations} res {res:.3e} at comp {j} r {:.6e} scale {scale:.3e} rmax comp {} T {:?}", r[j], r.iamax(), tangents[j/3].diagonal());
+            }
             if res <= self.tol {
                 break;
             }
-            if iterations == MAX_NEWTON {
+            if iterations == MAX_NEWTON + MAX_FIXED_POINT {
                 if res <= LOOSE_TOLERANCE.max(self.tol) {
                     self.loose_steps += 1;
                     break;
@@ -272,6 +280,15 @@ impl Stepper for Newmark<'_, '_> {
                 });
             }
             iterations += 1;
+            if iterations > MAX_NEWTON {
+                // Stuck-tangent iteration r ← r₀ − G g(r) (J replaced by I): a contraction,
+                // since 0 ≤ K_c0 − T ≤ K_c0 and ρ(G K_c0) < 1.
+                r -= &phi;
+                let (g2, p2) = eval(&r, contacts, &mut tangents)?;
+                gr = g2;
+                phi = p2;
+                continue;
+            }
             let mut d = DMatrix::zeros(m, m);
             for (i, t) in tangents.iter().enumerate() {
                 let dt = t - self.kc0[i];
