@@ -36,14 +36,16 @@ pub const GAMMA: f64 = 0.5;
 /// Most Newton iterations per step.
 pub const MAX_NEWTON: usize = 40;
 /// Stuck-tangent (fixed-point) iterations after a stalled Newton.
-pub const MAX_FIXED_POINT: usize = 2000;
+pub const MAX_FIXED_POINT: usize = 200;
 /// Backtracking halvings per Newton iteration.
 const MAX_HALVINGS: usize = 10;
 /// A step whose Newton stalls (the contact law is only piecewise smooth: a trial that
 /// crosses a reversal can make Newton cycle between the two sides) is accepted when
-/// ‖Φ‖∞ ≤ this × max|r| and counted in `loose_steps`; far below the 1e-4 … 1e-7
-/// amplitude accuracies the runs aim at.
-pub const LOOSE_TOLERANCE: f64 = 1e-6;
+/// ‖Φ‖∞ ≤ this × max|r| and counted in `loose_steps` (seen on the coarse three beams at
+/// resonance: a 2-cycle at 2.6e-6, points whose trials chatter across a kink); a
+/// contact-displacement mismatch of that size is far below the 1e-4 … 1e-7 amplitude
+/// accuracies the runs aim at.
+pub const LOOSE_TOLERANCE: f64 = 1e-5;
 
 /// Stuck contact stiffness per point (local δ coordinates, × area): diag(k_N, k_T0, k_T0)
 /// for points closed in the static step, 0 for open ones.
@@ -261,10 +263,6 @@ impl Stepper for Newmark<'_, '_> {
         let mut iterations = 0;
         loop {
             let res = phi.amax() / scale;
-            if iterations > 30 && std::env::var("JL_DEBUG").is_ok() && iterations % 10 == 0 {
-                let j = phi.iamax();
-                eprintln!("it {iterations} res {res:.3e} at comp {j} r {:.6e} scale {scale:.3e} rmax comp {} T {:?}", r[j], r.iamax(), tangents[j/3].diagonal());
-            }
             if res <= self.tol {
                 break;
             }
