@@ -116,11 +116,25 @@ pub fn regime_counts(r: &SweepResult, closed: &[bool]) -> Vec<[usize; 4]> {
         .collect()
 }
 
-/// stick_slip.csv: freq_hz, open, stick, microslip, sliding (point counts).
+/// stick_slip.csv: freq_hz, open, stick, microslip, sliding (point counts, worst
+/// direction), then max and median A/δ* over the closed points.
 pub fn stick_slip(r: &SweepResult, closed: &[bool]) -> String {
-    let mut s = String::from("freq_hz,open,stick,microslip,sliding\n");
-    for (f, c) in r.freqs.iter().zip(regime_counts(r, closed)) {
-        let _ = writeln!(s, "{f:.10e},{},{},{},{}", c[0], c[1], c[2], c[3]);
+    let mut s = String::from("freq_hz,open,stick,microslip,sliding,max_ratio,median_ratio\n");
+    for ((f, c), pts) in r.freqs.iter().zip(regime_counts(r, closed)).zip(&r.points) {
+        let mut ratios: Vec<f64> = pts
+            .iter()
+            .zip(closed)
+            .filter(|(_, &c)| c)
+            .map(|(q, _)| q.ratio[0].max(q.ratio[1]))
+            .collect();
+        ratios.sort_by(f64::total_cmp);
+        let max = ratios.last().copied().unwrap_or(0.0);
+        let median = ratios.get(ratios.len() / 2).copied().unwrap_or(0.0);
+        let _ = writeln!(
+            s,
+            "{f:.10e},{},{},{},{},{max:.6e},{median:.6e}",
+            c[0], c[1], c[2], c[3]
+        );
     }
     s
 }

@@ -119,7 +119,7 @@ pub fn write_all(
         svg::frf(
             &p,
             title,
-            &scene.spec.units.length,
+            &scene.spec.units,
             &r.problem,
             &r.main,
             r.reference.as_ref(),
@@ -130,11 +130,7 @@ pub fn write_all(
         out.push(p);
         if eff.stick_slip_map {
             let p = dir.join("stick_slip.svg");
-            svg::stick_slip(
-                &p,
-                &r.main.freqs,
-                &csv::regime_counts(&r.main, &r.stat.closed),
-            )?;
+            svg::stick_slip(&p, &scene.spec.units, &r.problem, &r.main, &r.stat.closed)?;
             out.push(p);
         }
     }

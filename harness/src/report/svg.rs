@@ -18,7 +18,7 @@ fn err<E: std::fmt::Display>(e: E) -> String {
 pub fn frf(
     path: &std::path::Path,
     title: &str,
-    units: &str,
+    units: &crate::scene::Units,
     p: &Problem,
     main: &SweepResult,
     reference: Option<&SweepResult>,
@@ -53,13 +53,15 @@ pub fn frf(
         .caption(title, ("sans-serif", 20))
         .margin(15)
         .x_label_area_size(45)
-        .y_label_area_size(80)
+        .y_label_area_size(70)
         .build_cartesian_2d(x0..x1, (ymin * 0.8..ymax * 1.25).log_scale())
         .map_err(err)?;
     chart
         .configure_mesh()
-        .x_desc("frequency [1/time]")
-        .y_desc(format!("amplitude [{units}]"))
+        .x_desc(freq_label(units))
+        .y_desc(format!("amplitude [{}]", units.length))
+        .y_label_formatter(&|v: &f64| format!("{v:.0e}"))
+        .x_label_formatter(&|v: &f64| format!("{v:.0}"))
         .draw()
         .map_err(err)?;
     for (k, o) in p.outputs.iter().enumerate() {
@@ -96,11 +98,21 @@ pub fn frf(
     }
     chart
         .configure_series_labels()
+        .position(SeriesLabelPosition::UpperMiddle)
         .background_style(WHITE.mix(0.85))
         .border_style(BLACK)
         .draw()
         .map_err(err)?;
     root.present().map_err(err)
+}
+
+/// "frequency [Hz]" for seconds, else "frequency [1/<time>]".
+fn freq_label(units: &crate::scene::Units) -> String {
+    if units.time == "s" {
+        "frequency [Hz]".into()
+    } else {
+        format!("frequency [1/{}]", units.time)
+    }
 }
 
 /// Frequencies run per pass (thesis: Fig. 4.33; fast: one pass).
@@ -151,58 +163,84 @@ pub fn passes(path: &std::path::Path, r: &SweepResult) -> Res {
     root.present().map_err(err)
 }
 
-/// Points per regime (open, stick, microslip, sliding) over frequency.
-pub fn stick_slip(path: &std::path::Path, freqs: &[f64], counts: &[[usize; 4]]) -> Res {
-    let root = SVGBackend::new(path, (900, 460)).into_drawing_area();
+/// Stick/slip map: one row per closed contact point (sorted by interface, then x, y), one
+/// column per frequency, coloured by log₁₀(A/δ*) of the point's larger tangential
+/// amplitude from 1e-3 (blue, deep stick) to 10 (red); sliding cells are outlined black.
+pub fn stick_slip(
+    path: &std::path::Path,
+    units: &crate::scene::Units,
+    p: &Problem,
+    r: &SweepResult,
+    closed: &[bool],
+) -> Res {
+    let root = SVGBackend::new(path, (900, 520)).into_drawing_area();
     root.fill(&WHITE).map_err(err)?;
-    let total = counts.first().map_or(1, |c| c.iter().sum::<usize>()).max(1) as f64;
-    let f0 = freqs.first().copied().unwrap_or(0.0);
-    let f1 = freqs.last().copied().unwrap_or(1.0);
-    let (x0, x1) = if f1 > f0 {
-        (f0, f1)
-    } else {
-        (f0 * 0.9, f0 * 1.1 + 1e-12)
-    };
+    let mut rows: Vec<usize> = (0..p.contacts.len()).filter(|&i| closed[i]).collect();
+    rows.sort_by(|&a, &b| {
+        let (ca, cb) = (&p.contacts[a], &p.contacts[b]);
+        (ca.interface, ca.position[0], ca.position[1])
+            .partial_cmp(&(cb.interface, cb.position[0], cb.position[1]))
+            .unwrap_or(std::cmp::Ordering::Equal)
+    });
+    let nf = r.freqs.len().max(1);
     let mut chart = ChartBuilder::on(&root)
-        .caption("contact points per regime", ("sans-serif", 20))
+        .caption(
+            "stick/slip map: log10(A/δ*) per contact point (rows) and frequency (columns)",
+            ("sans-serif", 16),
+        )
         .margin(15)
         .x_label_area_size(40)
-        .y_label_area_size(50)
-        .build_cartesian_2d(x0..x1, 0f64..total * 1.05)
+        .y_label_area_size(60)
+        .build_cartesian_2d(0f64..nf as f64, 0f64..rows.len().max(1) as f64)
         .map_err(err)?;
+    let freqs = r.freqs.clone();
     chart
         .configure_mesh()
-        .x_desc("frequency [1/time]")
-        .y_desc("points")
+        .disable_mesh()
+        .x_desc(freq_label(units))
+        .y_desc("contact point (by interface, x)")
+        .x_label_formatter(&|v: &f64| {
+            let i = (*v as usize).min(freqs.len().saturating_sub(1));
+            freqs.get(i).map_or(String::new(), |f| format!("{f:.0}"))
+        })
         .draw()
         .map_err(err)?;
-    for (g, (name, color)) in [
-        ("open", BLACK),
-        ("stick", BLUE),
-        ("microslip", GREEN),
-        ("sliding", RED),
-    ]
-    .into_iter()
-    .enumerate()
-    {
-        let pts: Vec<(f64, f64)> = freqs
-            .iter()
-            .zip(counts)
-            .map(|(f, c)| (*f, c[g] as f64))
-            .collect();
+    let color = |ratio: f64| {
+        let t = ((ratio.max(1e-12).log10() + 3.0) / 4.0).clamp(0.0, 1.0);
+        RGBColor(
+            (255.0 * t) as u8,
+            (80.0 * (1.0 - (2.0 * t - 1.0).abs())) as u8,
+            (255.0 * (1.0 - t)) as u8,
+        )
+    };
+    for (fi, pts) in r.points.iter().enumerate() {
         chart
-            .draw_series(LineSeries::new(pts, color.stroke_width(2)))
-            .map_err(err)?
-            .label(name)
-            .legend(move |(x, y)| {
-                PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
-            });
+            .draw_series(rows.iter().enumerate().map(|(ri, &i)| {
+                let q = &pts[i];
+                let ratio = q.ratio[0].max(q.ratio[1]);
+                Rectangle::new(
+                    [(fi as f64, ri as f64), (fi as f64 + 1.0, ri as f64 + 1.0)],
+                    color(ratio).filled(),
+                )
+            }))
+            .map_err(err)?;
+        chart
+            .draw_series(
+                rows.iter()
+                    .enumerate()
+                    .filter(|(_, &i)| {
+                        pts[i]
+                            .regime
+                            .contains(&crate::capi::JOINTLIN_REGIME_SLIDING)
+                    })
+                    .map(|(ri, _)| {
+                        Rectangle::new(
+                            [(fi as f64, ri as f64), (fi as f64 + 1.0, ri as f64 + 1.0)],
+                            BLACK.stroke_width(1),
+                        )
+                    }),
+            )
+            .map_err(err)?;
     }
-    chart
-        .configure_series_labels()
-        .background_style(WHITE.mix(0.85))
-        .border_style(BLACK)
-        .draw()
-        .map_err(err)?;
     root.present().map_err(err)
 }

@@ -126,9 +126,10 @@ pub fn coarse(scenes: &Path, rep: &mut Report, log: &dyn Fn(&str)) -> Result<(),
             o.amplitude,
             Some(o.half_range()),
             format!(
-                "TD: {} cycles × {} Newmark steps, {:.1} s, {}",
+                "TD: {} cycles × {} Newmark steps ({} accepted at the loose Newton tolerance), {:.1} s, {}",
                 td.cycles,
                 td.steps_per_cycle,
+                td.loose_steps,
                 td.seconds,
                 if td.steady {
                     "periodic"

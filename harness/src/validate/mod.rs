@@ -229,3 +229,36 @@ pub fn write(dir: &Path, rep: &Report) -> std::io::Result<Vec<PathBuf>> {
     std::fs::write(&b, markdown(rep))?;
     Ok(vec![a, b])
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn rows_carry_relative_errors_and_missing_solutions() {
+        let r = Row::new(
+            "c",
+            "p".into(),
+            "q",
+            Some(1.1),
+            1.0,
+            Some(2.0),
+            String::new(),
+        );
+        assert!((r.error.unwrap() - 0.1).abs() < 1e-12);
+        assert!((r.error_half_range.unwrap() + 0.45).abs() < 1e-12);
+        let none = Row::new("c", "p".into(), "q", None, 1.0, Some(2.0), String::new());
+        assert!(none.error.is_none() && none.error_half_range.is_none());
+        let rep = Report {
+            rows: vec![r, none],
+            notes: vec![("c".into(), "a note".into())],
+        };
+        let md = markdown(&rep);
+        assert!(
+            md.contains("| p | q | 1.1000e0 | 1.0000e0 | +10.00 |"),
+            "{md}"
+        );
+        assert!(md.contains("- a note"));
+        assert_eq!(csv(&rep).lines().count(), 3);
+    }
+}
