@@ -266,7 +266,7 @@ pub struct UinterPoint<'a> {
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct UinterOut {
     pub stress: [f64; 3],
-    /// ∂STRESS/∂RDISP, [row][col].
+    /// ∂STRESS/∂RDISP, `[row][col]`.
     pub ddsddr: [[f64; 3]; 3],
     pub dviscous: [[f64; 3]; 3],
     pub closed: bool,

@@ -1,12 +1,20 @@
 //! jointlin-harness: an independent host FE code that exercises jointlin the way
-//! Abaqus would (through the C API only).
+//! Abaqus would (through the C API only, [`capi`]).
 //!
-//! This library part holds the FE foundation:
-//! - [`fe`]: structured hex8 meshes of stacked boxes, the hex8 element (incompatible
-//!   modes), sparse assembly with fixed DOFs eliminated, surface pressure loads,
-//!   node-pair spring/damper blocks (where contact points enter) and contact pairs.
-//! - [`solve`]: a safe wrapper over UMFPACK's complex 64-bit interface and a
-//!   shift-invert subspace iteration for eigenfrequencies.
+//! Pipeline of `jointlin run SCENE --out DIR` ([`run`]):
+//! 1. [`scene`]: TOML schema, validation with file:line:key errors, `[effects]` switches.
+//! 2. [`model`]: scene → mesh and lumped bodies, K, M, material damping, contact points
+//!    (node pairs with frames and tributary areas), preload and excitation, outputs.
+//! 3. [`solve::static_step`]: the preload step, Newton with UINTER (LINPER = 0).
+//! 4. [`solve::sweep`]: the steady-state step, `fast` (one factorization per frequency,
+//!    condensation or FGMRES for the contact iterations) or `thesis` (multi-pass
+//!    UEXTERNALDB scheme through the library's store, UINTER LINPER = 1).
+//! 5. [`report`]: results.csv, points.csv, stick_slip.csv, run.json, SVG plots.
+//!
+//! Foundation: [`fe`] (hex8 with incompatible modes, CSC assembly, pair blocks, contact
+//! pairs), [`solve::umfpack`] (complex 64-bit UMFPACK), [`solve::modal`]. Also
+//! [`mod@bench`] (`jointlin bench`, `jointlin modes`), and the time-domain reference,
+//! validation and trade-off studies ([`time`], [`validate`], [`tradeoff`]).
 //!
 //! Units are the caller's and must be consistent. The tests use N, mm, s, t, so E is
 //! in MPa (N/mm²), ρ in t/mm³, forces in N, frequencies in Hz or rad/s as named.

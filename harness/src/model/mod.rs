@@ -1,7 +1,7 @@
 //! The assembled problem of a scene: mesh and lumped bodies, K, M, material damping,
 //! contact points with frames and areas, preload and excitation vectors, outputs.
 //!
-//! Built by [`build`] from a validated [`Scene`]. Units are the scene's. Contact points
+//! Built by [`build`] from a validated [`Scene`](crate::scene::Scene). Units are the scene's. Contact points
 //! follow `fe::contact_pairs`: δ = u_upper − u_lower, frame Q = [n t₁ t₂] with n from the
 //! lower body into the upper one; a ground–mass interface has the fixed ground node as
 //! its lower side.
@@ -70,7 +70,7 @@ pub struct ContactPoint {
     pub interface: usize,
     /// Position (length), for reports.
     pub position: [f64; 3],
-    /// Local relative displacement component c (n, t₁, t₂) = Σ w·u[free]: the sparse rows
+    /// Local relative displacement component c (n, t₁, t₂) = Σ w·u_free: the sparse rows
     /// of the map B (u_free → Qᵀ(u_upper − u_lower)); fixed DOFs are left out.
     pub rows: [Vec<(usize, f64)>; 3],
 }

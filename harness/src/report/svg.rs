@@ -1,4 +1,4 @@
-//! SVG plots with plotters' SVG backend (text is written as SVG <text>, so no font files
+//! SVG plots with plotters' SVG backend (text is written as SVG `<text>`, so no font files
 //! are needed): the FRF with and without contact damping, frequencies per pass (Fig.
 //! 4.33), and the stick/slip map.
 

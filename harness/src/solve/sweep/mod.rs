@@ -114,11 +114,11 @@ pub struct PassRecord {
 #[derive(Debug, Clone, Default)]
 pub struct SweepResult {
     pub freqs: Vec<f64>,
-    /// [frequency][output] complex displacement amplitude.
+    /// `[frequency][output]` complex displacement amplitude.
     pub outputs: Vec<Vec<C64>>,
     /// Power dissipated in the joints (force·length/time): Σ energy per cycle × f.
     pub power: Vec<f64>,
-    /// [frequency][contact point]; empty unless per-point results were asked for.
+    /// `[frequency][contact point]`; empty unless per-point results were asked for.
     pub points: Vec<Vec<PointFreq>>,
     /// Fast: contact iterations per frequency; thesis: passes that ran the frequency.
     pub iterations: Vec<usize>,
