@@ -1,0 +1,192 @@
+#!/usr/bin/env bash
+# Robustness checks of issue 7 (docs/robustness.md says what each one proves).
+#
+#   bash scripts/robustness.sh ci          # what CI runs: tests + asan + valgrind + fuzz-ci
+#   bash scripts/robustness.sh tests       # tests/hard_cases.rs, threads.rs, restart.rs (release)
+#   bash scripts/robustness.sh asan        # C/Fortran hosts + threaded C host, ASan+UBSan
+#   bash scripts/robustness.sh valgrind    # memcheck of the threaded C host (the single-
+#                                          # threaded hosts: cargo test --test hosts)
+#   bash scripts/robustness.sh fuzz-ci [S] # every fuzz target S seconds (default 15)
+#   bash scripts/robustness.sh fuzz-long [S]  # every target S seconds (default 240), then
+#                                          # minimizes the corpus (cargo fuzz cmin); nightly
+#   bash scripts/robustness.sh tsan        # the ThreadSanitizer attempts (see the doc)
+#
+# Fuzzing uses `cargo +nightly fuzz` (libFuzzer, ASan) when a nightly toolchain and
+# cargo-fuzz are installed; otherwise (stable only, the usual CI machine) the same targets
+# are built on stable as plain binaries (fuzz/Cargo.toml feature `replay`) that replay the
+# committed corpus and then mutate it at random for the time budget: a random search, not
+# coverage-guided fuzzing. The line "fuzz mode:" says which one ran.
+#
+# Build products go to $CARGO_TARGET_DIR (default target/) and $ROBUST_DIR (default
+# $CARGO_TARGET_DIR/robustness). Needs gcc, gfortran, make; valgrind for `valgrind`.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+ROOT=$PWD
+TARGET=${CARGO_TARGET_DIR:-$ROOT/target}
+OUT=${ROBUST_DIR:-$TARGET/robustness}
+mkdir -p "$OUT"
+TARGETS=(jointlin_linearize jointlin_uinter jointlin_uexternaldb)
+
+log() { printf '== %s\n' "$*"; }
+
+lib() {
+    CARGO_TARGET_DIR=$TARGET cargo build --release -q -p jointlin --lib
+    LIBDIR=$TARGET/release
+    test -f "$LIBDIR/libjointlin.so"
+}
+
+# Runs a host program in a fresh directory; fails on a nonzero exit or any sanitizer
+# report on stderr.
+run_host() { # name dir program [config]
+    local name=$1 dir=$2 prog=$3 cfg=${4:-}
+    rm -rf "$dir" && mkdir -p "$dir"
+    local start=$SECONDS
+    if ! (cd "$dir" && JOINTLIN_CONFIG=$cfg "$prog" >stdout.txt 2>stderr.txt); then
+        cat "$dir/stderr.txt" >&2
+        echo "FAIL: $name exited nonzero" >&2
+        return 1
+    fi
+    if grep -qE 'ERROR: (AddressSanitizer|LeakSanitizer)|runtime error:|WARNING: ThreadSanitizer' "$dir/stderr.txt"; then
+        cat "$dir/stderr.txt" >&2
+        echo "FAIL: $name: sanitizer report" >&2
+        return 1
+    fi
+    echo "ok: $name ($(wc -l <"$dir/stdout.txt") records, $((SECONDS - start)) s)"
+}
+
+cmd_tests() {
+    log "tests: hard_cases, threads, restart (release)"
+    CARGO_TARGET_DIR=$TARGET cargo test --release -p jointlin --test hard_cases --test threads --test restart
+}
+
+# The hosts built with gcc/gfortran -fsanitize=address,undefined against a
+# libjointlin.so in $1 ("plain": the stable release build, where ASan sees the hosts'
+# accesses and the library's malloc/free/memcpy; "instrumented": built by nightly rustc
+# with -Zsanitizer=address, so the library's own loads and stores are checked too).
+cmd_asan() {
+    lib
+    asan_hosts plain "$LIBDIR"
+    if cargo +nightly --version >/dev/null 2>&1; then
+        RUSTFLAGS="-Zsanitizer=address -Cunsafe-allow-abi-mismatch=sanitizer" \
+            CARGO_TARGET_DIR=$TARGET/asan-lib cargo +nightly build --release -q -p jointlin --lib \
+            --target x86_64-unknown-linux-gnu
+        asan_hosts instrumented "$TARGET/asan-lib/x86_64-unknown-linux-gnu/release"
+    else
+        echo "no nightly toolchain: libjointlin.so itself not ASan-instrumented (hosts are)"
+    fi
+}
+
+asan_hosts() {
+    local kind=$1 LIBDIR=$2
+    log "asan ($kind libjointlin.so): C and Fortran hosts and the threaded C host"
+    local san="-fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer"
+    local b=$OUT/asan-$kind
+    make -s -f harness/c/Makefile BUILD="$b/c" JOINTLIN_LIBDIR="$LIBDIR" JOINTLIN_INCDIR="$ROOT/include" \
+        CFLAGS="-O1 -g -std=c99 -Wall -Wextra -Werror -pedantic $san"
+    make -s -f fortran-shim/Makefile BUILD="$b/shim" JOINTLIN_LIBDIR="$LIBDIR" \
+        FFLAGS="-O1 -g -fPIC -Wall -Wno-unused-dummy-argument -Wno-unused-variable $san"
+    make -s -f harness/fortran/Makefile BUILD="$b/fortran" SHIM="$b/shim" JOINTLIN_LIBDIR="$LIBDIR" \
+        FFLAGS="-O1 -g -Wall -Wno-unused-dummy-argument $san"
+    gcc -O1 -g -std=c11 -Wall -Wextra -Werror -pthread $san -I"$ROOT/include" \
+        scripts/robustness/uinter_threads.c -o "$b/uinter_threads" \
+        -L"$LIBDIR" -Wl,-rpath,"$LIBDIR" -l:libjointlin.so -lm
+    export ASAN_OPTIONS=detect_leaks=1:halt_on_error=1:detect_stack_use_after_return=1
+    export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
+    run_host "C block_stick" "$b/run/c-block_stick" "$b/c/block_stick"
+    run_host "C sweep" "$b/run/c-sweep" "$b/c/sweep"
+    run_host "Fortran block_stick" "$b/run/f-block_stick" "$b/fortran/block_stick" "$ROOT/harness/fortran/block_stick.cfg"
+    run_host "Fortran sweep" "$b/run/f-sweep" "$b/fortran/sweep" "$ROOT/harness/fortran/sweep.cfg"
+    run_host "C uinter_threads (8 pthreads)" "$b/run/uinter_threads" "$b/uinter_threads"
+}
+
+cmd_valgrind() {
+    lib
+    log "valgrind memcheck: threaded C host (single-threaded hosts: cargo test --test hosts)"
+    local b=$OUT/valgrind
+    mkdir -p "$b"
+    gcc -O1 -g -std=c11 -Wall -Wextra -Werror -pthread -I"$ROOT/include" \
+        scripts/robustness/uinter_threads.c -o "$b/uinter_threads" \
+        -L"$LIBDIR" -Wl,-rpath,"$LIBDIR" -l:libjointlin.so -lm
+    valgrind --error-exitcode=1 --leak-check=full --errors-for-leak-kinds=definite --quiet \
+        "$b/uinter_threads"
+}
+
+have_cargo_fuzz() {
+    cargo +nightly --version >/dev/null 2>&1 && cargo +nightly fuzz --version >/dev/null 2>&1
+}
+
+cmd_fuzz_ci() {
+    local secs=${1:-15}
+    if have_cargo_fuzz; then
+        log "fuzz mode: cargo fuzz (libFuzzer + ASan, nightly), $secs s per target"
+        for t in "${TARGETS[@]}"; do
+            # A scratch copy of the corpus: CI must not grow the committed one.
+            local c=$OUT/fuzz-corpus/$t
+            rm -rf "$c" && mkdir -p "$c" && cp fuzz/corpus/"$t"/* "$c"/
+            if ! cargo +nightly fuzz run --target-dir "$TARGET/fuzz" "$t" "$c" -- \
+                -max_total_time="$secs" -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 \
+                >"$OUT/fuzz-$t.log" 2>&1; then
+                tail -40 "$OUT/fuzz-$t.log" >&2
+                echo "FAIL: fuzz target $t (artifact in fuzz/artifacts/$t)" >&2
+                return 1
+            fi
+            echo "ok: $t $(grep -E '^Done' "$OUT/fuzz-$t.log")"
+        done
+    else
+        log "fuzz mode: stable replay + random mutation (no nightly cargo-fuzz), $secs s per target"
+        CARGO_TARGET_DIR=$TARGET/fuzz-replay cargo build --release -q \
+            --manifest-path fuzz/Cargo.toml --no-default-features --features replay
+        for t in "${TARGETS[@]}"; do
+            "$TARGET/fuzz-replay/release/$t" "fuzz/corpus/$t" --seconds "$secs" --seed "$RANDOM"
+        done
+    fi
+}
+
+cmd_fuzz_long() {
+    local secs=${1:-240}
+    have_cargo_fuzz || { echo "fuzz-long needs cargo +nightly fuzz" >&2; exit 1; }
+    for t in "${TARGETS[@]}"; do
+        log "fuzz $t for $secs s"
+        if ! cargo +nightly fuzz run --target-dir "$TARGET/fuzz" "$t" "fuzz/corpus/$t" -- \
+            -max_total_time="$secs" -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 \
+            >"$OUT/fuzz-$t.log" 2>&1; then
+            tail -40 "$OUT/fuzz-$t.log" >&2
+            exit 1
+        fi
+        grep -E '^(stat::number_of_executed_units|Done)' "$OUT/fuzz-$t.log"
+        cargo +nightly fuzz cmin --target-dir "$TARGET/fuzz" "$t" "fuzz/corpus/$t" 2>&1 | tail -1
+    done
+}
+
+cmd_tsan() {
+    # Documented in docs/robustness.md: with no rust-src for -Zbuild-std, std's locks are
+    # not instrumented and TSan reports false races inside std::sync-protected code.
+    have_cargo_fuzz || { echo "tsan needs a nightly toolchain" >&2; exit 1; }
+    log "tsan: tests/threads.rs built with -Zsanitizer=thread (std uninstrumented)"
+    RUSTFLAGS="-Zsanitizer=thread -Cunsafe-allow-abi-mismatch=sanitizer" \
+        CARGO_TARGET_DIR=$TARGET/tsan cargo +nightly test --release -p jointlin --test threads \
+        --target x86_64-unknown-linux-gnu -- --test-threads 1 2>&1 | tee "$OUT/tsan.txt" |
+        grep -E '^test |test result' || true
+    echo "TSan reports: $(grep -c '^WARNING: ThreadSanitizer' "$OUT/tsan.txt" || true) (see $OUT/tsan.txt)"
+}
+
+case ${1:-ci} in
+ci)
+    start=$SECONDS
+    cmd_tests
+    cmd_asan
+    cmd_valgrind
+    cmd_fuzz_ci 15
+    log "robustness ci: all passed in $((SECONDS - start)) s"
+    ;;
+tests) cmd_tests ;;
+asan) cmd_asan ;;
+valgrind) cmd_valgrind ;;
+fuzz-ci) cmd_fuzz_ci "${2:-15}" ;;
+fuzz-long) cmd_fuzz_long "${2:-240}" ;;
+tsan) cmd_tsan ;;
+*)
+    sed -n '2,20p' "$0"
+    exit 2
+    ;;
+esac
