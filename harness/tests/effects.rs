@@ -107,3 +107,61 @@ fn cli_bad_scene_names_file_line_key_and_writes_nothing() {
     assert!(!dir.exists(), "nothing may be written for a bad scene");
     std::fs::remove_file(&scene).unwrap();
 }
+
+#[test]
+fn cli_run_writes_the_documented_files() {
+    let dir = std::env::temp_dir().join(format!("jointlin-run-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    let scene = format!("{}/../scenes/block-stick.toml", env!("CARGO_MANIFEST_DIR"));
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_jointlin"))
+        .args(["run", &scene, "--out", dir.to_str().unwrap(), "--quiet"])
+        .output()
+        .unwrap();
+    let log = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{log}");
+    // The run log lists every effect with on/off and its cost.
+    for e in [
+        "normal_contact_nonlinearity",
+        "tangential_microslip",
+        "contact_damping",
+        "point_energy_output",
+    ] {
+        assert!(log.contains(e), "{log}");
+    }
+    let results = std::fs::read_to_string(dir.join("results.csv")).unwrap();
+    let mut lines = results.lines();
+    assert_eq!(
+        lines.next().unwrap(),
+        "freq_hz,block_x_amp,block_x_phase_deg,dissipated_power"
+    );
+    let row: Vec<f64> = lines
+        .next()
+        .unwrap()
+        .split(',')
+        .map(|v| v.parse().unwrap())
+        .collect();
+    // Amplitude as in block_stick_amplitude_matches_the_thesis_in_both_modes; the power
+    // is the loop energy × f > 0; the phase lags the force (−180° < φ < 0°).
+    assert!(
+        (row[1] / 4.267e-4 - 1.0).abs() < 0.01 && row[3] > 0.0 && row[2] < 0.0 && row[2] > -180.0
+    );
+    let points = std::fs::read_to_string(dir.join("points.csv")).unwrap();
+    assert!(points.starts_with("freq_hz,point,interface,x,y,z,closed,pressure,amp_t1"));
+    assert_eq!(points.lines().count(), 2);
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("run.json")).unwrap()).unwrap();
+    for k in ["scene", "effects", "passes", "timings_s", "c_api_calls"] {
+        assert!(json.get(k).is_some(), "run.json lacks {k}");
+    }
+    assert_eq!(json["scene"]["spec"]["interfaces"][0]["mu"], 0.3);
+    for f in [
+        "frf.svg",
+        "passes.svg",
+        "stick_slip.svg",
+        "stick_slip.csv",
+        "results_without_contact_damping.csv",
+    ] {
+        assert!(dir.join(f).exists(), "{f}");
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -17,8 +17,8 @@
 //! by Newton with J = I + G (T(r) − K_c0), T the points' tangents from UINTER (each trial
 //! evaluated from the committed state), with backtracking on ‖Φ‖; a Newton that stalls
 //! (trials crossing a reversal, where the tangent jumps from k_T to k_T0, can cycle) goes
-//! on with the stuck-tangent iteration r ← r₀ − G g(r), a contraction. The accepted r is
-//! committed once. Per step: one sparse solve and m UINTER calls per Newton iteration.
+//! on with secant iterations (per component the chord from the committed state to the
+//! trial). The accepted r is committed once. Per step: one sparse solve and m UINTER calls per Newton iteration.
 
 use nalgebra::{DMatrix, DVector, Matrix3};
 
@@ -35,8 +35,8 @@ pub const BETA: f64 = 0.25;
 pub const GAMMA: f64 = 0.5;
 /// Most Newton iterations per step.
 pub const MAX_NEWTON: usize = 40;
-/// Stuck-tangent (fixed-point) iterations after a stalled Newton.
-pub const MAX_FIXED_POINT: usize = 200;
+/// Secant (chord) iterations after a stalled Newton.
+pub const MAX_FIXED_POINT: usize = 60;
 /// Backtracking halvings per Newton iteration.
 const MAX_HALVINGS: usize = 10;
 /// A step whose Newton stalls (the contact law is only piecewise smooth: a trial that
@@ -262,6 +262,11 @@ impl Stepper for Newmark<'_, '_> {
         let mut iterations = 0;
         loop {
             let res = phi.amax() / scale;
+            if iterations >= 95 && std::env::var("JL_DEBUG").is_ok() {
+                let j = phi.iamax();
+                let i = j / 3;
+                eprintln!("it {iterations} res {res:.3e} comp {j} r [{:.6e} {:.6e} {:.6e}] committed {:?} q {:?} qc {:?} T {:?}", r[3*i], r[3*i+1], r[3*i+2], contacts.delta[i], contacts.trial_force()[i], contacts.force[i], tangents[i].diagonal().as_slice());
+            }
             if res <= self.tol {
                 break;
             }
@@ -277,16 +282,32 @@ impl Stepper for Newmark<'_, '_> {
                 });
             }
             iterations += 1;
+            let mut d = DMatrix::zeros(m, m);
             if iterations > MAX_NEWTON {
-                // Stuck-tangent iteration r ← r₀ − G g(r) (J replaced by I): a contraction,
-                // since 0 ≤ K_c0 − T ≤ K_c0 and ρ(G K_c0) < 1.
-                r -= &phi;
+                // Secant iterations: per component the chord stiffness from the committed
+                // state to the trial (no kink inside a chord, so no cycling across one).
+                let q = contacts.trial_force();
+                for i in 0..contacts.len() {
+                    for a in 0..3 {
+                        let dd = r[3 * i + a] - contacts.delta[i][a];
+                        let chord = if dd.abs() > 1e-14 * scale {
+                            (q[i][a] - contacts.force[i][a]) / dd
+                        } else {
+                            tangents[i][(a, a)]
+                        };
+                        d[(3 * i + a, 3 * i + a)] = chord - self.kc0[i][(a, a)];
+                    }
+                }
+                let jac = DMatrix::identity(m, m) + &self.g * d;
+                let Some(dr) = jac.lu().solve(&(-&phi)) else {
+                    return Err(TimeError::Singular { t: t1 });
+                };
+                r += dr;
                 let (g2, p2) = eval(&r, contacts, &mut tangents)?;
                 gr = g2;
                 phi = p2;
                 continue;
             }
-            let mut d = DMatrix::zeros(m, m);
             for (i, t) in tangents.iter().enumerate() {
                 let dt = t - self.kc0[i];
                 for a in 0..3 {
