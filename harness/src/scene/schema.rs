@@ -301,7 +301,8 @@ pub enum Mode {
     Thesis,
 }
 
-/// Amplitude update rule (the library's, through its iteration store).
+/// Amplitude update rule of the thesis mode (the library's, through its iteration
+/// store). The fast mode iterates all points at once with Anderson acceleration.
 #[derive(Debug, Clone, Copy, Deserialize, Serialize, PartialEq, Eq, Default)]
 #[serde(rename_all = "snake_case")]
 pub enum SchemeName {
@@ -325,7 +326,7 @@ pub struct IterationSpec {
     pub tolerance: f64,
     #[serde(default)]
     pub scheme: SchemeName,
-    /// Most passes (thesis) or iterations per frequency (fast).
+    /// Most passes (thesis) or contact iterations per frequency (fast).
     #[serde(default = "default_max_passes")]
     pub max_passes: usize,
     /// Amplitude estimate (length) of the first frequency increment.
