@@ -246,9 +246,9 @@ fn main() -> ExitCode {
                     s.file,
                     s.spec.bodies.len(),
                     s.spec.interfaces.len(),
-                    s.spec.sweep.count,
-                    s.spec.sweep.f_min,
-                    s.spec.sweep.f_max,
+                    s.frequencies().len(),
+                    s.frequencies().first().copied().unwrap_or(0.0),
+                    s.frequencies().last().copied().unwrap_or(0.0),
                     s.spec.iteration.mode
                 );
                 ExitCode::SUCCESS

@@ -262,11 +262,6 @@ impl Stepper for Newmark<'_, '_> {
         let mut iterations = 0;
         loop {
             let res = phi.amax() / scale;
-            if iterations >= 95 && std::env::var("JL_DEBUG").is_ok() {
-                let j = phi.iamax();
-                let i = j / 3;
-                eprintln!("it {iterations} res {res:.3e} comp {j} r [{:.6e} {:.6e} {:.6e}] committed {:?} q {:?} qc {:?} T {:?}", r[3*i], r[3*i+1], r[3*i+2], contacts.delta[i], contacts.trial_force()[i], contacts.force[i], tangents[i].diagonal().as_slice());
-            }
             if res <= self.tol {
                 break;
             }
@@ -314,6 +309,22 @@ impl Stepper for Newmark<'_, '_> {
                     for b in 0..3 {
                         d[(3 * i + a, 3 * i + b)] = dt[(a, b)];
                     }
+                }
+            }
+            // ∂q_t/∂δ_n by a forward difference: the friction law follows the current
+            // pressure, but UINTER's DDSDDR(i,1) is 0 outside sliding, so Newton would
+            // miss the coupling (and stall where the pressure varies). One extra UINTER
+            // call per point (all points perturbed at once: they are independent).
+            let q0: Vec<[f64; 3]> = contacts.trial_force().to_vec();
+            let eps_n = 1e-6 * (0..contacts.len()).fold(f64::MIN_POSITIVE, |m, i| m.max(r[3 * i].abs()));
+            let mut rp = r.clone();
+            for i in 0..contacts.len() {
+                rp[3 * i] += eps_n;
+            }
+            contacts.evaluate(&to_points(&rp), None)?;
+            for (i, qp) in contacts.trial_force().iter().enumerate() {
+                for a in 1..3 {
+                    d[(3 * i + a, 3 * i)] = (qp[a] - q0[i][a]) / eps_n - self.kc0[i][(a, 0)];
                 }
             }
             let jac = DMatrix::identity(m, m) + &self.g * d;
