@@ -70,3 +70,33 @@ fn block_slip_amplitude_is_a_first_harmonic_balance() {
         assert!(l.amplitude_ratio > 1.0 && force < 4.0 * 0.6 / std::f64::consts::PI);
     }
 }
+
+#[test]
+fn macroslip_off_caps_the_linearization_at_the_slip_limit() {
+    use jointlin_harness::capi::{linearize, Tangential};
+    use jointlin_harness::scene::{LawName, RuleName};
+    let omega = 2.0 * std::f64::consts::PI * 0.20690142;
+    let t = Tangential {
+        law: LawName::Mindlin,
+        rule: RuleName::Thesis,
+        mu: 0.3,
+        normal: 2.0,
+        k_t0: 1282.7,
+    };
+    // The slip case slides past δ* (A/δ* ≈ 4.9); without macroslip the loop is held at
+    // A = δ*, so the block responds linearly with κ(δ*): A = F̂ / |k*(δ*) − mω² + iωd*(δ*)|.
+    let ds = linearize(&t, 0.0, omega).unwrap().slip_limit;
+    let l = linearize(&t, ds, omega).unwrap();
+    let expect =
+        0.75 / ((l.k_star - 0.002 * omega * omega).powi(2) + (omega * l.d_star).powi(2)).sqrt();
+    for mode in [Mode::Fast, Mode::Thesis] {
+        let mut s = scene("block-slip.toml");
+        s.spec.iteration.mode = mode;
+        s.spec.effects.macroslip = false;
+        let r = run(&s, Extras::default(), &quiet).unwrap();
+        assert!(r.main.converged[0] && r.main.macroslip_caps > 0, "{mode:?}");
+        let a = r.main.outputs[0][0].norm();
+        // Same quadrature on both sides: round-off only.
+        assert!((a / expect - 1.0).abs() < 1e-9, "{mode:?}: {a} vs {expect}");
+    }
+}

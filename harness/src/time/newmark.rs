@@ -39,12 +39,14 @@ pub const MAX_NEWTON: usize = 40;
 pub const MAX_FIXED_POINT: usize = 60;
 /// Backtracking halvings per Newton iteration.
 const MAX_HALVINGS: usize = 10;
-/// A step whose Newton stalls (the contact law is only piecewise smooth: a trial that
-/// crosses a reversal can make Newton cycle between the two sides) is accepted when
-/// ‖Φ‖∞ ≤ this × max|r| and counted in `loose_steps` (seen on the coarse three beams at
-/// resonance: 2-cycles at 2.6e-6 and 1.8e-5, points whose trials chatter across a kink);
-/// the runs report how many steps needed it.
-pub const LOOSE_TOLERANCE: f64 = 1e-4;
+/// A step whose Newton stalls is accepted when ‖Φ‖∞ ≤ this × max|r| and counted in
+/// `loose_steps`. Seen on the coarse three beams at the second resonance: where the
+/// pressure of a point changes during a step that reverses its slip, the library's force
+/// at zero slip increment differs between the loading side (Mindlin branch rescaled to the
+/// new pressure) and the unloading side (elastic from the committed force), a jump of
+/// ∂F/∂p·Δp (9.4e-4 N on a 2.685 N force there, ~2e-9 mm of slip): Φ has no zero, and the
+/// iteration stops in the jump at |Φ| ~ 1e-4 max|r|.
+pub const LOOSE_TOLERANCE: f64 = 1e-3;
 
 /// Stuck contact stiffness per point (local δ coordinates, × area): diag(k_N, k_T0, k_T0)
 /// for points closed in the static step, 0 for open ones.
@@ -309,22 +311,6 @@ impl Stepper for Newmark<'_, '_> {
                     for b in 0..3 {
                         d[(3 * i + a, 3 * i + b)] = dt[(a, b)];
                     }
-                }
-            }
-            // ∂q_t/∂δ_n by a forward difference: the friction law follows the current
-            // pressure, but UINTER's DDSDDR(i,1) is 0 outside sliding, so Newton would
-            // miss the coupling (and stall where the pressure varies). One extra UINTER
-            // call per point (all points perturbed at once: they are independent).
-            let q0: Vec<[f64; 3]> = contacts.trial_force().to_vec();
-            let eps_n = 1e-6 * (0..contacts.len()).fold(f64::MIN_POSITIVE, |m, i| m.max(r[3 * i].abs()));
-            let mut rp = r.clone();
-            for i in 0..contacts.len() {
-                rp[3 * i] += eps_n;
-            }
-            contacts.evaluate(&to_points(&rp), None)?;
-            for (i, qp) in contacts.trial_force().iter().enumerate() {
-                for a in 1..3 {
-                    d[(3 * i + a, 3 * i)] = (qp[a] - q0[i][a]) / eps_n - self.kc0[i][(a, 0)];
                 }
             }
             let jac = DMatrix::identity(m, m) + &self.g * d;
