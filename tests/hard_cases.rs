@@ -825,3 +825,34 @@ fn store_survives_extreme_reported_amplitudes() {
         }
     });
 }
+
+/// Library-level versions of two FE cases of issue 7 (the FE-model versions are the
+/// harness's): all contacts open at an undamped eigenfrequency is a named singular system,
+/// and near-zero damping at that resonance gives a finite amplitude or the same name.
+#[test]
+fn open_contacts_at_an_undamped_resonance_are_named_singular() {
+    deadline(30, "resonance", || {
+        let omega = 1.3;
+        for damping in [0.0, 1e-300, 1e-200, 1e-12] {
+            let p = PointProblem {
+                contact: Contact {
+                    normal_force: 0.0, // open
+                    ..block(omega, 0.5).contact
+                },
+                ground_stiffness: MASS * omega * omega, // undamped eigenfrequency = ω
+                ground_damping: damping,
+                ..block(omega, 0.5)
+            };
+            for scheme in [Scheme::Secant, Scheme::Relaxation, Scheme::Direct] {
+                match solve_point(&p, &opts(scheme)) {
+                    Ok(s) => {
+                        assert!(damping > 0.0, "{scheme:?}");
+                        let want = 0.5 / (omega * damping);
+                        assert!(s.amplitude.is_finite() && (s.amplitude / want - 1.0).abs() < 1e-6);
+                    }
+                    Err(e) => assert_eq!(e, IterateError::Singular, "{scheme:?} d {damping:e}"),
+                }
+            }
+        }
+    });
+}
