@@ -128,7 +128,10 @@ pub fn passes(path: &std::path::Path, r: &SweepResult) -> Res {
         .unwrap_or(1)
         .max(1) as f64;
     let mut chart = ChartBuilder::on(&root)
-        .caption("frequencies per pass", ("sans-serif", 20))
+        .caption(
+            "frequencies per pass (outline: converged in it; green: final pass)",
+            ("sans-serif", 16),
+        )
         .margin(15)
         .x_label_area_size(40)
         .y_label_area_size(50)
@@ -138,6 +141,8 @@ pub fn passes(path: &std::path::Path, r: &SweepResult) -> Res {
         .configure_mesh()
         .x_desc("pass")
         .y_desc("frequencies")
+        .x_label_formatter(&|v: &f64| format!("{v:.0}"))
+        .y_label_formatter(&|v: &f64| format!("{v:.0}"))
         .x_labels(n.min(20))
         .draw()
         .map_err(err)?;
