@@ -440,15 +440,10 @@ fn a_corrupt_or_missing_restart_file_is_an_io_error_and_changes_nothing() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
-/// Restart files that parse but contradict themselves. Today `jointlin_store_restore`
-/// accepts both, and the next LOP panics inside the store (JOINTLIN_ERR_PANIC, and the
-/// poisoned store answers JOINTLIN_ERR_PANIC to every later call, restore included):
-/// a running pass with no pass stats → `expect("a running pass has stats")` at LOP 2
-/// (src/store/mod.rs:636); 4294967295 iteration passes → "attempt to add with overflow"
-/// at LOP 3 (src/store/mod.rs:713, debug builds; release wraps to 0). The fix belongs in
-/// the parser (src/store/restart.rs): reject them as JOINTLIN_ERR_IO. Un-ignore then.
+/// Restart files that parse but contradict themselves (a running pass with no pass
+/// statistics; 4294967295 iteration passes) are JOINTLIN_ERR_IO at restore, never a panic
+/// at a later LOP (they used to poison the store).
 #[test]
-#[ignore = "reported store bug: inconsistent restart files are accepted and panic later"]
 fn an_inconsistent_restart_file_is_an_io_error() {
     let dir = fresh_dir("inconsistent");
     let path = dir.join("store.restart");

@@ -304,7 +304,43 @@ struct State {
     stats: Vec<PassStats>,
 }
 
+/// Passes beyond this in a restart file mean the file is not a store's (a real sweep stops
+/// at `max_passes`, a u32 from the host's configuration, long before).
+const MAX_RESTART_PASSES: u32 = 1 << 20;
+
 impl State {
+    /// Invariants the store relies on, checked on a restored state so that a file that parses
+    /// but contradicts itself is an error at LOP 4, not a panic later.
+    fn check_consistent(&self, points: usize) -> Result<(), String> {
+        if self.records.len() != points {
+            return Err(format!(
+                "{} record lists for {points} points",
+                self.records.len()
+            ));
+        }
+        if self.iteration_passes > MAX_RESTART_PASSES {
+            return Err(format!("{} iteration passes", self.iteration_passes));
+        }
+        if let Phase::Running(run) = &self.phase {
+            if self.stats.last().map(|s| s.number) != Some(run.number) {
+                return Err(format!("running pass {} has no statistics", run.number));
+            }
+            if let Some((_, sweep, touched)) = &run.open {
+                for &id in touched {
+                    let ok = id >= 1
+                        && (id as usize) <= points
+                        && self.records[id as usize - 1].contains_key(sweep);
+                    if !ok {
+                        return Err(format!(
+                            "open increment {sweep} names point {id} without a record"
+                        ));
+                    }
+                }
+            }
+        }
+        Ok(())
+    }
+
     fn new() -> Self {
         Self {
             phase: Phase::Ready,
@@ -705,12 +741,12 @@ impl Store {
             state.next = if kind == PassKind::Final {
                 Action::Done
             } else {
-                state.iteration_passes += 1;
+                state.iteration_passes = state.iteration_passes.saturating_add(1);
                 Action::RunFinal(state.increments.keys().copied().collect())
             };
             return Ok(());
         }
-        state.iteration_passes += 1;
+        state.iteration_passes = state.iteration_passes.saturating_add(1);
         state.next = if state.iteration_passes >= self.config.max_passes {
             Action::Failed(left)
         } else {

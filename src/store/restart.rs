@@ -259,6 +259,9 @@ pub(super) fn parse(text: &str) -> Result<(Registry, State), StoreError> {
         records,
         stats,
     };
+    state
+        .check_consistent(reg.keys.len())
+        .map_err(|what| bad(&what))?;
     Ok((reg, state))
 }
 
