@@ -58,6 +58,18 @@ struct Outputs {
     report: jointlin_uinter_report,
 }
 
+/// A quantity derived from finite inputs that is not finite overflowed: a named error.
+fn derived(value: f64, what: &str) -> FfiResult<f64> {
+    if value.is_finite() {
+        Ok(value)
+    } else {
+        Err(err(
+            JOINTLIN_ERR_OVERFLOW,
+            format!("{what} is not representable"),
+        ))
+    }
+}
+
 fn err(code: i32, msg: String) -> FfiError {
     FfiError::new(code, msg)
 }
@@ -295,6 +307,12 @@ fn general_step(
         return Ok(());
     }
     let (p, kn) = (normal.pressure, normal.stiffness);
+    if !(p.is_finite() && kn.is_finite()) {
+        return Err(err(
+            JOINTLIN_ERR_OVERFLOW,
+            format!("contact pressure or dp/dh overflows at overclosure {h:e}"),
+        ));
+    }
     out.stress[0] = p;
     out.ddsddr[0] = kn;
     let contact = Contact {
@@ -302,7 +320,7 @@ fn general_step(
         rule: props.rule,
         mu: props.mu,
         normal_force: p, // stress form: friction limit mu p
-        k_t0: props.k_t0(p),
+        k_t0: derived(props.k_t0(p), "k_T0 from Hertz-Mindlin geometry (2.38)")?,
     };
     let point = contact.point()?;
     for i in 1..n {
@@ -371,7 +389,7 @@ fn steady_state(
         rule: props.rule,
         mu: props.mu,
         normal_force: p0,
-        k_t0: props.k_t0(p0),
+        k_t0: derived(props.k_t0(p0), "k_T0 from Hertz-Mindlin geometry (2.38)")?,
     };
     let mut energy = 0.0;
     for (d, &a) in amp.iter().enumerate().take(dirs) {

@@ -97,6 +97,9 @@ impl Contact {
             return Err(Error::OutOfRange("k_T0 must be > 0"));
         }
         let limit = self.mu * self.normal_force;
+        if limit.is_infinite() || (limit / self.k_t0).is_infinite() {
+            return Err(Error::Overflow("friction limit mu F_N or mu F_N / k_T0"));
+        }
         if limit <= 0.0 || !(limit / self.k_t0).is_normal() {
             return Ok(None);
         }
