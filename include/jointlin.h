@@ -828,8 +828,9 @@ int32_t jointlin_uexternaldb(const struct jointlin_store *store,
  * 2.34); each tangential direction is an independent hysteresis point (Fig. 4.26) stepped
  * to RDISP(i); a direction that was never stepped starts virgin at its slip at the start
  * of the increment, RDISP(i) - DRDISP(i). STRESS(i) = tau, DDSDDR(i,i) = tangent,
- * DDSDDR(1,1) = dp/dh, DDSDDR(i,1) = mu dp/dh sign(tau) while the direction slides
- * (tangent 0), else 0; DDSDDR(1,i) = 0. SFD = dissipation per area of this increment
+ * DDSDDR(1,1) = dp/dh, DDSDDR(i,1) = dtau/dp dp/dh at fixed slip history (one-sided
+ * difference in p; mu dp/dh sign(tau) while sliding); DDSDDR(1,i) = 0. A change of pressure
+ * re-derives the stored hysteresis forces from the slips, so tau is continuous in p. SFD = dissipation per area of this increment
  * (also added to STATEV(5)). Open (h <= 0): all stresses and stiffnesses 0, LOPENCLOSE = 0,
  * the tangential histories are reset. Closed: LOPENCLOSE = 1. STATEV(2:4) record p0, h0 and
  * the closed flag. DVISCOUS and DSTRUCTURAL are set to 0. The friction limit follows the

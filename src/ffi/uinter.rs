@@ -58,6 +58,10 @@ struct Outputs {
     report: jointlin_uinter_report,
 }
 
+/// Relative pressure step of the one-sided difference for dτ/dp in DDSDDR(i,1): √ε-sized,
+/// so truncation (∝ step) and rounding (∝ ε/step) errors are both ~1e-8 relative.
+const PRESSURE_STEP: f64 = 1.5e-8;
+
 /// A quantity derived from finite inputs that is not finite overflowed: a named error.
 fn derived(value: f64, what: &str) -> FfiResult<f64> {
     if value.is_finite() {
@@ -87,8 +91,9 @@ fn err(code: i32, msg: String) -> FfiError {
 /// 2.34); each tangential direction is an independent hysteresis point (Fig. 4.26) stepped
 /// to RDISP(i); a direction that was never stepped starts virgin at its slip at the start
 /// of the increment, RDISP(i) - DRDISP(i). STRESS(i) = tau, DDSDDR(i,i) = tangent,
-/// DDSDDR(1,1) = dp/dh, DDSDDR(i,1) = mu dp/dh sign(tau) while the direction slides
-/// (tangent 0), else 0; DDSDDR(1,i) = 0. SFD = dissipation per area of this increment
+/// DDSDDR(1,1) = dp/dh, DDSDDR(i,1) = dtau/dp dp/dh at fixed slip history (one-sided
+/// difference in p; mu dp/dh sign(tau) while sliding); DDSDDR(1,i) = 0. A change of pressure
+/// re-derives the stored hysteresis forces from the slips, so tau is continuous in p. SFD = dissipation per area of this increment
 /// (also added to STATEV(5)). Open (h <= 0): all stresses and stiffnesses 0, LOPENCLOSE = 0,
 /// the tangential histories are reset. Closed: LOPENCLOSE = 1. STATEV(2:4) record p0, h0 and
 /// the closed flag. DVISCOUS and DSTRUCTURAL are set to 0. The friction limit follows the
@@ -323,31 +328,42 @@ fn general_step(
         k_t0: derived(props.k_t0(p), "k_T0 from Hertz-Mindlin geometry (2.38)")?,
     };
     let point = contact.point()?;
+    // The same point at a slightly higher pressure, for dτ/dp at fixed slip history.
+    let p_plus = p * (1.0 + PRESSURE_STEP);
+    let point_plus = Contact {
+        normal_force: p_plus,
+        k_t0: derived(
+            props.k_t0(p_plus),
+            "k_T0 from Hertz-Mindlin geometry (2.38)",
+        )?,
+        ..contact
+    }
+    .point()?;
     for i in 1..n {
         let range = slot::hysteresis(i - 1)..slot::hysteresis(i - 1) + STATE_LEN;
         let mut slots = [0.0; STATE_LEN];
         slots.copy_from_slice(&out.statev[range.clone()]);
-        let (tau, tangent) = match &point {
-            None => {
-                slots = [0.0; STATE_LEN];
-                (0.0, 0.0)
-            }
-            Some(pt) => {
+        let (tau, tangent, dtau_dp) = match (&point, &point_plus) {
+            (Some(pt), Some(pt_plus)) => {
                 let origin = rdisp[i] - drdisp[i];
                 let state = PointState::read(&slots, pt.rule, origin)?;
                 let (next, r) = pt.step(&state, rdisp[i])?;
+                let (_, r_plus) = pt_plus.step(&state, rdisp[i])?;
                 next.write(&mut slots);
                 out.sfd += r.dissipated;
-                (r.force, r.tangent)
+                (r.force, r.tangent, (r_plus.force - r.force) / (p_plus - p))
+            }
+            _ => {
+                slots = [0.0; STATE_LEN];
+                (0.0, 0.0, 0.0)
             }
         };
         out.statev[range].copy_from_slice(&slots);
         out.stress[i] = tau;
         out.ddsddr[i + i * n] = tangent;
-        if tangent == 0.0 && tau != 0.0 {
-            // Sliding: |tau| = mu p, so dtau/dh = mu dp/dh sign(tau) (2.39).
-            out.ddsddr[i] = props.mu * kn * tau.signum();
-        }
+        // dτ/dh = dτ/dp · dp/dh: μ sign(τ) dp/dh while sliding (2.39), the load dependence
+        // of the Mindlin branch (2.49) otherwise.
+        out.ddsddr[i] = dtau_dp * kn;
     }
     out.statev[slot::DISSIPATION] += out.sfd;
     out.statev[slot::P0] = p;

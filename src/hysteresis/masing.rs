@@ -75,13 +75,34 @@ impl MasingState {
 
     /// Force on the active branch at slip δ, and the distance Δ travelled along it.
     fn on_branch(&self, b: &Backbone, slip: f64) -> f64 {
-        match self.depth {
+        self.branch_force(b, self.depth, slip)
+    }
+
+    /// Force at slip δ on the branch that starts at reversal `depth` (0: the virgin curve).
+    fn branch_force(&self, b: &Backbone, depth: usize, slip: f64) -> f64 {
+        match depth {
             0 => sign(slip - self.origin) * b.force((slip - self.origin).abs()),
             n => {
                 let (ds, fs, d) = self.reversals[n - 1];
                 fs + d * 2.0 * b.force((d * (slip - ds)).max(0.0) / 2.0)
             }
         }
+    }
+
+    /// Re-derives every stored force from the slips with the current backbone: each reversal
+    /// lies on the branch before it. With a constant friction limit this reproduces the
+    /// stored values; when the normal load changed since the last step it makes the force a
+    /// continuous function of the load at fixed slip history (no jump between continuing
+    /// and reversing at a zero increment).
+    fn sync(&mut self, b: &Backbone) {
+        let limit = b.friction_limit();
+        for i in 0..self.depth {
+            let f = self
+                .branch_force(b, i, self.reversals[i].0)
+                .clamp(-limit, limit);
+            self.reversals[i].1 = f;
+        }
+        self.force = self.on_branch(b, self.slip).clamp(-limit, limit);
     }
 
     /// Iwan dissipation accumulated along the active branch up to slip δ (see
@@ -131,6 +152,7 @@ impl MasingState {
     }
 
     pub(super) fn advance(&mut self, b: &Backbone, target: f64) -> StepResult {
+        self.sync(b);
         let motion = sign(target - self.slip);
         if motion == 0.0 {
             return StepResult {

@@ -187,3 +187,37 @@ fn states_round_trip_through_statev_slots() {
         assert!(PointState::read(&bad, rule, 0.0).is_err());
     }
 }
+
+#[test]
+fn a_changed_normal_load_keeps_the_force_continuous_in_both_directions() {
+    // After a history at μF_N = 0.6, the load changes by ±20 % (new backbone): the force at a
+    // zero increment, a tiny step onward and a tiny step back must agree to k_T0·|Δδ|, so a
+    // Newton iteration on a step that reverses under a changing pressure has a solution.
+    for law in [TangentialLaw::Mindlin, TangentialLaw::Jenkins] {
+        for rule in [Rule::Thesis, Rule::Masing] {
+            let old = block(law);
+            let d = old.slip_limit();
+            let p = Point::new(old, rule);
+            for path in [
+                [0.0, 0.7 * d, 0.3 * d],
+                [0.0, 3.0 * d, 2.5 * d],
+                [0.0, 0.5 * d, 0.45 * d],
+            ] {
+                let (st, _, _) = drive(&p, &path, 9);
+                for scale in [0.8, 1.2] {
+                    let new = Point::new(Backbone::new(law, 0.6 * scale, 1282.7).unwrap(), rule);
+                    let at = new.step(&st, st.slip()).unwrap().1.force;
+                    let h = 1e-9 * d;
+                    for dir in [-1.0, 1.0] {
+                        let f = new.step(&st, st.slip() + dir * h).unwrap().1.force;
+                        assert!(
+                            (f - at).abs() <= 1282.7 * h * (1.0 + 1e-9) + 1e-15,
+                            "{law:?} {rule:?} {path:?} ×{scale}: {at} vs {f} at {dir}"
+                        );
+                    }
+                    assert!(at.abs() <= 0.6 * scale * (1.0 + 1e-15));
+                }
+            }
+        }
+    }
+}

@@ -61,7 +61,38 @@ impl ThesisState {
     }
 
     /// Walks from `self.slip` to `target` through as many phase changes as it takes.
+    /// Re-derives the forces from the slips with the current backbone (the reversal point
+    /// lies on the virgin branch from `origin`). With a constant friction limit this
+    /// reproduces the stored values; after a change of normal load it keeps the force a
+    /// continuous function of the load at fixed slip history. If the elastic line has
+    /// already crossed zero at the new load, phase 1 in the other direction has begun.
+    fn sync(&mut self, b: &Backbone) {
+        if self.dir == 0.0 {
+            self.force = 0.0;
+            return;
+        }
+        let virgin =
+            |st: &Self, slip: f64| st.dir * b.force((st.dir * (slip - st.origin)).max(0.0));
+        if !self.unloading {
+            self.force = virgin(self, self.slip);
+            return;
+        }
+        self.rev_force = virgin(self, self.rev_slip);
+        let zero_slip = self.rev_slip - self.rev_force / b.k_t0();
+        if self.dir * (self.slip - zero_slip) < 0.0 {
+            self.unloading = false;
+            self.origin = zero_slip;
+            self.dir = -self.dir;
+            self.force = virgin(self, self.slip);
+        } else {
+            let limit = b.friction_limit();
+            self.force =
+                (self.rev_force + b.k_t0() * (self.slip - self.rev_slip)).clamp(-limit, limit);
+        }
+    }
+
     pub(super) fn advance(&mut self, b: &Backbone, target: f64) -> StepResult {
+        self.sync(b);
         let k0 = b.k_t0();
         let limit = b.friction_limit();
         let motion = sign(target - self.slip);
