@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# The whole test suite: formatting, lints, every Rust/C/Fortran test, the header check.
+# The whole test suite: formatting, lints, every Rust/C/Fortran test, the header check,
+# sanitizer runs of the host programs and a short fuzz run.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/deps.sh
@@ -9,3 +10,7 @@ echo "== cargo clippy -D warnings"
 cargo clippy --workspace --all-targets --release -- -D warnings
 echo "== cargo test (workspace, release)"
 cargo test --workspace --release
+echo "== robustness: sanitizers, threaded valgrind, short fuzz run"
+bash scripts/robustness.sh asan
+bash scripts/robustness.sh valgrind
+bash scripts/robustness.sh fuzz-ci 15
