@@ -187,13 +187,19 @@ direction = [0.0, 0.0, 1.0]
 /// Mesh divisions for about `dofs` DOFs: (nx, ny = nx/6, 1 element per mm of thickness),
 /// so the contact points (≈ (nx+1)(ny+1) per interface) grow with the DOFs.
 pub fn divisions_for(dofs: usize) -> (usize, usize, usize) {
-    let count = |nx: usize| 3 * (nx + 1) * (nx / 6 + 1) * 8;
+    divisions_for_z(dofs, 1)
+}
+
+/// As [`divisions_for`] with `z` elements per mm of thickness: more DOFs through the
+/// thickness, fewer contact points for the same DOF count.
+pub fn divisions_for_z(dofs: usize, z: usize) -> (usize, usize, usize) {
+    let count = |nx: usize| 3 * (nx + 1) * (nx / 6 + 1) * ((2 * z + 1) * 2 + z + 1);
     let err = |d: usize| (d as f64 / dofs as f64).ln().abs();
     let nx = (6..=1200)
         .step_by(6)
         .min_by(|a, b| err(count(*a)).total_cmp(&err(count(*b))))
         .expect("non-empty search");
-    (nx, nx / 6, 1)
+    (nx, nx / 6, z)
 }
 
 /// One benchmark row.
@@ -211,7 +217,16 @@ pub struct Row {
 
 /// Runs one size.
 pub fn row(dofs: usize, nfreq: usize, with_thesis: bool) -> Result<Row, String> {
-    let (nx, ny, z) = divisions_for(dofs);
+    row_with(divisions_for(dofs), nfreq, with_thesis)
+}
+
+/// Runs one mesh (nx, ny, elements per mm).
+pub fn row_with(
+    div: (usize, usize, usize),
+    nfreq: usize,
+    with_thesis: bool,
+) -> Result<Row, String> {
+    let (nx, ny, z) = div;
     let probe = beam_scene(nx, ny, z, (1.0, 2.0, 2), Mode::Fast);
     let f1 = stuck_modes(&probe, 1)?[0];
     let band = (0.9 * f1, 1.1 * f1, nfreq);
@@ -284,6 +299,35 @@ pub fn table(
                 .map_or("—".to_string(), |t| format!("{:.2}", t / r.linear_s)),
             r.thesis_passes.map_or("—".to_string(), |p| p.to_string()),
             r.peak_rss_mb
+        )
+        .map_err(io)?;
+        out.flush().map_err(io)?;
+    }
+    Ok(())
+}
+
+/// Cost against the number of contact points at about the same DOF count: meshes with
+/// 1, 2 and 4 elements per mm of thickness (fewer, larger in-plane elements). Fast mode
+/// only. Prints a Markdown table.
+pub fn contact_table(dofs: usize, nfreq: usize, out: &mut dyn Write) -> Result<(), String> {
+    let io = |e: std::io::Error| e.to_string();
+    writeln!(
+        out,
+        "| DOF | contact points | elements per mm thickness | linear sweep [s] | fast [s] | fast / linear | fast iterations per frequency |"
+    )
+    .map_err(io)?;
+    writeln!(out, "|---|---|---|---|---|---|---|").map_err(io)?;
+    for z in [4, 2, 1] {
+        let r = row_with(divisions_for_z(dofs, z), nfreq, false)?;
+        writeln!(
+            out,
+            "| {} | {} | {z} | {:.2} | {:.2} | {:.2} | {:.1} |",
+            r.dofs,
+            r.points,
+            r.linear_s,
+            r.fast_s,
+            r.fast_s / r.linear_s,
+            r.fast_iterations
         )
         .map_err(io)?;
         out.flush().map_err(io)?;

@@ -127,6 +127,10 @@ enum Command {
         /// factorizations).
         #[arg(long, default_value_t = 20_000)]
         thesis_max_dofs: usize,
+        /// Instead: cost against the number of contact points at about the first DOF
+        /// count (1, 2, 4 elements per mm of thickness), fast mode only.
+        #[arg(long)]
+        contact_scan: bool,
     },
 }
 
@@ -283,7 +287,12 @@ fn main() -> ExitCode {
             dofs,
             freqs,
             thesis_max_dofs,
-        } => match bench::table(&dofs, freqs, thesis_max_dofs, &mut std::io::stdout()) {
+            contact_scan,
+        } => match if contact_scan {
+            bench::contact_table(dofs[0], freqs, &mut std::io::stdout())
+        } else {
+            bench::table(&dofs, freqs, thesis_max_dofs, &mut std::io::stdout())
+        } {
             Ok(()) => ExitCode::SUCCESS,
             Err(e) => {
                 eprintln!("error: {e}");
