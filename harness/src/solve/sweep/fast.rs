@@ -97,6 +97,8 @@ pub fn sweep(
     let mut delta = vec![C64::new(0.0, 0.0); m];
     let mut lin = vec![Linearized::default(); m];
     let mut a = vec![it.initial_amplitude; m];
+    // Converged estimates of the two previous frequencies, for the predictor.
+    let mut hist: Vec<(f64, Vec<f64>)> = Vec::new();
     let mut a_star = vec![0.0; m];
     let mut kappa0 = vec![[C64::new(0.0, 0.0); 2]; na];
     let active = setup.active.clone();
@@ -132,6 +134,17 @@ pub fn sweep(
     for (fi, &f) in freqs.iter().enumerate() {
         progress("frequency", fi + 1, freqs.len());
         let omega = 2.0 * std::f64::consts::PI * f;
+        // Predictor: linear extrapolation of ln a over frequency from the last two
+        // converged frequencies (the start estimate; the factorized reference stays the
+        // previous frequency's converged state).
+        if let [(f2, a2), (f1, a1)] = hist.as_slice() {
+            let t = (f - f1) / (f1 - f2);
+            for j in 0..m {
+                if a1[j] > 0.0 && a2[j] > 0.0 {
+                    a[j] = a1[j] * (a1[j] / a2[j]).powf(t);
+                }
+            }
+        }
         if fi == 0 && m > 0 {
             let t = Instant::now();
             linearize_all(&a, omega, &mut lin, &mut res.macroslip_caps)?;
@@ -314,6 +327,14 @@ pub fn sweep(
         // Next frequency starts from this converged state.
         for j in 0..m {
             kappa0[j / 2][j % 2] = kappa_of(&lin[j], omega);
+        }
+        if converged && m > 0 {
+            hist.push((f, a.clone()));
+            if hist.len() > 2 {
+                hist.remove(0);
+            }
+        } else {
+            hist.clear();
         }
     }
     let nconv = res.converged.iter().filter(|&&c| c).count();
