@@ -24,6 +24,7 @@ use jointlin::ffi::store::{
     JOINTLIN_ACTION_RUN_PASS, JOINTLIN_ACTION_RUN_SWEEP, JOINTLIN_SCHEME_DIRECT,
     JOINTLIN_SCHEME_RELAXATION, JOINTLIN_SCHEME_SECANT,
 };
+use jointlin::ffi::point::{jointlin_point_step, jointlin_step, JOINTLIN_POINT_STATE_LEN};
 use jointlin::ffi::uexternaldb::jointlin_uexternaldb;
 use jointlin::ffi::uinter::{jointlin_uinter, jointlin_uinter_report};
 use thiserror::Error;
@@ -208,6 +209,64 @@ pub fn linearize(t: &Tangential, amplitude: f64, omega: f64) -> Result<Linearize
         amplitude_ratio: out.amplitude_ratio,
         regime: out.regime,
     })
+}
+
+thread_local! {
+    static POINT_STEPS: Cell<u64> = const { Cell::new(0) };
+}
+
+/// Doubles in the state of one tangential direction of a time-domain point.
+pub const POINT_STATE_LEN: usize = JOINTLIN_POINT_STATE_LEN;
+
+/// `jointlin_point_step` output: force (sign of the slip), tangent dF/dslip for continued
+/// motion (>= 0), energy dissipated in the increment.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct PointStep {
+    pub force: f64,
+    pub tangent: f64,
+    pub dissipated: f64,
+}
+
+/// Moves one tangential direction of a point from `state` to `slip` (`jointlin_point_step`,
+/// the stateful hysteresis of thesis §2.3.3); the new state goes to `state_out` (an
+/// all-zero state is a virgin point at slip 0).
+pub fn point_step(
+    t: &Tangential,
+    state: &[f64; POINT_STATE_LEN],
+    slip: f64,
+    state_out: &mut [f64; POINT_STATE_LEN],
+) -> Result<PointStep, CapiError> {
+    POINT_STEPS.with(|c| c.set(c.get() + 1));
+    let contact = jointlin_contact {
+        law: law_code(t.law),
+        rule: rule_code(t.rule),
+        mu: t.mu,
+        normal_force: t.normal,
+        k_t0: t.k_t0,
+    };
+    let mut out = jointlin_step::default();
+    // SAFETY: contact and out are valid locals; both state arrays hold
+    // JOINTLIN_POINT_STATE_LEN doubles.
+    let code = unsafe {
+        jointlin_point_step(
+            &contact,
+            state.as_ptr(),
+            slip,
+            state_out.as_mut_ptr(),
+            &mut out,
+        )
+    };
+    check("jointlin_point_step", code)?;
+    Ok(PointStep {
+        force: out.force,
+        tangent: out.tangent,
+        dissipated: out.dissipated,
+    })
+}
+
+/// `jointlin_point_step` calls made on this thread so far.
+pub fn point_steps() -> u64 {
+    POINT_STEPS.with(|c| c.get())
 }
 
 /// Normal law of the PROPS table.

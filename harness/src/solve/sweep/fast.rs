@@ -1,8 +1,8 @@
 //! Fast mode: per frequency one numeric factorization, contact iterations on the
 //! condensed system.
 //!
-//! With S₀ = S(ω, κ₀) for a reference contact state κ₀ (the previous frequency's converged
-//! one; iωd* = A_hys/(πA²)·i does not depend on ω, so κ carries over unchanged) and
+//! With S₀ = S(ω, κ₀) for a reference contact state κ₀ = κ(a₀) of the start estimate a₀
+//! (the previous frequencies' converged amplitudes, extrapolated in ln a) and
 //! the contact map B (rows: tangential relative displacements of the active points),
 //! S(ω, κ) = S₀ + Bᵀ Δ B with Δ = diag((κ − κ₀)·area). Then r = B û solves
 //!
@@ -145,13 +145,17 @@ pub fn sweep(
                 }
             }
         }
-        if fi == 0 && m > 0 {
+        // The factorized reference is the start estimate's own state κ(a₀): the first
+        // contact iteration then needs no Krylov step (Δ = 0, û = S₀⁻¹f exactly).
+        let mut lin_fresh = false;
+        if m > 0 {
             let t = Instant::now();
             linearize_all(&a, omega, &mut lin, &mut res.macroslip_caps)?;
             res.time("linearization (C API)", t);
             for j in 0..m {
                 kappa0[j / 2][j % 2] = kappa_of(&lin[j], omega);
             }
+            lin_fresh = true;
         }
         let t = Instant::now();
         setup.fill(omega, &kappa0);
@@ -200,9 +204,12 @@ pub fn sweep(
         delta.iter_mut().for_each(|d| *d = C64::new(0.0, 0.0));
         while m > 0 && iterations < it.max_passes {
             iterations += 1;
-            let t = Instant::now();
-            linearize_all(&a, omega, &mut lin, &mut res.macroslip_caps)?;
-            res.time("linearization (C API)", t);
+            if !lin_fresh {
+                let t = Instant::now();
+                linearize_all(&a, omega, &mut lin, &mut res.macroslip_caps)?;
+                res.time("linearization (C API)", t);
+            }
+            lin_fresh = false;
             let t = Instant::now();
             for j in 0..m {
                 delta[j] = (kappa_of(&lin[j], omega) - kappa0[j / 2][j % 2]) * area[j / 2];
@@ -324,10 +331,7 @@ pub fn sweep(
         res.power.push(power);
         res.iterations.push(iterations);
         res.converged.push(converged && gmres_ok);
-        // Next frequency starts from this converged state.
-        for j in 0..m {
-            kappa0[j / 2][j % 2] = kappa_of(&lin[j], omega);
-        }
+        // The next frequency starts from this converged state (extrapolated).
         if converged && m > 0 {
             hist.push((f, a.clone()));
             if hist.len() > 2 {
