@@ -16,6 +16,7 @@ use jointlin::ffi::linearize::{
     JOINTLIN_LAW_JENKINS, JOINTLIN_LAW_MINDLIN, JOINTLIN_METHOD_GAUSS, JOINTLIN_METHOD_GRADED,
     JOINTLIN_METHOD_SIMPSON, JOINTLIN_RULE_MASING, JOINTLIN_RULE_THESIS,
 };
+use jointlin::ffi::point::{jointlin_point_step, jointlin_step, JOINTLIN_POINT_STATE_LEN};
 use jointlin::ffi::store::{
     jointlin_pass_stats, jointlin_store, jointlin_store_config, jointlin_store_config_default,
     jointlin_store_free, jointlin_store_new, jointlin_store_next_action, jointlin_store_pass_stats,
@@ -24,7 +25,6 @@ use jointlin::ffi::store::{
     JOINTLIN_ACTION_RUN_PASS, JOINTLIN_ACTION_RUN_SWEEP, JOINTLIN_SCHEME_DIRECT,
     JOINTLIN_SCHEME_RELAXATION, JOINTLIN_SCHEME_SECANT,
 };
-use jointlin::ffi::point::{jointlin_point_step, jointlin_step, JOINTLIN_POINT_STATE_LEN};
 use jointlin::ffi::uexternaldb::jointlin_uexternaldb;
 use jointlin::ffi::uinter::{jointlin_uinter, jointlin_uinter_report};
 use thiserror::Error;
