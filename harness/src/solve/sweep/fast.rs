@@ -1,5 +1,6 @@
-//! Fast mode: per frequency one numeric factorization, contact iterations on the
-//! condensed system.
+//! Fast mode: per frequency one numeric factorization; the contact iterations reuse it,
+//! either condensed onto the contact unknowns (m ≤ [`CONDENSE_MAX`]) or with FGMRES
+//! preconditioned by it ([`super::krylov`], m larger).
 //!
 //! With S₀ = S(ω, κ₀) for a reference contact state κ₀ = κ(a₀) of the start estimate a₀
 //! (the previous frequencies' converged amplitudes, extrapolated in ln a) and
@@ -10,7 +11,9 @@
 //!
 //! and outputs are ŷ = C S₀⁻¹ f̂ − (C S₀⁻¹ Bᵀ) Δ r. G comes from m solves with the one
 //! factorization (column by column into scratch: memory O(n + m²)); every contact
-//! iteration is then a dense m × m solve plus m `jointlin_linearize` calls. Amplitudes
+//! iteration is then a dense m × m solve plus m `jointlin_linearize` calls. With FGMRES
+//! each contact iteration solves (S₀ + BᵀΔB) û = f̂ from the previous û (measured 1–2
+//! solves with the factorization per iteration, none in the first). Amplitudes
 //! a = |r| are iterated to consistency with Anderson acceleration in ln a; convergence is
 //! the store's test |a − a*| ≤ rtol·max(a, a*) + atol per point and direction.
 
