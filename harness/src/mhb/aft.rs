@@ -1,0 +1,250 @@
+//! Alternating frequency–time (AFT) evaluation of one nonlinear element (Cameron & Griffin
+//! 1989): harmonic coefficients of its relative displacement → N time samples (inverse
+//! real FFT) → forces and tangents in time → force coefficients (forward real FFT), and the
+//! Jacobian ∂F̂/∂δ̂ by the same transforms of the tangent-weighted basis.
+//!
+//! Coefficient layout (H harmonics, zeroth included, 2H + 1 reals):
+//! δ(τ) = c₀ + Σ_{h=1}^{H} (c_{2h−1} cos hτ + c_{2h} sin hτ), τ = ωt.
+//!
+//! Hysteretic points (the library's `jointlin_point_step`, LINPER = 0 physics) are marched
+//! from a virgin state over the periodic δ repeatedly until the loop closes (the forces
+//! of two consecutive periods agree to [`CLOSE_TOL`] of the force scale); the last
+//! period is transformed.
+//!
+//! Jacobian: for an elastic element F = f(δ) the derivative of sample k is f'(δ_k)·∂δ_k,
+//! exact ("diagonal" rule). For a hysteretic point the force depends on the path, so the
+//! derivative is propagated along the period: ∂F_k = ∂F_{k−1} + t_k (∂δ_k − ∂δ_{k−1}),
+//! reset to 0 where the point slides (t_k = 0: F = ±μF_N, fixed) ("incremental" rule),
+//! started from the end of a first pass round the closed loop. For Jenkins (elastic k_T0
+//! or sliding, piecewise linear) this is the exact derivative of the discrete map; for
+//! Mindlin's curved microslip branch it omits the dependence of the branch origin on δ̂,
+//! so Newton is then a quasi-Newton (the residual is exact; tests measure the Jacobian's
+//! error against finite differences).
+
+use std::sync::Arc;
+
+use realfft::num_complex::Complex;
+use realfft::{ComplexToReal, RealFftPlanner, RealToComplex};
+
+use crate::capi::{self, CapiError, Tangential, POINT_STATE_LEN};
+use crate::scene::LawName;
+
+/// Loop closure: consecutive periods' forces agree to this fraction of the force scale
+/// (max |F| over the period, at least μF_N·1e-3). Jenkins and the thesis/Masing rules
+/// forget their history at each reversal, so closure is reached after 2–3 periods and
+/// the tolerance only guards round-off.
+pub const CLOSE_TOL: f64 = 1e-11;
+/// Periods marched at most before the loop counts as not closed.
+pub const MAX_PERIODS: usize = 30;
+
+/// FFT plans and scratch for N samples.
+pub struct Transforms {
+    pub n: usize,
+    pub h: usize,
+    fwd: Arc<dyn RealToComplex<f64>>,
+    inv: Arc<dyn ComplexToReal<f64>>,
+    spec: Vec<Complex<f64>>,
+    buf: Vec<f64>,
+}
+
+impl Transforms {
+    /// Plans for N samples per period and H harmonics (N ≥ 2H + 2, so no harmonic aliases
+    /// onto another inside the retained set).
+    pub fn new(n: usize, h: usize) -> Self {
+        assert!(n >= 2 * h + 2, "N = {n} too small for H = {h}");
+        let mut p = RealFftPlanner::<f64>::new();
+        let fwd = p.plan_fft_forward(n);
+        let inv = p.plan_fft_inverse(n);
+        Transforms {
+            n,
+            h,
+            spec: fwd.make_output_vec(),
+            buf: fwd.make_input_vec(),
+            fwd,
+            inv,
+        }
+    }
+
+    /// Number of real coefficients 2H + 1.
+    pub fn ncoef(&self) -> usize {
+        2 * self.h + 1
+    }
+
+    /// Samples x_k = x(2πk/N) of the coefficient vector `c` into `out`.
+    pub fn synthesize(&mut self, c: &[f64], out: &mut [f64]) {
+        // realfft's inverse: x_k = Σ_{j=0}^{N−1} X_j e^{2πijk/N} with Hermitian X, so
+        // X₀ = c₀ and X_h = (a_h − i b_h)/2 give a_h cos + b_h sin.
+        for s in self.spec.iter_mut() {
+            *s = Complex::new(0.0, 0.0);
+        }
+        self.spec[0] = Complex::new(c[0], 0.0);
+        for h in 1..=self.h {
+            self.spec[h] = Complex::new(0.5 * c[2 * h - 1], -0.5 * c[2 * h]);
+        }
+        self.inv
+            .process(&mut self.spec, out)
+            .expect("realfft inverse: sizes fixed at planning");
+    }
+
+    /// Coefficients (c₀, a_h, b_h) of the samples `x` (the discrete Fourier series; exact
+    /// for trigonometric polynomials of degree < N/2).
+    pub fn analyse(&mut self, x: &[f64], c: &mut [f64]) {
+        self.buf.copy_from_slice(x);
+        self.fwd
+            .process(&mut self.buf, &mut self.spec)
+            .expect("realfft forward: sizes fixed at planning");
+        let n = self.n as f64;
+        c[0] = self.spec[0].re / n;
+        for h in 1..=self.h {
+            c[2 * h - 1] = 2.0 * self.spec[h].re / n;
+            c[2 * h] = -2.0 * self.spec[h].im / n;
+        }
+    }
+}
+
+/// The nonlinear force law of an element.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Law {
+    /// A contact point of the library (tangential direction), marched through the C API.
+    Point(Tangential),
+    /// Cubic spring F = k₃ δ³ (the Duffing oscillator's term; thesis (4.1)).
+    Cubic(f64),
+}
+
+/// One period of an element's force.
+#[derive(Debug, Clone, Default)]
+pub struct Period {
+    pub force: Vec<f64>,
+    pub tangent: Vec<f64>,
+    /// Energy dissipated over the closed period (force × length).
+    pub dissipated: f64,
+    /// Periods marched until the loop closed.
+    pub periods: usize,
+}
+
+/// Forces of `law` over the periodic samples `delta` (closed loop for points).
+pub fn march(law: &Law, delta: &[f64]) -> Result<Period, AftError> {
+    let n = delta.len();
+    match law {
+        Law::Cubic(k3) => Ok(Period {
+            force: delta.iter().map(|d| k3 * d * d * d).collect(),
+            tangent: delta.iter().map(|d| 3.0 * k3 * d * d).collect(),
+            dissipated: 0.0,
+            periods: 1,
+        }),
+        Law::Point(t) => {
+            let mut state = [0.0; POINT_STATE_LEN];
+            let mut next = [0.0; POINT_STATE_LEN];
+            let mut prev: Vec<f64> = vec![0.0; n];
+            let mut cur = Period {
+                force: vec![0.0; n],
+                tangent: vec![0.0; n],
+                ..Period::default()
+            };
+            let floor = 1e-3 * t.mu * t.normal.abs();
+            for p in 1..=MAX_PERIODS {
+                let mut diss = 0.0;
+                for k in 0..n {
+                    let s = capi::point_step(t, &state, delta[k], &mut next)?;
+                    state = next;
+                    cur.force[k] = s.force;
+                    cur.tangent[k] = s.tangent;
+                    diss += s.dissipated;
+                }
+                let scale = cur.force.iter().fold(floor, |m, f| m.max(f.abs()));
+                let diff = cur
+                    .force
+                    .iter()
+                    .zip(&prev)
+                    .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
+                cur.dissipated = diss;
+                cur.periods = p;
+                if p > 1 && diff <= CLOSE_TOL * scale {
+                    return Ok(cur);
+                }
+                prev.copy_from_slice(&cur.force);
+            }
+            Err(AftError::NotClosed {
+                periods: MAX_PERIODS,
+            })
+        }
+    }
+}
+
+/// Errors of the AFT evaluation.
+#[derive(Debug, thiserror::Error)]
+pub enum AftError {
+    #[error(transparent)]
+    Capi(#[from] CapiError),
+    #[error("the hysteresis loop did not close within {periods} periods")]
+    NotClosed { periods: usize },
+}
+
+/// Force coefficients and their Jacobian for one element.
+pub struct ElementEval {
+    pub force: Vec<f64>,
+    /// ∂F̂/∂δ̂, row-major (2H+1)².
+    pub jac: Vec<f64>,
+    pub period: Period,
+}
+
+/// AFT of one element at relative-displacement coefficients `dc`.
+pub fn evaluate(tr: &mut Transforms, law: &Law, dc: &[f64]) -> Result<ElementEval, AftError> {
+    let (n, m) = (tr.n, tr.ncoef());
+    let mut delta = vec![0.0; n];
+    tr.synthesize(dc, &mut delta);
+    let period = march(law, &delta)?;
+    let mut force = vec![0.0; m];
+    tr.analyse(&period.force, &mut force);
+    let incremental = matches!(law, Law::Point(_));
+    let mut jac = vec![0.0; m * m];
+    let mut basis = vec![0.0; m];
+    let mut b = vec![0.0; n];
+    let mut df = vec![0.0; n];
+    let mut col = vec![0.0; m];
+    for j in 0..m {
+        basis.iter_mut().for_each(|x| *x = 0.0);
+        basis[j] = 1.0;
+        tr.synthesize(&basis, &mut b);
+        if let (true, Law::Point(t)) = (incremental, law) {
+            propagate(&period.force, &period.tangent, t.mu * t.normal.abs(), &b, &mut df);
+        } else {
+            for k in 0..n {
+                df[k] = period.tangent[k] * b[k];
+            }
+        }
+        tr.analyse(&df, &mut col);
+        for i in 0..m {
+            jac[i * m + j] = col[i];
+        }
+    }
+    Ok(ElementEval { force, jac, period })
+}
+
+/// The incremental derivative rule (module docs) round the closed period, two passes.
+/// A sample counts as sliding when the tangent is 0 or the force is at the Coulomb limit
+/// μ|F_N| (to 1e-12 relative): the library's Jenkins point returns the tangent k_T0 for
+/// some samples while the force stays at ±μF_N, so the force is the reliable sign.
+fn propagate(f: &[f64], t: &[f64], limit: f64, b: &[f64], df: &mut [f64]) {
+    let n = t.len();
+    let at_limit = |k: usize| t[k] == 0.0 || f[k].abs() >= limit * (1.0 - 1e-12);
+    let mut last = t[n - 1] * b[n - 1];
+    for _pass in 0..2 {
+        let mut prev_b = b[n - 1];
+        for k in 0..n {
+            let d = if at_limit(k) {
+                0.0
+            } else {
+                last + t[k] * (b[k] - prev_b)
+            };
+            df[k] = d;
+            last = d;
+            prev_b = b[k];
+        }
+    }
+}
+
+/// Whether a law is Jenkins (exact incremental Jacobian).
+pub fn is_jenkins(law: &Law) -> bool {
+    matches!(law, Law::Point(t) if t.law == LawName::Jenkins)
+}

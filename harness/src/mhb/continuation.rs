@@ -1,0 +1,200 @@
+//! Pseudo-arclength continuation in ω (Keller 1977; e.g. Seydel, *Practical Bifurcation
+//! and Stability Analysis*, 2010, §4.4): on the curve R(u, ω) = 0 with y = (u, ω/ω_s),
+//! the tangent t solves [R_u, ω_s R_ω; t_prevᵀ] t = (0, 1) (normalised, oriented along
+//! the previous one); predictor y_p = y + s t; corrector Newton on
+//! (R(y) = 0, tᵀ(y − y_p) = 0). Step s adapts to the corrector's iterations (halved on
+//! failure, grown by 1.5 after fast ones).
+//!
+//! Turning points (folds): the ω component of the tangent changes sign; the fold
+//! frequency is the vertex of the parabola ω(s) through the three points around it.
+//! Stability: det R_u changes sign at a fold (a real Floquet multiplier crosses +1), so a
+//! point whose det sign differs from that of the start (a stable, far-from-resonance
+//! point) is marked unstable. This detects fold instabilities only (no Neimark–Sacker or
+//! period doubling, which need the Hill eigenvalues).
+
+use nalgebra::{DMatrix, DVector};
+
+use super::{Hb, MhbError, Solution};
+
+/// Settings of a continuation run.
+#[derive(Debug, Clone, Copy)]
+pub struct Options {
+    pub omega_start: f64,
+    pub omega_end: f64,
+    /// Initial arclength step (in the scaled variables).
+    pub step: f64,
+    pub step_min: f64,
+    pub step_max: f64,
+    pub max_points: usize,
+    /// Corrector tolerance ‖R‖/‖f̂‖.
+    pub rtol: f64,
+}
+
+/// A point on the branch.
+#[derive(Debug, Clone)]
+pub struct Point {
+    pub sol: Solution,
+    pub stable: bool,
+    /// Arclength from the start (scaled variables).
+    pub s: f64,
+}
+
+/// A traced branch and its folds.
+#[derive(Debug, Clone)]
+pub struct Branch {
+    pub points: Vec<Point>,
+    /// Fold frequencies in order of passage.
+    pub folds: Vec<f64>,
+    /// Corrector iterations in total.
+    pub iterations: usize,
+}
+
+/// Traces the branch from the solution at `omega_start` (found from `u0` by Newton) to
+/// `omega_end` (either direction).
+pub fn trace(hb: &mut Hb, u0: &[f64], opt: Options) -> Result<Branch, MhbError> {
+    let first = hb.solve(u0, opt.omega_start, super::NewtonOptions::default())?;
+    let dim = hb.size();
+    // Scales: ω by ω_start, u by the first solution's norm (so both are O(1)).
+    let ws = opt.omega_start.abs();
+    let us = DVector::from_column_slice(&first.u).norm().max(1e-300);
+    let to_y = |u: &[f64], w: f64| -> DVector<f64> {
+        let mut y = DVector::zeros(dim + 1);
+        for i in 0..dim {
+            y[i] = u[i] / us;
+        }
+        y[dim] = w / ws;
+        y
+    };
+    let dir = (opt.omega_end - opt.omega_start).signum();
+    let start_sign = first.det_sign;
+    let mut y = to_y(&first.u, first.omega);
+    let mut t_prev = DVector::zeros(dim + 1);
+    t_prev[dim] = dir;
+    let mut pts = vec![Point {
+        stable: true,
+        s: 0.0,
+        sol: first,
+    }];
+    let mut folds = Vec::new();
+    let mut step = opt.step;
+    let mut iterations = 0;
+    let scale = hb.load().norm().max(f64::MIN_POSITIVE);
+    // Augmented matrix [R_u·us, R_ω·ws; tᵀ].
+    let augmented = |ev: &super::Eval, t: &DVector<f64>| -> DMatrix<f64> {
+        let mut a = DMatrix::zeros(dim + 1, dim + 1);
+        a.view_mut((0, 0), (dim, dim)).copy_from(&(&ev.j * us));
+        a.view_mut((0, dim), (dim, 1)).copy_from(&(&ev.r_omega * ws));
+        a.view_mut((dim, 0), (1, dim + 1)).copy_from(&t.transpose());
+        a
+    };
+    let ev0 = hb.eval(&pts[0].sol.u, pts[0].sol.omega)?;
+    let mut rhs = DVector::zeros(dim + 1);
+    rhs[dim] = 1.0;
+    let mut t = augmented(&ev0, &t_prev)
+        .lu()
+        .solve(&rhs)
+        .ok_or(MhbError::Singular { omega: opt.omega_start })?;
+    t /= t.norm();
+    let mut s_total = 0.0;
+    while pts.len() < opt.max_points {
+        let yp = &y + step * &t;
+        // Corrector.
+        let mut yc = yp.clone();
+        let mut ok = None;
+        for it in 1..=12 {
+            let u: Vec<f64> = (0..dim).map(|i| yc[i] * us).collect();
+            let w = yc[dim] * ws;
+            let ev = hb.eval(&u, w)?;
+            let res = ev.r.norm() / scale;
+            let mut g = DVector::zeros(dim + 1);
+            g.rows_mut(0, dim).copy_from(&ev.r);
+            g[dim] = t.dot(&(&yc - &yp));
+            if res <= opt.rtol && g[dim].abs() <= 1e-12 {
+                ok = Some((it, ev, res));
+                break;
+            }
+            let Some(dy) = augmented(&ev, &t).lu().solve(&g) else {
+                break;
+            };
+            yc -= dy;
+            if !yc.iter().all(|v| v.is_finite()) {
+                break;
+            }
+        }
+        let Some((its, ev, res)) = ok else {
+            step *= 0.5;
+            if step < opt.step_min {
+                return Err(MhbError::Continuation(format!(
+                    "step below {:.1e} at ω = {:.6e}",
+                    opt.step_min,
+                    y[dim] * ws
+                )));
+            }
+            continue;
+        };
+        iterations += its;
+        // New tangent at the corrected point.
+        let Some(mut tn) = augmented(&ev, &t).lu().solve(&rhs) else {
+            return Err(MhbError::Singular { omega: yc[dim] * ws });
+        };
+        tn /= tn.norm();
+        if tn.dot(&t) < 0.0 {
+            tn = -tn;
+        }
+        s_total += (&yc - &y).norm();
+        let u: Vec<f64> = (0..dim).map(|i| yc[i] * us).collect();
+        let det = ev.j.clone().lu().determinant().signum();
+        let sol = Solution {
+            omega: yc[dim] * ws,
+            u,
+            iterations: its,
+            residual: res,
+            det_sign: det,
+            dissipated: ev.dissipated,
+        };
+        if tn[dim] * t[dim] < 0.0 {
+            folds.push(fold_vertex(
+                pts.len().checked_sub(2).map(|i| &pts[i]),
+                &pts[pts.len() - 1],
+                (s_total, sol.omega),
+            ));
+        }
+        pts.push(Point {
+            stable: det == start_sign,
+            s: s_total,
+            sol,
+        });
+        y = yc;
+        t = tn;
+        if its <= 3 {
+            step = (step * 1.5).min(opt.step_max);
+        } else if its > 6 {
+            step = (step * 0.7).max(opt.step_min);
+        }
+        let w = y[dim] * ws;
+        if (w - opt.omega_end) * dir >= 0.0 {
+            break;
+        }
+    }
+    Ok(Branch {
+        points: pts,
+        folds,
+        iterations,
+    })
+}
+
+/// Vertex of the parabola ω(s) through (a, b, c); falls back to b's ω.
+fn fold_vertex(a: Option<&Point>, b: &Point, c: (f64, f64)) -> f64 {
+    let Some(a) = a else { return b.sol.omega };
+    let (s0, w0, s1, w1, s2, w2) = (a.s, a.sol.omega, b.s, b.sol.omega, c.0, c.1);
+    // Divided differences.
+    let d01 = (w1 - w0) / (s1 - s0);
+    let d12 = (w2 - w1) / (s2 - s1);
+    let d012 = (d12 - d01) / (s2 - s0);
+    if d012 == 0.0 || !d012.is_finite() {
+        return w1;
+    }
+    // ω(s) = w0 + d01 (s − s0) + d012 (s − s0)(s − s1); ω'(s) = 0.
+    let sv = 0.5 * (s0 + s1) - d01 / (2.0 * d012);
+    w0 + d01 * (sv - s0) + d012 * (sv - s0) * (sv - s1)
+}

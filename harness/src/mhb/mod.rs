@@ -1,0 +1,320 @@
+//! Multi-harmonic balance (issue 8): the rungs between the thesis's first-order
+//! linearization and time integration, for few-DOF lumped systems (mass/spring/damper
+//! chains with contact elements between DOFs or to ground).
+//!
+//! M ẍ + D ẋ + K x + Σ_e Pₑᵀ Fₑ(Pₑ x) = f₀ + Re(f̂ e^{iωt}), with Pₑ x = x_i − x_j the
+//! element's relative displacement. x is sought as a Fourier series with H harmonics (the
+//! zeroth included, [`aft`] layout per DOF); the residual per harmonic h (cos/sin pair)
+//!
+//!   R_h = [K − h²ω²M, hωD; −hωD, K − h²ω²M] (a_h, b_h) + F̂ₑ,h − f̂_h
+//!
+//! (Galerkin projection of the equation of motion on cos hτ, sin hτ, e.g. Krack & Gross,
+//! *Harmonic Balance for Nonlinear Vibration Problems*, 2019, eq. 2.19) with the element
+//! forces F̂ₑ from the alternating frequency–time scheme ([`aft`]), the library's
+//! stateful point marched through the C API. Newton ([`solve`]) uses the Jacobian
+//! assembled from the tangents the point returns; [`continuation`] traces branches in ω
+//! through folds. H = 1 is the thesis's first-order harmonic balance (3.5–3.8) applied to
+//! the actual force rather than to the Ersatzfunktion (4.3); [`first_order`] is the
+//! library's linearization (`jointlin_linearize`) iterated to consistency, for comparison.
+
+pub mod aft;
+pub mod continuation;
+pub mod first_order;
+pub mod reference;
+
+#[cfg(test)]
+mod tests;
+
+use nalgebra::{DMatrix, DVector};
+
+pub use aft::{AftError, Law, Transforms};
+
+/// One nonlinear element between DOF `i` and DOF `j` (`None`: ground); its force acts
+/// with + on i and − on j.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Element {
+    pub i: usize,
+    pub j: Option<usize>,
+    pub law: Law,
+}
+
+/// A lumped system: dense M, D, K (n × n), first-harmonic load f̂ (f(t) = f₀ +
+/// Re(f̂ e^{iωt}) = f₀ + f̂.re cos ωt − f̂.im sin ωt) and elements.
+#[derive(Debug, Clone)]
+pub struct System {
+    pub m: DMatrix<f64>,
+    pub d: DMatrix<f64>,
+    pub k: DMatrix<f64>,
+    pub f0: Vec<f64>,
+    pub f1: Vec<nalgebra::Complex<f64>>,
+    pub elements: Vec<Element>,
+}
+
+impl System {
+    pub fn n(&self) -> usize {
+        self.k.nrows()
+    }
+}
+
+/// Samples per period used unless a caller sets N: 16(H + 1) rounded up to a power of
+/// two, at least 64 (the contact force has kinks, so its spectrum decays like h⁻²; the
+/// sampled force aliases harmonics above N − H onto the retained ones; 16 samples per
+/// retained harmonic keep that below 1e-3 of the first harmonic, tests measure it).
+pub fn default_samples(h: usize) -> usize {
+    (16 * (h + 1)).next_power_of_two().max(64)
+}
+
+/// Newton settings.
+#[derive(Debug, Clone, Copy)]
+pub struct NewtonOptions {
+    /// ‖R‖ ≤ rtol·‖load‖ to stop.
+    pub rtol: f64,
+    pub max_iter: usize,
+}
+
+impl Default for NewtonOptions {
+    fn default() -> Self {
+        NewtonOptions {
+            // Far above the AFT round-off (loop closure 1e-11), far below any physics.
+            rtol: 1e-9,
+            max_iter: 60,
+        }
+    }
+}
+
+/// Errors of the harmonic balance.
+#[derive(Debug, thiserror::Error)]
+pub enum MhbError {
+    #[error(transparent)]
+    Aft(#[from] AftError),
+    #[error("Newton did not converge at ω = {omega:.6e} (|R|/|f| = {residual:.3e} after {iterations} iterations)")]
+    Newton {
+        omega: f64,
+        residual: f64,
+        iterations: usize,
+    },
+    #[error("singular Jacobian at ω = {omega:.6e}")]
+    Singular { omega: f64 },
+    #[error("continuation: {0}")]
+    Continuation(String),
+}
+
+/// The harmonic balance of one system at H harmonics and N samples.
+pub struct Hb<'a> {
+    pub sys: &'a System,
+    pub tr: Transforms,
+    /// AFT evaluations (element marches) made.
+    pub evaluations: u64,
+}
+
+/// Residual, its Jacobian in u and its derivative in ω at one point.
+pub struct Eval {
+    pub r: DVector<f64>,
+    pub j: DMatrix<f64>,
+    pub r_omega: DVector<f64>,
+    /// Energy dissipated per period by each element.
+    pub dissipated: Vec<f64>,
+}
+
+/// A converged periodic solution.
+#[derive(Debug, Clone)]
+pub struct Solution {
+    pub omega: f64,
+    /// Coefficients, DOF-major: u[dof·(2H+1) + c].
+    pub u: Vec<f64>,
+    pub iterations: usize,
+    pub residual: f64,
+    /// sign of det ∂R/∂u (changes at folds; see [`continuation`]).
+    pub det_sign: f64,
+    pub dissipated: Vec<f64>,
+}
+
+impl<'a> Hb<'a> {
+    pub fn new(sys: &'a System, h: usize, n: usize) -> Self {
+        Hb {
+            sys,
+            tr: Transforms::new(n, h),
+            evaluations: 0,
+        }
+    }
+
+    pub fn h(&self) -> usize {
+        self.tr.h
+    }
+
+    /// Unknowns n·(2H+1).
+    pub fn size(&self) -> usize {
+        self.sys.n() * self.tr.ncoef()
+    }
+
+    /// Load coefficients f̂ in the unknowns' layout.
+    pub fn load(&self) -> DVector<f64> {
+        let m = self.tr.ncoef();
+        let mut f = DVector::zeros(self.size());
+        for i in 0..self.sys.n() {
+            f[i * m] = self.sys.f0[i];
+            f[i * m + 1] = self.sys.f1[i].re;
+            f[i * m + 2] = -self.sys.f1[i].im;
+        }
+        f
+    }
+
+    /// Residual and derivatives at (u, ω).
+    pub fn eval(&mut self, u: &[f64], omega: f64) -> Result<Eval, MhbError> {
+        let (n, m) = (self.sys.n(), self.tr.ncoef());
+        let size = n * m;
+        let mut j = DMatrix::zeros(size, size);
+        let mut r_omega = DVector::zeros(size);
+        let s = self.sys;
+        // Linear part, per harmonic (module docs).
+        for a in 0..n {
+            for b in 0..n {
+                j[(a * m, b * m)] = s.k[(a, b)];
+                for h in 1..=self.tr.h {
+                    let hw = h as f64 * omega;
+                    let kd = s.k[(a, b)] - hw * hw * s.m[(a, b)];
+                    let (ca, sa) = (a * m + 2 * h - 1, a * m + 2 * h);
+                    let (cb, sb) = (b * m + 2 * h - 1, b * m + 2 * h);
+                    j[(ca, cb)] = kd;
+                    j[(sa, sb)] = kd;
+                    j[(ca, sb)] = hw * s.d[(a, b)];
+                    j[(sa, cb)] = -hw * s.d[(a, b)];
+                    // ∂/∂ω of the blocks times u.
+                    let hh = h as f64;
+                    let dk = -2.0 * hh * hw * s.m[(a, b)];
+                    let dd = hh * s.d[(a, b)];
+                    r_omega[ca] += dk * u[cb] + dd * u[sb];
+                    r_omega[sa] += dk * u[sb] - dd * u[cb];
+                }
+            }
+        }
+        let uv = DVector::from_column_slice(u);
+        let mut r = &j * &uv - self.load();
+        let mut dissipated = Vec::with_capacity(s.elements.len());
+        let mut dc = vec![0.0; m];
+        for e in &s.elements {
+            for c in 0..m {
+                dc[c] = u[e.i * m + c] - e.j.map_or(0.0, |jj| u[jj * m + c]);
+            }
+            let ev = aft::evaluate(&mut self.tr, &e.law, &dc)?;
+            self.evaluations += 1;
+            dissipated.push(ev.period.dissipated);
+            // Pᵀ F̂ and Pᵀ J P with P = [I, −I] on (i, j).
+            let ends: [(usize, f64); 2] = [(e.i, 1.0), (e.j.unwrap_or(usize::MAX), -1.0)];
+            for &(p, sp) in &ends {
+                if p == usize::MAX {
+                    continue;
+                }
+                for c in 0..m {
+                    r[p * m + c] += sp * ev.force[c];
+                }
+                for &(q, sq) in &ends {
+                    if q == usize::MAX {
+                        continue;
+                    }
+                    for a in 0..m {
+                        for b in 0..m {
+                            j[(p * m + a, q * m + b)] += sp * sq * ev.jac[a * m + b];
+                        }
+                    }
+                }
+            }
+        }
+        Ok(Eval {
+            r,
+            j,
+            r_omega,
+            dissipated,
+        })
+    }
+
+    /// Newton from `u0` at fixed ω, with step halving when the residual grows.
+    pub fn solve(
+        &mut self,
+        u0: &[f64],
+        omega: f64,
+        opt: NewtonOptions,
+    ) -> Result<Solution, MhbError> {
+        let scale = self.load().norm().max(f64::MIN_POSITIVE);
+        let mut u = DVector::from_column_slice(u0);
+        let mut ev = self.eval(u.as_slice(), omega)?;
+        let mut res = ev.r.norm() / scale;
+        for it in 1..=opt.max_iter {
+            let lu = ev.j.clone().lu();
+            let du = lu.solve(&ev.r).ok_or(MhbError::Singular { omega })?;
+            let mut lambda = 1.0;
+            let mut accepted = None;
+            for _ in 0..10 {
+                let trial = &u - lambda * &du;
+                let e2 = self.eval(trial.as_slice(), omega)?;
+                let r2 = e2.r.norm() / scale;
+                if r2 < res || lambda < 1e-2 {
+                    accepted = Some((trial, e2, r2));
+                    break;
+                }
+                lambda *= 0.5;
+            }
+            let (trial, e2, r2) = accepted.expect("the last halving is always accepted");
+            u = trial;
+            ev = e2;
+            res = r2;
+            if res <= opt.rtol {
+                let det = ev.j.clone().lu().determinant();
+                return Ok(Solution {
+                    omega,
+                    u: u.as_slice().to_vec(),
+                    iterations: it,
+                    residual: res,
+                    det_sign: det.signum(),
+                    dissipated: ev.dissipated,
+                });
+            }
+        }
+        Err(MhbError::Newton {
+            omega,
+            residual: res,
+            iterations: opt.max_iter,
+        })
+    }
+
+    /// First-harmonic amplitude √(a₁² + b₁²) of DOF `dof` in `u`.
+    pub fn amplitude(&self, u: &[f64], dof: usize) -> f64 {
+        let m = self.tr.ncoef();
+        u[dof * m + 1].hypot(u[dof * m + 2])
+    }
+
+    /// Half the peak-to-peak range of DOF `dof` over the N samples of the period.
+    pub fn half_range(&mut self, u: &[f64], dof: usize) -> f64 {
+        let m = self.tr.ncoef();
+        let mut x = vec![0.0; self.tr.n];
+        self.tr.synthesize(&u[dof * m..(dof + 1) * m], &mut x);
+        let (lo, hi) = x
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), &v| {
+                (l.min(v), h.max(v))
+            });
+        0.5 * (hi - lo)
+    }
+
+    /// Amplitude √(a_h² + b_h²) of harmonic h of DOF `dof`.
+    pub fn harmonic(&self, u: &[f64], dof: usize, h: usize) -> f64 {
+        let m = self.tr.ncoef();
+        if h == 0 {
+            return u[dof * m].abs();
+        }
+        u[dof * m + 2 * h - 1].hypot(u[dof * m + 2 * h])
+    }
+
+    /// Coefficients of a solution at H harmonics from one at fewer or more (truncated
+    /// or zero-padded per DOF): the start of a higher-H solve.
+    pub fn embed(&self, u: &[f64], h_from: usize) -> Vec<f64> {
+        let (mf, m) = (2 * h_from + 1, self.tr.ncoef());
+        let mut out = vec![0.0; self.size()];
+        for d in 0..self.sys.n() {
+            for c in 0..mf.min(m) {
+                out[d * m + c] = u[d * mf + c];
+            }
+        }
+        out
+    }
+}

@@ -1,0 +1,141 @@
+//! Time-domain reference for the lumped systems of [`super`]: the harness's RK4
+//! ([`crate::time::rk4::rk4_step`], thesis (D.2)) on the first-order form, every stage
+//! asking the library's point (`jointlin_point_step`) for the force at the stage's slip
+//! from the committed state, the state committed once per accepted step (as
+//! [`crate::time::rk4::SceneRk4`] does for scenes); periodic steady state detected by the
+//! harness's cycle test ([`crate::time::periodic`]).
+
+use crate::capi::{self, POINT_STATE_LEN};
+use crate::time::periodic::{change, Cycle, SteadyTest};
+use crate::time::rk4::rk4_step;
+
+use super::{Law, MhbError, System};
+
+/// Steady periodic response measured over the last cycle.
+#[derive(Debug, Clone)]
+pub struct Steady {
+    /// First-harmonic amplitude per DOF.
+    pub amplitude: Vec<f64>,
+    /// Half the peak-to-peak range per DOF.
+    pub half_range: Vec<f64>,
+    pub cycles: usize,
+    /// Energy dissipated per cycle by the elements.
+    pub energy: f64,
+}
+
+/// Integrates from x(0) = x0, v(0) = v0 with `steps` RK4 steps per period until the cycle
+/// change test is below `tol` (S = 2n state size).
+pub fn steady<const S: usize>(
+    sys: &System,
+    omega: f64,
+    x0: &[f64],
+    v0: &[f64],
+    steps: usize,
+    tol: f64,
+    max_cycles: usize,
+) -> Result<Steady, MhbError> {
+    let n = sys.n();
+    assert_eq!(S, 2 * n);
+    let minv = sys
+        .m
+        .clone()
+        .try_inverse()
+        .ok_or(MhbError::Singular { omega })?;
+    let ne = sys.elements.len();
+    let mut states = vec![[0.0; POINT_STATE_LEN]; ne];
+    let h = 2.0 * std::f64::consts::PI / omega / steps as f64;
+    let mut x = [0.0; S];
+    x[..n].copy_from_slice(x0);
+    x[n..].copy_from_slice(v0);
+    let mut dissipated = 0.0;
+    let mut err: Option<MhbError> = None;
+    let mut test = SteadyTest::default();
+    let mut prev = None;
+    let mut t = 0.0;
+    // Element forces at x from the committed states (trial: states not changed).
+    let forces = |x: &[f64; S], states: &[[f64; POINT_STATE_LEN]]| -> Result<Vec<f64>, MhbError> {
+        let mut scratch = [0.0; POINT_STATE_LEN];
+        sys.elements
+            .iter()
+            .zip(states)
+            .map(|(e, st)| {
+                let d = x[e.i] - e.j.map_or(0.0, |j| x[j]);
+                Ok(match e.law {
+                    Law::Cubic(k3) => k3 * d * d * d,
+                    Law::Point(tg) => {
+                        capi::point_step(&tg, st, d, &mut scratch)
+                            .map_err(super::AftError::from)?
+                            .force
+                    }
+                })
+            })
+            .collect()
+    };
+    for cycle in 1..=max_cycles {
+        let mut cyc = Cycle::new(omega, steps, n, vec![dissipated]);
+        for _ in 0..steps {
+            let f = |tt: f64, y: &[f64; S]| -> [f64; S] {
+                let mut out = [0.0; S];
+                let fe = match forces(y, &states) {
+                    Ok(v) => v,
+                    Err(_) => return [f64::NAN; S],
+                };
+                let (sn, cs) = (omega * tt).sin_cos();
+                let mut r = vec![0.0; n];
+                for a in 0..n {
+                    r[a] = sys.f0[a] + sys.f1[a].re * cs - sys.f1[a].im * sn;
+                    for b in 0..n {
+                        r[a] -= sys.k[(a, b)] * y[b] + sys.d[(a, b)] * y[n + b];
+                    }
+                }
+                for (e, fv) in sys.elements.iter().zip(&fe) {
+                    r[e.i] -= fv;
+                    if let Some(j) = e.j {
+                        r[j] += fv;
+                    }
+                }
+                for a in 0..n {
+                    out[a] = y[n + a];
+                    out[n + a] = (0..n).map(|b| minv[(a, b)] * r[b]).sum();
+                }
+                out
+            };
+            x = rk4_step(&f, t, &x, h);
+            t += h;
+            if x.iter().any(|v| !v.is_finite()) {
+                // A failed point call or an unstable step: report the C-API error if any.
+                forces(&x, &states).err().map(|e| err = Some(e));
+                return Err(err.unwrap_or(MhbError::Continuation(format!(
+                    "time integration not finite at t = {t:.6e}"
+                ))));
+            }
+            // Commit the points at the accepted state.
+            for (e, st) in sys.elements.iter().zip(states.iter_mut()) {
+                if let Law::Point(tg) = e.law {
+                    let d = x[e.i] - e.j.map_or(0.0, |j| x[j]);
+                    let mut next = [0.0; POINT_STATE_LEN];
+                    let s = capi::point_step(&tg, st, d, &mut next).map_err(super::AftError::from)?;
+                    *st = next;
+                    dissipated += s.dissipated;
+                }
+            }
+            cyc.push(t, &x[..n]);
+        }
+        let stats = cyc.finish(&[dissipated]);
+        if let Some(p) = &prev {
+            let d = test.push(change(p, &stats));
+            if d <= tol {
+                return Ok(Steady {
+                    amplitude: stats.outputs.iter().map(|o| o.amplitude).collect(),
+                    half_range: stats.outputs.iter().map(|o| o.half_range()).collect(),
+                    cycles: cycle,
+                    energy: stats.energy,
+                });
+            }
+        }
+        prev = Some(stats);
+    }
+    Err(MhbError::Continuation(format!(
+        "time integration not periodic to {tol:.1e} within {max_cycles} cycles"
+    )))
+}

@@ -1,0 +1,258 @@
+use nalgebra::{Complex, DMatrix};
+
+use super::continuation::{trace, Options};
+use super::*;
+use crate::capi::Tangential;
+use crate::scene::{LawName, RuleName};
+
+fn point(law: LawName, rule: RuleName, mu: f64, normal: f64, k_t0: f64) -> Law {
+    Law::Point(Tangential {
+        law,
+        rule,
+        mu,
+        normal,
+        k_t0,
+    })
+}
+
+/// One mass m on a ground spring k and dashpot d with one element to ground, load
+/// f cos ωt (f̂ real) or −i f (f sin ωt).
+fn oscillator(m: f64, d: f64, k: f64, f1: Complex<f64>, law: Law) -> System {
+    System {
+        m: DMatrix::from_element(1, 1, m),
+        d: DMatrix::from_element(1, 1, d),
+        k: DMatrix::from_element(1, 1, k),
+        f0: vec![0.0],
+        f1: vec![f1],
+        elements: vec![Element {
+            i: 0,
+            j: None,
+            law,
+        }],
+    }
+}
+
+/// Duffing of thesis Appendix B: ẍ + ẋ + 20x + 40x³ = 30 sin(ωt).
+fn duffing() -> System {
+    oscillator(1.0, 1.0, 20.0, Complex::new(0.0, -30.0), Law::Cubic(40.0))
+}
+
+/// 3-DOF chain: ground –k– m1 –k– m2 –k– m3, Jenkins elements from m1 and m3 to ground,
+/// light proportional damping, force on m3.
+fn jenkins_chain(f: f64) -> System {
+    let k = 1.0;
+    let kk = DMatrix::from_row_slice(3, 3, &[2.0 * k, -k, 0.0, -k, 2.0 * k, -k, 0.0, -k, k]);
+    let jen = point(LawName::Jenkins, RuleName::Masing, 1.0, 0.1, 2.0);
+    System {
+        m: DMatrix::identity(3, 3),
+        d: &kk * 0.01,
+        k: kk,
+        f0: vec![0.0; 3],
+        f1: vec![
+            Complex::new(0.0, 0.0),
+            Complex::new(0.0, 0.0),
+            Complex::new(f, 0.0),
+        ],
+        elements: vec![
+            Element {
+                i: 0,
+                j: None,
+                law: jen,
+            },
+            Element {
+                i: 2,
+                j: Some(1),
+                law: jen,
+            },
+        ],
+    }
+}
+
+/// Start vector at H harmonics from a complex first harmonic per DOF.
+fn start(h: usize, x1: &[Complex<f64>]) -> Vec<f64> {
+    let m = 2 * h + 1;
+    let mut u = vec![0.0; x1.len() * m];
+    for (d, x) in x1.iter().enumerate() {
+        u[d * m + 1] = x.re;
+        u[d * m + 2] = -x.im;
+    }
+    u
+}
+
+#[test]
+fn transforms_round_trip() {
+    // Synthesis then analysis is the identity for N >= 2H + 2 (discrete orthogonality).
+    let h = 7;
+    let mut tr = Transforms::new(default_samples(h), h);
+    let c: Vec<f64> = (0..15).map(|i| ((i * 37 % 11) as f64 - 5.0) * 0.1).collect();
+    let mut x = vec![0.0; tr.n];
+    tr.synthesize(&c, &mut x);
+    // Sample 3 against the series evaluated directly.
+    let tau = 2.0 * std::f64::consts::PI * 3.0 / tr.n as f64;
+    let direct = c[0]
+        + (1..=h)
+            .map(|k| c[2 * k - 1] * (k as f64 * tau).cos() + c[2 * k] * (k as f64 * tau).sin())
+            .sum::<f64>();
+    assert!((x[3] - direct).abs() < 1e-14, "{} {}", x[3], direct);
+    let mut back = vec![0.0; 15];
+    tr.analyse(&x, &mut back);
+    for (a, b) in c.iter().zip(&back) {
+        assert!((a - b).abs() < 1e-14);
+    }
+}
+
+#[test]
+fn h1_element_forces_are_the_linearization() {
+    // For delta = A cos(tau), the first-harmonic force of the loop is (k* A) cos - (d* omega A)
+    // sin: k* is the in-phase coefficient of the Ersatzfunktion (4.3), equal to the
+    // loop's own for symmetric (Masing) loops, and d* omega A = A_hys/(pi A) (3.14) is the
+    // quadrature coefficient (only the first harmonic of F does work on a sinusoid). The
+    // library integrates exactly; AFT samples N = 64 points of a loop with kinks:
+    // k* to 1e-12 and the energy to 1e-5 below the slip limit (smooth Mindlin branches),
+    // 3e-3 above it (the Coulomb kinks, rectangle rule O(N^-2)).
+    let law = point(LawName::Mindlin, RuleName::Masing, 0.3, 2.0, 1282.7);
+    let Law::Point(t) = law else { unreachable!() };
+    let dstar = 1.5 * 0.6 / 1282.7;
+    let mut tr = Transforms::new(default_samples(1), 1);
+    for &(r, tol_k, tol_d) in &[(0.3, 1e-12, 1e-5), (0.9, 1e-12, 1e-5), (10.0, 3e-3, 3e-3)] {
+        let a = r * dstar;
+        let l = crate::capi::linearize(&t, a, 1.0).unwrap();
+        let ev = aft::evaluate(&mut tr, &law, &[0.0, a, 0.0]).unwrap();
+        assert!((ev.force[1] / (l.k_star * a) - 1.0).abs() < tol_k, "{r}");
+        assert!((ev.force[2] / (-l.d_star * a) - 1.0).abs() < tol_d, "{r}");
+        // Energy per cycle from the marched loop = the library's closed form.
+        assert!((ev.period.dissipated / l.energy_per_cycle - 1.0).abs() < 1e-9, "{r}");
+    }
+}
+
+#[test]
+fn h1_reproduces_the_first_order_solve() {
+    // The block of Appendix C (Masing rule) on a ground spring, swept through the range
+    // where it slips (A/δ* up to ~3 at ω = 20). Measured 2.1e-4 at most: the N = 64
+    // sampling of the loop's kinks (above) and the zeroth harmonic, which the first-order
+    // method has not; 5e-4 leaves room for neither more.
+    let law = point(LawName::Mindlin, RuleName::Masing, 0.3, 2.0, 1282.7);
+    let sys = oscillator(2.0, 0.5, 200.0, Complex::new(0.4, 0.0), law);
+    for &w in &[5.0, 10.0, 20.0, 25.0, 30.0] {
+        let x1 = first_order::solve(&sys, w, &[1e-4]).unwrap();
+        let mut hb = Hb::new(&sys, 1, default_samples(1));
+        let s = hb.solve(&start(1, &x1), w, NewtonOptions::default()).unwrap();
+        let rel = hb.amplitude(&s.u, 0) / x1[0].norm() - 1.0;
+        assert!(rel.abs() < 5e-4, "ω = {w}: {rel:e}");
+    }
+}
+
+#[test]
+fn jenkins_jacobian_is_exact() {
+    // Jenkins is piecewise linear (k_T0 or sliding), so the incremental derivative rule
+    // is the exact derivative of the marched loop: central differences (step 1e-7 A,
+    // truncation zero on linear pieces, round-off ~1e-9) agree to 1e-7.
+    let law = point(LawName::Jenkins, RuleName::Masing, 1.0, 0.1, 2.0);
+    // (A/δ* = 2 exactly would put the stick-slip kink on a sample, where the map has no
+    // derivative; 2.1 avoids that.)
+    for &r in &[0.3, 0.9, 2.1, 10.0] {
+        let a = r * 0.05;
+        for &h in &[1usize, 7] {
+            let m = 2 * h + 1;
+            let mut tr = Transforms::new(default_samples(h), h);
+            let mut dc = vec![0.0; m];
+            dc[1] = a;
+            if h > 1 {
+                dc[3] = 0.2 * a;
+                dc[4] = -0.1 * a;
+            }
+            let ev = aft::evaluate(&mut tr, &law, &dc).unwrap();
+            let (mut worst, mut big) = (0.0f64, 0.0f64);
+            for j in 0..m {
+                let eps = 1e-7 * a;
+                let (mut p, mut q) = (dc.clone(), dc.clone());
+                p[j] += eps;
+                q[j] -= eps;
+                let fp = aft::evaluate(&mut tr, &law, &p).unwrap().force;
+                let fq = aft::evaluate(&mut tr, &law, &q).unwrap().force;
+                for i in 0..m {
+                    let fd = (fp[i] - fq[i]) / (2.0 * eps);
+                    worst = worst.max((fd - ev.jac[i * m + j]).abs());
+                    big = big.max(fd.abs());
+                }
+            }
+            assert!(worst <= 1e-7 * big, "A/δ* {r}, H {h}: {:e}", worst / big);
+        }
+    }
+}
+
+/// Closed-form folds of the first-order Duffing response: G(ρ, ω) = ρ[(20 + 30ρ − ω²)²
+/// + ω²] − 900 = 0 (ρ = A², (3.8) with C* = ¾·40·A²) and ∂G/∂ρ = 0, by Newton from a guess.
+fn duffing_fold(mut rho: f64, mut w: f64) -> f64 {
+    for _ in 0..50 {
+        let k = 20.0 + 30.0 * rho - w * w;
+        let g = rho * (k * k + w * w) - 900.0;
+        let gr = k * k + w * w + 60.0 * rho * k;
+        let gw = rho * (-4.0 * w * k + 2.0 * w);
+        let grr = 120.0 * k + 1800.0 * rho;
+        let grw = -4.0 * w * k + 2.0 * w - 120.0 * rho * w;
+        let det = gr * grw - gw * grr;
+        let dr = (g * grw - gw * gr) / det;
+        let dw = (gr * gr - grr * g) / det;
+        rho -= dr;
+        w -= dw;
+    }
+    w
+}
+
+#[test]
+fn duffing_h1_folds_and_unstable_branch() {
+    // Appendix B: three amplitudes for 8.7 < ω < 13.3 at first order. Continuation passes
+    // both folds; the fold frequencies are the closed form's (parabolic vertex through
+    // three points, error O(step³): 2e-3 relative allowed); between the folds the
+    // det-sign test marks the branch unstable, and at ω = 10 it crosses three times.
+    let sys = duffing();
+    let mut hb = Hb::new(&sys, 1, default_samples(1));
+    let x1 = first_order::solve(&sys, 4.0, &[0.5]).unwrap();
+    let opt = Options {
+        omega_start: 4.0,
+        omega_end: 20.0,
+        step: 0.02,
+        step_min: 1e-6,
+        step_max: 0.05,
+        max_points: 5000,
+        rtol: 1e-10,
+    };
+    let br = trace(&mut hb, &start(1, &x1), opt).unwrap();
+    assert_eq!(br.folds.len(), 2, "{:?}", br.folds);
+    let (hi, lo) = (br.folds[0], br.folds[1]);
+    // ρ = A² of the branch point nearest each fold starts the closed-form Newton.
+    let rho_near = |w: f64| {
+        let p = br
+            .points
+            .iter()
+            .min_by(|a, b| {
+                (a.sol.omega - w)
+                    .abs()
+                    .partial_cmp(&(b.sol.omega - w).abs())
+                    .unwrap()
+            })
+            .unwrap();
+        hb.amplitude(&p.sol.u, 0).powi(2)
+    };
+    let hi_cf = duffing_fold(rho_near(hi), hi);
+    let lo_cf = duffing_fold(rho_near(lo), lo);
+    assert!((hi / hi_cf - 1.0).abs() < 2e-3, "{hi} vs {hi_cf}");
+    assert!((lo / lo_cf - 1.0).abs() < 2e-3, "{lo} vs {lo_cf}");
+    // The thesis's interval 8.7 < ω < 13.3 (read off its Fig. 4.3: the closed form gives
+    // 8.699 and 13.22).
+    assert!((lo - 8.7).abs() < 0.05 && (hi - 13.3).abs() < 0.1, "{lo} {hi}");
+    let crossings = br
+        .points
+        .windows(2)
+        .filter(|p| (p[0].sol.omega - 10.0) * (p[1].sol.omega - 10.0) <= 0.0)
+        .count();
+    assert_eq!(crossings, 3);
+    for p in &br.points {
+        let between = p.s > 0.0 && !p.stable;
+        if between {
+            assert!(p.sol.omega > lo - 0.05 && p.sol.omega < hi + 0.05);
+        }
+    }
+    assert!(br.points.iter().any(|p| !p.stable));
+}
