@@ -213,7 +213,13 @@ pub fn evaluate(tr: &mut Transforms, law: &Law, dc: &[f64]) -> Result<ElementEva
         basis[j] = 1.0;
         tr.synthesize(&basis, &mut b);
         if let (true, Law::Point(t)) = (incremental, law) {
-            propagate(&period.force, &period.tangent, t.mu * t.normal.abs(), &b, &mut df);
+            propagate(
+                &period.force,
+                &period.tangent,
+                t.mu * t.normal.abs(),
+                &b,
+                &mut df,
+            );
         } else {
             for k in 0..n {
                 df[k] = period.tangent[k] * b[k];

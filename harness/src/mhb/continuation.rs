@@ -83,7 +83,8 @@ pub fn trace(hb: &mut Hb, u0: &[f64], opt: Options) -> Result<Branch, MhbError> 
     let augmented = |ev: &super::Eval, t: &DVector<f64>| -> DMatrix<f64> {
         let mut a = DMatrix::zeros(dim + 1, dim + 1);
         a.view_mut((0, 0), (dim, dim)).copy_from(&(&ev.j * us));
-        a.view_mut((0, dim), (dim, 1)).copy_from(&(&ev.r_omega * ws));
+        a.view_mut((0, dim), (dim, 1))
+            .copy_from(&(&ev.r_omega * ws));
         a.view_mut((dim, 0), (1, dim + 1)).copy_from(&t.transpose());
         a
     };
@@ -93,7 +94,9 @@ pub fn trace(hb: &mut Hb, u0: &[f64], opt: Options) -> Result<Branch, MhbError> 
     let mut t = augmented(&ev0, &t_prev)
         .lu()
         .solve(&rhs)
-        .ok_or(MhbError::Singular { omega: opt.omega_start })?;
+        .ok_or(MhbError::Singular {
+            omega: opt.omega_start,
+        })?;
     t /= t.norm();
     let mut s_total = 0.0;
     while pts.len() < opt.max_points {
@@ -135,7 +138,9 @@ pub fn trace(hb: &mut Hb, u0: &[f64], opt: Options) -> Result<Branch, MhbError> 
         iterations += its;
         // New tangent at the corrected point.
         let Some(mut tn) = augmented(&ev, &t).lu().solve(&rhs) else {
-            return Err(MhbError::Singular { omega: yc[dim] * ws });
+            return Err(MhbError::Singular {
+                omega: yc[dim] * ws,
+            });
         };
         tn /= tn.norm();
         if tn.dot(&t) < 0.0 {

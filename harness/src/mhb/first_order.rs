@@ -55,10 +55,9 @@ pub fn solve(sys: &System, omega: f64, a0: &[f64]) -> Result<Vec<C64>, MhbError>
             .iter()
             .map(|e| (x[e.i] - e.j.map_or(C64::new(0.0, 0.0), |j| x[j])).norm())
             .collect();
-        let err = amp
-            .iter()
-            .zip(&new)
-            .fold(0.0f64, |m, (a, b)| m.max((a - b).abs() / b.abs().max(1e-300)));
+        let err = amp.iter().zip(&new).fold(0.0f64, |m, (a, b)| {
+            m.max((a - b).abs() / b.abs().max(1e-300))
+        });
         if err <= TOL {
             return Ok(x.iter().copied().collect());
         }

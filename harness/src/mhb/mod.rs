@@ -18,6 +18,7 @@
 //! library's linearization (`jointlin_linearize`) iterated to consistency, for comparison.
 
 pub mod aft;
+pub mod bench;
 pub mod continuation;
 pub mod first_order;
 pub mod reference;

@@ -48,7 +48,6 @@ pub fn steady<const S: usize>(
     x[..n].copy_from_slice(x0);
     x[n..].copy_from_slice(v0);
     let mut dissipated = 0.0;
-    let mut err: Option<MhbError> = None;
     let mut test = SteadyTest::default();
     let mut prev = None;
     let mut t = 0.0;
@@ -104,17 +103,18 @@ pub fn steady<const S: usize>(
             t += h;
             if x.iter().any(|v| !v.is_finite()) {
                 // A failed point call or an unstable step: report the C-API error if any.
-                forces(&x, &states).err().map(|e| err = Some(e));
-                return Err(err.unwrap_or(MhbError::Continuation(format!(
+                forces(&x, &states)?;
+                return Err(MhbError::Continuation(format!(
                     "time integration not finite at t = {t:.6e}"
-                ))));
+                )));
             }
             // Commit the points at the accepted state.
             for (e, st) in sys.elements.iter().zip(states.iter_mut()) {
                 if let Law::Point(tg) = e.law {
                     let d = x[e.i] - e.j.map_or(0.0, |j| x[j]);
                     let mut next = [0.0; POINT_STATE_LEN];
-                    let s = capi::point_step(&tg, st, d, &mut next).map_err(super::AftError::from)?;
+                    let s =
+                        capi::point_step(&tg, st, d, &mut next).map_err(super::AftError::from)?;
                     *st = next;
                     dissipated += s.dissipated;
                 }

@@ -24,11 +24,7 @@ fn oscillator(m: f64, d: f64, k: f64, f1: Complex<f64>, law: Law) -> System {
         k: DMatrix::from_element(1, 1, k),
         f0: vec![0.0],
         f1: vec![f1],
-        elements: vec![Element {
-            i: 0,
-            j: None,
-            law,
-        }],
+        elements: vec![Element { i: 0, j: None, law }],
     }
 }
 
@@ -37,36 +33,7 @@ fn duffing() -> System {
     oscillator(1.0, 1.0, 20.0, Complex::new(0.0, -30.0), Law::Cubic(40.0))
 }
 
-/// 3-DOF chain: ground –k– m1 –k– m2 –k– m3, Jenkins elements from m1 and m3 to ground,
-/// light proportional damping, force on m3.
-fn jenkins_chain(f: f64) -> System {
-    let k = 1.0;
-    let kk = DMatrix::from_row_slice(3, 3, &[2.0 * k, -k, 0.0, -k, 2.0 * k, -k, 0.0, -k, k]);
-    let jen = point(LawName::Jenkins, RuleName::Masing, 1.0, 0.1, 2.0);
-    System {
-        m: DMatrix::identity(3, 3),
-        d: &kk * 0.01,
-        k: kk,
-        f0: vec![0.0; 3],
-        f1: vec![
-            Complex::new(0.0, 0.0),
-            Complex::new(0.0, 0.0),
-            Complex::new(f, 0.0),
-        ],
-        elements: vec![
-            Element {
-                i: 0,
-                j: None,
-                law: jen,
-            },
-            Element {
-                i: 2,
-                j: Some(1),
-                law: jen,
-            },
-        ],
-    }
-}
+use super::bench::jenkins_chain;
 
 /// Start vector at H harmonics from a complex first harmonic per DOF.
 fn start(h: usize, x1: &[Complex<f64>]) -> Vec<f64> {
@@ -84,7 +51,9 @@ fn transforms_round_trip() {
     // Synthesis then analysis is the identity for N >= 2H + 2 (discrete orthogonality).
     let h = 7;
     let mut tr = Transforms::new(default_samples(h), h);
-    let c: Vec<f64> = (0..15).map(|i| ((i * 37 % 11) as f64 - 5.0) * 0.1).collect();
+    let c: Vec<f64> = (0..15)
+        .map(|i| ((i * 37 % 11) as f64 - 5.0) * 0.1)
+        .collect();
     let mut x = vec![0.0; tr.n];
     tr.synthesize(&c, &mut x);
     // Sample 3 against the series evaluated directly.
@@ -121,7 +90,10 @@ fn h1_element_forces_are_the_linearization() {
         assert!((ev.force[1] / (l.k_star * a) - 1.0).abs() < tol_k, "{r}");
         assert!((ev.force[2] / (-l.d_star * a) - 1.0).abs() < tol_d, "{r}");
         // Energy per cycle from the marched loop = the library's closed form.
-        assert!((ev.period.dissipated / l.energy_per_cycle - 1.0).abs() < 1e-9, "{r}");
+        assert!(
+            (ev.period.dissipated / l.energy_per_cycle - 1.0).abs() < 1e-9,
+            "{r}"
+        );
     }
 }
 
@@ -136,7 +108,9 @@ fn h1_reproduces_the_first_order_solve() {
     for &w in &[5.0, 10.0, 20.0, 25.0, 30.0] {
         let x1 = first_order::solve(&sys, w, &[1e-4]).unwrap();
         let mut hb = Hb::new(&sys, 1, default_samples(1));
-        let s = hb.solve(&start(1, &x1), w, NewtonOptions::default()).unwrap();
+        let s = hb
+            .solve(&start(1, &x1), w, NewtonOptions::default())
+            .unwrap();
         let rel = hb.amplitude(&s.u, 0) / x1[0].norm() - 1.0;
         assert!(rel.abs() < 5e-4, "ω = {w}: {rel:e}");
     }
@@ -241,7 +215,10 @@ fn duffing_h1_folds_and_unstable_branch() {
     assert!((lo / lo_cf - 1.0).abs() < 2e-3, "{lo} vs {lo_cf}");
     // The thesis's interval 8.7 < ω < 13.3 (read off its Fig. 4.3: the closed form gives
     // 8.699 and 13.22).
-    assert!((lo - 8.7).abs() < 0.05 && (hi - 13.3).abs() < 0.1, "{lo} {hi}");
+    assert!(
+        (lo - 8.7).abs() < 0.05 && (hi - 13.3).abs() < 0.1,
+        "{lo} {hi}"
+    );
     let crossings = br
         .points
         .windows(2)
@@ -265,7 +242,11 @@ fn initial(hb: &Hb, u: &[f64], omega: f64) -> (Vec<f64>, Vec<f64>) {
         .map(|d| u[d * m] + (1..=hb.h()).map(|h| u[d * m + 2 * h - 1]).sum::<f64>())
         .collect();
     let v = (0..n)
-        .map(|d| (1..=hb.h()).map(|h| h as f64 * omega * u[d * m + 2 * h]).sum::<f64>())
+        .map(|d| {
+            (1..=hb.h())
+                .map(|h| h as f64 * omega * u[d * m + 2 * h])
+                .sum::<f64>()
+        })
         .collect();
     (x, v)
 }
@@ -285,7 +266,9 @@ fn jenkins_chain_against_time_domain() {
         let mut u7 = Vec::new();
         for &h in &[7usize, 15] {
             let mut hb = Hb::new(&sys, h, default_samples(h));
-            let s = hb.solve(&start(h, &x1), w, NewtonOptions::default()).unwrap();
+            let s = hb
+                .solve(&start(h, &x1), w, NewtonOptions::default())
+                .unwrap();
             amp.push(hb.amplitude(&s.u, 2));
             if h == 7 {
                 u7 = s.u;
@@ -297,8 +280,16 @@ fn jenkins_chain_against_time_domain() {
         let r = td.amplitude[2];
         let fo = x1[2].norm() / r - 1.0;
         assert!(fo > 0.2, "ω {w}: first order {fo:e}");
-        assert!((amp[0] / r - 1.0).abs() < 5e-3, "ω {w}: H=7 {}", amp[0] / r - 1.0);
-        assert!((amp[1] / r - 1.0).abs() < 1e-3, "ω {w}: H=15 {}", amp[1] / r - 1.0);
+        assert!(
+            (amp[0] / r - 1.0).abs() < 5e-3,
+            "ω {w}: H=7 {}",
+            amp[0] / r - 1.0
+        );
+        assert!(
+            (amp[1] / r - 1.0).abs() < 1e-3,
+            "ω {w}: H=15 {}",
+            amp[1] / r - 1.0
+        );
     }
 }
 
@@ -313,7 +304,9 @@ fn mindlin_block_against_time_domain() {
     for &w in &[18.0, 22.0, 25.0] {
         let x1 = first_order::solve(&sys, w, &[1e-4]).unwrap();
         let mut hb = Hb::new(&sys, 7, default_samples(7));
-        let s = hb.solve(&start(7, &x1), w, NewtonOptions::default()).unwrap();
+        let s = hb
+            .solve(&start(7, &x1), w, NewtonOptions::default())
+            .unwrap();
         let (x0, v0) = initial(&hb, &s.u, w);
         let td = reference::steady::<2>(&sys, w, &x0, &v0, 4096, 1e-7, 3000).unwrap();
         let r = td.amplitude[0];
@@ -338,10 +331,14 @@ fn duffing_superharmonic_resonance() {
         let w = 1.2 + 0.08 * i as f64;
         let x1 = first_order::solve(&sys, w, &[0.5]).unwrap();
         let mut hb1 = Hb::new(&sys, 1, default_samples(1));
-        let s1 = hb1.solve(&start(1, &x1), w, NewtonOptions::default()).unwrap();
+        let s1 = hb1
+            .solve(&start(1, &x1), w, NewtonOptions::default())
+            .unwrap();
         h1.push(hb1.half_range(&s1.u, 0));
         let mut hb = Hb::new(&sys, 15, default_samples(15));
-        let s = hb.solve(&start(15, &x1), w, NewtonOptions::default()).unwrap();
+        let s = hb
+            .solve(&start(15, &x1), w, NewtonOptions::default())
+            .unwrap();
         h15.push(hb.half_range(&s.u, 0));
         let (x0, v0) = initial(&hb, &s.u, w);
         td.push(
@@ -354,7 +351,12 @@ fn duffing_superharmonic_resonance() {
         .find(|&i| td[i] > td[i - 1] && td[i] > td[i + 1])
         .expect("a superharmonic peak in the reference");
     assert!(h1.windows(2).all(|p| p[1] > p[0]), "{h1:?}");
-    assert!(1.0 - h1[peak] / td[peak] > 0.08, "{} {}", h1[peak], td[peak]);
+    assert!(
+        1.0 - h1[peak] / td[peak] > 0.08,
+        "{} {}",
+        h1[peak],
+        td[peak]
+    );
     for (a, b) in h15.iter().zip(&td) {
         assert!((a / b - 1.0).abs() < 1.5e-2, "{a} {b}");
     }
