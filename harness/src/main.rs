@@ -132,6 +132,20 @@ enum Command {
         #[arg(long)]
         contact_scan: bool,
     },
+    /// Multi-harmonic balance (AFT through jointlin_point_step): cost vs H of a
+    /// frequency sweep of the 3-DOF Jenkins chain, beside the first-order linearization.
+    /// Prints a Markdown table.
+    Mhb {
+        /// Harmonics to run (the last row is the reference of the deviation column).
+        #[arg(long, value_delimiter = ',', default_values_t = vec![1usize, 3, 7, 15])]
+        harmonics: Vec<usize>,
+        /// Frequencies per sweep.
+        #[arg(long, default_value_t = 200)]
+        freqs: usize,
+        /// Force amplitude on the last mass.
+        #[arg(long, default_value_t = 0.05)]
+        force: f64,
+    },
 }
 
 fn progress_bar(quiet: bool) -> ProgressBar {
@@ -327,6 +341,16 @@ fn main() -> ExitCode {
                     ExitCode::from(1)
                 }
             }
+        }
+        Command::Mhb {
+            harmonics,
+            freqs,
+            force,
+        } => {
+            use jointlin_harness::mhb::bench;
+            let rows = bench::sweep_table(force, 0.3, 0.8, freqs, &harmonics);
+            println!("{}", bench::markdown(&rows, force, 0.3, 0.8, freqs));
+            ExitCode::SUCCESS
         }
         Command::Tradeoff { scene, out, freq } => {
             let s = match Scene::load(&scene) {
