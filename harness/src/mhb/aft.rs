@@ -34,8 +34,12 @@ use crate::scene::LawName;
 /// forget their history at each reversal, so closure is reached after 2–3 periods and
 /// the tolerance only guards round-off.
 pub const CLOSE_TOL: f64 = 1e-11;
-/// Periods marched at most before the loop counts as not closed.
-pub const MAX_PERIODS: usize = 30;
+/// Periods marched at most before the loop counts as not closed. Jenkins and Masing
+/// loops close after 2–3 periods; the thesis rule (elastic unloading, then Mindlin from
+/// the zero-force point) is not symmetric under a prescribed periodic slip and drifts to
+/// its closed loop geometrically (ratio ≈ 0.7 per period measured at A/δ* = 0.3), so it
+/// needs ~70 periods for the closure tolerance: this cap admits it at that cost.
+pub const MAX_PERIODS: usize = 200;
 
 /// FFT plans and scratch for N samples.
 pub struct Transforms {
