@@ -278,6 +278,35 @@ impl<'a> Hb<'a> {
         })
     }
 
+    /// The start vector of the linear system without its elements at ω (first harmonic
+    /// of (K − ω²M + iωD) x̂ = f̂, zeroth from K x̄ = f₀): a cold start for Newton, e.g.
+    /// after a sweep has passed a fold (the old branch no longer exists).
+    pub fn linear_start(&self, omega: f64) -> Vec<f64> {
+        use nalgebra::Complex;
+        let (n, m) = (self.sys.n(), self.tr.ncoef());
+        let s = &self.sys;
+        let dyn_k = DMatrix::from_fn(n, n, |a, b| {
+            Complex::new(
+                s.k[(a, b)] - omega * omega * s.m[(a, b)],
+                omega * s.d[(a, b)],
+            )
+        });
+        let f1 = nalgebra::DVector::from_iterator(n, s.f1.iter().copied());
+        let x1 = dyn_k.lu().solve(&f1);
+        let x0 = s.k.clone().lu().solve(&DVector::from_column_slice(&s.f0));
+        let mut u = vec![0.0; self.size()];
+        for d in 0..n {
+            if let Some(x0) = &x0 {
+                u[d * m] = x0[d];
+            }
+            if let Some(x1) = &x1 {
+                u[d * m + 1] = x1[d].re;
+                u[d * m + 2] = -x1[d].im;
+            }
+        }
+        u
+    }
+
     /// First-harmonic amplitude √(a₁² + b₁²) of DOF `dof` in `u`.
     pub fn amplitude(&self, u: &[f64], dof: usize) -> f64 {
         let m = self.tr.ncoef();

@@ -406,3 +406,66 @@ fn softening_friction_bends_left() {
         br.folds
     );
 }
+
+/// Sequential sweep at fixed ω steps, each Newton started from the previous solution
+/// (what a plain sweep does), or, where that fails (past a fold), from the linear
+/// response scaled by 1, 2, 4, −2, −4 (cold starts towards a larger branch, in or out of
+/// phase with the linear one); the amplitudes of
+/// DOF 0.
+fn plain_sweep(hb: &mut Hb, omegas: &[f64], u0: Vec<f64>) -> Vec<f64> {
+    let mut u = u0;
+    omegas
+        .iter()
+        .map(|&w| {
+            let s = hb
+                .solve(&u, w, NewtonOptions::default())
+                .or_else(|e| {
+                    [1.0, 2.0, 4.0, -2.0, -4.0]
+                        .iter()
+                        .find_map(|&c| {
+                            let u0: Vec<f64> = hb.linear_start(w).iter().map(|v| c * v).collect();
+                            hb.solve(&u0, w, NewtonOptions::default()).ok()
+                        })
+                        .ok_or(e)
+                })
+                .unwrap();
+            u = s.u;
+            hb.amplitude(&u, 0)
+        })
+        .collect()
+}
+
+#[test]
+fn duffing_sweeps_up_and_down_jump_at_the_folds() {
+    // Thesis Fig. 4.3: sweeping up follows the upper branch to the fold at 13.22 and drops;
+    // sweeping down follows the lower branch to the fold at 8.699 and jumps up (closed
+    // form folds, test above). Steps of 0.01 rad/s: the jump lies within one step past
+    // the fold.
+    let sys = duffing();
+    let mut hb = Hb::new(&sys, 1, default_samples(1));
+    let up: Vec<f64> = (0..1600).map(|i| 4.0 + 0.01 * i as f64).collect();
+    let x1 = first_order::solve(&sys, 4.0, &[0.5]).unwrap();
+    let a_up = plain_sweep(&mut hb, &up, start(1, &x1));
+    let jump = |a: &[f64]| {
+        (1..a.len())
+            .find(|&i| (a[i] / a[i - 1]).ln().abs() > 0.5)
+            .expect("a jump")
+    };
+    let i = jump(&a_up);
+    assert!(
+        up[i] > 13.22 && up[i] <= 13.24,
+        "up-sweep jump at {}",
+        up[i]
+    );
+    let down: Vec<f64> = up.iter().rev().copied().collect();
+    let x1 = first_order::solve(&sys, 20.0, &[0.1]).unwrap();
+    let a_down = plain_sweep(&mut hb, &down, start(1, &x1));
+    let j = jump(&a_down);
+    assert!(
+        down[j] < 8.70 && down[j] >= 8.68,
+        "down-sweep jump at {}",
+        down[j]
+    );
+    // Up-sweep drops, down-sweep jumps up (by more than e^0.5, the detection threshold).
+    assert!(a_up[i] < a_up[i - 1] && a_down[j] > a_down[j - 1]);
+}
