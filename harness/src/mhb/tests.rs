@@ -469,3 +469,46 @@ fn duffing_sweeps_up_and_down_jump_at_the_folds() {
     // Up-sweep drops, down-sweep jumps up (by more than e^0.5, the detection threshold).
     assert!(a_up[i] < a_up[i - 1] && a_down[j] > a_down[j - 1]);
 }
+
+#[test]
+fn duffing_stability_marks_agree_with_the_time_domain() {
+    // The three H = 3 solutions at ω = 10 (Appendix B: 0.395, 1.43, 1.77 at first order):
+    // the det-sign test marks the middle one unstable. RK4 (1024 steps per period,
+    // periodic to 1e-8) started on each solution perturbed by +1 % stays on the
+    // stable ones (amplitude within 1e-3) and leaves the unstable one (ends > 5 % away).
+    let sys = duffing();
+    let mut hb = Hb::new(&sys, 3, default_samples(3));
+    let mut found: Vec<Solution> = Vec::new();
+    for c in [0.2, 0.5, 1.0, 2.0, 4.0, -2.0, -4.0] {
+        let u0: Vec<f64> = hb.linear_start(10.0).iter().map(|v| c * v).collect();
+        if let Ok(s) = hb.solve(&u0, 10.0, NewtonOptions::default()) {
+            let a = hb.amplitude(&s.u, 0);
+            if found
+                .iter()
+                .all(|f| (hb.amplitude(&f.u, 0) / a - 1.0).abs() > 1e-6)
+            {
+                found.push(s);
+            }
+        }
+    }
+    assert_eq!(found.len(), 3, "three coexisting solutions");
+    found.sort_by(|a, b| {
+        hb.amplitude(&a.u, 0)
+            .partial_cmp(&hb.amplitude(&b.u, 0))
+            .unwrap()
+    });
+    let signs: Vec<f64> = found.iter().map(|s| s.det_sign).collect();
+    assert!(signs[0] == signs[2] && signs[1] != signs[0], "{signs:?}");
+    for (k, s) in found.iter().enumerate() {
+        let a = hb.amplitude(&s.u, 0);
+        let (x0, v0) = initial(&hb, &s.u, 10.0);
+        let x0: Vec<f64> = x0.iter().map(|x| 1.01 * x).collect();
+        let td = reference::steady::<2>(&sys, 10.0, &x0, &v0, 1024, 1e-8, 5000).unwrap();
+        let e = (td.amplitude[0] / a - 1.0).abs();
+        if k == 1 {
+            assert!(e > 0.05, "unstable branch kept: {e:e}");
+        } else {
+            assert!(e < 1e-3, "stable branch {k} left: {e:e}");
+        }
+    }
+}
