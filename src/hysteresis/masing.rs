@@ -148,6 +148,14 @@ impl MasingState {
         if sliding && d != 0.0 {
             self.depth = 0;
             self.origin = self.slip - d * delta_star;
+            // Rounding may leave |δ − δ₀| a few ulps below δ*, where a Jenkins backbone would
+            // report the stick tangent k_T0 although the point slides: step δ₀ back by ulps.
+            for _ in 0..8 {
+                if (self.slip - self.origin).abs() >= delta_star {
+                    break;
+                }
+                self.origin -= d * f64::EPSILON * self.origin.abs().max(delta_star);
+            }
         }
     }
 

@@ -221,3 +221,23 @@ fn a_changed_normal_load_keeps_the_force_continuous_in_both_directions() {
         }
     }
 }
+
+#[test]
+fn a_sliding_jenkins_point_reports_zero_tangent_on_every_sample() {
+    // δ = 0.75 cos τ with μF_N = 0.1, k = 2 (δ* = 0.05): wherever the force sits at ±μF_N
+    // while the motion continues, the tangent must be 0 (it used to flip to k_T0 after the
+    // memory collapse when rounding left |δ − δ₀| an ulp below δ*).
+    let b = Backbone::new(TangentialLaw::Jenkins, 0.1, 2.0).unwrap();
+    let p = Point::new(b, Rule::Masing);
+    let mut st = PointState::virgin(Rule::Masing, 0.0);
+    let n = 64;
+    for i in 0..=3 * n {
+        let tau = 2.0 * std::f64::consts::PI * i as f64 / n as f64;
+        let (next, r) = p.step(&st, 0.75 * tau.cos()).unwrap();
+        let moving_on = (next.slip() - st.slip()).signum() == r.force.signum();
+        if i > n && r.force.abs() == 0.1 && moving_on {
+            assert_eq!(r.tangent, 0.0, "sample {i}");
+        }
+        st = next;
+    }
+}
