@@ -329,18 +329,7 @@ fn main() -> ExitCode {
                 }
             };
             print!("{}", jointlin_harness::validate::markdown(&rep));
-            match jointlin_harness::validate::write(&out, &rep) {
-                Ok(files) => {
-                    for f in files {
-                        eprintln!("wrote {}", f.display());
-                    }
-                    ExitCode::SUCCESS
-                }
-                Err(e) => {
-                    eprintln!("error writing: {e}");
-                    ExitCode::from(1)
-                }
-            }
+            report_written(jointlin_harness::validate::write(&out, &rep))
         }
         Command::Mhb {
             harmonics,
@@ -368,18 +357,7 @@ fn main() -> ExitCode {
                 }
             };
             print!("{}", jointlin_harness::tradeoff::markdown(&t));
-            match jointlin_harness::tradeoff::write(&out, &t) {
-                Ok(files) => {
-                    for f in files {
-                        eprintln!("wrote {}", f.display());
-                    }
-                    ExitCode::SUCCESS
-                }
-                Err(e) => {
-                    eprintln!("error writing: {e}");
-                    ExitCode::from(1)
-                }
-            }
+            report_written(jointlin_harness::tradeoff::write(&out, &t))
         }
     }
 }
@@ -437,6 +415,22 @@ fn time_domain_run(s: &Scene, out: &std::path::Path, quiet: bool) -> ExitCode {
         }
         Err(e) => {
             eprintln!("error writing reports: {e}");
+            ExitCode::from(1)
+        }
+    }
+}
+
+/// Lists the files a report command wrote, or its write error; the exit code follows.
+fn report_written<E: std::fmt::Display>(written: Result<Vec<std::path::PathBuf>, E>) -> ExitCode {
+    match written {
+        Ok(files) => {
+            for f in files {
+                eprintln!("wrote {}", f.display());
+            }
+            ExitCode::SUCCESS
+        }
+        Err(e) => {
+            eprintln!("error writing: {e}");
             ExitCode::from(1)
         }
     }
