@@ -390,7 +390,7 @@ fn uinter_time_domain_with_huge_slips_increments_and_alternating_signs() {
                 for sign in [1.0, -1.0] {
                     k += 1;
                     let s = sign * d * 10f64.powi(e);
-                    let wiggle = if k % 3 == 0 {
+                    let wiggle = if k.is_multiple_of(3) {
                         s * (1.0 + f64::EPSILON)
                     } else {
                         s

@@ -330,7 +330,7 @@ fn dense_two_cycle(histories: &[Vec<(f64, f64)>], tolerance: f64) -> Option<(f64
             return None;
         }
         let swing = (a2 - a1).abs() / a2;
-        if swing > tolerance && worst.map_or(true, |w| swing > w.0) {
+        if swing > tolerance && worst.is_none_or(|w| swing > w.0) {
             worst = Some((swing, a1, a2));
         }
     }
