@@ -32,7 +32,9 @@ pub fn preload_from_torque(
         ));
     }
     if mu_thread < 0.0 || mu_head < 0.0 {
-        return Err(Error::OutOfRange("screw: friction coefficients must be >= 0"));
+        return Err(Error::OutOfRange(
+            "screw: friction coefficients must be >= 0",
+        ));
     }
     // VDI 2230 (R13), Roloff/Matek form.
     let lever = 0.16 * pitch + 0.58 * d2 * mu_thread + 0.5 * d_km * mu_head;

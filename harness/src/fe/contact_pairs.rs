@@ -95,7 +95,8 @@ pub fn find_pairs_where(
         .face_quads(Face::ZMax, &model.elements)
         .into_iter()
         .filter(|q| {
-            let c = std::array::from_fn(|a| q.iter().map(|&n| model.nodes[n][a]).sum::<f64>() / 4.0);
+            let c =
+                std::array::from_fn(|a| q.iter().map(|&n| model.nodes[n][a]).sum::<f64>() / 4.0);
             keep(c)
         })
         .collect();

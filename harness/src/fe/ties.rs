@@ -77,7 +77,11 @@ pub fn find_ties(
         for dx in -1..=1 {
             for dy in -1..=1 {
                 for dz in -1..=1 {
-                    for &m in grid.get(&[c[0] + dx, c[1] + dy, c[2] + dz]).into_iter().flatten() {
+                    for &m in grid
+                        .get(&[c[0] + dx, c[1] + dy, c[2] + dz])
+                        .into_iter()
+                        .flatten()
+                    {
                         let q = model.nodes[m];
                         let d = (0..3).map(|k| (p[k] - q[k]).powi(2)).sum::<f64>().sqrt();
                         if d < tol && best.is_none_or(|x| d < x.0) {
@@ -95,7 +99,11 @@ pub fn find_ties(
         match partner(p) {
             Some(m) => out.push([n, m]),
             None if on_surface(&bb, p, tol) => {
-                return Err(TieError::NonConforming { node: n, at: p, tol })
+                return Err(TieError::NonConforming {
+                    node: n,
+                    at: p,
+                    tol,
+                })
             }
             None => {}
         }
@@ -108,7 +116,11 @@ pub fn find_ties(
     for n in nodes_b {
         let p = model.nodes[n];
         if !paired.contains(&n) && on_surface(&ba, p, tol) {
-            return Err(TieError::NonConforming { node: n, at: p, tol });
+            return Err(TieError::NonConforming {
+                node: n,
+                at: p,
+                tol,
+            });
         }
     }
     Ok(out)

@@ -8,11 +8,11 @@ use nalgebra::{Complex, Matrix3, Vector3};
 use super::{BuildError, ContactPoint, Interface, Output, Problem, Screw};
 use crate::fe::assembly::{assemble, System};
 use crate::fe::contact_pairs::find_pairs_where;
-use crate::fe::ties::find_ties;
 use crate::fe::csc::Csc;
 use crate::fe::hex8::{self, Formulation};
 use crate::fe::mesh::{BoxSpec, Face, Material, Model};
 use crate::fe::surface::{add_pressure, nodal_areas};
+use crate::fe::ties::find_ties;
 use crate::scene::validate::GROUND;
 use crate::scene::*;
 

@@ -248,7 +248,10 @@ pub fn validate(s: &SceneFile) -> Vec<Problem> {
             }
         }
         if c.finite(p.key("initial_gap"), f.initial_gap) && f.initial_gap < 0.0 {
-            c.fail(p.key("initial_gap"), format!("must be >= 0, got {}", f.initial_gap));
+            c.fail(
+                p.key("initial_gap"),
+                format!("must be >= 0, got {}", f.initial_gap),
+            );
         }
         if lumped && f.initial_gap != 0.0 {
             c.fail(p.key("initial_gap"), "only for box interfaces");
@@ -306,7 +309,10 @@ pub fn validate(s: &SceneFile) -> Vec<Problem> {
         c.non_negative(p.key("mu_head"), sc.mu_head);
         c.non_negative(p.key("d_km"), sc.d_km);
         if c.finite(p.key("share"), sc.share) && !(sc.share > 0.0 && sc.share <= 1.0) {
-            c.fail(p.key("share"), format!("must be in (0, 1], got {}", sc.share));
+            c.fail(
+                p.key("share"),
+                format!("must be in (0, 1], got {}", sc.share),
+            );
         }
         for (k, bp) in [("head", &sc.head), ("nut", &sc.nut)] {
             check_body(&mut c, p.key(k).key("body"), &bp.body);
