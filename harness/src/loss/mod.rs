@@ -199,17 +199,10 @@ impl Operating {
         Ok(r.outputs.iter().map(|o| o[self.output].norm()).collect())
     }
 
-    /// Frequency of the largest output amplitude at `scale`: the grid's peak, then
-    /// golden-section search between its neighbours.
-    pub fn resonance(&mut self, grid: &[f64], scale: f64) -> Result<f64, LossError> {
-        let amp = self.response(grid, scale)?;
-        let k = (0..amp.len())
-            .max_by(|&a, &b| amp[a].total_cmp(&amp[b]))
-            .ok_or_else(|| LossError::Spec("the sweep has no frequencies".into()))?;
-        if grid.len() < 3 {
-            return Ok(grid[k]);
-        }
-        let (mut a, mut b) = (grid[k.saturating_sub(1)], grid[(k + 1).min(grid.len() - 1)]);
+    /// Frequency of the largest output amplitude at `scale` between `a` and `b`
+    /// (one peak there): golden-section search.
+    pub fn resonance(&mut self, a: f64, b: f64, scale: f64) -> Result<f64, LossError> {
+        let (mut a, mut b) = (a, b);
         let g = 0.5 * (5f64.sqrt() - 1.0);
         let mut c = b - g * (b - a);
         let mut d = a + g * (b - a);
@@ -281,7 +274,9 @@ pub fn with_torque(scene: &Scene, screw: &str, torque: f64) -> Result<Scene, Los
     Ok(s)
 }
 
-/// The power-loss curve of one model: resonance at the largest amplitude, then each
+/// The power-loss curve of one model: the resonance (the grid's peak at the scene's
+/// excitation, refined by golden section at the excitation of the largest amplitude;
+/// the grid must hold one peak of the output there), then each
 /// target amplitude at that frequency (largest first, each level starting from the
 /// previous scale). Returns the samples in the order of `amplitudes`.
 pub fn curve(
@@ -293,14 +288,22 @@ pub fn curve(
     if top <= 0.0 {
         return Err(LossError::Spec("amplitudes must be > 0".into()));
     }
-    // Linear estimate of the scale for the top amplitude, from the grid's peak at scale 1.
+    // The grid's peak at the scene's excitation: the bracket of the resonance and a
+    // linear estimate of the scale for the top amplitude.
     let amp = op.response(grid, 1.0)?;
-    let peak = amp.iter().copied().fold(0.0, f64::max);
-    if peak <= 0.0 || !peak.is_finite() {
+    let k = (0..amp.len())
+        .max_by(|&a, &b| amp[a].total_cmp(&amp[b]))
+        .ok_or_else(|| LossError::Spec("the sweep has no frequencies".into()))?;
+    if amp[k] <= 0.0 || !amp[k].is_finite() {
         return Err(LossError::Spec("the output does not move".into()));
     }
-    let mut scale = top / peak;
-    let f = op.resonance(grid, scale)?;
+    let mut scale = top / amp[k];
+    let f = if grid.len() < 3 {
+        grid[k]
+    } else {
+        let (a, b) = (grid[k.saturating_sub(1)], grid[(k + 1).min(grid.len() - 1)]);
+        op.resonance(a, b, scale)?
+    };
     let mut order: Vec<usize> = (0..amplitudes.len()).collect();
     order.sort_by(|&a, &b| amplitudes[b].total_cmp(&amplitudes[a]));
     let mut out: Vec<Option<Sample>> = vec![None; amplitudes.len()];
