@@ -231,6 +231,7 @@ pub fn solve(p: &Problem, nonlinear: bool) -> Result<StaticState, StaticError> {
         let du = solve_with(&tangent_matrix(&tangents), &neg)?;
         let mut step = 1.0;
         let mut accepted = None;
+        let mut full = None;
         for _ in 0..=MAX_HALVINGS {
             let trial: Vec<f64> = u.iter().zip(&du).map(|(a, b)| a + step * b).collect();
             let e = evaluate(p, &props, &trial, None)?;
@@ -239,13 +240,20 @@ pub fn solve(p: &Problem, nonlinear: bool) -> Result<StaticState, StaticError> {
                 accepted = Some((trial, e, r));
                 break;
             }
+            if full.is_none() {
+                full = Some((trial, e, r));
+            }
             step *= 0.5;
         }
-        let Some((trial, e, r)) = accepted else {
-            return Err(StaticError::NotConverged {
-                iterations: it,
-                residual: res,
-            });
+        // No shorter step lowers ‖R‖: take the full Newton step. A change of the set of
+        // closed points (a gap closing) can raise ‖R‖ before the next step drops it;
+        // MAX_NEWTON bounds the iterations.
+        let (trial, e, r) = match accepted {
+            Some(a) => a,
+            None => {
+                step = 1.0;
+                full.expect("at least one trial step")
+            }
         };
         let moved = step * norm(&du);
         u = trial;
