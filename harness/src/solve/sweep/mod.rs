@@ -14,6 +14,7 @@
 pub mod anderson;
 pub mod fast;
 pub mod krylov;
+pub mod receptance;
 pub mod thesis;
 
 use std::collections::BTreeMap;
