@@ -39,18 +39,27 @@ enum Command {
     /// k* and d* per point and tangential direction from the library for the point's
     /// amplitude, iterated to consistency: mode `fast` (default; one factorization per
     /// frequency, condensation onto the contact DOFs) or `thesis` (the UEXTERNALDB
-    /// multi-pass scheme of thesis §4.3.2 through the library's store). The scene's
-    /// [effects] table switches physics and outputs on and off; the run log lists the
-    /// active effects and what each cost.
+    /// multi-pass scheme of thesis §4.3.2 through the library's store). Or, with
+    /// [iteration] mode = "harmonic_balance", harmonics = H (samples = N optional), the
+    /// multi-harmonic balance: the library's time-domain point marched over each contact
+    /// direction's periodic slip (AFT, N samples per period), the linear part condensed
+    /// onto the contact directions per harmonic 0..H, Newton per frequency; the normal
+    /// load is held at its static value. The scene's [effects] table switches physics
+    /// and outputs on and off; the run log lists the active effects and what each cost.
     ///
     /// Files written to DIR (only after a valid scene and a successful run; a bad scene
     /// names file:line:column and key, and nothing is written):
     ///   results.csv   freq_hz, then per named output <name>_amp and <name>_phase_deg,
-    ///                 then dissipated_power (power lost in the joints, force·length/time)
+    ///                 then dissipated_power (power lost in the joints, force·length/time);
+    ///                 harmonic balance: first harmonic
+    ///   harmonics.csv harmonic balance only: freq_hz, then per output and h = 0..H
+    ///                 <name>_h<h>_amp (h = 0: mean deviation from the static state)
     ///   results_without_contact_damping.csv  the same with d* = 0 (fast mode; written
     ///                 with the plots when the scene has contact damping)
     ///   points.csv    per contact point and frequency: position, pressure, amplitude,
-    ///                 k*, d* (per area), energy per cycle, A/δ* (effects.point_energy_output)
+    ///                 k*, d* (per area), energy per cycle, A/δ* (effects.point_energy_output);
+    ///                 harmonic balance: first-harmonic amplitude, k* + iωd* = F̂₁/δ̂₁ of
+    ///                 the closed loop, its energy per cycle
     ///   stick_slip.csv/.svg  points per regime over frequency (effects.stick_slip_map)
     ///   run.json      scene echo, effects with costs, passes, iterations, timings, C-API calls
     ///   frf.svg       FRF of the outputs with and without contact damping

@@ -40,6 +40,9 @@ pub const CLOSE_TOL: f64 = 1e-11;
 /// its closed loop geometrically (ratio ≈ 0.7 per period measured at A/δ* = 0.3), so it
 /// needs ~70 periods for the closure tolerance: this cap admits it at that cost.
 pub const MAX_PERIODS: usize = 200;
+/// Aitken extrapolation of the period-end state when consecutive periods' differences
+/// shrink by a ratio q below this (a contraction that is not yet round-off).
+const AITKEN_MAX_RATIO: f64 = 0.999_999;
 
 /// FFT plans and scratch for N samples.
 pub struct Transforms {
@@ -146,6 +149,10 @@ pub fn march(law: &Law, delta: &[f64]) -> Result<Period, AftError> {
                 ..Period::default()
             };
             let floor = 1e-3 * t.mu * t.normal.abs();
+            // Period-end states and force differences of the last two periods since the
+            // last extrapolation (Aitken, module docs).
+            let mut ends: Vec<[f64; POINT_STATE_LEN]> = Vec::new();
+            let mut diffs: Vec<f64> = Vec::new();
             for p in 1..=MAX_PERIODS {
                 let mut diss = 0.0;
                 for k in 0..n {
@@ -163,10 +170,32 @@ pub fn march(law: &Law, delta: &[f64]) -> Result<Period, AftError> {
                     .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
                 cur.dissipated = diss;
                 cur.periods = p;
-                if p > 1 && diff <= CLOSE_TOL * scale {
+                prev.copy_from_slice(&cur.force);
+                if ends.is_empty() {
+                    ends.push(state);
+                    continue;
+                }
+                if diff <= CLOSE_TOL * scale {
                     return Ok(cur);
                 }
-                prev.copy_from_slice(&cur.force);
+                ends.push(state);
+                diffs.push(diff);
+                if let [d1, d2] = diffs[..] {
+                    // Geometric drift F_p = F_∞ + c q^p: jump the state to its limit.
+                    let q = d2 / d1;
+                    if q < AITKEN_MAX_RATIO {
+                        let w = q / (1.0 - q);
+                        let (s1, s2) = (ends[1], ends[2]);
+                        for (x, (a, b)) in state.iter_mut().zip(s1.iter().zip(&s2)) {
+                            *x = b + (b - a) * w;
+                        }
+                    }
+                    ends.clear();
+                    diffs.clear();
+                    if q >= AITKEN_MAX_RATIO {
+                        ends.push(state);
+                    }
+                }
             }
             Err(AftError::NotClosed {
                 periods: MAX_PERIODS,
@@ -192,14 +221,21 @@ pub struct ElementEval {
     pub period: Period,
 }
 
+/// Force coefficients of one element at relative-displacement coefficients `dc`, and the
+/// closed period they come from (no Jacobian).
+pub fn forces(tr: &mut Transforms, law: &Law, dc: &[f64]) -> Result<(Vec<f64>, Period), AftError> {
+    let mut delta = vec![0.0; tr.n];
+    tr.synthesize(dc, &mut delta);
+    let period = march(law, &delta)?;
+    let mut force = vec![0.0; tr.ncoef()];
+    tr.analyse(&period.force, &mut force);
+    Ok((force, period))
+}
+
 /// AFT of one element at relative-displacement coefficients `dc`.
 pub fn evaluate(tr: &mut Transforms, law: &Law, dc: &[f64]) -> Result<ElementEval, AftError> {
     let (n, m) = (tr.n, tr.ncoef());
-    let mut delta = vec![0.0; n];
-    tr.synthesize(dc, &mut delta);
-    let period = march(law, &delta)?;
-    let mut force = vec![0.0; m];
-    tr.analyse(&period.force, &mut force);
+    let (force, period) = forces(tr, law, dc)?;
     let mut jac = vec![0.0; m * m];
     if let Law::Point(t) = law {
         if t.law != LawName::Jenkins {

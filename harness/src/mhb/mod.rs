@@ -20,6 +20,7 @@
 pub mod aft;
 pub mod bench;
 pub mod continuation;
+pub mod fe;
 pub mod first_order;
 pub mod reference;
 
