@@ -100,7 +100,8 @@ enum Command {
         cases: Vec<String>,
     },
     /// One scene at a ladder of fidelities (linear stick, Simpson point counts, iteration
-    /// tolerances, time-domain steps and settling lengths): error against the most
+    /// tolerances, harmonic balance with H = 1, 3, 7, 15, time-domain steps and settling
+    /// lengths): error against the most
     /// accurate time-domain run vs wall time. Writes tradeoff.csv, tradeoff.md and the
     /// Pareto plot tradeoff.svg; prints the frequency- vs time-domain speed ratio.
     Tradeoff {
@@ -142,15 +143,23 @@ enum Command {
         contact_scan: bool,
     },
     /// Multi-harmonic balance (AFT through jointlin_point_step): cost vs H of a
-    /// frequency sweep of the 3-DOF Jenkins chain, beside the first-order linearization.
-    /// Prints a Markdown table.
+    /// frequency sweep of the 3-DOF Jenkins chain, or with --scene of FE scenes (time per
+    /// frequency split into mesh and contact parts), beside the first-order
+    /// linearization. Prints a Markdown table per system.
     Mhb {
         /// Harmonics to run (the last row is the reference of the deviation column).
         #[arg(long, value_delimiter = ',', default_values_t = vec![1usize, 3, 7, 15])]
         harmonics: Vec<usize>,
-        /// Frequencies per sweep.
-        #[arg(long, default_value_t = 200)]
-        freqs: usize,
+        /// Frequencies per sweep (default 200 for the chain, 5 for scenes).
+        #[arg(long)]
+        freqs: Option<usize>,
+        /// FE scenes to run instead of the chain (e.g. scenes/three-beams-coarse.toml,
+        /// scenes/three-beams.toml).
+        #[arg(long, value_delimiter = ',')]
+        scene: Vec<PathBuf>,
+        /// Band f_min,f_max (1/time) for scenes; default each scene's first refine band.
+        #[arg(long, value_delimiter = ',', num_args = 2)]
+        band: Vec<f64>,
         /// Force amplitude on the last mass.
         #[arg(long, default_value_t = 0.05)]
         force: f64,
@@ -343,11 +352,35 @@ fn main() -> ExitCode {
         Command::Mhb {
             harmonics,
             freqs,
+            scene,
+            band,
             force,
         } => {
-            use jointlin_harness::mhb::bench;
-            let rows = bench::sweep_table(force, 0.3, 0.8, freqs, &harmonics);
-            println!("{}", bench::markdown(&rows, force, 0.3, 0.8, freqs));
+            use jointlin_harness::mhb::{bench, fe_bench};
+            if scene.is_empty() {
+                let freqs = freqs.unwrap_or(200);
+                let rows = bench::sweep_table(force, 0.3, 0.8, freqs, &harmonics);
+                println!("{}", bench::markdown(&rows, force, 0.3, 0.8, freqs));
+                return ExitCode::SUCCESS;
+            }
+            for path in scene {
+                let s = match Scene::load(&path) {
+                    Ok(s) => s,
+                    Err(e) => {
+                        eprintln!("error: {e}");
+                        return ExitCode::from(2);
+                    }
+                };
+                let band = (band.len() == 2).then(|| (band[0], band[1]));
+                let log = |l: &str| eprintln!("{}: {l}", path.display());
+                match fe_bench::table(&s, band, freqs.unwrap_or(5), &harmonics, &log) {
+                    Ok(t) => println!("{}", fe_bench::markdown(&t)),
+                    Err(e) => {
+                        eprintln!("error: {e}");
+                        return ExitCode::from(1);
+                    }
+                }
+            }
             ExitCode::SUCCESS
         }
         Command::Tradeoff { scene, out, freq } => {

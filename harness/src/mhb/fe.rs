@@ -28,7 +28,7 @@
 
 use std::time::Instant;
 
-use nalgebra::{DMatrix, LU};
+use nalgebra::DMatrix;
 
 use super::aft::{self, Law, Transforms};
 use super::{MhbError, NewtonOptions};
@@ -44,6 +44,9 @@ use crate::solve::umfpack::UmfpackError;
 const GMRES_RESTART: usize = 40;
 const GMRES_MAX: usize = 400;
 const GMRES_TOL: f64 = 1e-8;
+/// Preconditioner blocks whose smallest LU pivot is below this fraction of the largest
+/// are pseudo-inverted (singular values below this fraction of the largest dropped).
+const PINV_RCOND: f64 = 1e-12;
 
 /// Counters and timings of a balance.
 #[derive(Debug, Clone, Default)]
@@ -243,20 +246,22 @@ impl<'s, 'a> FeBalance<'s, 'a> {
         out
     }
 
-    /// The preconditioner I + Ĝ Γ_d, one LU per harmonic (order m for h = 0, 2m else;
-    /// unknowns ordered direction-major, (cos, sin) within a direction).
-    fn preconditioner(&self, gamma: &[f64]) -> Vec<LU<f64, nalgebra::Dyn, nalgebra::Dyn>> {
+    /// The preconditioner (I + Ĝ Γ_d)⁻¹, one dense block per harmonic (order m for h = 0,
+    /// 2m else; unknowns ordered direction-major, (cos, sin) within a direction). A block
+    /// that is singular to [`PINV_RCOND`] is pseudo-inverted: e.g. the mean position of a
+    /// mass held only by friction, whose closed loops re-centre (∂F̂₀/∂r₀ = 0), is
+    /// undetermined, and Newton then leaves it where it starts.
+    fn preconditioner(&self, gamma: &[f64]) -> Vec<DMatrix<f64>> {
         let (m, nc) = (self.m(), self.tr.ncoef());
         let gm = |j: usize, a: usize, b: usize| gamma[j * nc * nc + a * nc + b];
         self.rec
             .iter()
             .enumerate()
             .map(|(h, rec)| {
-                if h == 0 {
+                let p = if h == 0 {
                     DMatrix::from_fn(m, m, |k, j| {
                         f64::from(u8::from(k == j)) + rec.g[k + m * j].re * gm(j, 0, 0)
                     })
-                    .lu()
                 } else {
                     let c = [2 * h - 1, 2 * h];
                     DMatrix::from_fn(2 * m, 2 * m, |row, col| {
@@ -267,7 +272,17 @@ impl<'s, 'a> FeBalance<'s, 'a> {
                         let gd = blk[a][0] * gm(j, c[0], c[b]) + blk[a][1] * gm(j, c[1], c[b]);
                         f64::from(u8::from(row == col)) + gd
                     })
-                    .lu()
+                };
+                let lu = p.clone().lu();
+                let piv = lu.u().diagonal().map(f64::abs);
+                match lu.try_inverse() {
+                    Some(inv) if piv.min() > PINV_RCOND * piv.max() => inv,
+                    _ => {
+                        let svd = p.svd(true, true);
+                        let tol = PINV_RCOND * svd.singular_values.max();
+                        svd.pseudo_inverse(tol)
+                            .expect("tolerance ≥ 0, both factors computed")
+                    }
                 }
             })
             .collect()
@@ -304,7 +319,7 @@ impl<'s, 'a> FeBalance<'s, 'a> {
             if f.gamma.is_empty() {
                 f = self.forces(&r, true)?;
             }
-            let lus = self.preconditioner(&f.gamma);
+            let inverses = self.preconditioner(&f.gamma);
             let mut du = vec![0.0; size];
             let mut gv = vec![0.0; size];
             let gamma = &f.gamma;
@@ -324,20 +339,12 @@ impl<'s, 'a> FeBalance<'s, 'a> {
                     }
                 },
                 &mut |x: &[f64], y: &mut [f64]| {
-                    for (h, lu) in lus.iter().enumerate() {
-                        let cs: Vec<usize> = if h == 0 {
-                            vec![0]
-                        } else {
-                            vec![2 * h - 1, 2 * h]
-                        };
-                        let mut b = nalgebra::DVector::from_fn(m * cs.len(), |i, _| {
-                            x[(i / cs.len()) * nc + cs[i % cs.len()]]
-                        });
-                        if !lu.solve_mut(&mut b) {
-                            return Err(MhbError::Singular { omega });
-                        }
-                        for (i, v) in b.iter().enumerate() {
-                            y[(i / cs.len()) * nc + cs[i % cs.len()]] = *v;
+                    for (h, inv) in inverses.iter().enumerate() {
+                        let cs: &[usize] = if h == 0 { &[0] } else { &[2 * h - 1, 2 * h] };
+                        let at = |i: usize| (i / cs.len()) * nc + cs[i % cs.len()];
+                        let b = nalgebra::DVector::from_fn(inv.ncols(), |i, _| x[at(i)]);
+                        for (i, v) in (inv * b).iter().enumerate() {
+                            y[at(i)] = *v;
                         }
                     }
                     Ok(())

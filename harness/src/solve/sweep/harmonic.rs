@@ -84,6 +84,7 @@ pub fn sweep(
         start = Some(sol.r);
     }
     res.factorizations = hb.stats.factorizations;
+    res.gmres_solves = hb.stats.gmres_iterations;
     *res.timings.entry("receptance solves".into()).or_default() += hb.stats.receptance_seconds;
     *res.timings
         .entry("harmonic balance (AFT + Newton)".into())
