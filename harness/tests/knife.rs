@@ -273,3 +273,51 @@ fn contact_maps_read_back_from_vtu() {
     approx::assert_relative_eq!(total * sample.freq / 0.5, sample.power, max_relative = 1e-9);
     std::fs::remove_dir_all(&dir).ok();
 }
+
+#[test]
+fn bad_knife_scenes_name_file_line_and_key() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes/knife-coarse.toml");
+    let text = std::fs::read_to_string(path).unwrap();
+    for (from, to, key) in [
+        (
+            "output = \"end_face\"\n@",
+            "output = \"nope\"\n@",
+            "loss_study.output",
+        ),
+        (
+            "initial_gap = 0.0075",
+            "initial_gap = -0.0075",
+            "interfaces[0].initial_gap",
+        ),
+        (
+            "mu_thread = 0.12",
+            "mu_thread = -0.12",
+            "screws[0].mu_thread",
+        ),
+        (
+            "between = [\"blade_in\", \"blade_out\"]",
+            "between = [\"blade_in\", \"blade\"]",
+            "ties[9].between[1]",
+        ),
+    ] {
+        // `@` marks the first occurrence after the [loss_study] header.
+        let bad = if from.ends_with('@') {
+            let at = text.find("[loss_study]").unwrap();
+            let (head, tail) = text.split_at(at);
+            format!(
+                "{head}{}",
+                tail.replacen(from.trim_end_matches('@'), to.trim_end_matches('@'), 1)
+            )
+        } else {
+            text.replacen(from, to, 1)
+        };
+        assert_ne!(bad, text, "{from}");
+        let e = Scene::parse("knife-coarse.toml", &bad)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.starts_with("knife-coarse.toml:") && e.contains(key),
+            "{e}"
+        );
+    }
+}

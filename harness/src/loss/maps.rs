@@ -62,7 +62,6 @@ fn face_mesh(p: &Problem, interface: usize) -> FaceMesh {
         .map(|(k, &i)| (p.contacts[i].nodes[0], k))
         .collect();
     let mut quads = Vec::new();
-    let mut seen = std::collections::HashSet::new();
     for body in &p.model.bodies {
         for q in body.face_quads(Face::ZMax, &p.model.elements) {
             if let (Some(a), Some(b), Some(c), Some(d)) = (
@@ -71,9 +70,7 @@ fn face_mesh(p: &Problem, interface: usize) -> FaceMesh {
                 index.get(&q[2]),
                 index.get(&q[3]),
             ) {
-                if seen.insert(q) {
-                    quads.push([*a, *b, *c, *d]);
-                }
+                quads.push([*a, *b, *c, *d]);
             }
         }
     }

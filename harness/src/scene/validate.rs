@@ -464,6 +464,41 @@ pub fn validate(s: &SceneFile) -> Vec<Problem> {
         }
         c.direction(p.key("direction"), &o.direction);
     }
+
+    if let Some(st) = &s.loss_study {
+        let p = root.key("loss_study");
+        if !s.outputs.iter().any(|o| o.name == st.output) {
+            c.fail(p.key("output"), format!("no output named `{}`", st.output));
+        }
+        if !s.screws.iter().any(|x| x.name == st.screw) {
+            c.fail(p.key("screw"), format!("no screw named `{}`", st.screw));
+        }
+        if st.amplitudes.is_empty() {
+            c.fail(p.key("amplitudes"), "at least one amplitude is needed");
+        }
+        for (i, a) in st.amplitudes.iter().enumerate() {
+            c.positive(p.key("amplitudes").index(i), *a);
+        }
+        if st.torques.is_empty() {
+            c.fail(p.key("torques"), "at least one torque is needed");
+        }
+        for (i, t) in st.torques.iter().enumerate() {
+            c.non_negative(p.key("torques").index(i), *t);
+        }
+        if c.finite(p.key("model_share"), st.model_share)
+            && !(st.model_share > 0.0 && st.model_share <= 1.0)
+        {
+            c.fail(p.key("model_share"), "must be in (0, 1]");
+        }
+        c.positive(p.key("power_factor"), st.power_factor);
+        c.positive(p.key("amplitude_factor"), st.amplitude_factor);
+        for (i, r) in st.reference.iter().enumerate() {
+            let rp = p.key("reference").index(i);
+            c.non_negative(rp.key("torque"), r.torque);
+            c.positive(rp.key("amplitude"), r.amplitude);
+            c.positive(rp.key("power"), r.power);
+        }
+    }
     c.problems
 }
 
