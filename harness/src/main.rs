@@ -47,6 +47,8 @@ enum Command {
     /// names file:line:column and key, and nothing is written):
     ///   results.csv   freq_hz, then per named output <name>_amp and <name>_phase_deg,
     ///                 then dissipated_power (power lost in the joints, force·length/time)
+    ///                 and status (converged, not_converged, or singular: no response
+    ///                 there, empty fields; also singular_frequencies in run.json)
     ///   results_without_contact_damping.csv  the same with d* = 0 (fast mode; written
     ///                 with the plots when the scene has contact damping)
     ///   points.csv    per contact point and frequency: position, pressure, amplitude,
@@ -252,8 +254,17 @@ fn main() -> ExitCode {
                     return ExitCode::from(1);
                 }
             }
-            if unconverged > 0 {
-                eprintln!("warning: {unconverged} frequencies did not converge (see run.json)");
+            let singular = r.main.singular.iter().filter(|&&c| c).count();
+            if singular > 0 {
+                eprintln!(
+                    "warning: {singular} frequencies have a singular dynamic stiffness (an undamped resonance?): no response there (status singular in results.csv, singular_frequencies in run.json)"
+                );
+            }
+            if unconverged > singular {
+                eprintln!(
+                    "warning: {} frequencies did not converge (see run.json)",
+                    unconverged - singular
+                );
             }
             ExitCode::SUCCESS
         }
@@ -287,7 +298,8 @@ fn main() -> ExitCode {
             match bench::stuck_modes(&s, count) {
                 Ok(f) => {
                     for (i, v) in f.iter().enumerate() {
-                        println!("mode {}: {v:.4} (1/time)", i + 1);
+                        // Shortest round-trip form: the value can go into a scene's sweep.
+                        println!("mode {}: {v} (1/time)", i + 1);
                     }
                     ExitCode::SUCCESS
                 }

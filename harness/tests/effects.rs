@@ -132,14 +132,16 @@ fn cli_run_writes_the_documented_files() {
     let mut lines = results.lines();
     assert_eq!(
         lines.next().unwrap(),
-        "freq_hz,block_x_amp,block_x_phase_deg,dissipated_power"
+        "freq_hz,block_x_amp,block_x_phase_deg,dissipated_power,status"
     );
     let row: Vec<f64> = lines
         .next()
         .unwrap()
         .split(',')
+        .take(4)
         .map(|v| v.parse().unwrap())
         .collect();
+    assert!(results.lines().nth(1).unwrap().ends_with(",converged"));
     // Amplitude as in block_stick_amplitude_matches_the_thesis_in_both_modes; the power
     // is the loop energy × f > 0; the phase lags the force (−180° < φ < 0°).
     assert!(

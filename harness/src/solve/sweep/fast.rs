@@ -162,12 +162,23 @@ pub fn sweep(
         }
         let t = Instant::now();
         setup.fill(omega, &kappa0);
-        let num = setup
-            .symbolic
-            .factor(&setup.s)
-            .map_err(|source| SweepError::Umfpack { freq: f, source })?;
+        let num = setup.factor(f)?;
         res.factorizations += 1;
         res.time("factorization", t);
+        let Some(num) = num else {
+            // Singular dynamic stiffness (e.g. an undamped eigenfrequency with the joint
+            // open): no response; the next frequency starts afresh.
+            res.outputs.push(vec![C64::new(0.0, 0.0); nout]);
+            res.power.push(0.0);
+            if opts.point_results {
+                res.points.push(vec![PointFreq::default(); p.contacts.len()]);
+            }
+            res.iterations.push(0);
+            res.converged.push(false);
+            res.singular.push(true);
+            hist.clear();
+            continue;
+        };
 
         let t = Instant::now();
         let umf = |e| SweepError::Umfpack { freq: f, source: e };
@@ -334,6 +345,7 @@ pub fn sweep(
         res.power.push(power);
         res.iterations.push(iterations);
         res.converged.push(converged && gmres_ok);
+        res.singular.push(false);
         // The next frequency starts from this converged state (extrapolated).
         if converged && m > 0 {
             hist.push((f, a.clone()));
