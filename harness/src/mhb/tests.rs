@@ -513,6 +513,49 @@ fn duffing_stability_marks_agree_with_the_time_domain() {
     }
 }
 
+#[test]
+fn thesis_rule_drift_is_extrapolated_to_the_closed_loop() {
+    // The thesis rule under a prescribed periodic slip drifts to its closed loop by a
+    // ratio q ≈ 1 − A/δ* per period (docs/mhb.md). Reference: 600 plain periods at
+    // A/δ* = 0.05 (q ≈ 0.95: the drift is then below 1e-14 of the force scale).
+    let law = point(LawName::Mindlin, RuleName::Thesis, 0.2, 1.0, 2e4);
+    let Law::Point(t) = law else { unreachable!() };
+    let dstar = 1.5 * 0.2 / 2e4;
+    let n = 64;
+    let tau = |k: usize| 2.0 * std::f64::consts::PI * k as f64 / n as f64;
+    let a = 0.05 * dstar;
+    let delta: Vec<f64> = (0..n)
+        .map(|k| a * tau(k).cos() + 0.1 * a * (3.0 * tau(k)).sin())
+        .collect();
+    let mut state = [0.0; crate::capi::POINT_STATE_LEN];
+    let mut next = state;
+    let mut reference = vec![0.0; n];
+    for _ in 0..600 {
+        for k in 0..n {
+            reference[k] = crate::capi::point_step(&t, &state, delta[k], &mut next)
+                .unwrap()
+                .force;
+            state = next;
+        }
+    }
+    let per = aft::march(&law, &delta).unwrap();
+    let scale = reference.iter().fold(0.0f64, |m, f| m.max(f.abs()));
+    let err = per
+        .force
+        .iter()
+        .zip(&reference)
+        .fold(0.0f64, |m, (x, y)| m.max((x - y).abs()))
+        / scale;
+    eprintln!(
+        "thesis rule, A/δ* = 0.05: {} periods, closed loop vs 600 periods {err:.2e}",
+        per.periods
+    );
+    // Without extrapolation the march needed ~330 periods here; with it a handful.
+    assert!(per.periods <= 20, "{} periods", per.periods);
+    // Closure tolerance 1e-11 of the scale, amplified by ≈ 1/(1 − q) = 20 at most.
+    assert!(err < 1e-9, "{err:.3e}");
+}
+
 /// Number of amplitudes A ∈ `amps` with A·|K(A) − mω² + i(cω + ωd*(A))| = F at ω: the
 /// sign changes of that residual over a dense amplitude grid (first-order harmonic
 /// balance, (3.5–3.14)); `kd(A)` gives (K(A), ωd*(A)).

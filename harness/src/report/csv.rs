@@ -1,4 +1,4 @@
-//! results.csv, points.csv and stick_slip.csv.
+//! results.csv, harmonics.csv, points.csv and stick_slip.csv.
 //!
 //! results.csv: `freq_hz`, then per named output `<name>_amp` (length) and
 //! `<name>_phase_deg` (degrees, of u = Re(û e^{iωt})), then `dissipated_power` (power
@@ -38,6 +38,31 @@ pub fn results(p: &Problem, r: &SweepResult) -> String {
             "not_converged"
         };
         let _ = writeln!(s, ",{:.10e},{status}", r.power[i]);
+    }
+    s
+}
+
+/// harmonics.csv text (harmonic balance): `freq_hz`, then per output and harmonic
+/// h = 0..H `<name>_h<h>_amp` (length; h = 0 the mean deviation from the static state).
+pub fn harmonics(p: &Problem, r: &SweepResult) -> String {
+    let mut s = String::from("freq_hz");
+    let nh = r
+        .harmonics
+        .first()
+        .and_then(|o| o.first())
+        .map_or(0, Vec::len);
+    for o in &p.outputs {
+        for h in 0..nh {
+            let _ = write!(s, ",{}_h{h}_amp", o.name);
+        }
+    }
+    s.push('\n');
+    for (f, outs) in r.freqs.iter().zip(&r.harmonics) {
+        let _ = write!(s, "{f:.10e}");
+        for v in outs.iter().flatten() {
+            let _ = write!(s, ",{:.10e}", v.norm());
+        }
+        s.push('\n');
     }
     s
 }

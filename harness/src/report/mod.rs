@@ -86,6 +86,10 @@ pub fn write_all(
         &mut out,
     )
     .map_err(io)?;
+    if !r.main.harmonics.is_empty() {
+        let text = csv::harmonics(&r.problem, &r.main);
+        write(dir, "harmonics.csv", &text, &mut out).map_err(io)?;
+    }
     if let Some(reference) = &r.reference {
         let text = csv::results(&r.problem, reference);
         write(dir, "results_without_contact_damping.csv", &text, &mut out).map_err(io)?;

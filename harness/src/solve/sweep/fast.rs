@@ -21,6 +21,7 @@ use std::time::Instant;
 
 use super::anderson::Anderson;
 use super::krylov::Gmres;
+use super::receptance::Receptance;
 use super::{Options, PassRecord, PointFreq, Setup, SweepError, SweepResult, C64};
 use crate::capi::{self, Linearized, Tangential};
 use crate::solve::contact::tangential;
@@ -90,16 +91,12 @@ pub fn sweep(
     };
     res.time("linearization (C API)", t0);
 
-    // Scratch, allocated once per sweep.
-    let mut b = vec![C64::new(0.0, 0.0); n];
-    let mut x = vec![C64::new(0.0, 0.0); n];
+    // Scratch, allocated once per sweep (G and O only when condensing).
     let condensed = m <= opts.condense_max;
-    let mut g = vec![C64::new(0.0, 0.0); if condensed { m * m } else { 0 }];
+    let mut rec = Receptance::new(n, if condensed { m } else { 0 }, nout);
+    rec.r0 = vec![C64::new(0.0, 0.0); m];
     let mut u = vec![C64::new(0.0, 0.0); if condensed { 0 } else { n }];
-    let mut gmres = Gmres::new(if condensed { 0 } else { n }, GMRES_RESTART);
-    let mut o = vec![C64::new(0.0, 0.0); if condensed { nout * m } else { 0 }];
-    let mut r0 = vec![C64::new(0.0, 0.0); m];
-    let mut o0 = vec![C64::new(0.0, 0.0); nout];
+    let mut gmres = Gmres::<C64>::new(if condensed { 0 } else { n }, GMRES_RESTART);
     let mut work = vec![C64::new(0.0, 0.0); if condensed { m * m } else { 0 }];
     let mut r = vec![C64::new(0.0, 0.0); m];
     let mut delta = vec![C64::new(0.0, 0.0); m];
@@ -110,7 +107,7 @@ pub fn sweep(
     let mut a_star = vec![0.0; m];
     let mut kappa0 = vec![[C64::new(0.0, 0.0); 2]; na];
     let active = setup.active.clone();
-    let row = |j: usize| &p.contacts[active[j / 2]].rows[1 + j % 2];
+    let row = |j: usize| p.contacts[active[j / 2]].rows[1 + j % 2].as_slice();
 
     let linearize_all = |a: &[f64],
                          omega: f64,
@@ -189,30 +186,15 @@ pub fn sweep(
         let t = Instant::now();
         let umf = |e| SweepError::Umfpack { freq: f, source: e };
         let krylov = !condensed;
-        num.solve_into(&p.excitation, &mut x).map_err(umf)?;
         if krylov {
-            u.copy_from_slice(&x);
-        }
-        for j in 0..m {
-            r0[j] = row(j).iter().map(|&(i, w)| x[i] * w).sum();
-        }
-        for (k, out) in p.outputs.iter().enumerate() {
-            o0[k] = out.value(&x);
-        }
-        for j in 0..if krylov { 0 } else { m } {
-            for &(i, w) in row(j) {
-                b[i] = C64::new(w, 0.0);
+            num.solve_into(&p.excitation, &mut u).map_err(umf)?;
+            for j in 0..m {
+                rec.r0[j] = row(j).iter().map(|&(i, w)| u[i] * w).sum();
             }
-            num.solve_into(&b, &mut x).map_err(umf)?;
-            for &(i, _) in row(j) {
-                b[i] = C64::new(0.0, 0.0);
-            }
-            for k in 0..m {
-                g[k + m * j] = row(k).iter().map(|&(i, w)| x[i] * w).sum();
-            }
-            for (k, out) in p.outputs.iter().enumerate() {
-                o[k + nout * j] = out.value(&x);
-            }
+        } else {
+            rec.load(&num, &p.excitation, &row, &p.outputs)
+                .map_err(umf)?;
+            rec.condense(&num, &row, &p.outputs).map_err(umf)?;
         }
         res.time("receptance solves", t);
 
@@ -220,7 +202,7 @@ pub fn sweep(
         let mut gmres_ok = true;
         let mut iterations = 0;
         let mut converged = m == 0;
-        r.copy_from_slice(&r0);
+        r.copy_from_slice(&rec.r0);
         delta.iter_mut().for_each(|d| *d = C64::new(0.0, 0.0));
         while m > 0 && iterations < it.max_passes {
             iterations += 1;
@@ -270,11 +252,11 @@ pub fn sweep(
             } else {
                 for jc in 0..m {
                     for k in 0..m {
-                        work[k + m * jc] = g[k + m * jc] * delta[jc];
+                        work[k + m * jc] = rec.g[k + m * jc] * delta[jc];
                     }
                     work[jc + m * jc] += C64::new(1.0, 0.0);
                 }
-                r.copy_from_slice(&r0);
+                r.copy_from_slice(&rec.r0);
                 if !lu_solve_in_place(&mut work, m, &mut r) {
                     return Err(SweepError::Condensed { freq: f });
                 }
@@ -317,9 +299,9 @@ pub fn sweep(
         } else {
             (0..nout)
                 .map(|k| {
-                    o0[k]
+                    rec.y0[k]
                         - (0..m)
-                            .map(|j| o[k + nout * j] * delta[j] * r[j])
+                            .map(|j| rec.o[k + nout * j] * delta[j] * r[j])
                             .sum::<C64>()
                 })
                 .collect()

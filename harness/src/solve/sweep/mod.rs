@@ -13,7 +13,9 @@
 
 pub mod anderson;
 pub mod fast;
+pub mod harmonic;
 pub mod krylov;
+pub mod receptance;
 pub mod thesis;
 
 use std::collections::BTreeMap;
@@ -67,6 +69,12 @@ pub enum SweepError {
     },
     #[error("at {freq} Hz: the condensed contact system is singular")]
     Condensed { freq: f64 },
+    #[error("at {freq} Hz: harmonic balance: {source}")]
+    Balance {
+        freq: f64,
+        #[source]
+        source: crate::mhb::MhbError,
+    },
 }
 
 /// What the sweep is asked to do (from the scene's iteration table and effects).
@@ -124,13 +132,17 @@ pub struct PassRecord {
 #[derive(Debug, Clone, Default)]
 pub struct SweepResult {
     pub freqs: Vec<f64>,
-    /// `[frequency][output]` complex displacement amplitude.
+    /// `[frequency][output]` complex displacement amplitude (first harmonic).
     pub outputs: Vec<Vec<C64>>,
+    /// Harmonic balance only: `[frequency][output][h]` complex amplitude of harmonic
+    /// h = 0..H (h = 0: the mean deviation from the static state, real).
+    pub harmonics: Vec<Vec<Vec<C64>>>,
     /// Power dissipated in the joints (force·length/time): Σ energy per cycle × f.
     pub power: Vec<f64>,
     /// `[frequency][contact point]`; empty unless per-point results were asked for.
     pub points: Vec<Vec<PointFreq>>,
-    /// Fast: contact iterations per frequency; thesis: passes that ran the frequency.
+    /// Fast: contact iterations per frequency; thesis: passes that ran the frequency;
+    /// harmonic balance: Newton iterations.
     pub iterations: Vec<usize>,
     pub converged: Vec<bool>,
     /// Per frequency: the dynamic stiffness was singular ([`SINGULAR_RCOND`]); outputs
@@ -292,6 +304,7 @@ pub fn run(
     let mut r = match opts.iteration.mode {
         crate::scene::Mode::Fast => fast::sweep(&mut setup, freqs, opts, progress)?,
         crate::scene::Mode::Thesis => thesis::sweep(&mut setup, stat, freqs, opts, progress)?,
+        crate::scene::Mode::HarmonicBalance => harmonic::sweep(&mut setup, freqs, opts, progress)?,
     };
     *r.timings.entry("symbolic analysis".into()).or_default() += analysis;
     Ok(r)
