@@ -50,7 +50,9 @@ enum Command {
     /// Files written to DIR (only after a valid scene and a successful run; a bad scene
     /// names file:line:column and key, and nothing is written):
     ///   results.csv   freq_hz, then per named output <name>_amp and <name>_phase_deg,
-    ///                 then dissipated_power (power lost in the joints, force·length/time);
+    ///                 then dissipated_power (power lost in the joints, force·length/time)
+    ///                 and status (converged, not_converged, or singular: no response
+    ///                 there, empty fields; also singular_frequencies in run.json);
     ///                 harmonic balance: first harmonic
     ///   harmonics.csv harmonic balance only: freq_hz, then per output and h = 0..H
     ///                 <name>_h<h>_amp (h = 0: mean deviation from the static state)
@@ -200,7 +202,24 @@ fn progress_bar(quiet: bool) -> ProgressBar {
     pb
 }
 
+/// Restores the default action of SIGPIPE (Rust ignores it, so `println!` to a closed
+/// pipe panics): `jointlin modes X | head -1` then ends quietly like other Unix tools.
+#[cfg(unix)]
+fn default_sigpipe() {
+    extern "C" {
+        fn signal(signum: i32, handler: usize) -> usize;
+    }
+    const SIGPIPE: i32 = 13; // Linux, all architectures this builds on
+    const SIG_DFL: usize = 0;
+    // SAFETY: signal(2) with a valid signal number and SIG_DFL, before any thread starts.
+    unsafe {
+        signal(SIGPIPE, SIG_DFL);
+    }
+}
+
 fn main() -> ExitCode {
+    #[cfg(unix)]
+    default_sigpipe();
     let cli = Cli::parse();
     match cli.command {
         Command::Run {
@@ -291,8 +310,17 @@ fn main() -> ExitCode {
                     return ExitCode::from(1);
                 }
             }
-            if unconverged > 0 {
-                eprintln!("warning: {unconverged} frequencies did not converge (see run.json)");
+            let singular = r.main.singular.iter().filter(|&&c| c).count();
+            if singular > 0 {
+                eprintln!(
+                    "warning: {singular} frequencies have a singular dynamic stiffness (an undamped resonance?): no response there (status singular in results.csv, singular_frequencies in run.json)"
+                );
+            }
+            if unconverged > singular {
+                eprintln!(
+                    "warning: {} frequencies did not converge (see run.json)",
+                    unconverged - singular
+                );
             }
             ExitCode::SUCCESS
         }
@@ -332,7 +360,8 @@ fn main() -> ExitCode {
             match bench::stuck_modes(&s, count) {
                 Ok(f) => {
                     for (i, v) in f.iter().enumerate() {
-                        println!("mode {}: {v:.4} (1/time)", i + 1);
+                        // Shortest round-trip form: the value can go into a scene's sweep.
+                        println!("mode {}: {v} (1/time)", i + 1);
                     }
                     ExitCode::SUCCESS
                 }

@@ -156,14 +156,16 @@ fn cli_run_writes_the_documented_files() {
     let mut lines = results.lines();
     assert_eq!(
         lines.next().unwrap(),
-        "freq_hz,block_x_amp,block_x_phase_deg,dissipated_power"
+        "freq_hz,block_x_amp,block_x_phase_deg,dissipated_power,status"
     );
     let row: Vec<f64> = lines
         .next()
         .unwrap()
         .split(',')
+        .take(4)
         .map(|v| v.parse().unwrap())
         .collect();
+    assert!(results.lines().nth(1).unwrap().ends_with(",converged"));
     // Amplitude as in block_stick_amplitude_matches_the_thesis_in_both_modes; the power
     // is the loop energy × f > 0; the phase lags the force (−180° < φ < 0°).
     assert!(
@@ -188,4 +190,24 @@ fn cli_run_writes_the_documented_files() {
         assert!(dir.join(f).exists(), "{f}");
     }
     std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn cli_output_into_a_closed_pipe_ends_quietly() {
+    // `jointlin modes SCENE | head -1`: the reader is gone before the modes are printed.
+    // Rust ignores SIGPIPE, so println! used to panic (exit 101, "failed printing to
+    // stdout"); the CLI restores the default action and ends by the signal, silently.
+    use std::os::unix::process::ExitStatusExt;
+    let scene = format!("{}/../scenes/block-stick.toml", env!("CARGO_MANIFEST_DIR"));
+    let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_jointlin"))
+        .args(["modes", &scene])
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    drop(child.stdout.take());
+    let out = child.wait_with_output().unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    assert_eq!(out.status.signal(), Some(13), "{:?}", out.status);
 }

@@ -2,7 +2,9 @@
 //!
 //! results.csv: `freq_hz`, then per named output `<name>_amp` (length) and
 //! `<name>_phase_deg` (degrees, of u = Re(û e^{iωt})), then `dissipated_power` (power
-//! dissipated in the joints, force·length/time: mW for N, mm, s).
+//! dissipated in the joints, force·length/time: mW for N, mm, s) and `status`
+//! (`converged`, `not_converged`, or `singular`: the dynamic stiffness was singular
+//! there, see [`crate::solve::sweep::SINGULAR_RCOND`], and the other fields are empty).
 
 use std::fmt::Write as _;
 
@@ -18,13 +20,24 @@ pub fn results(p: &Problem, r: &SweepResult) -> String {
     for o in &p.outputs {
         let _ = write!(s, ",{0}_amp,{0}_phase_deg", o.name);
     }
-    s.push_str(",dissipated_power\n");
+    s.push_str(",dissipated_power,status\n");
     for (i, f) in r.freqs.iter().enumerate() {
         let _ = write!(s, "{f:.10e}");
+        if r.is_singular(i) {
+            // No response computed: empty fields, never inf or NaN.
+            s.push_str(&",".repeat(2 * r.outputs[i].len() + 1));
+            s.push_str(",singular\n");
+            continue;
+        }
         for v in &r.outputs[i] {
             let _ = write!(s, ",{:.10e},{:.6}", v.norm(), v.arg().to_degrees());
         }
-        let _ = writeln!(s, ",{:.10e}", r.power[i]);
+        let status = if r.converged[i] {
+            "converged"
+        } else {
+            "not_converged"
+        };
+        let _ = writeln!(s, ",{:.10e},{status}", r.power[i]);
     }
     s
 }

@@ -52,6 +52,8 @@ pub fn run_json(scene: &Scene, r: &RunResult) -> serde_json::Value {
         "iterations_per_frequency": m.iterations,
         "converged": m.converged,
         "all_converged": m.converged.iter().all(|&c| c),
+        "singular_frequencies": m.freqs.iter().enumerate().filter(|(i, _)| m.is_singular(*i)).map(|(_, f)| *f).collect::<Vec<f64>>(),
+        "singular_rcond_threshold": crate::solve::sweep::SINGULAR_RCOND,
         "factorizations": m.factorizations,
         "gmres_solves": m.gmres_solves,
         "macroslip_caps": m.macroslip_caps,

@@ -66,12 +66,17 @@ pub fn frf(
         .map_err(err)?;
     for (k, o) in p.outputs.iter().enumerate() {
         let color = Palette99::pick(k).to_rgba();
-        let pts: Vec<(f64, f64)> = main
-            .freqs
-            .iter()
-            .zip(&main.outputs)
-            .map(|(f, r)| (*f, r[k].norm().max(ymin)))
-            .collect();
+        // Singular frequencies have no response: left out of the curve.
+        let curve = |r: &SweepResult| -> Vec<(f64, f64)> {
+            r.freqs
+                .iter()
+                .zip(&r.outputs)
+                .enumerate()
+                .filter(|(i, _)| !r.is_singular(*i))
+                .map(|(_, (f, v))| (*f, v[k].norm().max(ymin)))
+                .collect()
+        };
+        let pts = curve(main);
         chart
             .draw_series(LineSeries::new(pts, color.stroke_width(2)))
             .map_err(err)?
@@ -81,12 +86,7 @@ pub fn frf(
             });
         if let Some(r) = reference {
             let light = color.mix(0.45);
-            let pts: Vec<(f64, f64)> = r
-                .freqs
-                .iter()
-                .zip(&r.outputs)
-                .map(|(f, v)| (*f, v[k].norm().max(ymin)))
-                .collect();
+            let pts = curve(r);
             chart
                 .draw_series(LineSeries::new(pts, light.stroke_width(1)))
                 .map_err(err)?

@@ -158,6 +158,15 @@ fn refine_bands_merge_sorted() {
         "count = 3\nrefine = [{ f_min = 140.0, f_max = 130.0, count = 3 }]",
     );
     assert_eq!(err(&bad).key, "sweep.refine[0].f_max");
+    // One exact frequency: count = 1 with f_max = f_min; count = 1 over a band is an error.
+    let one = GOOD.replace(
+        "count = 3",
+        "count = 3\nrefine = [{ f_min = 123.456789, f_max = 123.456789, count = 1 }]",
+    );
+    let f = Scene::parse("x", &one).unwrap().frequencies();
+    assert_eq!(f, vec![100.0, 123.456789, 150.0, 200.0]);
+    let bad = one.replace("f_max = 123.456789", "f_max = 124.0");
+    assert_eq!(err(&bad).key, "sweep.refine[0].count");
 }
 
 #[test]

@@ -417,11 +417,19 @@ pub fn validate(s: &SceneFile) -> Vec<Problem> {
         let bp = sw.key("refine").index(i);
         c.positive(bp.key("f_min"), b.f_min);
         c.positive(bp.key("f_max"), b.f_max);
-        if b.count < 2 {
-            c.fail(bp.key("count"), "a refine band needs count >= 2");
+        // count = 1 with f_max = f_min puts one exact frequency into the sweep (e.g. an
+        // eigenfrequency from `jointlin modes`).
+        if b.count == 0 || (b.count == 1 && b.f_max != b.f_min) {
+            c.fail(
+                bp.key("count"),
+                "a refine band needs count >= 2 (or count = 1 with f_max = f_min)",
+            );
         }
-        if b.f_max <= b.f_min {
-            c.fail(bp.key("f_max"), "must be > f_min");
+        if b.f_max < b.f_min || (b.count > 1 && b.f_max == b.f_min) {
+            c.fail(
+                bp.key("f_max"),
+                "must be > f_min (or equal to it with count = 1)",
+            );
         }
     }
 

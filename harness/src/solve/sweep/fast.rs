@@ -42,6 +42,11 @@ const GMRES_FLOOR: f64 = 1e-9;
 /// FGMRES restart length and most preconditioner applications per contact iteration.
 const GMRES_RESTART: usize = 30;
 const GMRES_MAX: usize = 300;
+/// Largest step of an Anderson iterate beyond the bracket of the current amplitude
+/// and its image, in ln a (one decade). Without it, a stiff joint (k_T0·L/(E·A) = 1e6,
+/// scenes/hard/stiffness-ratio.toml near resonance) extrapolated to A/δ* ≈ 1e16, where
+/// the linearization is no longer representable and the run stopped.
+const MAX_EXTRAPOLATION: f64 = std::f64::consts::LN_10;
 /// Amplitudes below this fraction of the largest one are handed to the linearization as
 /// exactly 0 (k* = k_T0, d* = 0: the A → 0 limit, where relative differences of 1e-15 are
 /// below round-off) and floored there before taking logs. Without it a direction that is
@@ -159,12 +164,24 @@ pub fn sweep(
         }
         let t = Instant::now();
         setup.fill(omega, &kappa0);
-        let num = setup
-            .symbolic
-            .factor(&setup.s)
-            .map_err(|source| SweepError::Umfpack { freq: f, source })?;
+        let num = setup.factor(f)?;
         res.factorizations += 1;
         res.time("factorization", t);
+        let Some(num) = num else {
+            // Singular dynamic stiffness (e.g. an undamped eigenfrequency with the joint
+            // open): no response; the next frequency starts afresh.
+            res.outputs.push(vec![C64::new(0.0, 0.0); nout]);
+            res.power.push(0.0);
+            if opts.point_results {
+                res.points
+                    .push(vec![PointFreq::default(); p.contacts.len()]);
+            }
+            res.iterations.push(0);
+            res.converged.push(false);
+            res.singular.push(true);
+            hist.clear();
+            continue;
+        };
 
         let t = Instant::now();
         let umf = |e| SweepError::Umfpack { freq: f, source: e };
@@ -262,7 +279,17 @@ pub fn sweep(
                     .fold(f64::MIN_POSITIVE, |x, &y| x.max(y));
             let xs: Vec<f64> = a.iter().map(|v| v.max(floor).ln()).collect();
             let gs: Vec<f64> = a_star.iter().map(|v| v.max(floor).ln()).collect();
-            a = acc.next(&xs, &gs).iter().map(|v| v.exp()).collect();
+            // Anderson extrapolates; keep each step within a decade of the bracket
+            // [min(a, a*), max(a, a*)] (MAX_EXTRAPOLATION).
+            a = acc
+                .next(&xs, &gs)
+                .iter()
+                .zip(xs.iter().zip(&gs))
+                .map(|(v, (x, g))| {
+                    v.clamp(x.min(*g) - MAX_EXTRAPOLATION, x.max(*g) + MAX_EXTRAPOLATION)
+                        .exp()
+                })
+                .collect();
         }
 
         drop(num);
@@ -316,6 +343,7 @@ pub fn sweep(
         res.power.push(power);
         res.iterations.push(iterations);
         res.converged.push(converged && gmres_ok);
+        res.singular.push(false);
         // The next frequency starts from this converged state (extrapolated).
         if converged && m > 0 {
             hist.push((f, a.clone()));

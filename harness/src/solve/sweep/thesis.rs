@@ -40,6 +40,7 @@ pub fn sweep(
         power: vec![0.0; nf],
         iterations: vec![0; nf],
         converged: vec![na == 0; nf],
+        singular: vec![false; nf],
         ..Default::default()
     };
     if opts.point_results {
@@ -83,7 +84,8 @@ pub fn sweep(
         for (fi, &f) in freqs.iter().enumerate() {
             progress("frequency", fi + 1, nf);
             let omega = 2.0 * std::f64::consts::PI * f;
-            solve_one(setup, omega, &kappa, &mut x, &mut res, f)?;
+            res.singular[fi] = !solve_one(setup, omega, &kappa, &mut x, &mut res, f)?;
+            res.converged[fi] = !res.singular[fi];
             res.outputs[fi] = p.outputs.iter().map(|o| o.value(&x)).collect();
         }
         res.passes.push(PassRecord {
@@ -148,12 +150,21 @@ pub fn sweep(
                 outs[j] = o;
             }
             res.time("linearization (C API)", t);
-            solve_one(setup, omega, &kappa, &mut x, &mut res, f)?;
+            res.singular[fi] = !solve_one(setup, omega, &kappa, &mut x, &mut res, f)?;
+            if res.singular[fi] && opts.point_results {
+                res.points[fi].fill(PointFreq::default());
+            }
             let t = Instant::now();
             let mut power = 0.0;
             for (j, &i) in setup.active.iter().enumerate() {
                 let d = setup.tangential(j, &x);
-                let mut amp = [d[0].norm(), d[1].norm()];
+                // Singular: no response (x = 0); the store gets its own estimate back so
+                // the pass moves on, and the frequency is marked singular below.
+                let mut amp = if res.singular[fi] {
+                    outs[j].report.amplitude
+                } else {
+                    [d[0].norm(), d[1].norm()]
+                };
                 if !eff.macroslip {
                     for v in amp.iter_mut() {
                         if *v > slip_limit[j] {
@@ -169,6 +180,9 @@ pub fn sweep(
                 } else {
                     0.0
                 };
+                if res.singular[fi] {
+                    continue;
+                }
                 power += e * f;
                 if opts.point_results {
                     let rep = &outs[j].report;
@@ -216,11 +230,15 @@ pub fn sweep(
         });
     }
     // A final pass that found an increment out of tolerance turns into a re-run; what
-    // the store left unconverged was marked above.
+    // the store left unconverged was marked above. A singular frequency has no response.
+    for (c, &s) in res.converged.iter_mut().zip(&res.singular) {
+        *c &= !s;
+    }
     Ok(res)
 }
 
-/// Fills S(ω, κ), factors it and solves for the excitation into `x`.
+/// Fills S(ω, κ), factors it and solves for the excitation into `x`; false (and x = 0)
+/// when S is singular ([`super::SINGULAR_RCOND`]).
 fn solve_one(
     setup: &mut Setup,
     omega: f64,
@@ -228,18 +246,19 @@ fn solve_one(
     x: &mut [C64],
     res: &mut SweepResult,
     f: f64,
-) -> Result<(), SweepError> {
+) -> Result<bool, SweepError> {
     let t = Instant::now();
     setup.fill(omega, kappa);
-    let num = setup
-        .symbolic
-        .factor(&setup.s)
-        .map_err(|source| SweepError::Umfpack { freq: f, source })?;
+    let num = setup.factor(f)?;
     res.factorizations += 1;
     res.time("factorization", t);
+    let Some(num) = num else {
+        x.iter_mut().for_each(|v| *v = C64::new(0.0, 0.0));
+        return Ok(false);
+    };
     let t = Instant::now();
     num.solve_into(&setup.problem.excitation, x)
         .map_err(|source| SweepError::Umfpack { freq: f, source })?;
     res.time("solves", t);
-    Ok(())
+    Ok(true)
 }
