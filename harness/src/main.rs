@@ -10,7 +10,7 @@ use indicatif::{ProgressBar, ProgressStyle};
 use jointlin_harness::bench;
 use jointlin_harness::report::{self, ReportOptions};
 use jointlin_harness::run::{run, Extras};
-use jointlin_harness::scene::{Mode, Scene};
+use jointlin_harness::scene::{validate, Mode, Scene};
 
 #[derive(Parser)]
 #[command(
@@ -27,6 +27,7 @@ struct Cli {
 enum ModeArg {
     Fast,
     Thesis,
+    HarmonicBalance,
 }
 
 #[derive(Subcommand)]
@@ -73,9 +74,16 @@ enum Command {
         /// Output directory (created if missing).
         #[arg(long)]
         out: PathBuf,
-        /// Override the scene's iteration mode.
+        /// Override the scene's iteration mode (harmonic-balance needs --harmonics unless
+        /// the scene sets harmonics).
         #[arg(long, value_enum)]
         mode: Option<ModeArg>,
+        /// Override the scene's [iteration] harmonics (harmonic balance).
+        #[arg(long)]
+        harmonics: Option<usize>,
+        /// Override the scene's [iteration] samples per period (harmonic balance).
+        #[arg(long)]
+        samples: Option<usize>,
         /// Skip the SVG plots (and the reference sweep without contact damping they need).
         #[arg(long)]
         no_plots: bool,
@@ -226,6 +234,8 @@ fn main() -> ExitCode {
             scene,
             out,
             mode,
+            harmonics,
+            samples,
             no_plots,
             quiet,
             time_domain,
@@ -241,7 +251,19 @@ fn main() -> ExitCode {
                 s.spec.iteration.mode = match m {
                     ModeArg::Fast => Mode::Fast,
                     ModeArg::Thesis => Mode::Thesis,
+                    ModeArg::HarmonicBalance => Mode::HarmonicBalance,
                 };
+            }
+            let it = &mut s.spec.iteration;
+            it.harmonics = harmonics.or(it.harmonics);
+            it.samples = samples.or(it.samples);
+            // The overrides are checked by the scene's own rules.
+            if let Some((key, msg)) = validate::validate(&s.spec).into_iter().next() {
+                eprintln!(
+                    "error: {}: with the command-line overrides, `{key}`: {msg}",
+                    s.file
+                );
+                return ExitCode::from(2);
             }
             if time_domain {
                 return time_domain_run(&s, &out, quiet);
