@@ -30,7 +30,7 @@ module jointlin
 
   ! ---- constants (#define in jointlin.h) ----
   integer(c_int32_t), parameter :: JOINTLIN_ABI_VERSION_MAJOR = 0
-  integer(c_int32_t), parameter :: JOINTLIN_ABI_VERSION_MINOR = 1
+  integer(c_int32_t), parameter :: JOINTLIN_ABI_VERSION_MINOR = 2
   integer(c_int32_t), parameter :: JOINTLIN_OK = 0
   integer(c_int32_t), parameter :: JOINTLIN_ERR_NULL = 1
   integer(c_int32_t), parameter :: JOINTLIN_ERR_NON_FINITE = 2
@@ -97,6 +97,12 @@ module jointlin
      real(c_double) :: amplitude_ratio
      integer(c_int32_t) :: regime
   end type jointlin_linearization
+
+  type, bind(C) :: jointlin_cubic_linearization
+     real(c_double) :: k_star
+     real(c_double) :: d_star
+     real(c_double) :: energy_per_cycle
+  end type jointlin_cubic_linearization
 
   type, bind(C) :: jointlin_step
      real(c_double) :: force
@@ -179,6 +185,16 @@ module jointlin
        type(jointlin_linearization), intent(out) :: out
        integer(c_int32_t) :: jointlin_linearize
      end function jointlin_linearize
+
+     function jointlin_linearize_cubic(k_lin, alpha, amplitude, out) &
+          bind(C, name='jointlin_linearize_cubic')
+       import :: c_int32_t, c_double, jointlin_cubic_linearization
+       real(c_double), value :: k_lin
+       real(c_double), value :: alpha
+       real(c_double), value :: amplitude
+       type(jointlin_cubic_linearization), intent(out) :: out
+       integer(c_int32_t) :: jointlin_linearize_cubic
+     end function jointlin_linearize_cubic
 
      ! C allows state_out == state; Fortran forbids passing one array as both (state is
      ! intent(in)): step a copy, or call with state_out = a second array.
