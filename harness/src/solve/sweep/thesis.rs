@@ -7,7 +7,10 @@
 //! factorization and solve, the computed amplitudes reported to the store, LOP 2. The
 //! store decides what runs next: pass 1 all frequencies (the first with the initial
 //! estimate, each later one with the previous increment's amplitude), then re-runs of the
-//! increments out of tolerance, then one final pass over all of them. The static step
+//! increments out of tolerance, then one final pass over all of them. Cubic springs are
+//! points of the same store, registered by the host and linearized through
+//! `jointlin_linearize_cubic` for the store's estimate (amplitude in direction 1; 0 is
+//! reported in direction 2). The static step
 //! (step 1) is solved once before the first pass and reused by the re-runs, as an Abaqus
 //! restart from the end of step 1 would.
 
@@ -33,13 +36,14 @@ pub fn sweep(
     let eff = opts.effects;
     let it = opts.iteration;
     let na = setup.active.len();
+    let springs = &p.cubic_springs;
     let nf = freqs.len();
     let mut res = SweepResult {
         freqs: freqs.to_vec(),
         outputs: vec![Vec::new(); nf],
         power: vec![0.0; nf],
         iterations: vec![0; nf],
-        converged: vec![na == 0; nf],
+        converged: vec![na == 0 && springs.is_empty(); nf],
         ..Default::default()
     };
     if opts.point_results {
@@ -75,15 +79,17 @@ pub fn sweep(
 
     let mut x = vec![C64::new(0.0, 0.0); p.sys.dofs.n_free()];
     let mut kappa = vec![[C64::new(0.0, 0.0); 2]; na];
+    let mut ks: Vec<f64> = springs.iter().map(|sp| sp.stiffness).collect();
     let mut ids = vec![0i64; na];
     let mut outs = vec![capi::UinterOut::default(); na];
 
-    // Without varying contact springs there is nothing to iterate: one linear sweep.
-    if na == 0 {
+    // Without varying contact or cubic springs there is nothing to iterate: one linear
+    // sweep.
+    if na == 0 && springs.is_empty() {
         for (fi, &f) in freqs.iter().enumerate() {
             progress("frequency", fi + 1, nf);
             let omega = 2.0 * std::f64::consts::PI * f;
-            solve_one(setup, omega, &kappa, &mut x, &mut res, f)?;
+            solve_one(setup, omega, &kappa, &ks, &mut x, &mut res, f)?;
             res.outputs[fi] = p.outputs.iter().map(|o| o.value(&x)).collect();
         }
         res.passes.push(PassRecord {
@@ -104,6 +110,13 @@ pub fn sweep(
         it.max_passes,
         SWEEP_STEP,
     )?;
+    let spring_ids = springs
+        .iter()
+        .map(|sp| {
+            let name = format!("cubic spring {}", sp.spring + 1);
+            store.register_point(&name, sp.node as i32, sp.position)
+        })
+        .collect::<Result<Vec<_>, _>>()?;
     res.time("store (C API)", t);
     loop {
         let t = Instant::now();
@@ -148,7 +161,13 @@ pub fn sweep(
                 outs[j] = o;
             }
             res.time("linearization (C API)", t);
-            solve_one(setup, omega, &kappa, &mut x, &mut res, f)?;
+            let t = Instant::now();
+            for ((k, sp), &id) in ks.iter_mut().zip(springs).zip(&spring_ids) {
+                let [a, _] = store.estimate(id, kinc)?;
+                *k = capi::linearize_cubic(sp.stiffness, sp.cubic, a)?;
+            }
+            res.time(super::fast::CUBIC_TIMING, t);
+            solve_one(setup, omega, &kappa, &ks, &mut x, &mut res, f)?;
             let t = Instant::now();
             let mut power = 0.0;
             for (j, &i) in setup.active.iter().enumerate() {
@@ -193,6 +212,10 @@ pub fn sweep(
                     };
                 }
             }
+            for (sp, &id) in springs.iter().zip(&spring_ids) {
+                let elongation: C64 = sp.row.iter().map(|&(i, w)| x[i] * w).sum();
+                store.report(id, kinc, [elongation.norm(), 0.0])?;
+            }
             res.time("reporting and point outputs", t);
             res.power[fi] = power;
             res.outputs[fi] = p.outputs.iter().map(|o| o.value(&x)).collect();
@@ -220,17 +243,19 @@ pub fn sweep(
     Ok(res)
 }
 
-/// Fills S(ω, κ), factors it and solves for the excitation into `x`.
+/// Fills S(ω, κ, k* of the cubic springs), factors it and solves for the excitation into
+/// `x`.
 fn solve_one(
     setup: &mut Setup,
     omega: f64,
     kappa: &[[C64; 2]],
+    spring_k: &[f64],
     x: &mut [C64],
     res: &mut SweepResult,
     f: f64,
 ) -> Result<(), SweepError> {
     let t = Instant::now();
-    setup.fill(omega, kappa);
+    setup.fill(omega, kappa, spring_k);
     let num = setup
         .symbolic
         .factor(&setup.s)
