@@ -21,10 +21,11 @@ use jointlin::ffi::point::{jointlin_point_step, jointlin_step, JOINTLIN_POINT_ST
 use jointlin::ffi::store::{
     jointlin_pass_stats, jointlin_store, jointlin_store_config, jointlin_store_config_default,
     jointlin_store_estimate, jointlin_store_free, jointlin_store_new, jointlin_store_next_action,
-    jointlin_store_pass_stats, jointlin_store_register_point, jointlin_store_report, jointlin_store_rerun_increments, JOINTLIN_ACTION_DONE,
-    JOINTLIN_ACTION_FAILED, JOINTLIN_ACTION_RUNNING, JOINTLIN_ACTION_RUN_FINAL,
-    JOINTLIN_ACTION_RUN_PASS, JOINTLIN_ACTION_RUN_SWEEP, JOINTLIN_SCHEME_DIRECT,
-    JOINTLIN_SCHEME_RELAXATION, JOINTLIN_SCHEME_SECANT,
+    jointlin_store_pass_stats, jointlin_store_register_point, jointlin_store_report,
+    jointlin_store_rerun_increments, JOINTLIN_ACTION_DONE, JOINTLIN_ACTION_FAILED,
+    JOINTLIN_ACTION_RUNNING, JOINTLIN_ACTION_RUN_FINAL, JOINTLIN_ACTION_RUN_PASS,
+    JOINTLIN_ACTION_RUN_SWEEP, JOINTLIN_SCHEME_DIRECT, JOINTLIN_SCHEME_RELAXATION,
+    JOINTLIN_SCHEME_SECANT,
 };
 use jointlin::ffi::uexternaldb::jointlin_uexternaldb;
 use jointlin::ffi::uinter::{jointlin_uinter, jointlin_uinter_report};
@@ -552,7 +553,12 @@ impl Store {
 
     /// Registers a point that the host linearizes itself (not through UINTER, e.g. a
     /// cubic spring) by its key (name, node, coordinates); returns its store id.
-    pub fn register_point(&self, name: &str, node: i32, coords: [f64; 3]) -> Result<i64, CapiError> {
+    pub fn register_point(
+        &self,
+        name: &str,
+        node: i32,
+        coords: [f64; 3],
+    ) -> Result<i64, CapiError> {
         count(|c| c.store += 1);
         let mut id = 0i64;
         // SAFETY: live handle; name valid for its length, coords 3 doubles, id writable.

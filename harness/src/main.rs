@@ -238,8 +238,8 @@ fn main() -> ExitCode {
                     if e.active { e.work.as_str() } else { "" }
                 );
             }
-            for (label, sweep) in std::iter::once(("", &r.main))
-                .chain(r.down.as_ref().map(|d| ("sweep down: ", d)))
+            for (label, sweep) in
+                std::iter::once(("", &r.main)).chain(r.down.as_ref().map(|d| ("sweep down: ", d)))
             {
                 for p in &sweep.passes {
                     eprintln!(

@@ -104,22 +104,21 @@ pub fn run(
     };
     let t_main = t.elapsed().as_secs_f64();
     let t = Instant::now();
-    let reference =
-        if extras.reference_without_damping
-            && eff.contact_damping
-            && eff.tangential_microslip
-            && !problem.contacts.is_empty()
-        {
-            let mut o = opts;
-            o.effects.contact_damping = false;
-            o.point_results = false;
-            o.iteration.mode = Mode::Fast;
-            Some(sweep::run(&problem, &stat, &freqs, &o, &|l, i, n| {
-                progress(&format!("reference without contact damping: {l}"), i, n)
-            })?)
-        } else {
-            None
-        };
+    let reference = if extras.reference_without_damping
+        && eff.contact_damping
+        && eff.tangential_microslip
+        && !problem.contacts.is_empty()
+    {
+        let mut o = opts;
+        o.effects.contact_damping = false;
+        o.point_results = false;
+        o.iteration.mode = Mode::Fast;
+        Some(sweep::run(&problem, &stat, &freqs, &o, &|l, i, n| {
+            progress(&format!("reference without contact damping: {l}"), i, n)
+        })?)
+    } else {
+        None
+    };
     let t_ref = t.elapsed().as_secs_f64();
     let c1 = capi::counts();
     let calls = CallCounts {

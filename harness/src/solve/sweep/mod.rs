@@ -254,7 +254,10 @@ impl<'a> Setup<'a> {
         for (sp, &k) in self.problem.cubic_springs.iter().zip(spring_k) {
             // K holds k·d dᵀ already; k* replaces it.
             let blk = sp.block.map(|v| C64::new((k - sp.stiffness) * v, 0.0));
-            self.problem.sys.pairs.add(&mut self.s.values, sp.pair, &blk);
+            self.problem
+                .sys
+                .pairs
+                .add(&mut self.s.values, sp.pair, &blk);
         }
     }
 
