@@ -21,9 +21,10 @@ pub struct jointlin_cubic_linearization {
 }
 
 /// Linearizes the cubic spring F(x) = k_lin x + alpha x^3 (k_lin force/length, alpha
-/// force/length^3, any finite signs) for the displacement amplitude `amplitude` (length,
-/// >= 0) of x = A sin(omega t): k* = k_lin + 3/4 alpha A^2 by first-order harmonic balance
-/// (3.8), d* = 0 and no energy per cycle by energy balance (3.14), at every frequency.
+/// force/length^3, any finite signs) for the displacement amplitude A = `amplitude`
+/// (length, A >= 0) of x = A sin(omega t): k* = k_lin + 3/4 alpha A^2 by first-order
+/// harmonic balance (3.8), d* = 0 and no energy per cycle by energy balance (3.14), at
+/// every frequency.
 ///
 /// `out` must not be NULL. Errors: JOINTLIN_ERR_NULL, JOINTLIN_ERR_NON_FINITE (any NaN/Inf
 /// input), JOINTLIN_ERR_OUT_OF_RANGE (amplitude < 0, misaligned `out`),
