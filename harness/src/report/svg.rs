@@ -14,8 +14,8 @@ fn err<E: std::fmt::Display>(e: E) -> String {
 }
 
 /// FRF amplitude of every output (log scale) for each (sweep, label) in `curves`: the first
-/// bold (e.g. with contact damping, or sweep up), the others in lighter colours (e.g. the
-/// sweep down, the sweep without contact damping).
+/// bold (e.g. with contact damping, or sweep up), the others thinner in other colours (e.g.
+/// the sweep down, the sweep without contact damping).
 pub fn frf(
     path: &std::path::Path,
     title: &str,
@@ -67,12 +67,9 @@ pub fn frf(
         .map_err(err)?;
     for (k, o) in p.outputs.iter().enumerate() {
         for (c, (r, label)) in curves.iter().enumerate() {
-            let base = Palette99::pick(k).to_rgba();
-            let (color, width) = if c == 0 {
-                (base, 2)
-            } else {
-                (base.mix(0.7 - 0.25 * c as f64), 1)
-            };
+            // One colour per output and curve; the first curve drawn thicker.
+            let color = Palette99::pick(k + 4 * c).to_rgba();
+            let width = if c == 0 { 2 } else { 1 };
             let pts: Vec<(f64, f64)> = r
                 .freqs
                 .iter()
@@ -90,7 +87,7 @@ pub fn frf(
     }
     chart
         .configure_series_labels()
-        .position(SeriesLabelPosition::UpperMiddle)
+        .position(SeriesLabelPosition::UpperRight)
         .background_style(WHITE.mix(0.85))
         .border_style(BLACK)
         .draw()
