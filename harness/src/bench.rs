@@ -162,7 +162,7 @@ f_min = {f0}
 f_max = {f1}
 count = {n}
 [iteration]
-mode = "{mode}"
+{mode}
 tolerance = 1e-3
 initial_amplitude = 1e-6
 [[outputs]]
@@ -177,8 +177,9 @@ direction = [0.0, 0.0, 1.0]
         f1 = freqs.1,
         n = freqs.2,
         mode = match mode {
-            Mode::Fast => "fast",
-            Mode::Thesis => "thesis",
+            Mode::Fast => "mode = \"fast\"",
+            Mode::Thesis => "mode = \"thesis\"",
+            Mode::HarmonicBalance => "mode = \"harmonic_balance\"\nharmonics = 7",
         },
     );
     Scene::parse("bench", &text).expect("the bench scene is valid")

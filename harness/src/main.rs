@@ -39,11 +39,16 @@ enum Command {
     /// k* and d* per point and tangential direction from the library for the point's
     /// amplitude, iterated to consistency: mode `fast` (default; one factorization per
     /// frequency, condensation onto the contact DOFs) or `thesis` (the UEXTERNALDB
-    /// multi-pass scheme of thesis §4.3.2 through the library's store). The scene's
-    /// [effects] table switches physics and outputs on and off; the run log lists the
-    /// active effects and what each cost. Grounded springs with a `cubic` term α (the
-    /// Duffing oscillator) get k* = k + ¾αA² from the library for their amplitude A and
-    /// are iterated to consistency like contact points, in both modes.
+    /// multi-pass scheme of thesis §4.3.2 through the library's store). Or, with
+    /// [iteration] mode = "harmonic_balance", harmonics = H (samples = N optional), the
+    /// multi-harmonic balance: the library's time-domain point marched over each contact
+    /// direction's periodic slip (AFT, N samples per period), the linear part condensed
+    /// onto the contact directions per harmonic 0..H, Newton per frequency; the normal
+    /// load is held at its static value. The scene's [effects] table switches physics
+    /// and outputs on and off; the run log lists the active effects and what each cost.
+    /// Grounded springs with a `cubic` term α (the Duffing oscillator) get
+    /// k* = k + ¾αA² from the library for their amplitude A and are iterated to
+    /// consistency like contact points (modes fast and thesis; not harmonic_balance).
     ///
     /// Sweep direction ([sweep] direction): "up" (default) runs the frequencies
     /// ascending, "down" descending, "up_down" both; each frequency starts from the
@@ -55,12 +60,19 @@ enum Command {
     /// names file:line:column and key, and nothing is written):
     ///   results.csv   freq_hz, then per named output <name>_amp and <name>_phase_deg,
     ///                 then dissipated_power (power lost in the joints, force·length/time)
+    ///                 and status (converged, not_converged, or singular: no response
+    ///                 there, empty fields; also singular_frequencies in run.json);
+    ///                 harmonic balance: first harmonic
     ///   results_down.csv  the same columns for the descending sweep (direction = "up_down";
     ///                 results.csv then holds the ascending one)
+    ///   harmonics.csv harmonic balance only: freq_hz, then per output and h = 0..H
+    ///                 <name>_h<h>_amp (h = 0: mean deviation from the static state)
     ///   results_without_contact_damping.csv  the same with d* = 0 (fast mode; written
     ///                 with the plots when the scene has contact damping)
     ///   points.csv    per contact point and frequency: position, pressure, amplitude,
-    ///                 k*, d* (per area), energy per cycle, A/δ* (effects.point_energy_output)
+    ///                 k*, d* (per area), energy per cycle, A/δ* (effects.point_energy_output);
+    ///                 harmonic balance: first-harmonic amplitude, k* + iωd* = F̂₁/δ̂₁ of
+    ///                 the closed loop, its energy per cycle
     ///   stick_slip.csv/.svg  points per regime over frequency (effects.stick_slip_map)
     ///   run.json      scene echo, effects with costs, passes, iterations, timings, C-API calls
     ///   frf.svg       FRF of the outputs with and without contact damping (and the
@@ -102,7 +114,8 @@ enum Command {
         cases: Vec<String>,
     },
     /// One scene at a ladder of fidelities (linear stick, Simpson point counts, iteration
-    /// tolerances, time-domain steps and settling lengths): error against the most
+    /// tolerances, harmonic balance with H = 1, 3, 7, 15, time-domain steps and settling
+    /// lengths): error against the most
     /// accurate time-domain run vs wall time. Writes tradeoff.csv, tradeoff.md and the
     /// Pareto plot tradeoff.svg; prints the frequency- vs time-domain speed ratio.
     Tradeoff {
@@ -144,15 +157,23 @@ enum Command {
         contact_scan: bool,
     },
     /// Multi-harmonic balance (AFT through jointlin_point_step): cost vs H of a
-    /// frequency sweep of the 3-DOF Jenkins chain, beside the first-order linearization.
-    /// Prints a Markdown table.
+    /// frequency sweep of the 3-DOF Jenkins chain, or with --scene of FE scenes (time per
+    /// frequency split into mesh and contact parts), beside the first-order
+    /// linearization. Prints a Markdown table per system.
     Mhb {
         /// Harmonics to run (the last row is the reference of the deviation column).
         #[arg(long, value_delimiter = ',', default_values_t = vec![1usize, 3, 7, 15])]
         harmonics: Vec<usize>,
-        /// Frequencies per sweep.
-        #[arg(long, default_value_t = 200)]
-        freqs: usize,
+        /// Frequencies per sweep (default 200 for the chain, 5 for scenes).
+        #[arg(long)]
+        freqs: Option<usize>,
+        /// FE scenes to run instead of the chain (e.g. scenes/three-beams-coarse.toml,
+        /// scenes/three-beams.toml).
+        #[arg(long, value_delimiter = ',')]
+        scene: Vec<PathBuf>,
+        /// Band f_min,f_max (1/time) for scenes; default each scene's first refine band.
+        #[arg(long, value_delimiter = ',', num_args = 2)]
+        band: Vec<f64>,
         /// Force amplitude on the last mass.
         #[arg(long, default_value_t = 0.05)]
         force: f64,
@@ -270,8 +291,17 @@ fn main() -> ExitCode {
                     return ExitCode::from(1);
                 }
             }
-            if unconverged > 0 {
-                eprintln!("warning: {unconverged} frequencies did not converge (see run.json)");
+            let singular = r.main.singular.iter().filter(|&&c| c).count();
+            if singular > 0 {
+                eprintln!(
+                    "warning: {singular} frequencies have a singular dynamic stiffness (an undamped resonance?): no response there (status singular in results.csv, singular_frequencies in run.json)"
+                );
+            }
+            if unconverged > singular {
+                eprintln!(
+                    "warning: {} frequencies did not converge (see run.json)",
+                    unconverged - singular
+                );
             }
             ExitCode::SUCCESS
         }
@@ -305,7 +335,8 @@ fn main() -> ExitCode {
             match bench::stuck_modes(&s, count) {
                 Ok(f) => {
                     for (i, v) in f.iter().enumerate() {
-                        println!("mode {}: {v:.4} (1/time)", i + 1);
+                        // Shortest round-trip form: the value can go into a scene's sweep.
+                        println!("mode {}: {v} (1/time)", i + 1);
                     }
                     ExitCode::SUCCESS
                 }
@@ -352,11 +383,35 @@ fn main() -> ExitCode {
         Command::Mhb {
             harmonics,
             freqs,
+            scene,
+            band,
             force,
         } => {
-            use jointlin_harness::mhb::bench;
-            let rows = bench::sweep_table(force, 0.3, 0.8, freqs, &harmonics);
-            println!("{}", bench::markdown(&rows, force, 0.3, 0.8, freqs));
+            use jointlin_harness::mhb::{bench, fe_bench};
+            if scene.is_empty() {
+                let freqs = freqs.unwrap_or(200);
+                let rows = bench::sweep_table(force, 0.3, 0.8, freqs, &harmonics);
+                println!("{}", bench::markdown(&rows, force, 0.3, 0.8, freqs));
+                return ExitCode::SUCCESS;
+            }
+            for path in scene {
+                let s = match Scene::load(&path) {
+                    Ok(s) => s,
+                    Err(e) => {
+                        eprintln!("error: {e}");
+                        return ExitCode::from(2);
+                    }
+                };
+                let band = (band.len() == 2).then(|| (band[0], band[1]));
+                let log = |l: &str| eprintln!("{}: {l}", path.display());
+                match fe_bench::table(&s, band, freqs.unwrap_or(5), &harmonics, &log) {
+                    Ok(t) => println!("{}", fe_bench::markdown(&t)),
+                    Err(e) => {
+                        eprintln!("error: {e}");
+                        return ExitCode::from(1);
+                    }
+                }
+            }
             ExitCode::SUCCESS
         }
         Command::Tradeoff { scene, out, freq } => {

@@ -33,6 +33,7 @@ fn switched_off_effects_make_no_calls() {
             Mode::Fast => assert!(c.linearize > 0 && c.uinter_linear == 0),
             // Thesis mode: k*, d* only through UINTER; no per-point output, no linearize.
             Mode::Thesis => assert!(c.uinter_linear > 0 && c.linearize == 0 && c.uexternaldb > 0),
+            Mode::HarmonicBalance => unreachable!("this loop runs the linearization modes"),
         }
         assert!(all.main.power[0] > 0.0);
 
@@ -73,9 +74,32 @@ fn switched_off_effects_make_no_calls() {
         match mode {
             Mode::Fast => assert_eq!(c.linearize, all.calls.linearize),
             Mode::Thesis => assert_eq!(c.linearize as usize, 2 * runs),
+            Mode::HarmonicBalance => unreachable!("this loop runs the linearization modes"),
         }
         assert_eq!(r.main.points.len(), 1);
     }
+}
+
+#[test]
+fn harmonic_balance_marches_points_and_linearizes_nothing() {
+    let mut s = block();
+    s.spec.iteration.mode = Mode::HarmonicBalance;
+    s.spec.iteration.harmonics = Some(3);
+    s.spec.effects.point_energy_output = false;
+    s.spec.effects.stick_slip_map = false;
+    let steps0 = jointlin_harness::capi::point_steps();
+    let (r, c) = go(&s);
+    let steps = jointlin_harness::capi::point_steps() - steps0;
+    // Only the static step's UINTER and the AFT marches (jointlin_point_step).
+    assert!(c.uinter_general > 0 && steps > 0, "{steps}");
+    assert_eq!((c.linearize, c.uinter_linear, c.uexternaldb), (0, 0, 0));
+    assert!(r.main.power[0] > 0.0);
+    assert_eq!(r.main.harmonics[0][0].len(), 4);
+    // Point outputs: one linearize call per direction and frequency (A/δ*, regime).
+    s.spec.effects.point_energy_output = true;
+    let (r, c) = go(&s);
+    assert_eq!(c.linearize, 2);
+    assert!(r.main.points[0][0].energy > 0.0);
 }
 
 #[test]
@@ -136,14 +160,16 @@ fn cli_run_writes_the_documented_files() {
     let mut lines = results.lines();
     assert_eq!(
         lines.next().unwrap(),
-        "freq_hz,block_x_amp,block_x_phase_deg,dissipated_power"
+        "freq_hz,block_x_amp,block_x_phase_deg,dissipated_power,status"
     );
     let row: Vec<f64> = lines
         .next()
         .unwrap()
         .split(',')
+        .take(4)
         .map(|v| v.parse().unwrap())
         .collect();
+    assert!(results.lines().nth(1).unwrap().ends_with(",converged"));
     // Amplitude as in block_stick_amplitude_matches_the_thesis_in_both_modes; the power
     // is the loop energy × f > 0; the phase lags the force (−180° < φ < 0°).
     assert!(

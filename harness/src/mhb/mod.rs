@@ -20,6 +20,8 @@
 pub mod aft;
 pub mod bench;
 pub mod continuation;
+pub mod fe;
+pub mod fe_bench;
 pub mod first_order;
 pub mod reference;
 

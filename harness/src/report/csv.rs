@@ -1,8 +1,10 @@
-//! results.csv, points.csv and stick_slip.csv.
+//! results.csv, harmonics.csv, points.csv and stick_slip.csv.
 //!
 //! results.csv: `freq_hz`, then per named output `<name>_amp` (length) and
 //! `<name>_phase_deg` (degrees, of u = Re(û e^{iωt})), then `dissipated_power` (power
-//! dissipated in the joints, force·length/time: mW for N, mm, s).
+//! dissipated in the joints, force·length/time: mW for N, mm, s) and `status`
+//! (`converged`, `not_converged`, or `singular`: the dynamic stiffness was singular
+//! there, see [`crate::solve::sweep::SINGULAR_RCOND`], and the other fields are empty).
 
 use std::fmt::Write as _;
 
@@ -18,13 +20,49 @@ pub fn results(p: &Problem, r: &SweepResult) -> String {
     for o in &p.outputs {
         let _ = write!(s, ",{0}_amp,{0}_phase_deg", o.name);
     }
-    s.push_str(",dissipated_power\n");
+    s.push_str(",dissipated_power,status\n");
     for (i, f) in r.freqs.iter().enumerate() {
         let _ = write!(s, "{f:.10e}");
+        if r.is_singular(i) {
+            // No response computed: empty fields, never inf or NaN.
+            s.push_str(&",".repeat(2 * r.outputs[i].len() + 1));
+            s.push_str(",singular\n");
+            continue;
+        }
         for v in &r.outputs[i] {
             let _ = write!(s, ",{:.10e},{:.6}", v.norm(), v.arg().to_degrees());
         }
-        let _ = writeln!(s, ",{:.10e}", r.power[i]);
+        let status = if r.converged[i] {
+            "converged"
+        } else {
+            "not_converged"
+        };
+        let _ = writeln!(s, ",{:.10e},{status}", r.power[i]);
+    }
+    s
+}
+
+/// harmonics.csv text (harmonic balance): `freq_hz`, then per output and harmonic
+/// h = 0..H `<name>_h<h>_amp` (length; h = 0 the mean deviation from the static state).
+pub fn harmonics(p: &Problem, r: &SweepResult) -> String {
+    let mut s = String::from("freq_hz");
+    let nh = r
+        .harmonics
+        .first()
+        .and_then(|o| o.first())
+        .map_or(0, Vec::len);
+    for o in &p.outputs {
+        for h in 0..nh {
+            let _ = write!(s, ",{}_h{h}_amp", o.name);
+        }
+    }
+    s.push('\n');
+    for (f, outs) in r.freqs.iter().zip(&r.harmonics) {
+        let _ = write!(s, "{f:.10e}");
+        for v in outs.iter().flatten() {
+            let _ = write!(s, ",{:.10e}", v.norm());
+        }
+        s.push('\n');
     }
     s
 }

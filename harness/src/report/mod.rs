@@ -52,6 +52,8 @@ pub fn run_json(scene: &Scene, r: &RunResult) -> serde_json::Value {
         "iterations_per_frequency": m.iterations,
         "converged": m.converged,
         "all_converged": m.converged.iter().all(|&c| c),
+        "singular_frequencies": m.freqs.iter().enumerate().filter(|(i, _)| m.is_singular(*i)).map(|(_, f)| *f).collect::<Vec<f64>>(),
+        "singular_rcond_threshold": crate::solve::sweep::SINGULAR_RCOND,
         "factorizations": m.factorizations,
         "gmres_solves": m.gmres_solves,
         "macroslip_caps": m.macroslip_caps,
@@ -95,6 +97,10 @@ pub fn write_all(
     if let Some(down) = &r.down {
         let text = csv::results(&r.problem, down);
         write(dir, "results_down.csv", &text, &mut out).map_err(io)?;
+    }
+    if !r.main.harmonics.is_empty() {
+        let text = csv::harmonics(&r.problem, &r.main);
+        write(dir, "harmonics.csv", &text, &mut out).map_err(io)?;
     }
     if let Some(reference) = &r.reference {
         let text = csv::results(&r.problem, reference);

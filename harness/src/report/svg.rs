@@ -70,11 +70,14 @@ pub fn frf(
             // One colour per output and curve; the first curve drawn thicker.
             let color = Palette99::pick(k + 4 * c).to_rgba();
             let width = if c == 0 { 2 } else { 1 };
+            // Singular frequencies have no response: left out of the curve.
             let pts: Vec<(f64, f64)> = r
                 .freqs
                 .iter()
                 .zip(&r.outputs)
-                .map(|(f, v)| (*f, v[k].norm().max(ymin)))
+                .enumerate()
+                .filter(|(i, _)| !r.is_singular(*i))
+                .map(|(_, (f, v))| (*f, v[k].norm().max(ymin)))
                 .collect();
             chart
                 .draw_series(LineSeries::new(pts, color.stroke_width(width)))

@@ -68,10 +68,10 @@ impl Scene {
                 .collect()
         };
         for b in &s.refine {
-            f.extend(
-                (0..b.count)
-                    .map(|i| b.f_min + (b.f_max - b.f_min) * i as f64 / (b.count - 1) as f64),
-            );
+            f.extend((0..b.count).map(|i| {
+                let t = i as f64 / (b.count.max(2) - 1) as f64;
+                b.f_min + (b.f_max - b.f_min) * t
+            }));
         }
         f.sort_by(f64::total_cmp);
         f.dedup_by(|a, b| (*a - *b).abs() <= 1e-12 * b.abs());

@@ -323,6 +323,9 @@ pub enum Mode {
     Fast,
     /// The thesis's multi-pass UEXTERNALDB scheme (§4.3.2).
     Thesis,
+    /// Multi-harmonic balance (`harmonics`, `samples`): the contact loops marched in time
+    /// through the C API, the linear part condensed onto the contacts per harmonic.
+    HarmonicBalance,
 }
 
 /// Amplitude update rule of the thesis mode (the library's, through its iteration
@@ -356,6 +359,13 @@ pub struct IterationSpec {
     /// Amplitude estimate (length) of the first frequency increment.
     #[serde(default = "default_initial_amplitude")]
     pub initial_amplitude: f64,
+    /// Harmonic balance: harmonics H (zeroth included besides); required by that mode.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub harmonics: Option<usize>,
+    /// Harmonic balance: samples N per period (default 16(H + 1) rounded up to a power
+    /// of two, at least 64).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub samples: Option<usize>,
 }
 
 fn default_tolerance() -> f64 {
@@ -376,6 +386,8 @@ impl Default for IterationSpec {
             scheme: SchemeName::default(),
             max_passes: default_max_passes(),
             initial_amplitude: default_initial_amplitude(),
+            harmonics: None,
+            samples: None,
         }
     }
 }

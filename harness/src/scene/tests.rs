@@ -158,6 +158,67 @@ fn refine_bands_merge_sorted() {
         "count = 3\nrefine = [{ f_min = 140.0, f_max = 130.0, count = 3 }]",
     );
     assert_eq!(err(&bad).key, "sweep.refine[0].f_max");
+    // One exact frequency: count = 1 with f_max = f_min; count = 1 over a band is an error.
+    let one = GOOD.replace(
+        "count = 3",
+        "count = 3\nrefine = [{ f_min = 123.456789, f_max = 123.456789, count = 1 }]",
+    );
+    let f = Scene::parse("x", &one).unwrap().frequencies();
+    assert_eq!(f, vec![100.0, 123.456789, 150.0, 200.0]);
+    let bad = one.replace("f_max = 123.456789", "f_max = 124.0");
+    assert_eq!(err(&bad).key, "sweep.refine[0].count");
+}
+
+#[test]
+fn harmonic_balance_keys_are_validated() {
+    let hb = |extra: &str| {
+        GOOD.replace(
+            "count = 3\n",
+            &format!("count = 3\n\n[iteration]\nmode = \"harmonic_balance\"\n{extra}"),
+        )
+    };
+    let s = Scene::parse("x", &hb("harmonics = 7\nsamples = 128\n")).unwrap();
+    assert_eq!(s.spec.iteration.mode, Mode::HarmonicBalance);
+    assert_eq!(
+        (s.spec.iteration.harmonics, s.spec.iteration.samples),
+        (Some(7), Some(128))
+    );
+    // Missing H: named at the table.
+    let e = err(&hb(""));
+    assert_eq!(e.key, "iteration.harmonics", "{e}");
+    assert_eq!(e.line, line_of(&hb(""), "[iteration]"));
+    // Out of range H and N, each at its value.
+    for (text, key, value) in [
+        (
+            hb("harmonics = 0\n"),
+            "iteration.harmonics",
+            "harmonics = 0",
+        ),
+        (
+            hb("harmonics = 65\n"),
+            "iteration.harmonics",
+            "harmonics = 65",
+        ),
+        (
+            hb("harmonics = 7\nsamples = 15\n"),
+            "iteration.samples",
+            "samples = 15",
+        ),
+    ] {
+        let e = err(&text);
+        assert_eq!(e.key, key, "{e}");
+        assert_eq!(e.line, line_of(&text, value), "{e}");
+    }
+    // Harmonics without the mode.
+    let text = GOOD.replace("count = 3\n", "count = 3\n\n[iteration]\nharmonics = 3\n");
+    let e = err(&text);
+    assert_eq!(e.key, "iteration.harmonics");
+    assert!(e.message.contains("harmonic_balance"), "{e}");
+    // Effects the balance cannot switch off.
+    let text = hb("harmonics = 3\n\n[effects]\ncontact_damping = false\n");
+    let e = err(&text);
+    assert_eq!(e.key, "effects.contact_damping", "{e}");
+    assert_eq!(e.line, line_of(&text, "contact_damping = false"));
 }
 
 #[test]
@@ -177,6 +238,10 @@ fn cubic_spring_keys_are_validated() {
     assert_eq!(e.key, "springs[0].cubic");
     assert_eq!(e.line, line_of(&text, "cubic = 40.0"));
     assert!(e.message.contains("no preload"), "{}", e.message);
+    // The harmonic-balance mode has no cubic springs.
+    let text = good.replace("mode = \"fast\"", "mode = \"harmonic_balance\"");
+    let e = Scene::parse("d.toml", &text).unwrap_err();
+    assert_eq!(e.key, "springs[0].cubic");
     // Unknown sweep direction: a type error naming the key's line.
     let text = good.replace("count = 1\n", "count = 1\ndirection = \"sideways\"\n");
     let e = Scene::parse("d.toml", &text).unwrap_err();

@@ -316,6 +316,12 @@ pub fn validate(s: &SceneFile) -> Vec<Problem> {
         // The first-order balance linearizes the cubic term about x = 0: a static
         // preload would move the operating point, which the static step (linear springs)
         // does not follow.
+        if sp.cubic != 0.0 && s.iteration.mode == Mode::HarmonicBalance {
+            c.fail(
+                p.key("cubic"),
+                "cubic springs are linearized to first order: use mode \"fast\" or \"thesis\"",
+            );
+        }
         if sp.cubic != 0.0 && s.preload.iter().any(|l| l.body == sp.body) {
             c.fail(
                 p.key("cubic"),
@@ -372,11 +378,19 @@ pub fn validate(s: &SceneFile) -> Vec<Problem> {
         let bp = sw.key("refine").index(i);
         c.positive(bp.key("f_min"), b.f_min);
         c.positive(bp.key("f_max"), b.f_max);
-        if b.count < 2 {
-            c.fail(bp.key("count"), "a refine band needs count >= 2");
+        // count = 1 with f_max = f_min puts one exact frequency into the sweep (e.g. an
+        // eigenfrequency from `jointlin modes`).
+        if b.count == 0 || (b.count == 1 && b.f_max != b.f_min) {
+            c.fail(
+                bp.key("count"),
+                "a refine band needs count >= 2 (or count = 1 with f_max = f_min)",
+            );
         }
-        if b.f_max <= b.f_min {
-            c.fail(bp.key("f_max"), "must be > f_min");
+        if b.f_max < b.f_min || (b.count > 1 && b.f_max == b.f_min) {
+            c.fail(
+                bp.key("f_max"),
+                "must be > f_min (or equal to it with count = 1)",
+            );
         }
     }
 
@@ -389,6 +403,7 @@ pub fn validate(s: &SceneFile) -> Vec<Problem> {
         c.fail(it.key("max_passes"), "must be >= 1");
     }
     c.positive(it.key("initial_amplitude"), s.iteration.initial_amplitude);
+    harmonic_balance(&mut c, s);
 
     if s.outputs.is_empty() {
         c.fail(root.key("outputs"), "at least one named output is needed");
@@ -419,4 +434,52 @@ pub fn validate(s: &SceneFile) -> Vec<Problem> {
         c.direction(p.key("direction"), &o.direction);
     }
     c.problems
+}
+
+/// Most harmonics and samples per period a scene may ask for (H = 64 is far past where
+/// the rungs have converged on any scene here; N bounds the march's memory and time).
+pub const MAX_HARMONICS: usize = 64;
+pub const MAX_SAMPLES: usize = 1 << 16;
+
+/// `[iteration]` keys of the harmonic balance, and the effects it cannot switch off.
+fn harmonic_balance(c: &mut Checker, s: &SceneFile) {
+    let it = KeyPath::root().key("iteration");
+    let spec = &s.iteration;
+    if spec.mode != Mode::HarmonicBalance {
+        let why = "unless mode = \"harmonic_balance\"";
+        c.forbid(it.key("harmonics"), &spec.harmonics, why);
+        c.forbid(it.key("samples"), &spec.samples, why);
+        return;
+    }
+    let why = "for mode = \"harmonic_balance\" (e.g. 1, 3, 7, 15)";
+    if !c.require(it.key("harmonics"), &spec.harmonics, why) {
+        return;
+    }
+    let h = spec.harmonics.unwrap_or(0);
+    if !(1..=MAX_HARMONICS).contains(&h) {
+        c.fail(
+            it.key("harmonics"),
+            format!("must be in 1..={MAX_HARMONICS}, got {h}"),
+        );
+        return;
+    }
+    if let Some(n) = spec.samples {
+        if n < 2 * h + 2 || n > MAX_SAMPLES {
+            c.fail(
+                it.key("samples"),
+                format!(
+                    "must be in {}..={MAX_SAMPLES} (at least 2H + 2 so that no retained harmonic aliases onto another), got {n}",
+                    2 * h + 2
+                ),
+            );
+        }
+    }
+    let eff = KeyPath::root().key("effects");
+    let why = "must stay on with mode = \"harmonic_balance\": the balance marches the library's whole hysteresis loop (sliding and dissipation included)";
+    if !s.effects.macroslip {
+        c.fail(eff.key("macroslip"), why);
+    }
+    if !s.effects.contact_damping {
+        c.fail(eff.key("contact_damping"), why);
+    }
 }

@@ -10,6 +10,8 @@
 //!   (`jointlin_method`), default iteration tolerance;
 //! - the default quadrature at several amplitude-iteration tolerances (the scene's own is
 //!   "default");
+//! - the multi-harmonic balance (`mode = "harmonic_balance"`) with H = 1, 3, 7, 15 and the
+//!   default samples per period, Newton to 1e-6;
 //!
 //! and the time domain (UINTER LINPER = 0): Newmark at several steps per period (settled
 //! to a tolerance), fixed settling lengths, RK4 for small models, and the reference: the
@@ -28,15 +30,22 @@ use std::time::Instant;
 use serde::Serialize;
 
 use crate::capi::{set_quadrature, Quadrature};
+use crate::mhb::default_samples;
 use crate::run::{run, Extras};
-use crate::scene::Scene;
+use crate::scene::{Mode, Scene};
 use crate::time::scene_run::{integrator_for, run_scene, FreqResult};
 use crate::time::{Integrator, Start, TimeSettings};
+
+/// The harmonic-balance rungs.
+pub const HARMONICS: [usize; 4] = [1, 3, 7, 15];
+/// Their Newton tolerance (‖R‖ relative to the stuck response; far below the rungs'
+/// differences).
+const HB_TOLERANCE: f64 = 1e-6;
 
 /// One rung of the ladder.
 #[derive(Debug, Clone, Serialize)]
 pub struct Rung {
-    /// "linear", "simpson", "default", "tolerance", "time", "reference".
+    /// "linear", "simpson", "default", "tolerance", "harmonic", "time", "reference".
     pub family: &'static str,
     pub label: String,
     pub seconds: f64,
@@ -187,6 +196,23 @@ pub fn study(scene: &Scene, freq: Option<f64>, log: &dyn Fn(&str)) -> Result<Tra
         push_fd(
             "tolerance",
             format!("default quadrature, tolerance {tol:.0e}"),
+            &s,
+            None,
+        )?;
+    }
+    for h in HARMONICS {
+        let mut s = base.clone();
+        let it = &mut s.spec.iteration;
+        it.mode = Mode::HarmonicBalance;
+        (it.harmonics, it.samples) = (Some(h), None);
+        it.tolerance = HB_TOLERANCE;
+        it.max_passes = it.max_passes.max(50);
+        push_fd(
+            "harmonic",
+            format!(
+                "harmonic balance H = {h} (N = {}), Newton to {HB_TOLERANCE:.0e}",
+                default_samples(h)
+            ),
             &s,
             None,
         )?;
@@ -353,6 +379,21 @@ fn ratios(rungs: &[Rung]) -> Vec<String> {
         "reference time-domain run vs frequency domain (default): {:.0}× the wall time",
         reference.seconds / d.seconds
     ));
+    let hb: Vec<String> = rungs
+        .iter()
+        .filter(|r| r.family == "harmonic")
+        .map(|r| {
+            let name = r.label.split(" (").next().unwrap_or(&r.label);
+            let name = name.trim_start_matches("harmonic balance ");
+            format!("{name}: {:.2e} in {:.2e} s", err(r), r.seconds)
+        })
+        .collect();
+    if !hb.is_empty() {
+        out.push(format!(
+            "harmonic balance (max of amplitude and energy error): {}",
+            hb.join("; ")
+        ));
+    }
     out
 }
 

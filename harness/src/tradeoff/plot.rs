@@ -10,11 +10,12 @@ fn err<E: std::fmt::Display>(e: E) -> String {
     e.to_string()
 }
 
-const FAMILIES: [(&str, &str); 6] = [
+const FAMILIES: [(&str, &str); 7] = [
     ("linear", "linear stick"),
     ("simpson", "Simpson (thesis)"),
     ("default", "default method"),
     ("tolerance", "iteration tolerances"),
+    ("harmonic", "harmonic balance H = 1, 3, 7, 15"),
     ("time", "time domain"),
     ("reference", "reference"),
 ];

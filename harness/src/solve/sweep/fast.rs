@@ -25,6 +25,7 @@ use std::time::Instant;
 use super::anderson::Anderson;
 use super::bracket::Bracket;
 use super::krylov::Gmres;
+use super::receptance::Receptance;
 use super::{Options, PassRecord, PointFreq, Setup, SweepError, SweepResult, C64};
 use crate::capi::{self, Linearized, Tangential};
 use crate::solve::contact::tangential;
@@ -45,6 +46,11 @@ const GMRES_FLOOR: f64 = 1e-9;
 /// FGMRES restart length and most preconditioner applications per contact iteration.
 const GMRES_RESTART: usize = 30;
 const GMRES_MAX: usize = 300;
+/// Largest step of an Anderson iterate beyond the bracket of the current amplitude
+/// and its image, in ln a (one decade). Without it, a stiff joint (k_T0·L/(E·A) = 1e6,
+/// scenes/hard/stiffness-ratio.toml near resonance) extrapolated to A/δ* ≈ 1e16, where
+/// the linearization is no longer representable and the run stopped.
+const MAX_EXTRAPOLATION: f64 = std::f64::consts::LN_10;
 /// Amplitudes below this fraction of the largest one are handed to the linearization as
 /// exactly 0 (k* = k_T0, d* = 0: the A → 0 limit, where relative differences of 1e-15 are
 /// below round-off) and floored there before taking logs. Without it a direction that is
@@ -94,16 +100,12 @@ pub fn sweep(
     };
     res.time("linearization (C API)", t0);
 
-    // Scratch, allocated once per sweep.
-    let mut b = vec![C64::new(0.0, 0.0); n];
-    let mut x = vec![C64::new(0.0, 0.0); n];
+    // Scratch, allocated once per sweep (G and O only when condensing).
     let condensed = m <= opts.condense_max;
-    let mut g = vec![C64::new(0.0, 0.0); if condensed { m * m } else { 0 }];
+    let mut rec = Receptance::new(n, if condensed { m } else { 0 }, nout);
+    rec.r0 = vec![C64::new(0.0, 0.0); m];
     let mut u = vec![C64::new(0.0, 0.0); if condensed { 0 } else { n }];
-    let mut gmres = Gmres::new(if condensed { 0 } else { n }, GMRES_RESTART);
-    let mut o = vec![C64::new(0.0, 0.0); if condensed { nout * m } else { 0 }];
-    let mut r0 = vec![C64::new(0.0, 0.0); m];
-    let mut o0 = vec![C64::new(0.0, 0.0); nout];
+    let mut gmres = Gmres::<C64>::new(if condensed { 0 } else { n }, GMRES_RESTART);
     let mut work = vec![C64::new(0.0, 0.0); if condensed { m * m } else { 0 }];
     let mut r = vec![C64::new(0.0, 0.0); m];
     let mut delta = vec![C64::new(0.0, 0.0); m];
@@ -118,9 +120,9 @@ pub fn sweep(
     let active = setup.active.clone();
     let row = |j: usize| {
         if j < mc {
-            &p.contacts[active[j / 2]].rows[1 + j % 2]
+            p.contacts[active[j / 2]].rows[1 + j % 2].as_slice()
         } else {
-            &springs[j - mc].row
+            springs[j - mc].row.as_slice()
         }
     };
     let weight = |j: usize| if j < mc { area[j / 2] } else { 1.0 };
@@ -194,40 +196,37 @@ pub fn sweep(
         }
         let t = Instant::now();
         setup.fill(omega, &kappa0, &ks0);
-        let num = setup
-            .symbolic
-            .factor(&setup.s)
-            .map_err(|source| SweepError::Umfpack { freq: f, source })?;
+        let num = setup.factor(f)?;
         res.factorizations += 1;
         res.time("factorization", t);
+        let Some(num) = num else {
+            // Singular dynamic stiffness (e.g. an undamped eigenfrequency with the joint
+            // open): no response; the next frequency starts afresh.
+            res.outputs.push(vec![C64::new(0.0, 0.0); nout]);
+            res.power.push(0.0);
+            if opts.point_results {
+                res.points
+                    .push(vec![PointFreq::default(); p.contacts.len()]);
+            }
+            res.iterations.push(0);
+            res.converged.push(false);
+            res.singular.push(true);
+            hist.clear();
+            continue;
+        };
 
         let t = Instant::now();
         let umf = |e| SweepError::Umfpack { freq: f, source: e };
         let krylov = !condensed;
-        num.solve_into(&p.excitation, &mut x).map_err(umf)?;
         if krylov {
-            u.copy_from_slice(&x);
-        }
-        for j in 0..m {
-            r0[j] = row(j).iter().map(|&(i, w)| x[i] * w).sum();
-        }
-        for (k, out) in p.outputs.iter().enumerate() {
-            o0[k] = out.value(&x);
-        }
-        for j in 0..if krylov { 0 } else { m } {
-            for &(i, w) in row(j) {
-                b[i] = C64::new(w, 0.0);
+            num.solve_into(&p.excitation, &mut u).map_err(umf)?;
+            for j in 0..m {
+                rec.r0[j] = row(j).iter().map(|&(i, w)| u[i] * w).sum();
             }
-            num.solve_into(&b, &mut x).map_err(umf)?;
-            for &(i, _) in row(j) {
-                b[i] = C64::new(0.0, 0.0);
-            }
-            for k in 0..m {
-                g[k + m * j] = row(k).iter().map(|&(i, w)| x[i] * w).sum();
-            }
-            for (k, out) in p.outputs.iter().enumerate() {
-                o[k + nout * j] = out.value(&x);
-            }
+        } else {
+            rec.load(&num, &p.excitation, &row, &p.outputs)
+                .map_err(umf)?;
+            rec.condense(&num, &row, &p.outputs).map_err(umf)?;
         }
         res.time("receptance solves", t);
 
@@ -236,7 +235,7 @@ pub fn sweep(
         let mut gmres_ok = true;
         let mut iterations = 0;
         let mut converged = m == 0;
-        r.copy_from_slice(&r0);
+        r.copy_from_slice(&rec.r0);
         delta.iter_mut().for_each(|d| *d = C64::new(0.0, 0.0));
         while m > 0 && iterations < it.max_passes {
             iterations += 1;
@@ -294,11 +293,11 @@ pub fn sweep(
             } else {
                 for jc in 0..m {
                     for k in 0..m {
-                        work[k + m * jc] = g[k + m * jc] * delta[jc];
+                        work[k + m * jc] = rec.g[k + m * jc] * delta[jc];
                     }
                     work[jc + m * jc] += C64::new(1.0, 0.0);
                 }
-                r.copy_from_slice(&r0);
+                r.copy_from_slice(&rec.r0);
                 if !lu_solve_in_place(&mut work, m, &mut r) {
                     return Err(SweepError::Condensed { freq: f });
                 }
@@ -324,7 +323,16 @@ pub fn sweep(
             a = if m == 1 {
                 vec![bracket.next(xs[0], gs[0]).exp()]
             } else {
-                acc.next(&xs, &gs).iter().map(|v| v.exp()).collect()
+                // Anderson extrapolates; keep each step within a decade of the bracket
+                // [min(a, a*), max(a, a*)] (MAX_EXTRAPOLATION).
+                acc.next(&xs, &gs)
+                    .iter()
+                    .zip(xs.iter().zip(&gs))
+                    .map(|(v, (x, g))| {
+                        v.clamp(x.min(*g) - MAX_EXTRAPOLATION, x.max(*g) + MAX_EXTRAPOLATION)
+                            .exp()
+                    })
+                    .collect()
             };
         }
 
@@ -335,9 +343,9 @@ pub fn sweep(
         } else {
             (0..nout)
                 .map(|k| {
-                    o0[k]
+                    rec.y0[k]
                         - (0..m)
-                            .map(|j| o[k + nout * j] * delta[j] * r[j])
+                            .map(|j| rec.o[k + nout * j] * delta[j] * r[j])
                             .sum::<C64>()
                 })
                 .collect()
@@ -379,6 +387,7 @@ pub fn sweep(
         res.power.push(power);
         res.iterations.push(iterations);
         res.converged.push(converged && gmres_ok);
+        res.singular.push(false);
         // The next frequency starts from this converged state (extrapolated).
         if converged && m > 0 {
             hist.push((f, a.clone()));

@@ -4,6 +4,9 @@
 //! update of the identity: GMRES needs at most rank(Δ) + 1 iterations and, in practice,
 //! a handful, each costing one solve with the factorization and one sparse product.
 
+use nalgebra::ComplexField;
+
+#[cfg(test)]
 use super::C64;
 
 /// Result of a GMRES solve.
@@ -17,33 +20,39 @@ pub struct GmresStats {
 }
 
 /// y = A x.
-pub type Apply<'a> = dyn FnMut(&[C64], &mut [C64]) + 'a;
+pub type Apply<'a, T> = dyn FnMut(&[T], &mut [T]) + 'a;
 /// y ≈ A⁻¹ x, fallible.
-pub type Precond<'a, E> = dyn FnMut(&[C64], &mut [C64]) -> Result<(), E> + 'a;
+pub type Precond<'a, T, E> = dyn FnMut(&[T], &mut [T]) -> Result<(), E> + 'a;
 
-fn dot(a: &[C64], b: &[C64]) -> C64 {
-    a.iter().zip(b).map(|(x, y)| x.conj() * y).sum()
+fn dot<T: ComplexField<RealField = f64>>(a: &[T], b: &[T]) -> T {
+    a.iter()
+        .zip(b)
+        .fold(T::zero(), |s, (x, y)| s + x.clone().conjugate() * y.clone())
 }
 
-fn norm(a: &[C64]) -> f64 {
-    a.iter().map(|x| x.norm_sqr()).sum::<f64>().sqrt()
+fn norm<T: ComplexField<RealField = f64>>(a: &[T]) -> f64 {
+    a.iter()
+        .map(|x| x.clone().modulus_squared())
+        .sum::<f64>()
+        .sqrt()
 }
 
-/// Scratch of FGMRES(restart) for vectors of length n, reused across calls.
-pub struct Gmres {
+/// Scratch of FGMRES(restart) for vectors of length n, reused across calls; real
+/// (`f64`, the harmonic balance's Newton steps) or complex (`C64`, the fast sweep).
+pub struct Gmres<T> {
     restart: usize,
-    v: Vec<Vec<C64>>,
-    z: Vec<Vec<C64>>,
-    w: Vec<C64>,
+    v: Vec<Vec<T>>,
+    z: Vec<Vec<T>>,
+    w: Vec<T>,
 }
 
-impl Gmres {
+impl<T: ComplexField<RealField = f64> + Copy> Gmres<T> {
     pub fn new(n: usize, restart: usize) -> Self {
         Gmres {
             restart,
-            v: vec![vec![C64::new(0.0, 0.0); n]; restart + 1],
-            z: vec![vec![C64::new(0.0, 0.0); n]; restart],
-            w: vec![C64::new(0.0, 0.0); n],
+            v: vec![vec![T::zero(); n]; restart + 1],
+            z: vec![vec![T::zero(); n]; restart],
+            w: vec![T::zero(); n],
         }
     }
 
@@ -52,10 +61,10 @@ impl Gmres {
     /// preconditioner applications.
     pub fn solve<E>(
         &mut self,
-        apply: &mut Apply<'_>,
-        precond: &mut Precond<'_, E>,
-        f: &[C64],
-        u: &mut [C64],
+        apply: &mut Apply<'_, T>,
+        precond: &mut Precond<'_, T, E>,
+        f: &[T],
+        u: &mut [T],
         tol: f64,
         max_iter: usize,
     ) -> Result<GmresStats, E> {
@@ -66,7 +75,7 @@ impl Gmres {
             // r = f − A u into v[0].
             apply(u, &mut self.w);
             for (vi, (fi, wi)) in self.v[0].iter_mut().zip(f.iter().zip(&self.w)) {
-                *vi = fi - wi;
+                *vi = *fi - *wi;
             }
             let beta = norm(&self.v[0]);
             if beta <= tol * fnorm || iterations >= max_iter {
@@ -76,12 +85,12 @@ impl Gmres {
                     converged: beta <= tol * fnorm,
                 });
             }
-            self.v[0].iter_mut().for_each(|x| *x /= beta);
-            let mut h = vec![vec![C64::new(0.0, 0.0); m]; m + 1];
-            let mut cs = vec![C64::new(0.0, 0.0); m];
-            let mut sn = vec![C64::new(0.0, 0.0); m];
-            let mut g = vec![C64::new(0.0, 0.0); m + 1];
-            g[0] = C64::new(beta, 0.0);
+            self.v[0].iter_mut().for_each(|x| *x = x.unscale(beta));
+            let mut h = vec![vec![T::zero(); m]; m + 1];
+            let mut cs = vec![T::zero(); m];
+            let mut sn = vec![T::zero(); m];
+            let mut g = vec![T::zero(); m + 1];
+            g[0] = T::from_real(beta);
             let mut k = 0;
             while k < m && iterations < max_iter {
                 precond(&self.v[k], &mut self.z[k])?;
@@ -91,42 +100,42 @@ impl Gmres {
                     let hik = dot(&self.v[i], &self.w);
                     h[i][k] = hik;
                     for (wj, vj) in self.w.iter_mut().zip(&self.v[i]) {
-                        *wj -= hik * vj;
+                        *wj -= hik * *vj;
                     }
                 }
                 let hn = norm(&self.w);
-                h[k + 1][k] = C64::new(hn, 0.0);
+                h[k + 1][k] = T::from_real(hn);
                 if hn > 0.0 {
                     for (vj, wj) in self.v[k + 1].iter_mut().zip(&self.w) {
-                        *vj = wj / hn;
+                        *vj = wj.unscale(hn);
                     }
                 }
                 // Apply earlier Givens rotations, then a new one to zero h[k+1][k].
                 for i in 0..k {
-                    let t = cs[i].conj() * h[i][k] + sn[i].conj() * h[i + 1][k];
+                    let t = cs[i].conjugate() * h[i][k] + sn[i].conjugate() * h[i + 1][k];
                     h[i + 1][k] = -sn[i] * h[i][k] + cs[i] * h[i + 1][k];
                     h[i][k] = t;
                 }
                 let (a, b) = (h[k][k], h[k + 1][k]);
-                let r = (a.norm_sqr() + b.norm_sqr()).sqrt();
+                let r = (a.modulus_squared() + b.modulus_squared()).sqrt();
                 if r == 0.0 {
-                    cs[k] = C64::new(1.0, 0.0);
-                    sn[k] = C64::new(0.0, 0.0);
+                    cs[k] = T::one();
+                    sn[k] = T::zero();
                 } else {
-                    cs[k] = a / r;
-                    sn[k] = b / r;
+                    cs[k] = a.unscale(r);
+                    sn[k] = b.unscale(r);
                 }
-                h[k][k] = C64::new(r, 0.0);
-                h[k + 1][k] = C64::new(0.0, 0.0);
+                h[k][k] = T::from_real(r);
+                h[k + 1][k] = T::zero();
                 g[k + 1] = -sn[k] * g[k];
-                g[k] = cs[k].conj() * g[k];
+                g[k] = cs[k].conjugate() * g[k];
                 k += 1;
-                if g[k].norm() <= tol * fnorm || hn == 0.0 {
+                if g[k].modulus() <= tol * fnorm || hn == 0.0 {
                     break;
                 }
             }
             // y = H⁻¹ g (upper triangular k × k); u += Z y.
-            let mut y = vec![C64::new(0.0, 0.0); k];
+            let mut y = vec![T::zero(); k];
             for i in (0..k).rev() {
                 let mut s = g[i];
                 for j in i + 1..k {
@@ -136,7 +145,7 @@ impl Gmres {
             }
             for (j, yj) in y.iter().enumerate() {
                 for (ui, zi) in u.iter_mut().zip(&self.z[j]) {
-                    *ui += yj * zi;
+                    *ui += *yj * *zi;
                 }
             }
         }

@@ -44,6 +44,7 @@ pub fn sweep(
         power: vec![0.0; nf],
         iterations: vec![0; nf],
         converged: vec![na == 0 && springs.is_empty(); nf],
+        singular: vec![false; nf],
         ..Default::default()
     };
     if opts.point_results {
@@ -80,6 +81,7 @@ pub fn sweep(
     let mut x = vec![C64::new(0.0, 0.0); p.sys.dofs.n_free()];
     let mut kappa = vec![[C64::new(0.0, 0.0); 2]; na];
     let mut ks: Vec<f64> = springs.iter().map(|sp| sp.stiffness).collect();
+    let mut spring_estimate = vec![0.0; springs.len()];
     let mut ids = vec![0i64; na];
     let mut outs = vec![capi::UinterOut::default(); na];
 
@@ -89,7 +91,8 @@ pub fn sweep(
         for (fi, &f) in freqs.iter().enumerate() {
             progress("frequency", fi + 1, nf);
             let omega = 2.0 * std::f64::consts::PI * f;
-            solve_one(setup, omega, &kappa, &ks, &mut x, &mut res, f)?;
+            res.singular[fi] = !solve_one(setup, omega, &kappa, &ks, &mut x, &mut res, f)?;
+            res.converged[fi] = !res.singular[fi];
             res.outputs[fi] = p.outputs.iter().map(|o| o.value(&x)).collect();
         }
         res.passes.push(PassRecord {
@@ -162,17 +165,27 @@ pub fn sweep(
             }
             res.time("linearization (C API)", t);
             let t = Instant::now();
-            for ((k, sp), &id) in ks.iter_mut().zip(springs).zip(&spring_ids) {
+            for (q, (sp, &id)) in springs.iter().zip(&spring_ids).enumerate() {
                 let [a, _] = store.estimate(id, kinc)?;
-                *k = capi::linearize_cubic(sp.stiffness, sp.cubic, a)?;
+                spring_estimate[q] = a;
+                ks[q] = capi::linearize_cubic(sp.stiffness, sp.cubic, a)?;
             }
             res.time(super::fast::CUBIC_TIMING, t);
-            solve_one(setup, omega, &kappa, &ks, &mut x, &mut res, f)?;
+            res.singular[fi] = !solve_one(setup, omega, &kappa, &ks, &mut x, &mut res, f)?;
+            if res.singular[fi] && opts.point_results {
+                res.points[fi].fill(PointFreq::default());
+            }
             let t = Instant::now();
             let mut power = 0.0;
             for (j, &i) in setup.active.iter().enumerate() {
                 let d = setup.tangential(j, &x);
-                let mut amp = [d[0].norm(), d[1].norm()];
+                // Singular: no response (x = 0); the store gets its own estimate back so
+                // the pass moves on, and the frequency is marked singular below.
+                let mut amp = if res.singular[fi] {
+                    outs[j].report.amplitude
+                } else {
+                    [d[0].norm(), d[1].norm()]
+                };
                 if !eff.macroslip {
                     for v in amp.iter_mut() {
                         if *v > slip_limit[j] {
@@ -188,6 +201,9 @@ pub fn sweep(
                 } else {
                     0.0
                 };
+                if res.singular[fi] {
+                    continue;
+                }
                 power += e * f;
                 if opts.point_results {
                     let rep = &outs[j].report;
@@ -212,9 +228,14 @@ pub fn sweep(
                     };
                 }
             }
-            for (sp, &id) in springs.iter().zip(&spring_ids) {
-                let elongation: C64 = sp.row.iter().map(|&(i, w)| x[i] * w).sum();
-                store.report(id, kinc, [elongation.norm(), 0.0])?;
+            for (q, (sp, &id)) in springs.iter().zip(&spring_ids).enumerate() {
+                // Singular: the estimate back, as for the contact points.
+                let amp = if res.singular[fi] {
+                    spring_estimate[q]
+                } else {
+                    sp.row.iter().map(|&(i, w)| x[i] * w).sum::<C64>().norm()
+                };
+                store.report(id, kinc, [amp, 0.0])?;
             }
             res.time("reporting and point outputs", t);
             res.power[fi] = power;
@@ -239,12 +260,15 @@ pub fn sweep(
         });
     }
     // A final pass that found an increment out of tolerance turns into a re-run; what
-    // the store left unconverged was marked above.
+    // the store left unconverged was marked above. A singular frequency has no response.
+    for (c, &s) in res.converged.iter_mut().zip(&res.singular) {
+        *c &= !s;
+    }
     Ok(res)
 }
 
 /// Fills S(ω, κ, k* of the cubic springs), factors it and solves for the excitation into
-/// `x`.
+/// `x`; false (and x = 0) when S is singular ([`super::SINGULAR_RCOND`]).
 fn solve_one(
     setup: &mut Setup,
     omega: f64,
@@ -253,18 +277,19 @@ fn solve_one(
     x: &mut [C64],
     res: &mut SweepResult,
     f: f64,
-) -> Result<(), SweepError> {
+) -> Result<bool, SweepError> {
     let t = Instant::now();
     setup.fill(omega, kappa, spring_k);
-    let num = setup
-        .symbolic
-        .factor(&setup.s)
-        .map_err(|source| SweepError::Umfpack { freq: f, source })?;
+    let num = setup.factor(f)?;
     res.factorizations += 1;
     res.time("factorization", t);
+    let Some(num) = num else {
+        x.iter_mut().for_each(|v| *v = C64::new(0.0, 0.0));
+        return Ok(false);
+    };
     let t = Instant::now();
     num.solve_into(&setup.problem.excitation, x)
         .map_err(|source| SweepError::Umfpack { freq: f, source })?;
     res.time("solves", t);
-    Ok(())
+    Ok(true)
 }

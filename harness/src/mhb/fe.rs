@@ -1,0 +1,419 @@
+//! Harmonic balance on FE scenes (issue 8 item 2): the linear part condensed onto the
+//! contact directions per harmonic, the contacts by AFT through the C API, Newton on the
+//! condensed system.
+//!
+//! Per harmonic h = 0..H one factorization of
+//!
+//!   S_h = K + K_N + k_T0·BᵀAB − (hω)²M + i·hω·D
+//!
+//! (normal springs k_N of the static step, the stuck tangential springs k_T0 as the
+//! reference; the sweep's one symbolic analysis) gives the receptances G_h = B S_h⁻¹ Bᵀ and
+//! O_h = C S_h⁻¹ Bᵀ ([`Receptance`], m solves). With r the relative tangential
+//! displacements of the m contact directions (two per closed point) as Fourier
+//! coefficients ([`super::aft`] layout, direction-major) and ĝ_j = A_j (F̂_j(r_j) − k_T0 r_j)
+//! the contact force beyond the reference spring (F̂ the stress coefficients of the
+//! library's point marched over r_j, A_j the tributary area), the balance is
+//!
+//!   R(r) = r − r₀ + Ĝ ĝ(r) = 0,     y = y₀ − Ô ĝ(r),
+//!
+//! Ĝ applying G_h to each harmonic's (cos, sin) pair as the complex amplitude a − ib, and
+//! r₀, y₀ the stuck linear response to the first-harmonic load. h = 0 is the static
+//! problem around the static step's preloaded state: the zeroth harmonic is the mean
+//! deviation from it; the normal load of every point is held at its static value (normal
+//! contact is not part of the balance). Newton's steps (I + Ĝ Γ) Δ = R, Γ = blockdiag
+//! ∂ĝ_j/∂r_j, are solved by FGMRES preconditioned with I + Ĝ Γ_d, Γ_d the
+//! harmonic-diagonal part of Γ (H + 1 dense LUs of order m or 2m). Cost per frequency:
+//! (H + 1) × (one factorization + m solves) on the mesh, everything else on the m(2H + 1)
+//! contact unknowns.
+
+use std::time::Instant;
+
+use nalgebra::DMatrix;
+
+use super::aft::{self, Law, Transforms};
+use super::{MhbError, NewtonOptions};
+use crate::capi::Tangential;
+use crate::solve::contact::tangential;
+use crate::solve::sweep::krylov::Gmres;
+use crate::solve::sweep::receptance::Receptance;
+use crate::solve::sweep::{Setup, C64};
+use crate::solve::umfpack::UmfpackError;
+
+/// FGMRES restart length and most iterations per Newton step; the tolerance relative to
+/// ‖R‖ (the step's own error is then far below the Newton tolerance).
+const GMRES_RESTART: usize = 40;
+const GMRES_MAX: usize = 400;
+const GMRES_TOL: f64 = 1e-8;
+/// Preconditioner blocks whose smallest LU pivot is below this fraction of the largest
+/// are pseudo-inverted (singular values below this fraction of the largest dropped).
+const PINV_RCOND: f64 = 1e-12;
+
+/// Counters and timings of a balance.
+#[derive(Debug, Clone, Default)]
+pub struct Stats {
+    pub factorizations: usize,
+    /// Solves with the factorizations (receptance columns and loads).
+    pub solves: usize,
+    pub newton_iterations: usize,
+    pub gmres_iterations: usize,
+    /// Seconds in factorizations and receptance solves (grows with the mesh).
+    pub receptance_seconds: f64,
+    /// Seconds in AFT (C-API marches) and the condensed Newton (grows with m·H).
+    pub contact_seconds: f64,
+}
+
+/// A converged periodic solution at one frequency.
+#[derive(Debug, Clone)]
+pub struct FeSolution {
+    /// Relative tangential displacement coefficients, direction-major.
+    pub r: Vec<f64>,
+    /// Output coefficients `[output][h]` as complex amplitudes (h = 0: the mean, real).
+    pub outputs: Vec<Vec<C64>>,
+    /// Energy dissipated per cycle by each contact direction (force·length).
+    pub dissipated: Vec<f64>,
+    /// First-harmonic stress over displacement F̂₁/r̂₁ per direction (per area): the
+    /// balance's own k* + iωd* (describing function); 0 for an unmoved direction.
+    pub describing: Vec<C64>,
+    pub iterations: usize,
+    /// ‖R‖ / ‖r₀‖ at the end.
+    pub residual: f64,
+}
+
+/// Contact forces at one r.
+struct Forces {
+    /// ĝ, direction-major like r.
+    ghat: Vec<f64>,
+    /// Γ_j = ∂ĝ_j/∂r_j, (2H+1)² row-major per direction; empty without Jacobian.
+    gamma: Vec<f64>,
+    dissipated: Vec<f64>,
+    describing: Vec<C64>,
+}
+
+/// The harmonic balance of an FE problem (its closed, microslip-active points).
+pub struct FeBalance<'s, 'a> {
+    setup: &'s mut Setup<'a>,
+    pub tr: Transforms,
+    tang: Vec<Tangential>,
+    area: Vec<f64>,
+    rec: Vec<Receptance>,
+    omega: f64,
+    pub stats: Stats,
+}
+
+impl<'s, 'a> FeBalance<'s, 'a> {
+    /// H harmonics, N samples per period.
+    pub fn new(setup: &'s mut Setup<'a>, h: usize, n: usize) -> Self {
+        let p = setup.problem;
+        let tang = setup
+            .active
+            .iter()
+            .map(|&i| tangential(&p.interfaces[p.contacts[i].interface], setup.pressure[i]))
+            .collect();
+        let area = setup.active.iter().map(|&i| p.contacts[i].area).collect();
+        let m = 2 * setup.active.len();
+        let nf = p.sys.dofs.n_free();
+        FeBalance {
+            tr: Transforms::new(n, h),
+            tang,
+            area,
+            rec: (0..=h)
+                .map(|_| Receptance::new(nf, m, p.outputs.len()))
+                .collect(),
+            omega: 0.0,
+            stats: Stats::default(),
+            setup,
+        }
+    }
+
+    /// Contact directions m.
+    pub fn m(&self) -> usize {
+        2 * self.tang.len()
+    }
+
+    /// Unknowns m(2H + 1).
+    pub fn size(&self) -> usize {
+        self.m() * self.tr.ncoef()
+    }
+
+    /// The per-harmonic factorizations and receptances at ω (rad/time).
+    pub fn condense(&mut self, omega: f64) -> Result<(), UmfpackError> {
+        let t = Instant::now();
+        self.omega = omega;
+        let p = self.setup.problem;
+        let active = self.setup.active.clone();
+        let row = |j: usize| p.contacts[active[j / 2]].rows[1 + j % 2].as_slice();
+        let kref: Vec<[C64; 2]> = self
+            .tang
+            .iter()
+            .map(|t| [C64::new(t.k_t0, 0.0); 2])
+            .collect();
+        for (h, rec) in self.rec.iter_mut().enumerate() {
+            // No cubic springs here: sweep::run refuses them in this mode.
+            self.setup.fill(h as f64 * omega, &kref, &[]);
+            let num = self.setup.symbolic.factor(&self.setup.s)?;
+            self.stats.factorizations += 1;
+            if h == 1 {
+                rec.load(&num, &p.excitation, &row, &p.outputs)?;
+                self.stats.solves += 1;
+            }
+            rec.condense(&num, &row, &p.outputs)?;
+            self.stats.solves += rec.m;
+        }
+        self.stats.receptance_seconds += t.elapsed().as_secs_f64();
+        Ok(())
+    }
+
+    /// r₀: the stuck linear response (first harmonic only), the cold start.
+    pub fn linear_start(&self) -> Vec<f64> {
+        let nc = self.tr.ncoef();
+        let mut r = vec![0.0; self.size()];
+        for (j, z) in self.rec[1].r0.iter().enumerate() {
+            r[j * nc + 1] = z.re;
+            r[j * nc + 2] = -z.im;
+        }
+        r
+    }
+
+    /// out = Ĝ v (module docs).
+    fn apply_g(&self, v: &[f64], out: &mut [f64]) {
+        let (m, nc) = (self.m(), self.tr.ncoef());
+        for (h, rec) in self.rec.iter().enumerate() {
+            for k in 0..m {
+                if h == 0 {
+                    out[k * nc] = (0..m).map(|j| rec.g[k + m * j].re * v[j * nc]).sum();
+                } else {
+                    let (ca, sa) = (2 * h - 1, 2 * h);
+                    let y: C64 = (0..m)
+                        .map(|j| rec.g[k + m * j] * C64::new(v[j * nc + ca], -v[j * nc + sa]))
+                        .sum();
+                    out[k * nc + ca] = y.re;
+                    out[k * nc + sa] = -y.im;
+                }
+            }
+        }
+    }
+
+    /// ĝ (and Γ when `jac`) at r by AFT through the C API.
+    fn forces(&mut self, r: &[f64], jac: bool) -> Result<Forces, MhbError> {
+        let (m, nc) = (self.m(), self.tr.ncoef());
+        let mut f = Forces {
+            ghat: vec![0.0; m * nc],
+            gamma: if jac {
+                vec![0.0; m * nc * nc]
+            } else {
+                Vec::new()
+            },
+            dissipated: vec![0.0; m],
+            describing: vec![C64::new(0.0, 0.0); m],
+        };
+        for j in 0..m {
+            let t = self.tang[j / 2];
+            let (a, k0) = (self.area[j / 2], t.k_t0);
+            let dc = &r[j * nc..(j + 1) * nc];
+            let law = Law::Point(t);
+            let (force, period) = if jac {
+                let ev = aft::evaluate(&mut self.tr, &law, dc)?;
+                let gam = &mut f.gamma[j * nc * nc..(j + 1) * nc * nc];
+                for (g, &e) in gam.iter_mut().zip(&ev.jac) {
+                    *g = a * e;
+                }
+                for c in 0..nc {
+                    gam[c * nc + c] -= a * k0;
+                }
+                (ev.force, ev.period)
+            } else {
+                aft::forces(&mut self.tr, &law, dc)?
+            };
+            for c in 0..nc {
+                f.ghat[j * nc + c] = a * (force[c] - k0 * dc[c]);
+            }
+            f.dissipated[j] = a * period.dissipated;
+            let d1 = C64::new(dc[1], -dc[2]);
+            if d1.norm() > 0.0 {
+                f.describing[j] = C64::new(force[1], -force[2]) / d1;
+            }
+        }
+        Ok(f)
+    }
+
+    /// R = r − r₀ + Ĝ ĝ.
+    fn residual(&self, r: &[f64], ghat: &[f64]) -> Vec<f64> {
+        let mut out = vec![0.0; r.len()];
+        self.apply_g(ghat, &mut out);
+        let lin = self.linear_start();
+        for ((o, x), l) in out.iter_mut().zip(r).zip(&lin) {
+            *o += x - l;
+        }
+        out
+    }
+
+    /// The preconditioner (I + Ĝ Γ_d)⁻¹, one dense block per harmonic (order m for h = 0,
+    /// 2m else; unknowns ordered direction-major, (cos, sin) within a direction). A block
+    /// that is singular to [`PINV_RCOND`] is pseudo-inverted: e.g. the mean position of a
+    /// mass held only by friction, whose closed loops re-centre (∂F̂₀/∂r₀ = 0), is
+    /// undetermined, and Newton then leaves it where it starts.
+    fn preconditioner(&self, gamma: &[f64]) -> Vec<DMatrix<f64>> {
+        let (m, nc) = (self.m(), self.tr.ncoef());
+        let gm = |j: usize, a: usize, b: usize| gamma[j * nc * nc + a * nc + b];
+        self.rec
+            .iter()
+            .enumerate()
+            .map(|(h, rec)| {
+                let p = if h == 0 {
+                    DMatrix::from_fn(m, m, |k, j| {
+                        f64::from(u8::from(k == j)) + rec.g[k + m * j].re * gm(j, 0, 0)
+                    })
+                } else {
+                    let c = [2 * h - 1, 2 * h];
+                    DMatrix::from_fn(2 * m, 2 * m, |row, col| {
+                        let (k, a, j, b) = (row / 2, row % 2, col / 2, col % 2);
+                        let g = rec.g[k + m * j];
+                        // Real 2×2 block of g acting on (cos, sin): [[gr, gi], [−gi, gr]].
+                        let blk = [[g.re, g.im], [-g.im, g.re]];
+                        let gd = blk[a][0] * gm(j, c[0], c[b]) + blk[a][1] * gm(j, c[1], c[b]);
+                        f64::from(u8::from(row == col)) + gd
+                    })
+                };
+                let lu = p.clone().lu();
+                let piv = lu.u().diagonal().map(f64::abs);
+                match lu.try_inverse() {
+                    Some(inv) if piv.min() > PINV_RCOND * piv.max() => inv,
+                    _ => {
+                        let svd = p.svd(true, true);
+                        let tol = PINV_RCOND * svd.singular_values.max();
+                        svd.pseudo_inverse(tol)
+                            .expect("tolerance ≥ 0, both factors computed")
+                    }
+                }
+            })
+            .collect()
+    }
+
+    /// Newton from `start` at the condensed ω, with step halving when ‖R‖ grows.
+    pub fn solve(&mut self, start: &[f64], opt: NewtonOptions) -> Result<FeSolution, MhbError> {
+        let t0 = Instant::now();
+        let out = self.newton(start, opt);
+        self.stats.contact_seconds += t0.elapsed().as_secs_f64();
+        out
+    }
+
+    fn newton(&mut self, start: &[f64], opt: NewtonOptions) -> Result<FeSolution, MhbError> {
+        let omega = self.omega;
+        let (m, nc, size) = (self.m(), self.tr.ncoef(), self.size());
+        let norm = |v: &[f64]| v.iter().map(|x| x * x).sum::<f64>().sqrt();
+        let scale = norm(&self.linear_start()).max(f64::MIN_POSITIVE);
+        let mut r = start.to_vec();
+        let mut f = self.forces(&r, true)?;
+        let mut big_r = self.residual(&r, &f.ghat);
+        let mut res = norm(&big_r) / scale;
+        let mut gmres = Gmres::<f64>::new(size, GMRES_RESTART);
+        let mut it = 0;
+        while res > opt.rtol {
+            if it == opt.max_iter {
+                return Err(MhbError::Newton {
+                    omega,
+                    residual: res,
+                    iterations: it,
+                });
+            }
+            it += 1;
+            if f.gamma.is_empty() {
+                f = self.forces(&r, true)?;
+            }
+            let inverses = self.preconditioner(&f.gamma);
+            let mut du = vec![0.0; size];
+            let mut gv = vec![0.0; size];
+            let gamma = &f.gamma;
+            let this = &*self;
+            let stats = gmres.solve::<MhbError>(
+                &mut |x: &[f64], y: &mut [f64]| {
+                    // y = x + Ĝ Γ x
+                    for j in 0..m {
+                        let g = &gamma[j * nc * nc..(j + 1) * nc * nc];
+                        for a in 0..nc {
+                            gv[j * nc + a] = (0..nc).map(|b| g[a * nc + b] * x[j * nc + b]).sum();
+                        }
+                    }
+                    this.apply_g(&gv, y);
+                    for (yi, xi) in y.iter_mut().zip(x) {
+                        *yi += xi;
+                    }
+                },
+                &mut |x: &[f64], y: &mut [f64]| {
+                    for (h, inv) in inverses.iter().enumerate() {
+                        let cs: &[usize] = if h == 0 { &[0] } else { &[2 * h - 1, 2 * h] };
+                        let at = |i: usize| (i / cs.len()) * nc + cs[i % cs.len()];
+                        let b = nalgebra::DVector::from_fn(inv.ncols(), |i, _| x[at(i)]);
+                        for (i, v) in (inv * b).iter().enumerate() {
+                            y[at(i)] = *v;
+                        }
+                    }
+                    Ok(())
+                },
+                &big_r,
+                &mut du,
+                GMRES_TOL,
+                GMRES_MAX,
+            )?;
+            self.stats.gmres_iterations += stats.iterations;
+            let mut lambda = 1.0;
+            loop {
+                let trial: Vec<f64> = r.iter().zip(&du).map(|(x, d)| x - lambda * d).collect();
+                let ft = self.forces(&trial, false)?;
+                let rt = self.residual(&trial, &ft.ghat);
+                let nt = norm(&rt) / scale;
+                if nt < res || lambda < 1e-2 {
+                    r = trial;
+                    f = ft;
+                    big_r = rt;
+                    res = nt;
+                    break;
+                }
+                lambda *= 0.5;
+            }
+        }
+        self.stats.newton_iterations += it;
+        Ok(FeSolution {
+            outputs: self.outputs(&f.ghat),
+            r,
+            dissipated: f.dissipated,
+            describing: f.describing,
+            iterations: it,
+            residual: res,
+        })
+    }
+
+    /// y = y₀ − Ô ĝ per output and harmonic.
+    fn outputs(&self, ghat: &[f64]) -> Vec<Vec<C64>> {
+        let (m, nc) = (self.m(), self.tr.ncoef());
+        let nout = self.setup.problem.outputs.len();
+        (0..nout)
+            .map(|k| {
+                self.rec
+                    .iter()
+                    .enumerate()
+                    .map(|(h, rec)| {
+                        let y0 = if h == 1 {
+                            rec.y0[k]
+                        } else {
+                            C64::new(0.0, 0.0)
+                        };
+                        let gj = |j: usize| {
+                            if h == 0 {
+                                C64::new(ghat[j * nc], 0.0)
+                            } else {
+                                C64::new(ghat[j * nc + 2 * h - 1], -ghat[j * nc + 2 * h])
+                            }
+                        };
+                        let y = y0 - (0..m).map(|j| rec.o[k + nout * j] * gj(j)).sum::<C64>();
+                        if h == 0 {
+                            C64::new(y.re, 0.0)
+                        } else {
+                            y
+                        }
+                    })
+                    .collect()
+            })
+            .collect()
+    }
+}
