@@ -54,6 +54,18 @@ pub fn peak_rss_bytes() -> u64 {
     }
 }
 
+/// CPU time (user + system) of this process so far (seconds), from getrusage: the cost
+/// of single-threaded work on a machine shared with other jobs, where wall time is not.
+pub fn cpu_seconds() -> f64 {
+    // SAFETY: getrusage writes into a zeroed rusage we own.
+    let mut ru: libc_rusage::Rusage = unsafe { std::mem::zeroed() };
+    if unsafe { libc_rusage::getrusage(0, &mut ru) } != 0 {
+        return 0.0;
+    }
+    let t = |v: &libc_rusage::Timeval| v.tv_sec as f64 + 1e-6 * v.tv_usec as f64;
+    t(&ru.ru_utime) + t(&ru.ru_stime)
+}
+
 /// Minimal getrusage binding (Linux x86_64/aarch64 layout), to avoid a libc dependency.
 mod libc_rusage {
     #[repr(C)]

@@ -193,7 +193,24 @@ fn progress_bar(quiet: bool) -> ProgressBar {
     pb
 }
 
+/// Restores the default action of SIGPIPE (Rust ignores it, so `println!` to a closed
+/// pipe panics): `jointlin modes X | head -1` then ends quietly like other Unix tools.
+#[cfg(unix)]
+fn default_sigpipe() {
+    extern "C" {
+        fn signal(signum: i32, handler: usize) -> usize;
+    }
+    const SIGPIPE: i32 = 13; // Linux, all architectures this builds on
+    const SIG_DFL: usize = 0;
+    // SAFETY: signal(2) with a valid signal number and SIG_DFL, before any thread starts.
+    unsafe {
+        signal(SIGPIPE, SIG_DFL);
+    }
+}
+
 fn main() -> ExitCode {
+    #[cfg(unix)]
+    default_sigpipe();
     let cli = Cli::parse();
     match cli.command {
         Command::Run {

@@ -195,3 +195,23 @@ fn cli_run_writes_the_documented_files() {
     }
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+#[test]
+fn cli_output_into_a_closed_pipe_ends_quietly() {
+    // `jointlin modes SCENE | head -1`: the reader is gone before the modes are printed.
+    // Rust ignores SIGPIPE, so println! used to panic (exit 101, "failed printing to
+    // stdout"); the CLI restores the default action and ends by the signal, silently.
+    use std::os::unix::process::ExitStatusExt;
+    let scene = format!("{}/../scenes/block-stick.toml", env!("CARGO_MANIFEST_DIR"));
+    let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_jointlin"))
+        .args(["modes", &scene])
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    drop(child.stdout.take());
+    let out = child.wait_with_output().unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    assert_eq!(out.status.signal(), Some(13), "{:?}", out.status);
+}

@@ -9,10 +9,12 @@ use std::path::{Path, PathBuf};
 
 use jointlin_harness::bench::stuck_modes;
 use jointlin_harness::capi::{self, Tangential, JOINTLIN_REGIME_OPEN};
+use jointlin_harness::model::build;
 use jointlin_harness::report::{self, ReportOptions};
 use jointlin_harness::run::{run, Extras, RunResult};
 use jointlin_harness::scene::{Mode, Scene, SchemeName};
-use jointlin_harness::solve::sweep::SweepResult;
+use jointlin_harness::solve::static_step;
+use jointlin_harness::solve::sweep::{Setup, SweepResult};
 
 /// The scenes this file covers; a new file in scenes/hard must be added here (checked).
 const SCENES: [&str; 6] = [
@@ -158,7 +160,10 @@ fn stiffness_ratio_from_1e_minus_6_to_1e6() {
         (quasi_static[0] / quasi_static[6] / 4.0 - 1.0).abs() < 3e-2,
         "{msg}"
     );
-    eprintln!("{msg}");
+    eprintln!(
+        "{msg}; soft/stiff compliance {:.3}",
+        quasi_static[0] / quasi_static[6]
+    );
 }
 
 #[test]
@@ -208,6 +213,15 @@ fn open_joint_at_undamped_eigenfrequencies_is_named_singular() {
         refine: Vec::new(),
         direction: Default::default(),
     };
+    // UMFPACK's rcond at f₁ and near it, as the sweep sees it (printed for the docs).
+    let p = build(&s).unwrap();
+    let stat = static_step::solve(&p, true).unwrap();
+    let mut setup = Setup::new(&p, &stat, &s.spec.effects).unwrap();
+    for rel in [0.0, 1e-10, 1e-6] {
+        setup.fill(2.0 * PI * modes[0] * (1.0 - rel), &[]);
+        let rcond = setup.symbolic.factor(&setup.s).map(|n| n.rcond());
+        eprintln!("open joint, {rel:e} below f1: rcond {rcond:?}");
+    }
     let (r, _, _) = run_cli_path(&near, "open-near");
     assert!(!r.main.is_singular(0) && !r.main.is_singular(1));
     let ratio = amp(&r.main, 1) / amp(&r.main, 0);
@@ -264,6 +278,11 @@ fn low_preload_opens_points_that_stay_open() {
         let closed = &r.stat.closed;
         let n_closed = closed.iter().filter(|&&c| c).count();
         assert!(n_closed > 0 && n_closed < closed.len(), "{n_closed} closed");
+        eprintln!(
+            "low preload, {mode:?}: {n_closed} of {} points closed after {} Newton iterations",
+            closed.len(),
+            r.stat.newton_iterations
+        );
         assert!(r.main.converged.iter().all(|&c| c), "{mode:?}");
         for pts in &r.main.points {
             for (p, &c) in pts.iter().zip(closed) {
@@ -301,7 +320,7 @@ fn all_points_at_the_slip_limit_at_once() {
     // checked to 1e-12): A/δ* = 1 on all 9 points within 1e-5 (pressure and slip are
     // uniform to ~2e-6 with E = 2.1e11; iteration tolerance 1e-6), in fast and thesis
     // mode, converged. Straddling the kink by ±1e-9 in force moves the response by less
-    // than 3e-6 (measured 2.1e-6: three amplitudes each converged to 1e-6): no jump where
+    // than 3e-6 (measured 1.1e-6: amplitudes each converged to 1e-6): no jump where
     // microslip turns into sliding.
     let s = scene("slip-limit.toml");
     let t = Tangential {
@@ -337,9 +356,11 @@ fn all_points_at_the_slip_limit_at_once() {
         }
         amps.push(amp(&r.main, 0));
     }
-    for a in &amps[1..] {
-        assert!((a / amps[0] - 1.0).abs() < 3e-6, "{amps:?}");
-    }
+    let spread = amps[1..]
+        .iter()
+        .fold(0.0f64, |m, a| m.max((a / amps[0] - 1.0).abs()));
+    assert!(spread < 3e-6, "{amps:?}");
+    eprintln!("slip limit: thesis and F(1 ± 1e-9) within {spread:.2e} of fast");
 }
 
 #[test]
@@ -371,6 +392,10 @@ fn thesis_relaxation_oscillates_and_the_default_converges() {
         assert_eq!(not, want.iter().filter(|&&c| !c).count());
         if scheme == SchemeName::Secant {
             assert!(r.main.passes.len() <= 15, "{} passes", r.main.passes.len());
+            eprintln!(
+                "oscillating block: secant in {} passes",
+                r.main.passes.len()
+            );
             for i in 0..2 {
                 let d = amp(&r.main, i) / amp(&f.main, i) - 1.0;
                 assert!(d.abs() < 2e-6, "{d:e}");

@@ -32,6 +32,7 @@ use nalgebra::DMatrix;
 
 use super::aft::{self, Law, Transforms};
 use super::{MhbError, NewtonOptions};
+use crate::bench::cpu_seconds;
 use crate::capi::Tangential;
 use crate::solve::contact::tangential;
 use crate::solve::sweep::krylov::Gmres;
@@ -56,10 +57,14 @@ pub struct Stats {
     pub solves: usize,
     pub newton_iterations: usize,
     pub gmres_iterations: usize,
-    /// Seconds in factorizations and receptance solves (grows with the mesh).
+    /// Seconds in factorizations and receptance solves (grows with the mesh), wall and
+    /// CPU (the process's: the balance is single-threaded).
     pub receptance_seconds: f64,
-    /// Seconds in AFT (C-API marches) and the condensed Newton (grows with m·H).
+    pub receptance_cpu: f64,
+    /// Seconds in AFT (C-API marches) and the condensed Newton (grows with m·H), wall
+    /// and CPU.
     pub contact_seconds: f64,
+    pub contact_cpu: f64,
 }
 
 /// A converged periodic solution at one frequency.
@@ -137,7 +142,7 @@ impl<'s, 'a> FeBalance<'s, 'a> {
 
     /// The per-harmonic factorizations and receptances at ω (rad/time).
     pub fn condense(&mut self, omega: f64) -> Result<(), UmfpackError> {
-        let t = Instant::now();
+        let (t, cpu) = (Instant::now(), cpu_seconds());
         self.omega = omega;
         let p = self.setup.problem;
         let active = self.setup.active.clone();
@@ -160,6 +165,7 @@ impl<'s, 'a> FeBalance<'s, 'a> {
             self.stats.solves += rec.m;
         }
         self.stats.receptance_seconds += t.elapsed().as_secs_f64();
+        self.stats.receptance_cpu += cpu_seconds() - cpu;
         Ok(())
     }
 
@@ -291,9 +297,10 @@ impl<'s, 'a> FeBalance<'s, 'a> {
 
     /// Newton from `start` at the condensed ω, with step halving when ‖R‖ grows.
     pub fn solve(&mut self, start: &[f64], opt: NewtonOptions) -> Result<FeSolution, MhbError> {
-        let t0 = Instant::now();
+        let (t0, cpu) = (Instant::now(), cpu_seconds());
         let out = self.newton(start, opt);
         self.stats.contact_seconds += t0.elapsed().as_secs_f64();
+        self.stats.contact_cpu += cpu_seconds() - cpu;
         out
     }
 

@@ -4,12 +4,14 @@
 //! order) and with `mode = "harmonic_balance"` at each H, each frequency's Newton started
 //! from the previous one's solution. Per row: time per frequency split into the mesh part
 //! (per-harmonic factorizations and receptance solves) and the contact part (AFT marches
-//! through the C API and the condensed Newton), iterations, C-API calls, and the first
-//! output's peak and deviation from the last row.
+//! through the C API and the condensed Newton; CPU time: a shared machine inflates wall
+//! time), iterations, C-API calls, and the first output's peak and deviation from the
+//! last row.
 
 use std::fmt::Write as _;
 
 use super::default_samples;
+use crate::bench::cpu_seconds;
 use crate::capi;
 use crate::run::{run, Extras};
 use crate::scene::{Mode, Scene, Spacing};
@@ -20,8 +22,11 @@ pub struct FeRow {
     pub label: String,
     /// Harmonic-balance unknowns m(2H + 1) (0 for first order).
     pub unknowns: usize,
-    /// Sweep seconds per frequency, and its mesh and contact parts.
+    /// Sweep seconds per frequency (wall), and its mesh and contact parts (CPU for the
+    /// harmonic balance, wall for first order).
     pub per_freq: f64,
+    /// CPU seconds per frequency of the whole run (build and static step included).
+    pub cpu_per_freq: f64,
     pub mesh_per_freq: f64,
     pub contact_per_freq: f64,
     /// Newton (harmonic balance) or contact iterations (first order) per frequency.
@@ -89,8 +94,10 @@ pub fn table(
         };
         log(&label);
         let steps = capi::point_steps();
+        let cpu = cpu_seconds();
         let r = run(&sc, Extras::default(), &|_, _, _| {}).map_err(|e| e.to_string())?;
         let steps = capi::point_steps() - steps;
+        let cpu = cpu_seconds() - cpu;
         let n = r.main.freqs.len() as f64;
         let t = |k: &str| r.main.timings.get(k).copied().unwrap_or(0.0) / n;
         free_dofs = r.problem.sys.dofs.n_free();
@@ -103,8 +110,8 @@ pub fn table(
                 r.calls.linearize as f64 / n,
             ),
             Some(_) => (
-                t("receptance solves"),
-                t("harmonic balance (AFT + Newton)"),
+                t("CPU: receptance solves"),
+                t("CPU: harmonic balance (AFT + Newton)"),
                 steps as f64 / n,
             ),
         };
@@ -112,6 +119,7 @@ pub fn table(
             label,
             unknowns: h.map_or(0, |h| directions * (2 * h + 1)),
             per_freq: r.seconds[2] / n,
+            cpu_per_freq: cpu / n,
             mesh_per_freq: mesh,
             contact_per_freq: contact,
             iterations: iterations / n,
@@ -150,17 +158,19 @@ pub fn table(
 /// The table as Markdown.
 pub fn markdown(b: &FeBench) -> String {
     let mut s = format!(
-        "`{}`: {} free DOFs, {} contact directions; {} frequencies in [{}, {}], first output:\n\n\
-         | method | unknowns m(2H+1) | s per frequency | mesh part (factorizations, receptances) | contact part (AFT, Newton) | iterations per frequency | FGMRES per Newton | C-API calls per frequency (point_step; linearize) | peak | max deviation from the last row |\n\
-         |---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n",
+        "`{}`: {} free DOFs, {} contact directions; {} frequencies in [{}, {}], first output; \
+         parts per frequency in CPU seconds for the harmonic balance, wall for first order:\n\n\
+         | method | unknowns m(2H+1) | CPU s per frequency | wall s per frequency | mesh part (factorizations, receptances) | contact part (AFT, Newton) | iterations per frequency | FGMRES per Newton | C-API calls per frequency (point_step; linearize) | peak | max deviation from the last row |\n\
+         |---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n",
         b.scene, b.free_dofs, b.directions, b.count, b.band.0, b.band.1
     );
     for r in &b.rows {
         let _ = writeln!(
             s,
-            "| {} | {} | {:.3e} | {:.3e} | {:.3e} | {:.1} | {:.1} | {:.3e} | {:.5e} | {:.2e} |",
+            "| {} | {} | {:.3e} | {:.3e} | {:.3e} | {:.3e} | {:.1} | {:.1} | {:.3e} | {:.5e} | {:.2e} |",
             r.label,
             r.unknowns,
+            r.cpu_per_freq,
             r.per_freq,
             r.mesh_per_freq,
             r.contact_per_freq,

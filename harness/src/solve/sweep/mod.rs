@@ -45,11 +45,11 @@ pub const ATOL_REL: f64 = 1e-6;
 /// A frequency whose dynamic stiffness factorizes with UMFPACK's reciprocal condition
 /// estimate min|Uᵢᵢ|/max|Uᵢᵢ| below this (or with UMFPACK status 1, an exactly zero
 /// pivot) is reported singular: no response is computed there, the sweep goes on.
-/// Measured on the shipped scenes: healthy matrices 1.5e-9 (joint stiffness ratio
-/// k_T0·L/(E·A) = 1e6) to 3e-3; an undamped open joint exactly at an eigenfrequency
-/// 1.3e-16, 1e-10 away from it 1.4e-15 (the response there has at most one correct
-/// digit), 1e-6 away 1e-11. The threshold keeps five decades from the stiffest healthy
-/// case.
+/// Measured on scenes/hard: healthy matrices 1.5e-9 (joint stiffness ratio
+/// k_T0·L/(E·A) = 1e6) to 3e-3; the undamped open joint of open-resonance.toml 6.9e-17
+/// exactly at its eigenfrequency, 9.2e-16 1e-10 below it (the response there has at
+/// most one correct digit), 1.0e-11 1e-6 below. The threshold keeps five decades from the
+/// stiffest healthy case.
 pub const SINGULAR_RCOND: f64 = 1e-14;
 
 /// atol (length) for an iteration spec.
