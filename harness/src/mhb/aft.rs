@@ -14,7 +14,8 @@
 //! two periods of shrinking differences the period-end state is extrapolated to its limit
 //! (Aitken: s_∞ = s_p + (s_p − s_{p−1}) q/(1 − q), component by component, q the ratio of
 //! the last two force differences), which closes such loops in 5–11 periods; the
-//! closure test after the jump is the same, so the jump is verified, never assumed.
+//! closure test after the jump is the same, so the jump is verified, never assumed; a
+//! state the library rejects is not used (plain marching goes on).
 //!
 //! Jacobian: for an elastic element F = f(δ) the derivative of sample k is f'(δ_k)·∂δ_k,
 //! exact ("diagonal" rule). For a Jenkins point the force depends on the path, so the
@@ -158,7 +159,6 @@ pub fn march(law: &Law, delta: &[f64]) -> Result<Period, AftError> {
             // last extrapolation (Aitken, module docs).
             let mut ends: Vec<[f64; POINT_STATE_LEN]> = Vec::new();
             let mut diffs: Vec<f64> = Vec::new();
-            let mut aitken = true;
             for p in 1..=MAX_PERIODS {
                 let mut diss = 0.0;
                 for k in 0..n {
@@ -190,7 +190,7 @@ pub fn march(law: &Law, delta: &[f64]) -> Result<Period, AftError> {
                     // Geometric drift F_p = F_∞ + c q^p: jump the state to its limit.
                     let q = d2 / d1;
                     let mut jumped = false;
-                    if aitken && q < AITKEN_MAX_RATIO {
+                    if q < AITKEN_MAX_RATIO {
                         let w = q / (1.0 - q);
                         let (s1, s2) = (ends[1], ends[2]);
                         let mut x = state;
@@ -198,12 +198,11 @@ pub fn march(law: &Law, delta: &[f64]) -> Result<Period, AftError> {
                             *x = b + (b - a) * w;
                         }
                         // The state is the library's: if it rejects the extrapolated one
-                        // (a discrete slot changed between the periods), march on plainly.
+                        // (a discrete slot changed between the periods), march on plainly
+                        // and try again after the next two periods.
                         if capi::point_step(t, &x, delta[0], &mut next).is_ok() {
                             state = x;
                             jumped = true;
-                        } else {
-                            aitken = false;
                         }
                     }
                     ends.clear();
