@@ -30,7 +30,7 @@ module jointlin
 
   ! ---- constants (#define in jointlin.h) ----
   integer(c_int32_t), parameter :: JOINTLIN_ABI_VERSION_MAJOR = 0
-  integer(c_int32_t), parameter :: JOINTLIN_ABI_VERSION_MINOR = 1
+  integer(c_int32_t), parameter :: JOINTLIN_ABI_VERSION_MINOR = 2
   integer(c_int32_t), parameter :: JOINTLIN_OK = 0
   integer(c_int32_t), parameter :: JOINTLIN_ERR_NULL = 1
   integer(c_int32_t), parameter :: JOINTLIN_ERR_NON_FINITE = 2
@@ -192,6 +192,14 @@ module jointlin
        type(jointlin_step), intent(out) :: out
        integer(c_int32_t) :: jointlin_point_step
      end function jointlin_point_step
+
+     function jointlin_screw_preload(torque, pitch, d2, mu_thread, mu_head, d_km, &
+          preload) bind(C, name='jointlin_screw_preload')
+       import :: c_int32_t, c_double
+       real(c_double), value :: torque, pitch, d2, mu_thread, mu_head, d_km
+       real(c_double), intent(out) :: preload
+       integer(c_int32_t) :: jointlin_screw_preload
+     end function jointlin_screw_preload
 
      function jointlin_store_config_default(out) &
           bind(C, name='jointlin_store_config_default')

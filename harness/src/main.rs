@@ -123,6 +123,27 @@ enum Command {
         #[arg(long)]
         freq: Option<f64>,
     },
+    /// Joint power loss against the amplitude of an output at resonance, one curve per
+    /// screw torque (the scene's [loss_study] table; thesis Fig. 5.41–5.45): per torque
+    /// the static step, the resonance (the scene's sweep, then a golden-section search),
+    /// then the excitation scaled until the output reaches each amplitude. Writes
+    /// loss.csv, loss.md (with the comparison against the reference points), loss.svg,
+    /// and at the scene's own torque and the largest amplitude the contact maps
+    /// contact_ratio.svg, contact_energy.svg and contact_<interface>.vtu (ParaView).
+    #[command(verbatim_doc_comment)]
+    Loss {
+        scene: PathBuf,
+        /// Output directory (created if missing).
+        #[arg(long)]
+        out: PathBuf,
+        /// Instead: find the factor on every interface's k_T0 that matches the first
+        /// reference point, print it, and write nothing.
+        #[arg(long)]
+        calibrate: bool,
+        /// No progress bar.
+        #[arg(long)]
+        quiet: bool,
+    },
     /// Validate a scene and print a summary (nothing is run or written).
     Check { scene: PathBuf },
     /// Eigenfrequencies of the scene's model with every closed joint stuck (k_T0) after
@@ -325,6 +346,12 @@ fn main() -> ExitCode {
             }
             ExitCode::SUCCESS
         }
+        Command::Loss {
+            scene,
+            out,
+            calibrate,
+            quiet,
+        } => loss(&scene, &out, calibrate, quiet),
         Command::Check { scene } => match Scene::load(&scene) {
             Ok(s) => {
                 println!(
@@ -453,6 +480,59 @@ fn main() -> ExitCode {
             report_written(jointlin_harness::tradeoff::write(&out, &t))
         }
     }
+}
+
+/// `jointlin loss`.
+fn loss(scene: &std::path::Path, out: &std::path::Path, calibrate: bool, quiet: bool) -> ExitCode {
+    use jointlin_harness::loss;
+    let s = match Scene::load(scene) {
+        Ok(s) => s,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return ExitCode::from(2);
+        }
+    };
+    let Some(st) = s.spec.loss_study.clone() else {
+        eprintln!("error: {}: no [loss_study] table", s.file);
+        return ExitCode::from(2);
+    };
+    if calibrate {
+        return match loss::calibrate_k_t0(&s, &|l| eprintln!("{l}")) {
+            Ok((factor, p)) => {
+                for i in &s.spec.interfaces {
+                    println!(
+                        "{}: k_t0_per_area = {:.6e} (× {factor:.5}); P = {p:.4} {}",
+                        i.name,
+                        i.k_t0_per_area * factor,
+                        st.power_unit
+                    );
+                }
+                ExitCode::SUCCESS
+            }
+            Err(e) => {
+                eprintln!("error: {e}");
+                ExitCode::from(1)
+            }
+        };
+    }
+    let pb = progress_bar(quiet);
+    pb.set_length(st.torques.len() as u64);
+    let t = std::time::Instant::now();
+    let r = loss::run_study(&s, &|l| {
+        pb.set_message(l.to_string());
+        pb.inc(1);
+    });
+    pb.finish_and_clear();
+    let r = match r {
+        Ok(r) => r,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return ExitCode::from(1);
+        }
+    };
+    print!("{}", loss::report::markdown(&s, &st, &r));
+    eprintln!("{:.1} s", t.elapsed().as_secs_f64());
+    report_written(loss::report::write(out, &s, &r))
 }
 
 /// `jointlin run --time-domain`.

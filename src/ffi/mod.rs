@@ -4,6 +4,7 @@
 //! * [`error`]: status codes, `jointlin_status_message`, `jointlin_last_error`, panic boundary;
 //! * [`linearize`]: `jointlin_linearize` (one point, one amplitude, one frequency);
 //! * [`point`]: `jointlin_point_step`, the time-domain hysteresis point for non-Abaqus hosts;
+//! * [`screw`]: `jointlin_screw_preload`, screw preload from torque (VDI 2230);
 //! * [`store`]: the iteration store object `jointlin_store` (thesis §4.3.2);
 //! * [`uexternaldb`] and [`uinter`]: Abaqus-convention entry points (model.md §7);
 //! * [`props`]: the UINTER PROPS and STATEV layouts.
@@ -21,6 +22,7 @@ pub mod error;
 pub mod linearize;
 pub mod point;
 pub mod props;
+pub mod screw;
 pub mod store;
 pub mod uexternaldb;
 pub mod uinter;
@@ -32,7 +34,7 @@ use error::{
 /// Major version of the C ABI: changes break existing callers.
 pub const JOINTLIN_ABI_VERSION_MAJOR: u32 = 0;
 /// Minor version of the C ABI: additions that keep existing callers working.
-pub const JOINTLIN_ABI_VERSION_MINOR: u32 = 1;
+pub const JOINTLIN_ABI_VERSION_MINOR: u32 = 2;
 
 /// The ABI version of the loaded library, (major << 16) | minor. A caller compiled against
 /// this header should check that the major part equals JOINTLIN_ABI_VERSION_MAJOR.
