@@ -98,6 +98,12 @@ module jointlin
      integer(c_int32_t) :: regime
   end type jointlin_linearization
 
+  type, bind(C) :: jointlin_cubic_linearization
+     real(c_double) :: k_star
+     real(c_double) :: d_star
+     real(c_double) :: energy_per_cycle
+  end type jointlin_cubic_linearization
+
   type, bind(C) :: jointlin_step
      real(c_double) :: force
      real(c_double) :: tangent
@@ -179,6 +185,16 @@ module jointlin
        type(jointlin_linearization), intent(out) :: out
        integer(c_int32_t) :: jointlin_linearize
      end function jointlin_linearize
+
+     function jointlin_linearize_cubic(k_lin, alpha, amplitude, out) &
+          bind(C, name='jointlin_linearize_cubic')
+       import :: c_int32_t, c_double, jointlin_cubic_linearization
+       real(c_double), value :: k_lin
+       real(c_double), value :: alpha
+       real(c_double), value :: amplitude
+       type(jointlin_cubic_linearization), intent(out) :: out
+       integer(c_int32_t) :: jointlin_linearize_cubic
+     end function jointlin_linearize_cubic
 
      ! C allows state_out == state; Fortran forbids passing one array as both (state is
      ! intent(in)): step a copy, or call with state_out = a second array.

@@ -285,6 +285,25 @@
 typedef struct jointlin_store jointlin_store;
 
 /**
+ * The linearized cubic spring.
+ */
+typedef struct jointlin_cubic_linearization {
+  /**
+   * Equivalent stiffness k* = k + 3/4 alpha A^2 (3.8) (force/length; negative for a
+   * softening spring, alpha < 0, beyond A^2 = -4k/(3 alpha)).
+   */
+  double k_star;
+  /**
+   * Equivalent viscous damping d* (3.14): 0, the spring is elastic.
+   */
+  double d_star;
+  /**
+   * Energy dissipated per cycle: 0 (force x length).
+   */
+  double energy_per_cycle;
+} jointlin_cubic_linearization;
+
+/**
  * One contact point's tangential data. Forces may be stresses (and k_t0 a stiffness per
  * area) as long as units are consistent.
  */
@@ -552,6 +571,25 @@ extern "C" {
  * this header should check that the major part equals JOINTLIN_ABI_VERSION_MAJOR.
  */
 uint32_t jointlin_abi_version(void);
+
+/**
+ * Linearizes the cubic spring F(x) = k_lin x + alpha x^3 (k_lin force/length, alpha
+ * force/length^3, any finite signs) for the displacement amplitude A = `amplitude`
+ * (length, A >= 0) of x = A sin(omega t): k* = k_lin + 3/4 alpha A^2 by first-order
+ * harmonic balance (3.8), d* = 0 and no energy per cycle by energy balance (3.14), at
+ * every frequency.
+ *
+ * `out` must not be NULL. Errors: JOINTLIN_ERR_NULL, JOINTLIN_ERR_NON_FINITE (any NaN/Inf
+ * input), JOINTLIN_ERR_OUT_OF_RANGE (amplitude < 0, misaligned `out`),
+ * JOINTLIN_ERR_OVERFLOW (k* not representable). `*out` is written only on JOINTLIN_OK.
+ *
+ * # Safety
+ * A non-NULL `out` must point to a valid, aligned, writable jointlin_cubic_linearization.
+ */
+int32_t jointlin_linearize_cubic(double k_lin,
+                                 double alpha,
+                                 double amplitude,
+                                 struct jointlin_cubic_linearization *out);
 
 /**
  * A static, NUL-terminated English description of a status code. Never NULL; unknown codes

@@ -6,6 +6,7 @@
 mod ffi_common;
 
 use ffi_common::*;
+use jointlin::ffi::cubic::*;
 use jointlin::ffi::error::*;
 use jointlin::ffi::linearize::*;
 use jointlin::ffi::point::*;
@@ -63,6 +64,48 @@ fn last_error() -> String {
     unsafe { CStr::from_ptr(buf.as_ptr()) }
         .to_string_lossy()
         .into_owned()
+}
+
+#[test]
+fn linearize_cubic_rejects_hard_inputs_without_writing() {
+    let sentinel = jointlin_cubic_linearization {
+        k_star: SENTINEL,
+        ..Default::default()
+    };
+    let mut out = sentinel;
+    unsafe {
+        assert_eq!(
+            jointlin_linearize_cubic(20.0, 40.0, 0.4, null_mut()),
+            JOINTLIN_ERR_NULL
+        );
+        for bad in BAD {
+            for field in 0..3 {
+                let mut v = [20.0, 40.0, 0.4];
+                v[field] = bad;
+                assert_eq!(
+                    jointlin_linearize_cubic(v[0], v[1], v[2], &mut out),
+                    JOINTLIN_ERR_NON_FINITE
+                );
+            }
+        }
+        assert_eq!(
+            jointlin_linearize_cubic(20.0, 40.0, -0.4, &mut out),
+            JOINTLIN_ERR_OUT_OF_RANGE
+        );
+        assert_eq!(
+            jointlin_linearize_cubic(20.0, 40.0, 1e200, &mut out),
+            JOINTLIN_ERR_OVERFLOW
+        );
+        assert!(last_error().contains("cubic k*"), "{}", last_error());
+        assert_eq!(out, sentinel);
+        // The Duffing oscillator (B.1) at the thesis's amplitude: k* = 20 + 3/4·40·0.395² (3.8).
+        assert_eq!(
+            jointlin_linearize_cubic(20.0, 40.0, 0.395, &mut out),
+            JOINTLIN_OK
+        );
+        assert!((out.k_star - 24.680_75).abs() < 1e-12, "{out:?}");
+        assert_eq!((out.d_star, out.energy_per_cycle), (0.0, 0.0));
+    }
 }
 
 #[test]

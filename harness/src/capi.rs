@@ -10,6 +10,7 @@ use std::cell::Cell;
 use std::ffi::{c_char, CStr};
 use std::ptr::{self, NonNull};
 
+use jointlin::ffi::cubic::{jointlin_cubic_linearization, jointlin_linearize_cubic};
 use jointlin::ffi::error::{jointlin_last_error, jointlin_status_message, JOINTLIN_OK};
 use jointlin::ffi::linearize::{
     jointlin_contact, jointlin_linearization, jointlin_linearize, jointlin_method,
@@ -20,11 +21,12 @@ use jointlin::ffi::point::{jointlin_point_step, jointlin_step, JOINTLIN_POINT_ST
 use jointlin::ffi::screw::jointlin_screw_preload;
 use jointlin::ffi::store::{
     jointlin_pass_stats, jointlin_store, jointlin_store_config, jointlin_store_config_default,
-    jointlin_store_free, jointlin_store_new, jointlin_store_next_action, jointlin_store_pass_stats,
-    jointlin_store_report, jointlin_store_rerun_increments, JOINTLIN_ACTION_DONE,
-    JOINTLIN_ACTION_FAILED, JOINTLIN_ACTION_RUNNING, JOINTLIN_ACTION_RUN_FINAL,
-    JOINTLIN_ACTION_RUN_PASS, JOINTLIN_ACTION_RUN_SWEEP, JOINTLIN_SCHEME_DIRECT,
-    JOINTLIN_SCHEME_RELAXATION, JOINTLIN_SCHEME_SECANT,
+    jointlin_store_estimate, jointlin_store_free, jointlin_store_new, jointlin_store_next_action,
+    jointlin_store_pass_stats, jointlin_store_register_point, jointlin_store_report,
+    jointlin_store_rerun_increments, JOINTLIN_ACTION_DONE, JOINTLIN_ACTION_FAILED,
+    JOINTLIN_ACTION_RUNNING, JOINTLIN_ACTION_RUN_FINAL, JOINTLIN_ACTION_RUN_PASS,
+    JOINTLIN_ACTION_RUN_SWEEP, JOINTLIN_SCHEME_DIRECT, JOINTLIN_SCHEME_RELAXATION,
+    JOINTLIN_SCHEME_SECANT,
 };
 use jointlin::ffi::uexternaldb::jointlin_uexternaldb;
 use jointlin::ffi::uinter::{jointlin_uinter, jointlin_uinter_report};
@@ -57,12 +59,14 @@ pub struct CapiError {
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, serde::Serialize)]
 pub struct CallCounts {
     pub linearize: u64,
+    /// jointlin_linearize_cubic (cubic springs).
+    pub linearize_cubic: u64,
     /// jointlin_uinter with LINPER = 0 (general step).
     pub uinter_general: u64,
     /// jointlin_uinter with LINPER = 1 (steady-state step).
     pub uinter_linear: u64,
     pub uexternaldb: u64,
-    /// Store object calls (new, report, next action, stats).
+    /// Store object calls (new, register, estimate, report, next action, stats).
     pub store: u64,
 }
 
@@ -228,6 +232,21 @@ pub fn linearize(t: &Tangential, amplitude: f64, omega: f64) -> Result<Linearize
         amplitude_ratio: out.amplitude_ratio,
         regime: out.regime,
     })
+}
+
+/// k* (force/length) of the cubic spring F(x) = k·x + α·x³ for the amplitude A (length)
+/// by first-order harmonic balance (`jointlin_linearize_cubic`, thesis (3.8)); its d* is 0.
+pub fn linearize_cubic(k: f64, alpha: f64, amplitude: f64) -> Result<f64, CapiError> {
+    count(|c| c.linearize_cubic += 1);
+    let mut out = jointlin_cubic_linearization {
+        k_star: 0.0,
+        d_star: 0.0,
+        energy_per_cycle: 0.0,
+    };
+    // SAFETY: out is a writable local.
+    let code = unsafe { jointlin_linearize_cubic(k, alpha, amplitude, &mut out) };
+    check("jointlin_linearize_cubic", code)?;
+    Ok(out.k_star)
 }
 
 thread_local! {
@@ -549,6 +568,42 @@ impl Store {
             jointlin_uexternaldb(self.0.as_ptr(), lop, 0, time.as_ptr(), 0.0, kstep, kinc)
         };
         check("jointlin_uexternaldb", code)
+    }
+
+    /// Registers a point that the host linearizes itself (not through UINTER, e.g. a
+    /// cubic spring) by its key (name, node, coordinates); returns its store id.
+    pub fn register_point(
+        &self,
+        name: &str,
+        node: i32,
+        coords: [f64; 3],
+    ) -> Result<i64, CapiError> {
+        count(|c| c.store += 1);
+        let mut id = 0i64;
+        // SAFETY: live handle; name valid for its length, coords 3 doubles, id writable.
+        check("jointlin_store_register_point", unsafe {
+            jointlin_store_register_point(
+                self.0.as_ptr(),
+                name.as_ptr().cast::<c_char>(),
+                name.len(),
+                node,
+                coords.as_ptr(),
+                3,
+                &mut id,
+            )
+        })?;
+        Ok(id)
+    }
+
+    /// The amplitude estimates (length, two directions) of `point` for the open increment.
+    pub fn estimate(&self, point: i64, kinc: i32) -> Result<[f64; 2], CapiError> {
+        count(|c| c.store += 1);
+        let mut amp = [0.0; 2];
+        // SAFETY: live handle, amp has 2 writable doubles.
+        check("jointlin_store_estimate", unsafe {
+            jointlin_store_estimate(self.0.as_ptr(), point, kinc, amp.as_mut_ptr())
+        })?;
+        Ok(amp)
     }
 
     /// Reports the computed amplitudes (both tangential directions) of `point` in `kinc`.

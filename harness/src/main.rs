@@ -47,6 +47,15 @@ enum Command {
     /// onto the contact directions per harmonic 0..H, Newton per frequency; the normal
     /// load is held at its static value. The scene's [effects] table switches physics
     /// and outputs on and off; the run log lists the active effects and what each cost.
+    /// Grounded springs with a `cubic` term α (the Duffing oscillator) get
+    /// k* = k + ¾αA² from the library for their amplitude A and are iterated to
+    /// consistency like contact points (modes fast and thesis; not harmonic_balance).
+    ///
+    /// Sweep direction ([sweep] direction): "up" (default) runs the frequencies
+    /// ascending, "down" descending, "up_down" both; each frequency starts from the
+    /// previous one's converged state, so a multi-valued response (Duffing) stays on its
+    /// branch and jumps where the branch ends (a fold). Every CSV lists the frequencies
+    /// ascending whatever the order they were run in.
     ///
     /// Files written to DIR (only after a valid scene and a successful run; a bad scene
     /// names file:line:column and key, and nothing is written):
@@ -55,6 +64,8 @@ enum Command {
     ///                 and status (converged, not_converged, or singular: no response
     ///                 there, empty fields; also singular_frequencies in run.json);
     ///                 harmonic balance: first harmonic
+    ///   results_down.csv  the same columns for the descending sweep (direction = "up_down";
+    ///                 results.csv then holds the ascending one)
     ///   harmonics.csv harmonic balance only: freq_hz, then per output and h = 0..H
     ///                 <name>_h<h>_amp (h = 0: mean deviation from the static state)
     ///   results_without_contact_damping.csv  the same with d* = 0 (fast mode; written
@@ -65,7 +76,8 @@ enum Command {
     ///                 the closed loop, its energy per cycle
     ///   stick_slip.csv/.svg  points per regime over frequency (effects.stick_slip_map)
     ///   run.json      scene echo, effects with costs, passes, iterations, timings, C-API calls
-    ///   frf.svg       FRF of the outputs with and without contact damping
+    ///   frf.svg       FRF of the outputs with and without contact damping (and the
+    ///                 sweep down for "up_down")
     ///   passes.svg    frequencies per pass (thesis mode: Fig. 4.33)
     #[command(verbatim_doc_comment)]
     Run {
@@ -307,16 +319,23 @@ fn main() -> ExitCode {
                     if e.active { e.work.as_str() } else { "" }
                 );
             }
-            for p in &r.main.passes {
-                eprintln!(
-                    "pass {} ({}): {} frequencies, {} converged",
-                    p.pass,
-                    p.kind,
-                    p.frequencies.len(),
-                    p.converged
-                );
+            for (label, sweep) in
+                std::iter::once(("", &r.main)).chain(r.down.as_ref().map(|d| ("sweep down: ", d)))
+            {
+                for p in &sweep.passes {
+                    eprintln!(
+                        "{label}pass {} ({}): {} frequencies, {} converged",
+                        p.pass,
+                        p.kind,
+                        p.frequencies.len(),
+                        p.converged
+                    );
+                }
             }
-            let unconverged = r.main.converged.iter().filter(|&&c| !c).count();
+            let unconverged = std::iter::once(&r.main)
+                .chain(&r.down)
+                .map(|sweep| sweep.converged.iter().filter(|&&c| !c).count())
+                .sum::<usize>();
             eprintln!(
                 "timings: build {:.3} s, static {:.3} s, sweep {:.3} s, reference {:.3} s; {} factorizations",
                 r.seconds[0], r.seconds[1], r.seconds[2], r.seconds[3], r.main.factorizations

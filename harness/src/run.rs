@@ -10,7 +10,7 @@ use thiserror::Error;
 
 use crate::capi::{self, CallCounts};
 use crate::model::{build, BuildError, Problem};
-use crate::scene::{Effects, Mode, Scene};
+use crate::scene::{Direction, Effects, Mode, Scene};
 use crate::solve::static_step::{self, StaticError, StaticState};
 use crate::solve::sweep::{self, Options, SweepError, SweepResult};
 
@@ -51,12 +51,16 @@ pub struct EffectLog {
 pub struct RunResult {
     pub problem: Problem,
     pub stat: StaticState,
+    /// The scene's sweep (`[sweep] direction` up or down; up for `up_down`).
     pub main: SweepResult,
+    /// The descending sweep of `direction = "up_down"`.
+    pub down: Option<SweepResult>,
     pub reference: Option<SweepResult>,
     pub effects: Vec<EffectLog>,
     /// C-API calls made by the run (this thread).
     pub calls: CallCounts,
-    /// Seconds: build, static step, main sweep, reference sweep.
+    /// Seconds: build, static step, main sweep (with the down sweep of `up_down`),
+    /// reference sweep.
     pub seconds: [f64; 4],
 }
 
@@ -86,26 +90,40 @@ pub fn run(
     if let Some(c) = extras.condense_max {
         opts.condense_max = c;
     }
+    opts.descending = spec.sweep.direction == Direction::Down;
     let t = Instant::now();
     let main = sweep::run(&problem, &stat, &freqs, &opts, progress)?;
+    let down = if spec.sweep.direction == Direction::UpDown {
+        let mut o = opts;
+        o.descending = true;
+        Some(sweep::run(&problem, &stat, &freqs, &o, &|l, i, n| {
+            progress(&format!("sweep down: {l}"), i, n)
+        })?)
+    } else {
+        None
+    };
     let t_main = t.elapsed().as_secs_f64();
     let t = Instant::now();
-    let reference =
-        if extras.reference_without_damping && eff.contact_damping && eff.tangential_microslip {
-            let mut o = opts;
-            o.effects.contact_damping = false;
-            o.point_results = false;
-            o.iteration.mode = Mode::Fast;
-            Some(sweep::run(&problem, &stat, &freqs, &o, &|l, i, n| {
-                progress(&format!("reference without contact damping: {l}"), i, n)
-            })?)
-        } else {
-            None
-        };
+    let reference = if extras.reference_without_damping
+        && eff.contact_damping
+        && eff.tangential_microslip
+        && !problem.contacts.is_empty()
+    {
+        let mut o = opts;
+        o.effects.contact_damping = false;
+        o.point_results = false;
+        o.iteration.mode = Mode::Fast;
+        Some(sweep::run(&problem, &stat, &freqs, &o, &|l, i, n| {
+            progress(&format!("reference without contact damping: {l}"), i, n)
+        })?)
+    } else {
+        None
+    };
     let t_ref = t.elapsed().as_secs_f64();
     let c1 = capi::counts();
     let calls = CallCounts {
         linearize: c1.linearize - calls0.linearize,
+        linearize_cubic: c1.linearize_cubic - calls0.linearize_cubic,
         uinter_general: c1.uinter_general - calls0.uinter_general,
         uinter_linear: c1.uinter_linear - calls0.uinter_linear,
         uexternaldb: c1.uexternaldb - calls0.uexternaldb,
@@ -170,6 +188,17 @@ pub fn run(
             },
         },
         EffectLog {
+            name: "cubic_springs",
+            active: !problem.cubic_springs.is_empty(),
+            seconds: sum(&main, &[sweep::fast::CUBIC_TIMING])
+                + down.as_ref().map_or(0.0, |d| sum(d, &[sweep::fast::CUBIC_TIMING])),
+            work: format!(
+                "k* = k + ¾αA² of {} cubic springs by {} jointlin_linearize_cubic calls (not an [effects] switch: on when a spring has `cubic`)",
+                problem.cubic_springs.len(),
+                calls.linearize_cubic
+            ),
+        },
+        EffectLog {
             name: "point_energy_output",
             active: eff.point_energy_output,
             seconds: sum(&main, &["point outputs", "reporting and point outputs"]),
@@ -186,6 +215,7 @@ pub fn run(
         problem,
         stat,
         main,
+        down,
         reference,
         effects,
         calls,

@@ -25,6 +25,10 @@ fn switched_off_effects_make_no_calls() {
         s.spec.effects.stick_slip_map = false;
         let (all, c) = go(&s);
         assert!(c.uinter_general > 0, "{mode:?}: static step uses UINTER");
+        assert_eq!(
+            c.linearize_cubic, 0,
+            "{mode:?}: no cubic springs, no cubic calls"
+        );
         match mode {
             Mode::Fast => assert!(c.linearize > 0 && c.uinter_linear == 0),
             // Thesis mode: k*, d* only through UINTER; no per-point output, no linearize.

@@ -7,11 +7,13 @@
 //!   stress form used by FE hosts.
 //! * [`mindlin`]: tangential microslip backbone (2.44–2.49) ending in Coulomb sliding (2.39).
 //! * [`jenkins`]: linear spring + Coulomb slider, the classical cross-check.
+//! * [`cubic`]: the Duffing oscillator's cubic spring k·x + α·x³ (4.1), not a contact law.
 //! * [`screw`]: preload of a screw from its tightening torque (VDI 2230), for hosts that
 //!   replace a screw by point forces (thesis §5.4.1).
 //! * [`Backbone`]: the virgin curve of either tangential law behind one interface, used by
 //!   the hysteresis and the linearization.
 
+pub mod cubic;
 pub mod hertz;
 pub mod jenkins;
 pub mod mindlin;
@@ -19,6 +21,7 @@ pub mod screw;
 
 mod series;
 
+pub use cubic::CubicSpring;
 pub use jenkins::Jenkins;
 pub use mindlin::Mindlin;
 

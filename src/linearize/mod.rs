@@ -1,7 +1,9 @@
 //! Linearization of one contact point for a displacement amplitude A and angular
 //! frequency ω: k* by harmonic balance ([`hbm`], (3.8) on the Ersatzfunktion (4.3)),
 //! d* by energy balance ([`ebm`], (3.14)), loss factor, energy per cycle, peak force, regime.
+//! [`cubic`]: the same two balances for the Duffing oscillator's cubic spring (closed form).
 
+pub mod cubic;
 pub mod ebm;
 pub mod hbm;
 pub mod loop_shape;

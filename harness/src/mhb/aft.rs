@@ -36,10 +36,15 @@ use crate::capi::{self, CapiError, Tangential, POINT_STATE_LEN};
 use crate::scene::LawName;
 
 /// Loop closure: consecutive periods' forces agree to this fraction of the force scale
-/// (max |F| over the period, at least μF_N·1e-3). Jenkins and the thesis/Masing rules
+/// (max |F| over the period, at least [`CLOSE_FLOOR`]·μF_N). Jenkins and Masing loops
 /// forget their history at each reversal, so closure is reached after 2–3 periods and
-/// the tolerance only guards round-off.
+/// the tolerance only guards round-off; thesis-rule loops drift (module docs).
 pub const CLOSE_TOL: f64 = 1e-11;
+/// Floor of the closure scale relative to μF_N: loops of nearly stuck points (A/δ* ~ 1e-7)
+/// under the thesis rule drift by ~2e-15 μF_N per period for ~1e7 periods (q = 1 − A/δ*);
+/// with the floor 1e-2 they count as closed at 1e-13 μF_N, still 1e-6 of the smallest
+/// perturbation of the forward-difference Jacobian (k_T0·1e-7·δ* = 1.5e-7 μF_N).
+const CLOSE_FLOOR: f64 = 1e-2;
 /// Periods marched at most before the loop counts as not closed. Jenkins and Masing
 /// loops close after 2–3 periods; the thesis rule (elastic unloading, then Mindlin from
 /// the zero-force point) is not symmetric under a prescribed periodic slip and drifts to
@@ -154,7 +159,7 @@ pub fn march(law: &Law, delta: &[f64]) -> Result<Period, AftError> {
                 tangent: vec![0.0; n],
                 ..Period::default()
             };
-            let floor = 1e-3 * t.mu * t.normal.abs();
+            let floor = CLOSE_FLOOR * t.mu * t.normal.abs();
             // Period-end states and force differences of the last two periods since the
             // last extrapolation (Aitken, module docs).
             let mut ends: Vec<[f64; POINT_STATE_LEN]> = Vec::new();

@@ -5,7 +5,7 @@ use std::collections::BTreeMap;
 
 use nalgebra::{Complex, Matrix3, Vector3};
 
-use super::{BuildError, ContactPoint, Interface, Output, Problem, Screw};
+use super::{BuildError, ContactPoint, CubicSpring, Interface, Output, Problem, Screw};
 use crate::fe::assembly::{assemble, System};
 use crate::fe::contact_pairs::find_pairs_where;
 use crate::fe::csc::Csc;
@@ -200,14 +200,30 @@ pub fn build(scene: &Scene) -> Result<Problem, BuildError> {
             );
         }
     }
-    for sp in &s.springs {
-        let BodyRef::Mass { pair, .. } = body(&sp.body) else {
+    let mut cubic_springs = Vec::new();
+    for (i, sp) in s.springs.iter().enumerate() {
+        let BodyRef::Mass { pair, node, .. } = body(&sp.body) else {
             unreachable!("validated: springs on masses")
         };
         let d = unit(sp.direction);
         let ddt = d * d.transpose();
         sys.pairs
             .add(&mut sys.k.values, pair, &(ddt * sp.stiffness));
+        if sp.cubic != 0.0 {
+            cubic_springs.push(CubicSpring {
+                spring: i,
+                pair,
+                node,
+                position: model.nodes[node],
+                stiffness: sp.stiffness,
+                cubic: sp.cubic,
+                block: ddt,
+                row: (0..3)
+                    .filter_map(|c| sys.dofs.free(3 * node + c).map(|f| (f, d[c])))
+                    .filter(|&(_, w)| w != 0.0)
+                    .collect(),
+            });
+        }
         if sp.damping > 0.0 {
             sys.pairs.add(&mut dash.values, pair, &(ddt * sp.damping));
             any_dash = true;
@@ -355,6 +371,7 @@ pub fn build(scene: &Scene) -> Result<Problem, BuildError> {
         damping,
         interfaces,
         contacts,
+        cubic_springs,
         preload,
         excitation,
         outputs,

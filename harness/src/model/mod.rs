@@ -100,6 +100,29 @@ impl ContactPoint {
     }
 }
 
+/// A grounded spring with a cubic term α (scene `[[springs]]` with `cubic`): its linear
+/// stiffness k is in K (static step, stuck modes); the steady-state step adds
+/// (k* − k)·d dᵀ with k* = k + ¾αA² from the C API for its amplitude A (3.8).
+#[derive(Debug, Clone, PartialEq)]
+pub struct CubicSpring {
+    /// Index in the scene's `[[springs]]`.
+    pub spring: usize,
+    /// Index of the mass's ground pair in `System::pairs`.
+    pub pair: usize,
+    /// The mass node.
+    pub node: usize,
+    /// Position (length), the key of the spring in the iteration store.
+    pub position: [f64; 3],
+    /// k (force/length).
+    pub stiffness: f64,
+    /// α (force/length³).
+    pub cubic: f64,
+    /// d dᵀ (unit direction d).
+    pub block: Matrix3<f64>,
+    /// Elongation x = Σ w·u_free along d (fixed DOFs left out).
+    pub row: Vec<(usize, f64)>,
+}
+
 /// A named output: displacement along a direction at one node, as free-DOF weights.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Output {
@@ -138,6 +161,7 @@ pub struct Problem {
     pub damping: Option<Csc<f64>>,
     pub interfaces: Vec<Interface>,
     pub contacts: Vec<ContactPoint>,
+    pub cubic_springs: Vec<CubicSpring>,
     /// Static preload on the free DOFs (force).
     pub preload: Vec<f64>,
     /// Harmonic excitation amplitude on the free DOFs (force, complex for phase).

@@ -57,6 +57,14 @@ pub fn run_json(scene: &Scene, r: &RunResult) -> serde_json::Value {
         "factorizations": m.factorizations,
         "gmres_solves": m.gmres_solves,
         "macroslip_caps": m.macroslip_caps,
+        "sweep_direction": scene.spec.sweep.direction,
+        "down_sweep": r.down.as_ref().map(|d| json!({
+            "passes": d.passes,
+            "iterations_per_frequency": d.iterations,
+            "converged": d.converged,
+            "all_converged": d.converged.iter().all(|&c| c),
+            "factorizations": d.factorizations,
+        })),
         "timings_s": {
             "build": r.seconds[0],
             "static_step": r.seconds[1],
@@ -86,6 +94,10 @@ pub fn write_all(
         &mut out,
     )
     .map_err(io)?;
+    if let Some(down) = &r.down {
+        let text = csv::results(&r.problem, down);
+        write(dir, "results_down.csv", &text, &mut out).map_err(io)?;
+    }
     if !r.main.harmonics.is_empty() {
         let text = csv::harmonics(&r.problem, &r.main);
         write(dir, "harmonics.csv", &text, &mut out).map_err(io)?;
@@ -122,14 +134,15 @@ pub fn write_all(
             &scene.spec.title
         };
         let p = dir.join("frf.svg");
-        svg::frf(
-            &p,
-            title,
-            &scene.spec.units,
-            &r.problem,
-            &r.main,
-            r.reference.as_ref(),
-        )?;
+        let main_label = match (&r.down, &r.reference) {
+            (Some(_), _) => "sweep up",
+            (None, Some(_)) => "with contact damping",
+            (None, None) => "",
+        };
+        let mut curves = vec![(&r.main, main_label)];
+        curves.extend(r.down.as_ref().map(|d| (d, "sweep down")));
+        curves.extend(r.reference.as_ref().map(|d| (d, "without contact damping")));
+        svg::frf(&p, title, &scene.spec.units, &r.problem, &curves)?;
         out.push(p);
         let p = dir.join("passes.svg");
         svg::passes(&p, &r.main)?;

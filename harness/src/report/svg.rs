@@ -13,23 +13,24 @@ fn err<E: std::fmt::Display>(e: E) -> String {
     e.to_string()
 }
 
-/// FRF amplitude of every output (log scale), with contact damping (solid) and, if given,
-/// without (dashed look: lighter colour).
+/// FRF amplitude of every output (log scale) for each (sweep, label) in `curves`: the first
+/// bold (e.g. with contact damping, or sweep up), the others thinner in other colours (e.g.
+/// the sweep down, the sweep without contact damping).
 pub fn frf(
     path: &std::path::Path,
     title: &str,
     units: &crate::scene::Units,
     p: &Problem,
-    main: &SweepResult,
-    reference: Option<&SweepResult>,
+    curves: &[(&SweepResult, &str)],
 ) -> Res {
     let root = SVGBackend::new(path, (900, 560)).into_drawing_area();
     root.fill(&WHITE).map_err(err)?;
+    let main = curves.first().ok_or("no sweep")?.0;
     let f0 = *main.freqs.first().ok_or("no frequencies")?;
     let f1 = *main.freqs.last().ok_or("no frequencies")?;
     let mut ymin = f64::INFINITY;
     let mut ymax = 0.0f64;
-    for r in std::iter::once(main).chain(reference) {
+    for (r, _) in curves {
         for row in &r.outputs {
             for v in row {
                 let a = v.norm();
@@ -61,44 +62,35 @@ pub fn frf(
         .x_desc(freq_label(units))
         .y_desc(format!("amplitude [{}]", units.length))
         .y_label_formatter(&|v: &f64| format!("{v:.0e}"))
-        .x_label_formatter(&|v: &f64| format!("{v:.0}"))
+        .x_label_formatter(&|v: &f64| format!("{}", (v * 1e3).round() / 1e3))
         .draw()
         .map_err(err)?;
     for (k, o) in p.outputs.iter().enumerate() {
-        let color = Palette99::pick(k).to_rgba();
-        // Singular frequencies have no response: left out of the curve.
-        let curve = |r: &SweepResult| -> Vec<(f64, f64)> {
-            r.freqs
+        for (c, (r, label)) in curves.iter().enumerate() {
+            // One colour per output and curve; the first curve drawn thicker.
+            let color = Palette99::pick(k + 4 * c).to_rgba();
+            let width = if c == 0 { 2 } else { 1 };
+            // Singular frequencies have no response: left out of the curve.
+            let pts: Vec<(f64, f64)> = r
+                .freqs
                 .iter()
                 .zip(&r.outputs)
                 .enumerate()
                 .filter(|(i, _)| !r.is_singular(*i))
                 .map(|(_, (f, v))| (*f, v[k].norm().max(ymin)))
-                .collect()
-        };
-        let pts = curve(main);
-        chart
-            .draw_series(LineSeries::new(pts, color.stroke_width(2)))
-            .map_err(err)?
-            .label(format!("{} with contact damping", o.name))
-            .legend(move |(x, y)| {
-                PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
-            });
-        if let Some(r) = reference {
-            let light = color.mix(0.45);
-            let pts = curve(r);
+                .collect();
             chart
-                .draw_series(LineSeries::new(pts, light.stroke_width(1)))
+                .draw_series(LineSeries::new(pts, color.stroke_width(width)))
                 .map_err(err)?
-                .label(format!("{} without contact damping", o.name))
+                .label(format!("{} {label}", o.name).trim_end().to_string())
                 .legend(move |(x, y)| {
-                    PathElement::new(vec![(x, y), (x + 20, y)], light.stroke_width(1))
+                    PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(width))
                 });
         }
     }
     chart
         .configure_series_labels()
-        .position(SeriesLabelPosition::UpperMiddle)
+        .position(SeriesLabelPosition::UpperRight)
         .background_style(WHITE.mix(0.85))
         .border_style(BLACK)
         .draw()

@@ -299,16 +299,23 @@ fn all_components() -> [bool; 3] {
     [true; 3]
 }
 
-/// A grounded linear spring and dashpot on a mass body along a direction.
+/// A grounded spring and dashpot on a mass body along a direction: force
+/// k·x + α·x³ + c·ẋ for the elongation x along it (the Duffing oscillator (4.1) with
+/// α ≠ 0).
 #[derive(Debug, Clone, Deserialize, Serialize, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub struct SpringSpec {
     pub body: String,
     /// Direction (normalized on use).
     pub direction: [f64; 3],
-    /// Stiffness (force/length).
+    /// Linear stiffness k (force/length).
     pub stiffness: f64,
-    /// Viscous damping (force·time/length).
+    /// Cubic coefficient α (force/length³; < 0 softening). Linearized per frequency by the
+    /// library (k* = k + ¾αA², (3.8)) for the spring's amplitude A, iterated to
+    /// consistency like a contact point.
+    #[serde(default)]
+    pub cubic: f64,
+    /// Viscous damping c (force·time/length).
     #[serde(default)]
     pub damping: f64,
 }
@@ -362,6 +369,23 @@ pub struct SweepSpec {
     pub spacing: Spacing,
     #[serde(default)]
     pub refine: Vec<BandSpec>,
+    /// Order in which the frequencies are run; each frequency starts from the previous
+    /// one's converged state, so multi-valued responses (Duffing) follow their branch.
+    #[serde(default)]
+    pub direction: Direction,
+}
+
+/// Sweep direction.
+#[derive(Debug, Clone, Copy, Deserialize, Serialize, PartialEq, Eq, Default)]
+#[serde(rename_all = "snake_case")]
+pub enum Direction {
+    /// Ascending frequencies.
+    #[default]
+    Up,
+    /// Descending frequencies.
+    Down,
+    /// Ascending, then a second sweep descending (results_down.csv).
+    UpDown,
 }
 
 /// An extra band of frequencies, linearly spaced.

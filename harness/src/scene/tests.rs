@@ -220,3 +220,30 @@ fn harmonic_balance_keys_are_validated() {
     assert_eq!(e.key, "effects.contact_damping", "{e}");
     assert_eq!(e.line, line_of(&text, "contact_damping = false"));
 }
+
+#[test]
+fn cubic_spring_keys_are_validated() {
+    let path = format!(
+        "{}/../scenes/duffing-point.toml",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let good = std::fs::read_to_string(path).unwrap();
+    assert!(Scene::parse("duffing-point.toml", &good).is_ok());
+    // A preload on the body of a cubic spring: its linearization about x = 0 would be
+    // wrong; the error points at the cubic key.
+    let text = format!(
+        "{good}\n[[preload]]\nkind = \"force\"\nbody = \"mass\"\nforce = [1.0, 0.0, 0.0]\n"
+    );
+    let e = Scene::parse("d.toml", &text).unwrap_err();
+    assert_eq!(e.key, "springs[0].cubic");
+    assert_eq!(e.line, line_of(&text, "cubic = 40.0"));
+    assert!(e.message.contains("no preload"), "{}", e.message);
+    // The harmonic-balance mode has no cubic springs.
+    let text = good.replace("mode = \"fast\"", "mode = \"harmonic_balance\"");
+    let e = Scene::parse("d.toml", &text).unwrap_err();
+    assert_eq!(e.key, "springs[0].cubic");
+    // Unknown sweep direction: a type error naming the key's line.
+    let text = good.replace("count = 1\n", "count = 1\ndirection = \"sideways\"\n");
+    let e = Scene::parse("d.toml", &text).unwrap_err();
+    assert_eq!(e.line, line_of(&text, "sideways"));
+}

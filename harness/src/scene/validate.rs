@@ -366,7 +366,26 @@ pub fn validate(s: &SceneFile) -> Vec<Problem> {
         }
         c.direction(p.key("direction"), &sp.direction);
         c.non_negative(p.key("stiffness"), sp.stiffness);
+        c.finite(p.key("cubic"), sp.cubic);
         c.non_negative(p.key("damping"), sp.damping);
+        // The first-order balance linearizes the cubic term about x = 0: a static
+        // preload would move the operating point, which the static step (linear springs)
+        // does not follow.
+        if sp.cubic != 0.0 && s.iteration.mode == Mode::HarmonicBalance {
+            c.fail(
+                p.key("cubic"),
+                "cubic springs are linearized to first order: use mode \"fast\" or \"thesis\"",
+            );
+        }
+        if sp.cubic != 0.0 && s.preload.iter().any(|l| l.body == sp.body) {
+            c.fail(
+                p.key("cubic"),
+                format!(
+                    "a cubic spring is linearized about zero static elongation: body `{}` must carry no preload",
+                    sp.body
+                ),
+            );
+        }
     }
 
     if s.excitation.is_empty() {

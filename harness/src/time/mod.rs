@@ -62,6 +62,8 @@ pub enum TimeError {
     NonFinite { t: f64 },
     #[error("time-domain settings: {0}")]
     Settings(String),
+    #[error("the time-domain reference does not integrate cubic springs (the C API has no time-domain cubic spring); `jointlin validate` has the Duffing oscillator's own RK4 reference")]
+    CubicSprings,
 }
 
 /// The dynamic state on the free DOFs.

@@ -273,6 +273,9 @@ pub fn sweep(
     settings: &TimeSettings,
     progress: &dyn Fn(usize, usize),
 ) -> Result<Vec<FreqResult>, TimeError> {
+    if !problem.cubic_springs.is_empty() {
+        return Err(TimeError::CubicSprings);
+    }
     let mut results = Vec::new();
     let mut contacts = Contacts::new(problem, stat)?;
     let mut st = initial_state(

@@ -4,7 +4,8 @@
 //!
 //! With S₀ = S(ω, κ₀) for a reference contact state κ₀ = κ(a₀) of the start estimate a₀
 //! (the previous frequencies' converged amplitudes, extrapolated in ln a) and
-//! the contact map B (rows: tangential relative displacements of the active points),
+//! the contact map B (rows: tangential relative displacements of the active points, then
+//! the elongations of the cubic springs, whose κ is their k* and whose "area" is 1),
 //! S(ω, κ) = S₀ + Bᵀ Δ B with Δ = diag((κ − κ₀)·area). Then r = B û solves
 //!
 //!   (I + G Δ) r = r₀,   G = B S₀⁻¹ Bᵀ (receptance, m × m),  r₀ = B S₀⁻¹ f̂,
@@ -14,12 +15,15 @@
 //! iteration is then a dense m × m solve plus m `jointlin_linearize` calls. With FGMRES
 //! each contact iteration solves (S₀ + BᵀΔB) û = f̂ from the previous û (measured 1–2
 //! solves with the factorization per iteration, none in the first). Amplitudes
-//! a = |r| are iterated to consistency with Anderson acceleration in ln a; convergence is
-//! the store's test |a − a*| ≤ rtol·max(a, a*) + atol per point and direction.
+//! a = |r| are iterated to consistency with Anderson acceleration in ln a, or, for a single
+//! amplitude, with a bracketed scalar root search ([`super::bracket`], global: it follows
+//! the start's branch and jumps only where that branch ends); convergence is the store's
+//! test |a − a*| ≤ rtol·max(a, a*) + atol per point and direction.
 
 use std::time::Instant;
 
 use super::anderson::Anderson;
+use super::bracket::Bracket;
 use super::krylov::Gmres;
 use super::receptance::Receptance;
 use super::{Options, PassRecord, PointFreq, Setup, SweepError, SweepResult, C64};
@@ -52,6 +56,8 @@ const MAX_EXTRAPOLATION: f64 = std::f64::consts::LN_10;
 /// below round-off) and floored there before taking logs. Without it a direction that is
 /// never excited (amplitude 0) would drive ln a to −∞.
 const ZERO_AMP_REL: f64 = 1e-15;
+/// Timing key of the cubic springs' linearization calls.
+pub const CUBIC_TIMING: &str = "cubic springs (C API)";
 
 /// Runs the fast sweep.
 pub fn sweep(
@@ -64,7 +70,10 @@ pub fn sweep(
     let eff = opts.effects;
     let it = opts.iteration;
     let na = setup.active.len();
-    let m = 2 * na;
+    let springs = &p.cubic_springs;
+    // Unknowns: 2 per active contact point (j < mc), then 1 per cubic spring.
+    let mc = 2 * na;
+    let m = mc + springs.len();
     let n = p.sys.dofs.n_free();
     let nout = p.outputs.len();
     let mut res = SweepResult {
@@ -100,28 +109,47 @@ pub fn sweep(
     let mut work = vec![C64::new(0.0, 0.0); if condensed { m * m } else { 0 }];
     let mut r = vec![C64::new(0.0, 0.0); m];
     let mut delta = vec![C64::new(0.0, 0.0); m];
-    let mut lin = vec![Linearized::default(); m];
+    let mut lin = vec![Linearized::default(); mc];
+    let mut ks = vec![0.0; springs.len()];
+    let mut ks0 = vec![0.0; springs.len()];
     let mut a = vec![it.initial_amplitude; m];
     // Converged estimates of the two previous frequencies, for the predictor.
     let mut hist: Vec<(f64, Vec<f64>)> = Vec::new();
     let mut a_star = vec![0.0; m];
     let mut kappa0 = vec![[C64::new(0.0, 0.0); 2]; na];
     let active = setup.active.clone();
-    let row = |j: usize| p.contacts[active[j / 2]].rows[1 + j % 2].as_slice();
+    let row = |j: usize| {
+        if j < mc {
+            p.contacts[active[j / 2]].rows[1 + j % 2].as_slice()
+        } else {
+            springs[j - mc].row.as_slice()
+        }
+    };
+    let weight = |j: usize| if j < mc { area[j / 2] } else { 1.0 };
+    let zero_floor = |a: &[f64]| ZERO_AMP_REL * a.iter().fold(0.0f64, |x, &y| x.max(y));
 
     let linearize_all = |a: &[f64],
                          omega: f64,
                          lin: &mut [Linearized],
                          caps: &mut usize|
      -> Result<(), capi::CapiError> {
-        let floor = ZERO_AMP_REL * a.iter().fold(0.0f64, |x, &y| x.max(y));
-        for j in 0..m {
+        let floor = zero_floor(a);
+        for j in 0..mc {
             let mut amp = if a[j] < floor { 0.0 } else { a[j] };
             if !eff.macroslip && amp > slip_limit[j / 2] {
                 amp = slip_limit[j / 2];
                 *caps += 1;
             }
             lin[j] = capi::linearize(&tang[j / 2], amp, omega)?;
+        }
+        Ok(())
+    };
+    // k* of every cubic spring (3.8) for its amplitude.
+    let linearize_springs = |a: &[f64], ks: &mut [f64]| -> Result<(), capi::CapiError> {
+        let floor = zero_floor(a);
+        for (q, sp) in springs.iter().enumerate() {
+            let amp = if a[mc + q] < floor { 0.0 } else { a[mc + q] };
+            ks[q] = capi::linearize_cubic(sp.stiffness, sp.cubic, amp)?;
         }
         Ok(())
     };
@@ -157,13 +185,17 @@ pub fn sweep(
             let t = Instant::now();
             linearize_all(&a, omega, &mut lin, &mut res.macroslip_caps)?;
             res.time("linearization (C API)", t);
-            for j in 0..m {
+            let t = Instant::now();
+            linearize_springs(&a, &mut ks)?;
+            res.time(CUBIC_TIMING, t);
+            for j in 0..mc {
                 kappa0[j / 2][j % 2] = kappa_of(&lin[j], omega);
             }
+            ks0.copy_from_slice(&ks);
             lin_fresh = true;
         }
         let t = Instant::now();
-        setup.fill(omega, &kappa0);
+        setup.fill(omega, &kappa0, &ks0);
         let num = setup.factor(f)?;
         res.factorizations += 1;
         res.time("factorization", t);
@@ -199,6 +231,7 @@ pub fn sweep(
         res.time("receptance solves", t);
 
         let mut acc = Anderson::new(DEPTH);
+        let mut bracket = Bracket::new();
         let mut gmres_ok = true;
         let mut iterations = 0;
         let mut converged = m == 0;
@@ -210,11 +243,19 @@ pub fn sweep(
                 let t = Instant::now();
                 linearize_all(&a, omega, &mut lin, &mut res.macroslip_caps)?;
                 res.time("linearization (C API)", t);
+                let t = Instant::now();
+                linearize_springs(&a, &mut ks)?;
+                res.time(CUBIC_TIMING, t);
             }
             lin_fresh = false;
             let t = Instant::now();
             for j in 0..m {
-                delta[j] = (kappa_of(&lin[j], omega) - kappa0[j / 2][j % 2]) * area[j / 2];
+                let (now, reference) = if j < mc {
+                    (kappa_of(&lin[j], omega), kappa0[j / 2][j % 2])
+                } else {
+                    (C64::new(ks[j - mc], 0.0), C64::new(ks0[j - mc], 0.0))
+                };
+                delta[j] = (now - reference) * weight(j);
             }
             if krylov {
                 let s0 = &setup.s;
@@ -279,17 +320,20 @@ pub fn sweep(
                     .fold(f64::MIN_POSITIVE, |x, &y| x.max(y));
             let xs: Vec<f64> = a.iter().map(|v| v.max(floor).ln()).collect();
             let gs: Vec<f64> = a_star.iter().map(|v| v.max(floor).ln()).collect();
-            // Anderson extrapolates; keep each step within a decade of the bracket
-            // [min(a, a*), max(a, a*)] (MAX_EXTRAPOLATION).
-            a = acc
-                .next(&xs, &gs)
-                .iter()
-                .zip(xs.iter().zip(&gs))
-                .map(|(v, (x, g))| {
-                    v.clamp(x.min(*g) - MAX_EXTRAPOLATION, x.max(*g) + MAX_EXTRAPOLATION)
-                        .exp()
-                })
-                .collect();
+            a = if m == 1 {
+                vec![bracket.next(xs[0], gs[0]).exp()]
+            } else {
+                // Anderson extrapolates; keep each step within a decade of the bracket
+                // [min(a, a*), max(a, a*)] (MAX_EXTRAPOLATION).
+                acc.next(&xs, &gs)
+                    .iter()
+                    .zip(xs.iter().zip(&gs))
+                    .map(|(v, (x, g))| {
+                        v.clamp(x.min(*g) - MAX_EXTRAPOLATION, x.max(*g) + MAX_EXTRAPOLATION)
+                            .exp()
+                    })
+                    .collect()
+            };
         }
 
         drop(num);

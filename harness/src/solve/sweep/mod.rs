@@ -12,6 +12,7 @@
 //! independent real part, the per-point unit blocks, and the scratch matrix S(ω).
 
 pub mod anderson;
+pub mod bracket;
 pub mod fast;
 pub mod harmonic;
 pub mod krylov;
@@ -75,6 +76,8 @@ pub enum SweepError {
         #[source]
         source: crate::mhb::MhbError,
     },
+    #[error("the harmonic-balance mode does not include cubic springs (their linearization is first order); use mode fast or thesis")]
+    CubicInHarmonicBalance,
 }
 
 /// What the sweep is asked to do (from the scene's iteration table and effects).
@@ -87,6 +90,8 @@ pub struct Options {
     /// Fast mode: condense onto the contact unknowns up to this many (2 per closed
     /// point), else FGMRES with the factorization as preconditioner.
     pub condense_max: usize,
+    /// Run the frequencies in descending order (results are still stored ascending).
+    pub descending: bool,
 }
 
 impl Options {
@@ -96,6 +101,7 @@ impl Options {
             effects,
             point_results: effects.point_energy_output || effects.stick_slip_map,
             condense_max: fast::CONDENSE_MAX,
+            descending: false,
         }
     }
 }
@@ -160,6 +166,18 @@ pub struct SweepResult {
 }
 
 impl SweepResult {
+    /// Reverses every per-frequency list (not the pass records, which keep run order).
+    fn reverse_frequencies(&mut self) {
+        self.freqs.reverse();
+        self.outputs.reverse();
+        self.harmonics.reverse();
+        self.power.reverse();
+        self.points.reverse();
+        self.iterations.reverse();
+        self.converged.reverse();
+        self.singular.reverse();
+    }
+
     /// Whether frequency `i` was singular (no response computed there).
     pub fn is_singular(&self, i: usize) -> bool {
         self.singular.get(i).copied().unwrap_or(false)
@@ -247,8 +265,9 @@ impl<'a> Setup<'a> {
         })
     }
 
-    /// Writes S(ω) with tangential κ (per area) for every active point into `self.s`.
-    pub fn fill(&mut self, omega: f64, kappa: &[[C64; 2]]) {
+    /// Writes S(ω) with tangential κ (per area) for every active point and k* for every
+    /// cubic spring (`Problem::cubic_springs`) into `self.s`.
+    pub fn fill(&mut self, omega: f64, kappa: &[[C64; 2]], spring_k: &[f64]) {
         let w2 = omega * omega;
         let m = &self.problem.sys.m.values;
         for ((s, k), mv) in self.s.values.iter_mut().zip(&self.base).zip(m) {
@@ -266,6 +285,14 @@ impl<'a> Setup<'a> {
                 .sys
                 .pairs
                 .add(&mut self.s.values, self.problem.contacts[i].pair, &blk);
+        }
+        for (sp, &k) in self.problem.cubic_springs.iter().zip(spring_k) {
+            // K holds k·d dᵀ already; k* replaces it.
+            let blk = sp.block.map(|v| C64::new((k - sp.stiffness) * v, 0.0));
+            self.problem
+                .sys
+                .pairs
+                .add(&mut self.s.values, sp.pair, &blk);
         }
     }
 
@@ -286,7 +313,8 @@ impl<'a> Setup<'a> {
     }
 }
 
-/// Runs the scene's mode.
+/// Runs the scene's mode over `freqs` (ascending) in the order `opts.descending` asks
+/// for; the result lists the frequencies ascending.
 pub fn run(
     problem: &Problem,
     stat: &StaticState,
@@ -301,11 +329,22 @@ pub fn run(
             source,
         })?;
     let analysis = t.elapsed().as_secs_f64();
-    let mut r = match opts.iteration.mode {
-        crate::scene::Mode::Fast => fast::sweep(&mut setup, freqs, opts, progress)?,
-        crate::scene::Mode::Thesis => thesis::sweep(&mut setup, stat, freqs, opts, progress)?,
-        crate::scene::Mode::HarmonicBalance => harmonic::sweep(&mut setup, freqs, opts, progress)?,
+    let order: Vec<f64> = if opts.descending {
+        freqs.iter().rev().copied().collect()
+    } else {
+        freqs.to_vec()
     };
+    let mut r = match opts.iteration.mode {
+        crate::scene::Mode::Fast => fast::sweep(&mut setup, &order, opts, progress)?,
+        crate::scene::Mode::Thesis => thesis::sweep(&mut setup, stat, &order, opts, progress)?,
+        crate::scene::Mode::HarmonicBalance if !problem.cubic_springs.is_empty() => {
+            return Err(SweepError::CubicInHarmonicBalance)
+        }
+        crate::scene::Mode::HarmonicBalance => harmonic::sweep(&mut setup, &order, opts, progress)?,
+    };
+    if opts.descending {
+        r.reverse_frequencies();
+    }
     *r.timings.entry("symbolic analysis".into()).or_default() += analysis;
     Ok(r)
 }

@@ -7,7 +7,10 @@
 //! factorization and solve, the computed amplitudes reported to the store, LOP 2. The
 //! store decides what runs next: pass 1 all frequencies (the first with the initial
 //! estimate, each later one with the previous increment's amplitude), then re-runs of the
-//! increments out of tolerance, then one final pass over all of them. The static step
+//! increments out of tolerance, then one final pass over all of them. Cubic springs are
+//! points of the same store, registered by the host and linearized through
+//! `jointlin_linearize_cubic` for the store's estimate (amplitude in direction 1; 0 is
+//! reported in direction 2). The static step
 //! (step 1) is solved once before the first pass and reused by the re-runs, as an Abaqus
 //! restart from the end of step 1 would.
 
@@ -33,13 +36,14 @@ pub fn sweep(
     let eff = opts.effects;
     let it = opts.iteration;
     let na = setup.active.len();
+    let springs = &p.cubic_springs;
     let nf = freqs.len();
     let mut res = SweepResult {
         freqs: freqs.to_vec(),
         outputs: vec![Vec::new(); nf],
         power: vec![0.0; nf],
         iterations: vec![0; nf],
-        converged: vec![na == 0; nf],
+        converged: vec![na == 0 && springs.is_empty(); nf],
         singular: vec![false; nf],
         ..Default::default()
     };
@@ -76,15 +80,18 @@ pub fn sweep(
 
     let mut x = vec![C64::new(0.0, 0.0); p.sys.dofs.n_free()];
     let mut kappa = vec![[C64::new(0.0, 0.0); 2]; na];
+    let mut ks: Vec<f64> = springs.iter().map(|sp| sp.stiffness).collect();
+    let mut spring_estimate = vec![0.0; springs.len()];
     let mut ids = vec![0i64; na];
     let mut outs = vec![capi::UinterOut::default(); na];
 
-    // Without varying contact springs there is nothing to iterate: one linear sweep.
-    if na == 0 {
+    // Without varying contact or cubic springs there is nothing to iterate: one linear
+    // sweep.
+    if na == 0 && springs.is_empty() {
         for (fi, &f) in freqs.iter().enumerate() {
             progress("frequency", fi + 1, nf);
             let omega = 2.0 * std::f64::consts::PI * f;
-            res.singular[fi] = !solve_one(setup, omega, &kappa, &mut x, &mut res, f)?;
+            res.singular[fi] = !solve_one(setup, omega, &kappa, &ks, &mut x, &mut res, f)?;
             res.converged[fi] = !res.singular[fi];
             res.outputs[fi] = p.outputs.iter().map(|o| o.value(&x)).collect();
         }
@@ -106,6 +113,13 @@ pub fn sweep(
         it.max_passes,
         SWEEP_STEP,
     )?;
+    let spring_ids = springs
+        .iter()
+        .map(|sp| {
+            let name = format!("cubic spring {}", sp.spring + 1);
+            store.register_point(&name, sp.node as i32, sp.position)
+        })
+        .collect::<Result<Vec<_>, _>>()?;
     res.time("store (C API)", t);
     loop {
         let t = Instant::now();
@@ -150,7 +164,14 @@ pub fn sweep(
                 outs[j] = o;
             }
             res.time("linearization (C API)", t);
-            res.singular[fi] = !solve_one(setup, omega, &kappa, &mut x, &mut res, f)?;
+            let t = Instant::now();
+            for (q, (sp, &id)) in springs.iter().zip(&spring_ids).enumerate() {
+                let [a, _] = store.estimate(id, kinc)?;
+                spring_estimate[q] = a;
+                ks[q] = capi::linearize_cubic(sp.stiffness, sp.cubic, a)?;
+            }
+            res.time(super::fast::CUBIC_TIMING, t);
+            res.singular[fi] = !solve_one(setup, omega, &kappa, &ks, &mut x, &mut res, f)?;
             if res.singular[fi] && opts.point_results {
                 res.points[fi].fill(PointFreq::default());
             }
@@ -207,6 +228,15 @@ pub fn sweep(
                     };
                 }
             }
+            for (q, (sp, &id)) in springs.iter().zip(&spring_ids).enumerate() {
+                // Singular: the estimate back, as for the contact points.
+                let amp = if res.singular[fi] {
+                    spring_estimate[q]
+                } else {
+                    sp.row.iter().map(|&(i, w)| x[i] * w).sum::<C64>().norm()
+                };
+                store.report(id, kinc, [amp, 0.0])?;
+            }
             res.time("reporting and point outputs", t);
             res.power[fi] = power;
             res.outputs[fi] = p.outputs.iter().map(|o| o.value(&x)).collect();
@@ -237,18 +267,19 @@ pub fn sweep(
     Ok(res)
 }
 
-/// Fills S(ω, κ), factors it and solves for the excitation into `x`; false (and x = 0)
-/// when S is singular ([`super::SINGULAR_RCOND`]).
+/// Fills S(ω, κ, k* of the cubic springs), factors it and solves for the excitation into
+/// `x`; false (and x = 0) when S is singular ([`super::SINGULAR_RCOND`]).
 fn solve_one(
     setup: &mut Setup,
     omega: f64,
     kappa: &[[C64; 2]],
+    spring_k: &[f64],
     x: &mut [C64],
     res: &mut SweepResult,
     f: f64,
 ) -> Result<bool, SweepError> {
     let t = Instant::now();
-    setup.fill(omega, kappa);
+    setup.fill(omega, kappa, spring_k);
     let num = setup.factor(f)?;
     res.factorizations += 1;
     res.time("factorization", t);
