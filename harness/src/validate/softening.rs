@@ -71,6 +71,12 @@ impl SofteningFriction {
             .collect()
     }
 
+    /// g(A, ω)/F: the first-order residual relative to the force (0 on the response).
+    pub fn residual(&self, a: f64, omega: f64) -> Result<f64, capi::CapiError> {
+        let (k, wd) = self.stiffness_damping(&[a])?[0];
+        Ok(a * (k - self.m * omega * omega).hypot(self.c * omega + wd) / self.force - 1.0)
+    }
+
     /// Number of first-order amplitudes A ≤ [`Self::amplitude_bound`] at each ω: sign
     /// changes of g(A, ω) over 4000 log-spaced amplitudes from 1e-3 δ*.
     pub fn first_order_counts(&self, omegas: &[f64]) -> Result<Vec<usize>, capi::CapiError> {
@@ -86,7 +92,9 @@ impl SofteningFriction {
                 let g: Vec<f64> = amps
                     .iter()
                     .zip(&kd)
-                    .map(|(a, (k, wd))| a * (k - self.m * w * w).hypot(self.c * w + wd) - self.force)
+                    .map(|(a, (k, wd))| {
+                        a * (k - self.m * w * w).hypot(self.c * w + wd) - self.force
+                    })
                     .collect();
                 g.windows(2)
                     .filter(|p| p[0].signum() != p[1].signum())
@@ -213,7 +221,9 @@ pub fn sweep(rep: &mut Report, log: &dyn Fn(&str)) -> Result<(), String> {
             .collect();
         let span = unstable
             .iter()
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &w| (a.min(w), b.max(w)));
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &w| {
+                (a.min(w), b.max(w))
+            });
         let folds: Vec<String> = br.folds.iter().map(|w| format!("{w:.4}")).collect();
         rep.notes.push((
             case.into(),
@@ -233,22 +243,24 @@ pub fn sweep(rep: &mut Report, log: &dyn Fn(&str)) -> Result<(), String> {
         // frequencies between the folds, where both are stable.
         for &w in &[9.6, 9.75] {
             for (name, upper) in [("resonant", true), ("low", false)] {
-                let on: Vec<&crate::mhb::continuation::Point> = br
-                    .points
-                    .iter()
-                    .filter(|q| q.stable)
-                    .collect();
+                let on: Vec<&crate::mhb::continuation::Point> =
+                    br.points.iter().filter(|q| q.stable).collect();
                 let pick = on
                     .windows(2)
                     .filter(|q| (q[0].sol.omega - w) * (q[1].sol.omega - w) <= 0.0)
                     .map(|q| q[0])
                     .max_by(|a, b| {
                         let (x, y) = (hb.amplitude(&a.sol.u, 0), hb.amplitude(&b.sol.u, 0));
-                        if upper { x.total_cmp(&y) } else { y.total_cmp(&x) }
+                        if upper {
+                            x.total_cmp(&y)
+                        } else {
+                            y.total_cmp(&x)
+                        }
                     });
                 let Some(q) = pick else { continue };
                 let a = hb.amplitude(&q.sol.u, 0);
-                let td = time_domain(&sys, &hb, &q.sol.u, q.sol.omega).map_err(|e| e.to_string())?;
+                let td =
+                    time_domain(&sys, &hb, &q.sol.u, q.sol.omega).map_err(|e| e.to_string())?;
                 rep.rows.push(Row::new(
                     case,
                     format!("ω = {:.3} rad/s, {name} branch (H = 3)", q.sol.omega),
@@ -263,7 +275,10 @@ pub fn sweep(rep: &mut Report, log: &dyn Fn(&str)) -> Result<(), String> {
     }
     rep.notes.push((
         case.into(),
-        format!("scan, continuation and RK4 {:.2} s", t0.elapsed().as_secs_f64()),
+        format!(
+            "scan, continuation and RK4 {:.2} s",
+            t0.elapsed().as_secs_f64()
+        ),
     ));
     Ok(())
 }
