@@ -209,6 +209,14 @@ module jointlin
        integer(c_int32_t) :: jointlin_point_step
      end function jointlin_point_step
 
+     function jointlin_screw_preload(torque, pitch, d2, mu_thread, mu_head, d_km, &
+          preload) bind(C, name='jointlin_screw_preload')
+       import :: c_int32_t, c_double
+       real(c_double), value :: torque, pitch, d2, mu_thread, mu_head, d_km
+       real(c_double), intent(out) :: preload
+       integer(c_int32_t) :: jointlin_screw_preload
+     end function jointlin_screw_preload
+
      function jointlin_store_config_default(out) &
           bind(C, name='jointlin_store_config_default')
        import :: c_int32_t, jointlin_store_config

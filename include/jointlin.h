@@ -660,6 +660,26 @@ int32_t jointlin_point_step(const struct jointlin_contact *contact,
                             struct jointlin_step *out);
 
 /**
+ * Writes to `*preload` the axial force F (force) of a screw tightened to `torque` T
+ * (force x length): F = T / (0.16 P + 0.58 d2 mu_thread + d_km/2 mu_head) (VDI 2230,
+ * R13). Lengths in one unit: thread pitch `pitch` P > 0, flank diameter `d2` > 0,
+ * effective head bearing diameter `d_km` >= 0; friction coefficients >= 0; T >= 0.
+ *
+ * Errors: JOINTLIN_ERR_NULL (`preload` NULL), JOINTLIN_ERR_NON_FINITE,
+ * JOINTLIN_ERR_OUT_OF_RANGE. `*preload` is written only on JOINTLIN_OK.
+ *
+ * # Safety
+ * `preload` must be NULL or point to a writable double.
+ */
+int32_t jointlin_screw_preload(double torque,
+                               double pitch,
+                               double d2,
+                               double mu_thread,
+                               double mu_head,
+                               double d_km,
+                               double *preload);
+
+/**
  * Writes the default settings to `*out`: initial_amplitude 0 (must be set), rtol 1e-3,
  * atol 0, secant, 20 passes, every step, original numbering, no restart file.
  *

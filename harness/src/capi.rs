@@ -18,6 +18,7 @@ use jointlin::ffi::linearize::{
     JOINTLIN_METHOD_SIMPSON, JOINTLIN_RULE_MASING, JOINTLIN_RULE_THESIS,
 };
 use jointlin::ffi::point::{jointlin_point_step, jointlin_step, JOINTLIN_POINT_STATE_LEN};
+use jointlin::ffi::screw::jointlin_screw_preload;
 use jointlin::ffi::store::{
     jointlin_pass_stats, jointlin_store, jointlin_store_config, jointlin_store_config_default,
     jointlin_store_estimate, jointlin_store_free, jointlin_store_new, jointlin_store_next_action,
@@ -171,6 +172,24 @@ pub struct Linearized {
     pub slip_limit: f64,
     pub amplitude_ratio: f64,
     pub regime: i32,
+}
+
+/// Preload (force) of a screw tightened to `torque` (force·length) by the library's
+/// screw formula (VDI 2230); lengths in one unit.
+pub fn screw_preload(
+    torque: f64,
+    pitch: f64,
+    d2: f64,
+    mu_thread: f64,
+    mu_head: f64,
+    d_km: f64,
+) -> Result<f64, CapiError> {
+    let mut f = 0.0;
+    // SAFETY: f is a valid local.
+    let code =
+        unsafe { jointlin_screw_preload(torque, pitch, d2, mu_thread, mu_head, d_km, &mut f) };
+    check("jointlin_screw_preload", code)?;
+    Ok(f)
 }
 
 /// k*, d*, η, energy per cycle, δ*, A/δ*, regime of one point for amplitude A (length)

@@ -10,7 +10,7 @@ use indicatif::{ProgressBar, ProgressStyle};
 use jointlin_harness::bench;
 use jointlin_harness::report::{self, ReportOptions};
 use jointlin_harness::run::{run, Extras};
-use jointlin_harness::scene::{Mode, Scene};
+use jointlin_harness::scene::{validate, Mode, Scene};
 
 #[derive(Parser)]
 #[command(
@@ -27,6 +27,7 @@ struct Cli {
 enum ModeArg {
     Fast,
     Thesis,
+    HarmonicBalance,
 }
 
 #[derive(Subcommand)]
@@ -85,9 +86,16 @@ enum Command {
         /// Output directory (created if missing).
         #[arg(long)]
         out: PathBuf,
-        /// Override the scene's iteration mode.
+        /// Override the scene's iteration mode (harmonic-balance needs --harmonics unless
+        /// the scene sets harmonics).
         #[arg(long, value_enum)]
         mode: Option<ModeArg>,
+        /// Override the scene's [iteration] harmonics (harmonic balance).
+        #[arg(long)]
+        harmonics: Option<usize>,
+        /// Override the scene's [iteration] samples per period (harmonic balance).
+        #[arg(long)]
+        samples: Option<usize>,
         /// Skip the SVG plots (and the reference sweep without contact damping they need).
         #[arg(long)]
         no_plots: bool,
@@ -126,6 +134,27 @@ enum Command {
         /// Frequency (1/time); default the scene's only one, else its response peak.
         #[arg(long)]
         freq: Option<f64>,
+    },
+    /// Joint power loss against the amplitude of an output at resonance, one curve per
+    /// screw torque (the scene's [loss_study] table; thesis Fig. 5.41–5.45): per torque
+    /// the static step, the resonance (the scene's sweep, then a golden-section search),
+    /// then the excitation scaled until the output reaches each amplitude. Writes
+    /// loss.csv, loss.md (with the comparison against the reference points), loss.svg,
+    /// and at the scene's own torque and the largest amplitude the contact maps
+    /// contact_ratio.svg, contact_energy.svg and contact_<interface>.vtu (ParaView).
+    #[command(verbatim_doc_comment)]
+    Loss {
+        scene: PathBuf,
+        /// Output directory (created if missing).
+        #[arg(long)]
+        out: PathBuf,
+        /// Instead: find the factor on every interface's k_T0 that matches the first
+        /// reference point, print it, and write nothing.
+        #[arg(long)]
+        calibrate: bool,
+        /// No progress bar.
+        #[arg(long)]
+        quiet: bool,
     },
     /// Validate a scene and print a summary (nothing is run or written).
     Check { scene: PathBuf },
@@ -217,6 +246,8 @@ fn main() -> ExitCode {
             scene,
             out,
             mode,
+            harmonics,
+            samples,
             no_plots,
             quiet,
             time_domain,
@@ -232,7 +263,19 @@ fn main() -> ExitCode {
                 s.spec.iteration.mode = match m {
                     ModeArg::Fast => Mode::Fast,
                     ModeArg::Thesis => Mode::Thesis,
+                    ModeArg::HarmonicBalance => Mode::HarmonicBalance,
                 };
+            }
+            let it = &mut s.spec.iteration;
+            it.harmonics = harmonics.or(it.harmonics);
+            it.samples = samples.or(it.samples);
+            // The overrides are checked by the scene's own rules.
+            if let Some((key, msg)) = validate::validate(&s.spec).into_iter().next() {
+                eprintln!(
+                    "error: {}: with the command-line overrides, `{key}`: {msg}",
+                    s.file
+                );
+                return ExitCode::from(2);
             }
             if time_domain {
                 return time_domain_run(&s, &out, quiet);
@@ -322,6 +365,12 @@ fn main() -> ExitCode {
             }
             ExitCode::SUCCESS
         }
+        Command::Loss {
+            scene,
+            out,
+            calibrate,
+            quiet,
+        } => loss(&scene, &out, calibrate, quiet),
         Command::Check { scene } => match Scene::load(&scene) {
             Ok(s) => {
                 println!(
@@ -450,6 +499,59 @@ fn main() -> ExitCode {
             report_written(jointlin_harness::tradeoff::write(&out, &t))
         }
     }
+}
+
+/// `jointlin loss`.
+fn loss(scene: &std::path::Path, out: &std::path::Path, calibrate: bool, quiet: bool) -> ExitCode {
+    use jointlin_harness::loss;
+    let s = match Scene::load(scene) {
+        Ok(s) => s,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return ExitCode::from(2);
+        }
+    };
+    let Some(st) = s.spec.loss_study.clone() else {
+        eprintln!("error: {}: no [loss_study] table", s.file);
+        return ExitCode::from(2);
+    };
+    if calibrate {
+        return match loss::calibrate_k_t0(&s, &|l| eprintln!("{l}")) {
+            Ok((factor, p)) => {
+                for i in &s.spec.interfaces {
+                    println!(
+                        "{}: k_t0_per_area = {:.6e} (× {factor:.5}); P = {p:.4} {}",
+                        i.name,
+                        i.k_t0_per_area * factor,
+                        st.power_unit
+                    );
+                }
+                ExitCode::SUCCESS
+            }
+            Err(e) => {
+                eprintln!("error: {e}");
+                ExitCode::from(1)
+            }
+        };
+    }
+    let pb = progress_bar(quiet);
+    pb.set_length(st.torques.len() as u64);
+    let t = std::time::Instant::now();
+    let r = loss::run_study(&s, &|l| {
+        pb.set_message(l.to_string());
+        pb.inc(1);
+    });
+    pb.finish_and_clear();
+    let r = match r {
+        Ok(r) => r,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return ExitCode::from(1);
+        }
+    };
+    print!("{}", loss::report::markdown(&s, &st, &r));
+    eprintln!("{:.1} s", t.elapsed().as_secs_f64());
+    report_written(loss::report::write(out, &s, &r))
 }
 
 /// `jointlin run --time-domain`.

@@ -218,7 +218,7 @@ fn open_joint_at_undamped_eigenfrequencies_is_named_singular() {
     let stat = static_step::solve(&p, true).unwrap();
     let mut setup = Setup::new(&p, &stat, &s.spec.effects).unwrap();
     for rel in [0.0, 1e-10, 1e-6] {
-        setup.fill(2.0 * PI * modes[0] * (1.0 - rel), &[]);
+        setup.fill(2.0 * PI * modes[0] * (1.0 - rel), &[], &[]);
         let rcond = setup.symbolic.factor(&setup.s).map(|n| n.rcond());
         eprintln!("open joint, {rel:e} below f1: rcond {rcond:?}");
     }

@@ -5,6 +5,7 @@
 //! * [`linearize`]: `jointlin_linearize` (one point, one amplitude, one frequency);
 //! * [`cubic`]: `jointlin_linearize_cubic` (the Duffing cubic spring, one amplitude);
 //! * [`point`]: `jointlin_point_step`, the time-domain hysteresis point for non-Abaqus hosts;
+//! * [`screw`]: `jointlin_screw_preload`, screw preload from torque (VDI 2230);
 //! * [`store`]: the iteration store object `jointlin_store` (thesis §4.3.2);
 //! * [`uexternaldb`] and [`uinter`]: Abaqus-convention entry points (model.md §7);
 //! * [`props`]: the UINTER PROPS and STATEV layouts.
@@ -23,6 +24,7 @@ pub mod error;
 pub mod linearize;
 pub mod point;
 pub mod props;
+pub mod screw;
 pub mod store;
 pub mod uexternaldb;
 pub mod uinter;

@@ -8,6 +8,8 @@
 //! * [`mindlin`]: tangential microslip backbone (2.44–2.49) ending in Coulomb sliding (2.39).
 //! * [`jenkins`]: linear spring + Coulomb slider, the classical cross-check.
 //! * [`cubic`]: the Duffing oscillator's cubic spring k·x + α·x³ (4.1), not a contact law.
+//! * [`screw`]: preload of a screw from its tightening torque (VDI 2230), for hosts that
+//!   replace a screw by point forces (thesis §5.4.1).
 //! * [`Backbone`]: the virgin curve of either tangential law behind one interface, used by
 //!   the hysteresis and the linearization.
 
@@ -15,6 +17,7 @@ pub mod cubic;
 pub mod hertz;
 pub mod jenkins;
 pub mod mindlin;
+pub mod screw;
 
 mod series;
 

@@ -53,6 +53,19 @@ pub fn find_pairs(
     upper: usize,
     rel_tol: f64,
 ) -> Result<Vec<ContactPair>, PairError> {
+    find_pairs_where(model, lower, upper, rel_tol, &|_| true)
+}
+
+/// As [`find_pairs`], on the element faces of the lower body's z-max face whose centre
+/// `c` has `keep(c)`: areas and points come from those faces only (a face with a
+/// relieved region).
+pub fn find_pairs_where(
+    model: &Model,
+    lower: usize,
+    upper: usize,
+    rel_tol: f64,
+    keep: &dyn Fn([f64; 3]) -> bool,
+) -> Result<Vec<ContactPair>, PairError> {
     let lo = *model.body(lower)?;
     let hi = *model.body(upper)?;
     let h = |b: &crate::fe::mesh::Body| {
@@ -78,7 +91,16 @@ pub fn find_pairs(
     for n in hi.face_nodes(Face::ZMin) {
         grid.entry(cell(model.nodes[n])).or_default().push(n);
     }
-    let areas = nodal_areas(model, &lo.face_quads(Face::ZMax, &model.elements));
+    let quads: Vec<[usize; 4]> = lo
+        .face_quads(Face::ZMax, &model.elements)
+        .into_iter()
+        .filter(|q| {
+            let c =
+                std::array::from_fn(|a| q.iter().map(|&n| model.nodes[n][a]).sum::<f64>() / 4.0);
+            keep(c)
+        })
+        .collect();
+    let areas = nodal_areas(model, &quads);
     let frame = Matrix3::new(0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 1.0, 0.0, 0.0);
     let mut out = Vec::with_capacity(areas.len());
     for (node, area) in areas {

@@ -248,6 +248,9 @@ pub struct Model {
     pub fixed: Vec<bool>,
     /// `loads[3n + c]`: nodal force (static amplitude or harmonic amplitude).
     pub loads: Vec<f64>,
+    /// Tied node pairs: coincident nodes of touching bodies that move as one (the
+    /// assembly gives them one set of DOFs, see `fe::ties`).
+    pub ties: Vec<[usize; 2]>,
 }
 
 impl Model {

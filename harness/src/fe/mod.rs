@@ -1,5 +1,5 @@
 //! Finite-element foundation: meshes, the hex8 element, sparse assembly, loads,
-//! node-pair blocks and contact pairs.
+//! node-pair blocks, contact pairs and ties.
 //!
 //! DOF numbering: node `n`, component `c` (0 = x, 1 = y, 2 = z) is full DOF `3n + c`.
 
@@ -10,3 +10,4 @@ pub mod hex8;
 pub mod mesh;
 pub mod pair_blocks;
 pub mod surface;
+pub mod ties;

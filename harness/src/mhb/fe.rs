@@ -82,6 +82,8 @@ pub struct FeSolution {
     pub iterations: usize,
     /// ‖R‖ / ‖r₀‖ at the end.
     pub residual: f64,
+    /// ‖R‖ / ‖r₀‖ ≤ rtol reached within the iteration limit (else: the last iterate).
+    pub converged: bool,
 }
 
 /// Contact forces at one r.
@@ -295,7 +297,9 @@ impl<'s, 'a> FeBalance<'s, 'a> {
             .collect()
     }
 
-    /// Newton from `start` at the condensed ω, with step halving when ‖R‖ grows.
+    /// Newton from `start` at the condensed ω, with step halving when ‖R‖ grows. Not
+    /// converging within `opt.max_iter` is not an error: the last iterate comes back
+    /// with `converged = false`; errors are the C API's and the FGMRES preconditioner's.
     pub fn solve(&mut self, start: &[f64], opt: NewtonOptions) -> Result<FeSolution, MhbError> {
         let (t0, cpu) = (Instant::now(), cpu_seconds());
         let out = self.newton(start, opt);
@@ -305,7 +309,6 @@ impl<'s, 'a> FeBalance<'s, 'a> {
     }
 
     fn newton(&mut self, start: &[f64], opt: NewtonOptions) -> Result<FeSolution, MhbError> {
-        let omega = self.omega;
         let (m, nc, size) = (self.m(), self.tr.ncoef(), self.size());
         let norm = |v: &[f64]| v.iter().map(|x| x * x).sum::<f64>().sqrt();
         let scale = norm(&self.linear_start()).max(f64::MIN_POSITIVE);
@@ -315,14 +318,7 @@ impl<'s, 'a> FeBalance<'s, 'a> {
         let mut res = norm(&big_r) / scale;
         let mut gmres = Gmres::<f64>::new(size, GMRES_RESTART);
         let mut it = 0;
-        while res > opt.rtol {
-            if it == opt.max_iter {
-                return Err(MhbError::Newton {
-                    omega,
-                    residual: res,
-                    iterations: it,
-                });
-            }
+        while res > opt.rtol && it < opt.max_iter {
             it += 1;
             if f.gamma.is_empty() {
                 f = self.forces(&r, true)?;
@@ -387,6 +383,7 @@ impl<'s, 'a> FeBalance<'s, 'a> {
             describing: f.describing,
             iterations: it,
             residual: res,
+            converged: res <= opt.rtol,
         })
     }
 

@@ -5,13 +5,14 @@ use std::collections::BTreeMap;
 
 use nalgebra::{Complex, Matrix3, Vector3};
 
-use super::{BuildError, ContactPoint, CubicSpring, Interface, Output, Problem};
+use super::{BuildError, ContactPoint, CubicSpring, Interface, Output, Problem, Screw};
 use crate::fe::assembly::{assemble, System};
-use crate::fe::contact_pairs::find_pairs;
+use crate::fe::contact_pairs::find_pairs_where;
 use crate::fe::csc::Csc;
 use crate::fe::hex8::{self, Formulation};
 use crate::fe::mesh::{BoxSpec, Face, Material, Model};
 use crate::fe::surface::{add_pressure, nodal_areas};
+use crate::fe::ties::find_ties;
 use crate::scene::validate::GROUND;
 use crate::scene::*;
 
@@ -123,6 +124,20 @@ pub fn build(scene: &Scene) -> Result<Problem, BuildError> {
         }
     }
 
+    // Ties: coincident boundary nodes share DOFs (before assembly).
+    for t in &s.ties {
+        let [a, b] = &t.between;
+        let (BodyRef::Box(ia), BodyRef::Box(ib)) = (body(a), body(b)) else {
+            unreachable!("validated: ties join boxes")
+        };
+        let pairs = find_ties(&model, ia, ib, PAIR_TOL).map_err(|source| BuildError::Tie {
+            a: a.clone(),
+            b: b.clone(),
+            source,
+        })?;
+        model.ties.extend(pairs);
+    }
+
     // Interfaces and their contact pairs (before assembly: the pattern needs them).
     let mut interfaces = Vec::new();
     let mut raw_points = Vec::new(); // (nodes, frame, area, interface)
@@ -138,6 +153,7 @@ pub fn build(scene: &Scene) -> Result<Problem, BuildError> {
             normal_stiffness_per_area: f.normal_stiffness_per_area,
             hertz_radius: f.hertz_radius,
             hertz_e_star: f.hertz_e_star,
+            initial_gap: f.initial_gap,
         });
         if lo == GROUND {
             let BodyRef::Mass { ground, node, .. } = body(hi) else {
@@ -149,9 +165,12 @@ pub fn build(scene: &Scene) -> Result<Problem, BuildError> {
         let (BodyRef::Box(a), BodyRef::Box(b)) = (body(lo), body(hi)) else {
             unreachable!("validated: box interfaces join boxes")
         };
-        let found = find_pairs(&model, a, b, PAIR_TOL).map_err(|source| BuildError::Pairs {
-            name: f.name.clone(),
-            source,
+        let keep = |c: [f64; 3]| !f.exclude.iter().any(|r| r.contains(c));
+        let found = find_pairs_where(&model, a, b, PAIR_TOL, &keep).map_err(|source| {
+            BuildError::Pairs {
+                name: f.name.clone(),
+                source,
+            }
         })?;
         for p in found {
             let all_fixed = p
@@ -273,6 +292,36 @@ pub fn build(scene: &Scene) -> Result<Problem, BuildError> {
             (PreloadKind::Pressure, BodyRef::Mass { .. }) => unreachable!("validated"),
         }
     }
+    let mut screws = Vec::new();
+    for sc in &s.screws {
+        let preload = crate::capi::screw_preload(
+            sc.torque,
+            sc.pitch,
+            sc.d2,
+            sc.mu_thread,
+            sc.mu_head,
+            sc.d_km,
+        )
+        .map_err(|source| BuildError::Screw {
+            name: sc.name.clone(),
+            source,
+        })?;
+        let applied = preload * sc.share;
+        let d = unit(sc.direction);
+        let head = nearest(&model, body(&sc.head.body), Some(sc.head.at));
+        let nut = nearest(&model, body(&sc.nut.body), Some(sc.nut.at));
+        // The head is pulled towards the nut and the nut side towards the head.
+        for c in 0..3 {
+            pre[3 * head + c] += applied * d[c];
+            pre[3 * nut + c] -= applied * d[c];
+        }
+        screws.push(Screw {
+            name: sc.name.clone(),
+            preload,
+            applied,
+            nodes: [head, nut],
+        });
+    }
     let preload = sys.dofs.restrict(&pre);
 
     // Excitation.
@@ -326,6 +375,7 @@ pub fn build(scene: &Scene) -> Result<Problem, BuildError> {
         preload,
         excitation,
         outputs,
+        screws,
     })
 }
 

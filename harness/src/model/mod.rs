@@ -32,6 +32,19 @@ pub enum BuildError {
     },
     #[error(transparent)]
     Assembly(#[from] AssemblyError),
+    #[error("tie {a}–{b}: {source}")]
+    Tie {
+        a: String,
+        b: String,
+        #[source]
+        source: crate::fe::ties::TieError,
+    },
+    #[error("screw `{name}`: {source}")]
+    Screw {
+        name: String,
+        #[source]
+        source: crate::capi::CapiError,
+    },
     #[error("{0}")]
     Other(String),
 }
@@ -53,6 +66,8 @@ pub struct Interface {
     pub hertz_radius: Option<f64>,
     /// Hertz effective modulus E* (force/length²).
     pub hertz_e_star: Option<f64>,
+    /// Initial normal gap g₀ (length): overclosure h = −δ_n − g₀.
+    pub initial_gap: f64,
 }
 
 /// One contact point: a node pair with a local frame and a tributary area.
@@ -123,6 +138,18 @@ impl Output {
     }
 }
 
+/// A screw's preload as built: the force from its torque and where it acts.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Screw {
+    pub name: String,
+    /// Axial preload of the whole screw from the torque (force).
+    pub preload: f64,
+    /// Force applied in this model: preload × share (force).
+    pub applied: f64,
+    /// `[head, nut]` node ids.
+    pub nodes: [usize; 2],
+}
+
 /// Everything the static and steady-state steps need.
 #[derive(Debug, Clone)]
 pub struct Problem {
@@ -140,6 +167,7 @@ pub struct Problem {
     /// Harmonic excitation amplitude on the free DOFs (force, complex for phase).
     pub excitation: Vec<Complex<f64>>,
     pub outputs: Vec<Output>,
+    pub screws: Vec<Screw>,
 }
 
 #[cfg(test)]

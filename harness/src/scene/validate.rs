@@ -247,6 +247,26 @@ pub fn validate(s: &SceneFile) -> Vec<Problem> {
                 }
             }
         }
+        if c.finite(p.key("initial_gap"), f.initial_gap) && f.initial_gap < 0.0 {
+            c.fail(
+                p.key("initial_gap"),
+                format!("must be >= 0, got {}", f.initial_gap),
+            );
+        }
+        if lumped && f.initial_gap != 0.0 {
+            c.fail(p.key("initial_gap"), "only for box interfaces");
+        }
+        for (k, r) in f.exclude.iter().enumerate() {
+            let rp = p.key("exclude").index(k);
+            c.vec3(rp.key("min"), &r.min);
+            c.vec3(rp.key("max"), &r.max);
+            if (0..3).any(|a| r.max[a] < r.min[a]) {
+                c.fail(rp.key("max"), "must be >= min in every component");
+            }
+        }
+        if lumped && !f.exclude.is_empty() {
+            c.fail(p.key("exclude"), "only for box interfaces");
+        }
         if lumped {
             match f.area {
                 Some(a) => c.positive(p.key("area"), a),
@@ -261,6 +281,44 @@ pub fn validate(s: &SceneFile) -> Vec<Problem> {
                 "for box interfaces (tributary areas are used)",
             );
         }
+    }
+
+    for (i, t) in s.ties.iter().enumerate() {
+        let p = root.key("ties").index(i);
+        let [a, b] = &t.between;
+        let ka = check_body(&mut c, p.key("between").index(0), a);
+        let kb = check_body(&mut c, p.key("between").index(1), b);
+        if ka == Some(BodyKind::Mass) || kb == Some(BodyKind::Mass) {
+            c.fail(p.key("between"), "a tie joins two boxes");
+        }
+        if a == b {
+            c.fail(p.key("between"), "a tie needs two different bodies");
+        }
+    }
+
+    let mut screw_names = BTreeSet::new();
+    for (i, sc) in s.screws.iter().enumerate() {
+        let p = root.key("screws").index(i);
+        if !screw_names.insert(sc.name.as_str()) {
+            c.fail(p.key("name"), format!("duplicate screw `{}`", sc.name));
+        }
+        c.non_negative(p.key("torque"), sc.torque);
+        c.positive(p.key("pitch"), sc.pitch);
+        c.positive(p.key("d2"), sc.d2);
+        c.non_negative(p.key("mu_thread"), sc.mu_thread);
+        c.non_negative(p.key("mu_head"), sc.mu_head);
+        c.non_negative(p.key("d_km"), sc.d_km);
+        if c.finite(p.key("share"), sc.share) && !(sc.share > 0.0 && sc.share <= 1.0) {
+            c.fail(
+                p.key("share"),
+                format!("must be in (0, 1], got {}", sc.share),
+            );
+        }
+        for (k, bp) in [("head", &sc.head), ("nut", &sc.nut)] {
+            check_body(&mut c, p.key(k).key("body"), &bp.body);
+            c.vec3(p.key(k).key("at"), &bp.at);
+        }
+        c.direction(p.key("direction"), &sc.direction);
     }
 
     for (i, l) in s.preload.iter().enumerate() {
@@ -438,6 +496,41 @@ pub fn validate(s: &SceneFile) -> Vec<Problem> {
             _ => {}
         }
         c.direction(p.key("direction"), &o.direction);
+    }
+
+    if let Some(st) = &s.loss_study {
+        let p = root.key("loss_study");
+        if !s.outputs.iter().any(|o| o.name == st.output) {
+            c.fail(p.key("output"), format!("no output named `{}`", st.output));
+        }
+        if !s.screws.iter().any(|x| x.name == st.screw) {
+            c.fail(p.key("screw"), format!("no screw named `{}`", st.screw));
+        }
+        if st.amplitudes.is_empty() {
+            c.fail(p.key("amplitudes"), "at least one amplitude is needed");
+        }
+        for (i, a) in st.amplitudes.iter().enumerate() {
+            c.positive(p.key("amplitudes").index(i), *a);
+        }
+        if st.torques.is_empty() {
+            c.fail(p.key("torques"), "at least one torque is needed");
+        }
+        for (i, t) in st.torques.iter().enumerate() {
+            c.non_negative(p.key("torques").index(i), *t);
+        }
+        if c.finite(p.key("model_share"), st.model_share)
+            && !(st.model_share > 0.0 && st.model_share <= 1.0)
+        {
+            c.fail(p.key("model_share"), "must be in (0, 1]");
+        }
+        c.positive(p.key("power_factor"), st.power_factor);
+        c.positive(p.key("amplitude_factor"), st.amplitude_factor);
+        for (i, r) in st.reference.iter().enumerate() {
+            let rp = p.key("reference").index(i);
+            c.non_negative(rp.key("torque"), r.torque);
+            c.positive(rp.key("amplitude"), r.amplitude);
+            c.positive(rp.key("power"), r.power);
+        }
     }
     c.problems
 }

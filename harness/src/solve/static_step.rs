@@ -39,6 +39,13 @@ const MAX_NONMONOTONE: usize = 10;
 /// takes the points' tangent at this small penetration.
 const PROBE_REL: f64 = 1e-7;
 
+/// Newton matrix stand-in for an open point: this fraction of its probe (just closed)
+/// tangent. Open points carry no force and no stiffness, so a part held only by contact
+/// (a blade in a slot with play) would make the Newton matrix singular until it
+/// touches; the stand-in keeps it solvable and changes only the steps, never the
+/// residual, so the converged state is the exact one.
+const OPEN_STAND_IN: f64 = 1e-3;
+
 /// Errors of the static step.
 #[derive(Debug, Error)]
 pub enum StaticError {
@@ -76,6 +83,14 @@ fn local(c: &ContactPoint, u: &[f64]) -> [f64; 3] {
 
 fn s_flip(v: [f64; 3]) -> [f64; 3] {
     [-v[0], v[1], v[2]]
+}
+
+/// RDISP of a point for local relative displacement δ: (h, δ_t₁, δ_t₂) with the
+/// overclosure h = −δ_n − g₀ (g₀ the interface's initial gap).
+pub fn overclosure(p: &Problem, c: &ContactPoint, delta: [f64; 3]) -> [f64; 3] {
+    let mut r = s_flip(delta);
+    r[0] -= p.interfaces[c.interface].initial_gap;
+    r
 }
 
 fn norm(v: &[f64]) -> f64 {
@@ -119,7 +134,7 @@ fn evaluate(
         let pt = uinter_point(p, c, pr);
         let rdisp = match probe {
             Some(h) => [h, 0.0, 0.0],
-            None => s_flip(local(c, u)),
+            None => overclosure(p, c, local(c, u)),
         };
         let mut sv = [0.0; NSTATV];
         let out = capi::uinter_general(&pt, &mut sv, rdisp, rdisp, 1, 1)?;
@@ -187,7 +202,7 @@ pub fn solve(p: &Problem, nonlinear: bool) -> Result<StaticState, StaticError> {
         let mut statev = Vec::new();
         for c in &p.contacts {
             let i = &p.interfaces[c.interface];
-            let h = -c.relative(0, &u);
+            let h = -c.relative(0, &u) - i.initial_gap;
             let pr = (normal_stiffness(i) * h).max(0.0);
             pressure.push(pr);
             closed.push(pr > 0.0);
@@ -216,7 +231,7 @@ pub fn solve(p: &Problem, nonlinear: bool) -> Result<StaticState, StaticError> {
     let mut u = vec![0.0; n];
     let probe = evaluate(p, &props, &u, Some(PROBE_REL * extent))?;
     let mut ev = evaluate(p, &props, &u, None)?;
-    let mut tangents = probe.tangents;
+    let mut tangents = probe.tangents.clone();
     let mut res = norm(&ev.residual) / fnorm;
     let mut nonmonotone = 0;
     for it in 1..=MAX_NEWTON {
@@ -252,7 +267,13 @@ pub fn solve(p: &Problem, nonlinear: bool) -> Result<StaticState, StaticError> {
         u = trial;
         ev = e;
         res = r;
-        tangents = ev.tangents.clone();
+        tangents = ev
+            .tangents
+            .iter()
+            .zip(&ev.out)
+            .zip(&probe.tangents)
+            .map(|((t, o), pt)| if o.closed { *t } else { pt * OPEN_STAND_IN })
+            .collect();
         if res <= RESIDUAL_TOL || (moved <= 1e-14 * norm(&u).max(f64::MIN_POSITIVE) && res < 1e-6) {
             let pressure = ev.out.iter().map(|o| o.stress[0].max(0.0)).collect();
             let normal_stiffness = ev

@@ -13,7 +13,7 @@ use nalgebra::Matrix3;
 use crate::capi::{self, CapiError, NPROPS, NSTATV};
 use crate::model::Problem;
 use crate::solve::contact::interface_props;
-use crate::solve::static_step::{uinter_point, StaticState};
+use crate::solve::static_step::{overclosure, uinter_point, StaticState};
 
 /// KSTEP of the time-domain step (the static preload step is 1).
 pub const KSTEP: i32 = 2;
@@ -92,8 +92,8 @@ impl<'a> Contacts<'a> {
         for (i, c) in self.p.contacts.iter().enumerate() {
             let pt = uinter_point(self.p, c, &self.props[c.interface]);
             let mut sv = self.statev[i];
-            let rdisp = s_flip(delta[i]);
-            let old = s_flip(self.delta[i]);
+            let rdisp = overclosure(self.p, c, delta[i]);
+            let old = overclosure(self.p, c, self.delta[i]);
             let drdisp = std::array::from_fn(|k| rdisp[k] - old[k]);
             let out = capi::uinter_general(&pt, &mut sv, rdisp, drdisp, KSTEP, self.kinc + 1)?;
             self.calls += 1;

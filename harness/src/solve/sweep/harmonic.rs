@@ -1,7 +1,8 @@
 //! Harmonic-balance mode of the sweep (`[iteration] mode = "harmonic_balance"`): per
 //! frequency the per-harmonic condensation and Newton of [`crate::mhb::fe`], started from
 //! the previous frequency's solution (from the stuck linear response at the first one and
-//! after a failure). Outputs: first harmonic as in the other modes, all harmonics in
+//! after a failure; a frequency that does not converge keeps its last iterate, finite,
+//! and is flagged in `converged` like the other modes do). Outputs: first harmonic as in the other modes, all harmonics in
 //! [`SweepResult::harmonics`]; per point the energy per cycle of its closed loops, the
 //! first-harmonic amplitude and the balance's describing function F̂₁/r̂₁ = k* + iωd*.
 
@@ -42,12 +43,19 @@ pub fn sweep(
         hb.condense(omega)
             .map_err(|source| SweepError::Umfpack { freq: f, source })?;
         let from = start.take().unwrap_or_else(|| hb.linear_start());
+        let balance = |source| SweepError::Balance { freq: f, source };
         let sol = match hb.solve(&from, newton) {
-            // A failure from the previous solution: once more from the stuck response.
-            Err(_) if fi > 0 => hb.solve(&hb.linear_start(), newton),
-            other => other,
-        }
-        .map_err(|source| SweepError::Balance { freq: f, source })?;
+            Ok(s) if s.converged => s,
+            // Not converged (or an AFT failure, e.g. a loop that did not close) from the
+            // previous solution: once more from the stuck response.
+            first if fi > 0 => match (first, hb.solve(&hb.linear_start(), newton)) {
+                (Ok(a), Ok(b)) if !b.converged && a.residual < b.residual => a,
+                (_, Ok(b)) => b,
+                (Ok(a), Err(_)) => a,
+                (Err(e), Err(_)) => return Err(balance(e)),
+            },
+            first => first.map_err(balance)?,
+        };
         res.outputs
             .push(sol.outputs.iter().map(|hs| hs[1.min(h)]).collect());
         res.harmonics.push(sol.outputs.clone());
@@ -80,8 +88,8 @@ pub fn sweep(
             res.time("point outputs", t);
         }
         res.iterations.push(sol.iterations);
-        res.converged.push(true);
-        start = Some(sol.r);
+        res.converged.push(sol.converged);
+        start = sol.converged.then_some(sol.r);
     }
     res.factorizations = hb.stats.factorizations;
     res.gmres_solves = hb.stats.gmres_iterations;
@@ -100,7 +108,7 @@ pub fn sweep(
         pass: 1,
         kind: format!("harmonic balance H = {h}, N = {n}"),
         frequencies: freqs.to_vec(),
-        converged: freqs.len(),
+        converged: res.converged.iter().filter(|&&c| c).count(),
     });
     Ok(res)
 }

@@ -1,0 +1,259 @@
+//! Per-point contact maps of one operating point (the form of thesis Fig. 5.28/5.29):
+//! A/δ* (stick/microslip/sliding) and dissipated energy density E/A (energy per cycle
+//! of a point over its tributary area) on every contact face, as SVG and as ParaView
+//! `.vtu` files (VTK XML UnstructuredGrid, ASCII, one quad cell per element face).
+
+use std::collections::HashMap;
+use std::fmt::Write as _;
+use std::path::Path;
+
+use plotters::prelude::*;
+
+use crate::fe::mesh::Face;
+use crate::model::Problem;
+use crate::solve::sweep::PointFreq;
+
+/// What a map shows of one contact point.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PointValues {
+    /// Contact pressure after the preload step (force/length²).
+    pub pressure: f64,
+    /// Tangential relative displacement amplitude √(a₁² + a₂²) (length).
+    pub amplitude: f64,
+    /// Larger A/δ* of the two tangential directions (< 1 microslip, > 1 sliding; 0 open).
+    pub ratio: f64,
+    /// Energy dissipated per cycle per area (force/length).
+    pub energy_density: f64,
+}
+
+/// Values per contact point of `p` from a sample's per-point results.
+pub fn values(p: &Problem, pressure: &[f64], points: &[PointFreq]) -> Vec<PointValues> {
+    p.contacts
+        .iter()
+        .enumerate()
+        .map(|(i, c)| {
+            let q = points.get(i).copied().unwrap_or_default();
+            PointValues {
+                pressure: pressure[i],
+                amplitude: q.amplitude[0].hypot(q.amplitude[1]),
+                ratio: q.ratio[0].max(q.ratio[1]),
+                energy_density: q.energy / c.area,
+            }
+        })
+        .collect()
+}
+
+/// One interface's face as a quad mesh: its contact points and the element faces of the
+/// lower body whose four corners are all contact points.
+struct FaceMesh {
+    /// Contact point indices (into `Problem::contacts`), in point order of the file.
+    points: Vec<usize>,
+    /// Quads as indices into `points`.
+    quads: Vec<[usize; 4]>,
+}
+
+fn face_mesh(p: &Problem, interface: usize) -> FaceMesh {
+    let points: Vec<usize> = (0..p.contacts.len())
+        .filter(|&i| p.contacts[i].interface == interface)
+        .collect();
+    let index: HashMap<usize, usize> = points
+        .iter()
+        .enumerate()
+        .map(|(k, &i)| (p.contacts[i].nodes[0], k))
+        .collect();
+    let mut quads = Vec::new();
+    for body in &p.model.bodies {
+        for q in body.face_quads(Face::ZMax, &p.model.elements) {
+            if let (Some(a), Some(b), Some(c), Some(d)) = (
+                index.get(&q[0]),
+                index.get(&q[1]),
+                index.get(&q[2]),
+                index.get(&q[3]),
+            ) {
+                quads.push([*a, *b, *c, *d]);
+            }
+        }
+    }
+    FaceMesh { points, quads }
+}
+
+fn data_array(out: &mut String, name: &str, comps: usize, values: impl Iterator<Item = f64>) {
+    let _ = write!(
+        out,
+        "        <DataArray type=\"Float64\" Name=\"{name}\" NumberOfComponents=\"{comps}\" format=\"ascii\">\n         "
+    );
+    for v in values {
+        let _ = write!(out, " {v:.9e}");
+    }
+    out.push_str("\n        </DataArray>\n");
+}
+
+/// The `.vtu` text of one interface's contact face with point data `pressure`,
+/// `amplitude`, `amplitude_ratio` (A/δ*) and `energy_density`.
+pub fn vtu(p: &Problem, interface: usize, vals: &[PointValues]) -> String {
+    let fm = face_mesh(p, interface);
+    let mut s = String::new();
+    s.push_str("<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n  <UnstructuredGrid>\n");
+    let _ = writeln!(
+        s,
+        "    <Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">",
+        fm.points.len(),
+        fm.quads.len()
+    );
+    s.push_str("      <Points>\n");
+    data_array(
+        &mut s,
+        "position",
+        3,
+        fm.points.iter().flat_map(|&i| p.contacts[i].position),
+    );
+    s.push_str("      </Points>\n      <Cells>\n");
+    s.push_str(
+        "        <DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n         ",
+    );
+    for q in &fm.quads {
+        for k in q {
+            let _ = write!(s, " {k}");
+        }
+    }
+    s.push_str("\n        </DataArray>\n        <DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n         ");
+    for c in 1..=fm.quads.len() {
+        let _ = write!(s, " {}", 4 * c);
+    }
+    s.push_str("\n        </DataArray>\n        <DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n         ");
+    for _ in &fm.quads {
+        s.push_str(" 9"); // VTK_QUAD
+    }
+    s.push_str("\n        </DataArray>\n      </Cells>\n");
+    s.push_str("      <PointData Scalars=\"amplitude_ratio\">\n");
+    let field = |f: fn(&PointValues) -> f64| fm.points.iter().map(move |&i| f(&vals[i]));
+    data_array(&mut s, "pressure", 1, field(|v| v.pressure));
+    data_array(&mut s, "amplitude", 1, field(|v| v.amplitude));
+    data_array(&mut s, "amplitude_ratio", 1, field(|v| v.ratio));
+    data_array(&mut s, "energy_density", 1, field(|v| v.energy_density));
+    s.push_str("      </PointData>\n    </Piece>\n  </UnstructuredGrid>\n</VTKFile>\n");
+    s
+}
+
+fn err<E: std::fmt::Display>(e: E) -> String {
+    e.to_string()
+}
+
+/// Which value a map shows.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum MapKind {
+    /// Colour A/δ* (0 blue … 1 red; sliding points outlined black), circle area ∝ the
+    /// relative displacement amplitude (Fig. 5.28).
+    Ratio,
+    /// Colour and circle area ∝ the dissipated energy density (Fig. 5.29).
+    EnergyDensity,
+}
+
+/// SVG map: one panel per interface (x across, y up), a circle per closed point.
+pub fn svg(
+    path: &Path,
+    title: &str,
+    length_unit: &str,
+    p: &Problem,
+    vals: &[PointValues],
+    kind: MapKind,
+) -> Result<(), String> {
+    let n = p.interfaces.len().max(1);
+    let root = SVGBackend::new(path, (900, 40 + 260 * n as u32)).into_drawing_area();
+    root.fill(&WHITE).map_err(err)?;
+    let root = root.titled(title, ("sans-serif", 18)).map_err(err)?;
+    let panels = root.split_evenly((n, 1));
+    let (mut x0, mut x1, mut y0, mut y1) = (
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+    );
+    for c in &p.contacts {
+        x0 = x0.min(c.position[0]);
+        x1 = x1.max(c.position[0]);
+        y0 = y0.min(c.position[1]);
+        y1 = y1.max(c.position[1]);
+    }
+    let pad = 0.05 * (x1 - x0).max(y1 - y0).max(1e-9);
+    let vmax = vals
+        .iter()
+        .map(|v| match kind {
+            MapKind::Ratio => v.amplitude,
+            MapKind::EnergyDensity => v.energy_density,
+        })
+        .fold(0.0, f64::max)
+        .max(f64::MIN_POSITIVE);
+    let emax = vals
+        .iter()
+        .map(|v| v.energy_density)
+        .fold(0.0, f64::max)
+        .max(f64::MIN_POSITIVE);
+    for (k, area) in panels.iter().enumerate() {
+        let name = p.interfaces.get(k).map_or("", |i| i.name.as_str());
+        let caption = match kind {
+            MapKind::Ratio => format!(
+                "{name}: colour A/δ* (blue 0 … red 1, black ring: sliding), area ∝ slip amplitude (max {:.3e} {length_unit})",
+                vmax
+            ),
+            MapKind::EnergyDensity => format!(
+                "{name}: dissipated energy density per cycle (max {:.3e} force/{length_unit})",
+                emax
+            ),
+        };
+        let mut chart = ChartBuilder::on(area)
+            .caption(caption, ("sans-serif", 13))
+            .margin(10)
+            .x_label_area_size(30)
+            .y_label_area_size(45)
+            .build_cartesian_2d(x0 - pad..x1 + pad, y0 - pad..y1 + pad)
+            .map_err(err)?;
+        chart
+            .configure_mesh()
+            .disable_mesh()
+            .x_desc(format!("x [{length_unit}]"))
+            .y_desc(format!("y [{length_unit}]"))
+            .draw()
+            .map_err(err)?;
+        let pts: Vec<(usize, &PointValues)> = p
+            .contacts
+            .iter()
+            .enumerate()
+            .filter(|(_, c)| c.interface == k)
+            .map(|(i, _)| (i, &vals[i]))
+            .collect();
+        // Open points: small grey dots.
+        chart
+            .draw_series(pts.iter().filter(|(_, v)| v.pressure <= 0.0).map(|(i, _)| {
+                let c = &p.contacts[*i];
+                Circle::new(
+                    (c.position[0], c.position[1]),
+                    2,
+                    RGBColor(190, 190, 190).filled(),
+                )
+            }))
+            .map_err(err)?;
+        chart
+            .draw_series(pts.iter().filter(|(_, v)| v.pressure > 0.0).map(|(i, v)| {
+                let c = &p.contacts[*i];
+                let (t, size) = match kind {
+                    MapKind::Ratio => (v.ratio.min(1.0), v.amplitude / vmax),
+                    MapKind::EnergyDensity => (v.energy_density / emax, v.energy_density / emax),
+                };
+                let r = (3.0 + 11.0 * size.max(0.0).sqrt()) as i32;
+                let color = RGBColor((255.0 * t) as u8, 40, (255.0 * (1.0 - t)) as u8);
+                Circle::new((c.position[0], c.position[1]), r, color.mix(0.85).filled())
+            }))
+            .map_err(err)?;
+        if kind == MapKind::Ratio {
+            chart
+                .draw_series(pts.iter().filter(|(_, v)| v.ratio > 1.0).map(|(i, v)| {
+                    let c = &p.contacts[*i];
+                    let r = (3.0 + 11.0 * (v.amplitude / vmax).sqrt()) as i32 + 1;
+                    Circle::new((c.position[0], c.position[1]), r, BLACK.stroke_width(2))
+                }))
+                .map_err(err)?;
+        }
+    }
+    root.present().map_err(err)
+}

@@ -1,0 +1,428 @@
+//! Joint power loss against the amplitude of an output at resonance (thesis §5.4–5.5,
+//! Fig. 5.41–5.45): the form of the ultrasonic knife's measurements, where a converter
+//! drives the structure at its resonance with the end-face amplitude set.
+//!
+//! Per screw torque: build the model with that torque, static preload step; find the
+//! resonance of the named output (the scene's sweep, then a golden-section search on
+//! the amplitude around its peak) at the excitation that gives the largest amplitude of
+//! the study; then, at that frequency, scale the excitation until the output's
+//! amplitude is each target and record the joint power loss P = f·ΣE_cycle / share
+//! (E_cycle per point from the library's linearization, `share` the modelled fraction
+//! of the structure: 0.5 for a half model).
+
+pub mod maps;
+pub mod plot;
+pub mod report;
+
+use serde::{Deserialize, Serialize};
+use thiserror::Error;
+
+use crate::model::{build, BuildError, Problem};
+use crate::scene::Scene;
+use crate::solve::static_step::{self, StaticError, StaticState};
+use crate::solve::sweep::{self, Options, PointFreq, SweepError, C64};
+
+/// The `[loss_study]` table of a scene.
+#[derive(Debug, Clone, Deserialize, Serialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct LossStudySpec {
+    /// Named output whose amplitude is set (e.g. the sonotrode's blade-side end face).
+    pub output: String,
+    /// Target amplitudes of the output (length), ascending.
+    pub amplitudes: Vec<f64>,
+    /// Screw whose torque the study varies (a `[[screws]]` name).
+    pub screw: String,
+    /// Torques (force·length), one curve each.
+    pub torques: Vec<f64>,
+    /// Fraction of the structure in the model (0.5 for a half model): the reported
+    /// power is the model's divided by it.
+    #[serde(default = "one")]
+    pub model_share: f64,
+    /// Name of the reported power unit and its size in scene power units
+    /// (force·length/time): "W" and 1e-3 for N·mm/s.
+    pub power_unit: String,
+    pub power_factor: f64,
+    /// Name of the reported amplitude unit and the scene lengths per reported unit
+    /// ("µm" and 1e-3 for mm).
+    pub amplitude_unit: String,
+    pub amplitude_factor: f64,
+    /// Measured (or published) points to compare with: torque, amplitude (scene units),
+    /// power (reported unit). The first one is the calibration target of
+    /// `jointlin loss --calibrate`.
+    #[serde(default)]
+    pub reference: Vec<ReferencePoint>,
+}
+
+fn one() -> f64 {
+    1.0
+}
+
+/// A published power-loss level.
+#[derive(Debug, Clone, Deserialize, Serialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct ReferencePoint {
+    pub torque: f64,
+    pub amplitude: f64,
+    pub power: f64,
+    /// Where the number comes from.
+    #[serde(default)]
+    pub note: String,
+    /// The deviation the source reports for its own model there (percent), if any.
+    #[serde(default)]
+    pub source_deviation_percent: Option<f64>,
+}
+
+/// Errors of a loss study.
+#[derive(Debug, Error)]
+pub enum LossError {
+    #[error("the scene has no [loss_study] table")]
+    NoStudy,
+    #[error("loss_study: {0}")]
+    Spec(String),
+    #[error("building the model: {0}")]
+    Build(#[from] BuildError),
+    #[error("static preload step: {0}")]
+    Static(#[from] StaticError),
+    #[error("steady-state solve: {0}")]
+    Sweep(#[from] SweepError),
+    #[error("{what} did not converge at {freq} Hz")]
+    NotConverged { what: &'static str, freq: f64 },
+    #[error("k_T0 calibration did not reach the reference in {0} steps")]
+    Calibration(usize),
+}
+
+/// Golden-section steps of the resonance search (interval × 0.618 each: 16 steps take a
+/// sweep step of 250 Hz below 0.1 Hz, far inside the joint-damped half-power width).
+const GOLDEN_STEPS: usize = 16;
+/// Relative tolerance on the output amplitude when setting the excitation.
+pub const LEVEL_TOL: f64 = 1e-4;
+const MAX_LEVEL_STEPS: usize = 30;
+/// Most secant steps of the k_T0 calibration (6 reached 0.2 % on the knife).
+const CALIBRATION_STEPS: usize = 12;
+/// The calibration stops at |ln(P/P_ref)| below this (0.2 %).
+const CALIBRATION_TOL: f64 = 2e-3;
+
+/// One solved operating point.
+#[derive(Debug, Clone)]
+pub struct Sample {
+    /// Frequency (1/time).
+    pub freq: f64,
+    /// Excitation scale relative to the scene's excitation.
+    pub scale: f64,
+    /// Output amplitude (length).
+    pub amplitude: f64,
+    /// Power lost in the joints of the whole structure (scene units, divided by the
+    /// model share).
+    pub power: f64,
+    /// Per contact point (empty entries for open points).
+    pub points: Vec<PointFreq>,
+}
+
+impl Sample {
+    /// Largest A/δ* of any point and direction.
+    pub fn max_ratio(&self) -> f64 {
+        self.points.iter().flat_map(|p| p.ratio).fold(0.0, f64::max)
+    }
+}
+
+/// A model with its preload state, ready for steady-state solves.
+pub struct Operating {
+    pub problem: Problem,
+    pub stat: StaticState,
+    base_excitation: Vec<C64>,
+    output: usize,
+    share: f64,
+    opts: Options,
+    /// Solves run so far (each one factorization).
+    pub solves: usize,
+}
+
+impl Operating {
+    /// Builds the scene's model and runs its static step; `output` names the output
+    /// whose amplitude is studied, `share` the modelled fraction of the structure.
+    pub fn new(scene: &Scene, output: &str, share: f64) -> Result<Self, LossError> {
+        let problem = build(scene)?;
+        let stat = static_step::solve(&problem, scene.spec.effects.normal_contact_nonlinearity)?;
+        let output = problem
+            .outputs
+            .iter()
+            .position(|o| o.name == output)
+            .ok_or_else(|| LossError::Spec(format!("no output named `{output}`")))?;
+        let mut opts = Options::from_scene(scene.spec.iteration, scene.spec.effects);
+        opts.point_results = true;
+        Ok(Operating {
+            base_excitation: problem.excitation.clone(),
+            problem,
+            stat,
+            output,
+            share,
+            opts,
+            solves: 0,
+        })
+    }
+
+    /// Steady state at `freqs` with the excitation scaled by `scale`.
+    fn sweep(&mut self, freqs: &[f64], scale: f64) -> Result<sweep::SweepResult, LossError> {
+        for (e, b) in self
+            .problem
+            .excitation
+            .iter_mut()
+            .zip(&self.base_excitation)
+        {
+            *e = b * scale;
+        }
+        self.solves += freqs.len();
+        Ok(sweep::run(
+            &self.problem,
+            &self.stat,
+            freqs,
+            &self.opts,
+            &|_, _, _| {},
+        )?)
+    }
+
+    /// One frequency, one excitation scale.
+    pub fn solve(&mut self, freq: f64, scale: f64) -> Result<Sample, LossError> {
+        let r = self.sweep(&[freq], scale)?;
+        if !r.converged[0] {
+            return Err(LossError::NotConverged {
+                what: "contact iteration",
+                freq,
+            });
+        }
+        Ok(Sample {
+            freq,
+            scale,
+            amplitude: r.outputs[0][self.output].norm(),
+            power: r.power[0] / self.share,
+            points: r.points.into_iter().next().unwrap_or_default(),
+        })
+    }
+
+    /// Output amplitude over `freqs` at `scale`.
+    pub fn response(&mut self, freqs: &[f64], scale: f64) -> Result<Vec<f64>, LossError> {
+        let r = self.sweep(freqs, scale)?;
+        Ok(r.outputs.iter().map(|o| o[self.output].norm()).collect())
+    }
+
+    /// Frequency of the largest output amplitude at `scale` between `a` and `b`
+    /// (one peak there): golden-section search.
+    pub fn resonance(&mut self, a: f64, b: f64, scale: f64) -> Result<f64, LossError> {
+        let (mut a, mut b) = (a, b);
+        let g = 0.5 * (5f64.sqrt() - 1.0);
+        let mut c = b - g * (b - a);
+        let mut d = a + g * (b - a);
+        let mut fc = self.solve(c, scale)?.amplitude;
+        let mut fd = self.solve(d, scale)?.amplitude;
+        for _ in 0..GOLDEN_STEPS {
+            if fc > fd {
+                b = d;
+                d = c;
+                fd = fc;
+                c = b - g * (b - a);
+                fc = self.solve(c, scale)?.amplitude;
+            } else {
+                a = c;
+                c = d;
+                fc = fd;
+                d = a + g * (b - a);
+                fd = self.solve(d, scale)?.amplitude;
+            }
+        }
+        Ok(0.5 * (a + b))
+    }
+
+    /// The excitation scale at which the output amplitude at `freq` is `target`
+    /// (within [`LEVEL_TOL`]), from the estimate `scale`: secant steps on ln a(ln s),
+    /// which is a straight line of slope 1 for a linear joint.
+    pub fn level(&mut self, freq: f64, target: f64, scale: f64) -> Result<Sample, LossError> {
+        let mut s = self.solve(freq, scale)?;
+        let mut prev: Option<(f64, f64)> = None;
+        for _ in 0..MAX_LEVEL_STEPS {
+            let err = (s.amplitude / target).ln();
+            if err.abs() <= LEVEL_TOL {
+                return Ok(s);
+            }
+            let slope = match prev {
+                Some((ls, le)) if (s.scale.ln() - ls).abs() > 1e-12 => {
+                    ((err - le) / (s.scale.ln() - ls)).clamp(0.2, 5.0)
+                }
+                _ => 1.0,
+            };
+            prev = Some((s.scale.ln(), err));
+            let next = (s.scale.ln() - err / slope).exp();
+            s = self.solve(freq, next)?;
+        }
+        Err(LossError::NotConverged {
+            what: "amplitude level",
+            freq,
+        })
+    }
+}
+
+/// One curve point: torque, target amplitude and the operating point that reaches it.
+#[derive(Debug, Clone)]
+pub struct CurvePoint {
+    pub torque: f64,
+    pub sample: Sample,
+}
+
+/// The scene with the torque of screw `screw` set to `torque`.
+pub fn with_torque(scene: &Scene, screw: &str, torque: f64) -> Result<Scene, LossError> {
+    let mut s = scene.clone();
+    let sc = s
+        .spec
+        .screws
+        .iter_mut()
+        .find(|x| x.name == screw)
+        .ok_or_else(|| LossError::Spec(format!("no screw named `{screw}`")))?;
+    sc.torque = torque;
+    Ok(s)
+}
+
+/// The power-loss curve of one model: the resonance (the grid's peak at the scene's
+/// excitation, refined by golden section at the excitation of the largest amplitude;
+/// the grid must hold one peak of the output there), then each
+/// target amplitude at that frequency (largest first, each level starting from the
+/// previous scale). Returns the samples in the order of `amplitudes`.
+pub fn curve(
+    op: &mut Operating,
+    grid: &[f64],
+    amplitudes: &[f64],
+) -> Result<Vec<Sample>, LossError> {
+    let top = amplitudes.iter().copied().fold(0.0, f64::max);
+    if top <= 0.0 {
+        return Err(LossError::Spec("amplitudes must be > 0".into()));
+    }
+    // The grid's peak at the scene's excitation: the bracket of the resonance and a
+    // linear estimate of the scale for the top amplitude.
+    let amp = op.response(grid, 1.0)?;
+    let k = (0..amp.len())
+        .max_by(|&a, &b| amp[a].total_cmp(&amp[b]))
+        .ok_or_else(|| LossError::Spec("the sweep has no frequencies".into()))?;
+    if amp[k] <= 0.0 || !amp[k].is_finite() {
+        return Err(LossError::Spec("the output does not move".into()));
+    }
+    let mut scale = top / amp[k];
+    let f = if grid.len() < 3 {
+        grid[k]
+    } else {
+        let (a, b) = (grid[k.saturating_sub(1)], grid[(k + 1).min(grid.len() - 1)]);
+        op.resonance(a, b, scale)?
+    };
+    let mut order: Vec<usize> = (0..amplitudes.len()).collect();
+    order.sort_by(|&a, &b| amplitudes[b].total_cmp(&amplitudes[a]));
+    let mut out: Vec<Option<Sample>> = vec![None; amplitudes.len()];
+    for i in order {
+        let s = op.level(f, amplitudes[i], scale)?;
+        scale = s.scale * 0.9;
+        out[i] = Some(s);
+    }
+    Ok(out
+        .into_iter()
+        .map(|s| s.expect("every level solved"))
+        .collect())
+}
+
+/// The study of a scene: one curve per torque.
+pub struct StudyResult {
+    pub curves: Vec<(f64, Vec<Sample>)>,
+    /// Total steady-state solves.
+    pub solves: usize,
+    /// The model at the scene's own torque and its sample at the largest amplitude (for
+    /// the contact maps); `None` if the scene's torque is not among the study's.
+    pub maps: Option<(Operating, Sample)>,
+}
+
+/// Runs the scene's `[loss_study]`. `progress(message)` reports each torque.
+pub fn run_study(scene: &Scene, progress: &dyn Fn(&str)) -> Result<StudyResult, LossError> {
+    let st = scene.spec.loss_study.as_ref().ok_or(LossError::NoStudy)?;
+    let grid = scene.frequencies();
+    let own = scene
+        .spec
+        .screws
+        .iter()
+        .find(|x| x.name == st.screw)
+        .map(|x| x.torque);
+    let mut curves = Vec::new();
+    let mut solves = 0;
+    let mut maps = None;
+    for &t in &st.torques {
+        progress(&format!("torque {t}"));
+        let sc = with_torque(scene, &st.screw, t)?;
+        let mut op = Operating::new(&sc, &st.output, st.model_share)?;
+        let samples = curve(&mut op, &grid, &st.amplitudes)?;
+        solves += op.solves;
+        if Some(t) == own {
+            let top = (0..samples.len())
+                .max_by(|&a, &b| samples[a].amplitude.total_cmp(&samples[b].amplitude))
+                .expect("at least one amplitude");
+            maps = Some((op, samples[top].clone()));
+        }
+        curves.push((t, samples));
+    }
+    Ok(StudyResult {
+        curves,
+        solves,
+        maps,
+    })
+}
+
+/// The sample of one model at one torque and amplitude, at resonance (power in scene
+/// units for the whole structure), with the model.
+pub fn power_at(
+    scene: &Scene,
+    torque: f64,
+    amplitude: f64,
+) -> Result<(Sample, Operating), LossError> {
+    let st = scene.spec.loss_study.as_ref().ok_or(LossError::NoStudy)?;
+    let sc = with_torque(scene, &st.screw, torque)?;
+    let mut op = Operating::new(&sc, &st.output, st.model_share)?;
+    let s = curve(&mut op, &scene.frequencies(), &[amplitude])?
+        .pop()
+        .expect("one amplitude");
+    Ok((s, op))
+}
+
+/// Calibration of k_T0 (all interfaces scaled by one factor) so that the power at the
+/// study's first reference point matches it: secant steps on ln P(ln k_T0). Returns the
+/// factor and the power (reported unit) reached.
+pub fn calibrate_k_t0(scene: &Scene, progress: &dyn Fn(&str)) -> Result<(f64, f64), LossError> {
+    let st = scene.spec.loss_study.as_ref().ok_or(LossError::NoStudy)?;
+    let target = st
+        .reference
+        .first()
+        .ok_or_else(|| LossError::Spec("calibration needs a reference point".into()))?;
+    let eval = |factor: f64| -> Result<f64, LossError> {
+        let mut sc = scene.clone();
+        for i in &mut sc.spec.interfaces {
+            i.k_t0_per_area *= factor;
+        }
+        let (s, _) = power_at(&sc, target.torque, target.amplitude)?;
+        Ok(s.power * st.power_factor)
+    };
+    let mut x = 0.0f64; // ln factor
+    let mut p = eval(1.0)?;
+    progress(&format!("k_T0 × 1: P = {p:.4} {}", st.power_unit));
+    let mut prev: Option<(f64, f64)> = None;
+    for _ in 0..CALIBRATION_STEPS {
+        let err = (p / target.power).ln();
+        if err.abs() < CALIBRATION_TOL {
+            return Ok((x.exp(), p));
+        }
+        let slope = match prev {
+            Some((px, pe)) if (x - px).abs() > 1e-9 => (err - pe) / (x - px),
+            _ => -1.0,
+        };
+        let slope = if slope.abs() < 0.05 { -1.0 } else { slope };
+        prev = Some((x, err));
+        x -= (err / slope).clamp(-3.0, 3.0);
+        p = eval(x.exp())?;
+        progress(&format!(
+            "k_T0 × {:.5}: P = {p:.4} {}",
+            x.exp(),
+            st.power_unit
+        ));
+    }
+    Err(LossError::Calibration(CALIBRATION_STEPS))
+}

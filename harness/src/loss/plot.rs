@@ -1,0 +1,85 @@
+//! SVG of the power-loss curves (the form of thesis Fig. 5.41–5.45): joint power loss
+//! against the output amplitude, one line per torque, published points as crosses.
+
+use std::path::Path;
+
+use plotters::prelude::*;
+
+use super::{LossStudySpec, StudyResult};
+
+fn err<E: std::fmt::Display>(e: E) -> String {
+    e.to_string()
+}
+
+/// Draws `r` into `path`; axes in the study's reported units.
+pub fn curves(path: &Path, title: &str, st: &LossStudySpec, r: &StudyResult) -> Result<(), String> {
+    let root = SVGBackend::new(path, (900, 560)).into_drawing_area();
+    root.fill(&WHITE).map_err(err)?;
+    let a = |v: f64| v / st.amplitude_factor;
+    let pw = |v: f64| v * st.power_factor;
+    let mut xmax = 0.0f64;
+    let mut ymax = 0.0f64;
+    for (_, s) in &r.curves {
+        for p in s {
+            xmax = xmax.max(a(p.amplitude));
+            ymax = ymax.max(pw(p.power));
+        }
+    }
+    for p in &st.reference {
+        xmax = xmax.max(a(p.amplitude));
+        ymax = ymax.max(p.power);
+    }
+    let mut chart = ChartBuilder::on(&root)
+        .caption(title, ("sans-serif", 18))
+        .margin(15)
+        .x_label_area_size(45)
+        .y_label_area_size(60)
+        .build_cartesian_2d(0.0..xmax * 1.05, 0.0..ymax.max(f64::MIN_POSITIVE) * 1.1)
+        .map_err(err)?;
+    chart
+        .configure_mesh()
+        .x_desc(format!(
+            "amplitude of `{}` [{}]",
+            st.output, st.amplitude_unit
+        ))
+        .y_desc(format!("joint power loss [{}]", st.power_unit))
+        .draw()
+        .map_err(err)?;
+    for (k, (torque, samples)) in r.curves.iter().enumerate() {
+        let color = Palette99::pick(k).to_rgba();
+        let mut pts: Vec<(f64, f64)> = std::iter::once((0.0, 0.0))
+            .chain(samples.iter().map(|s| (a(s.amplitude), pw(s.power))))
+            .collect();
+        pts.sort_by(|x, y| x.0.total_cmp(&y.0));
+        chart
+            .draw_series(LineSeries::new(pts.clone(), color.stroke_width(2)))
+            .map_err(err)?
+            .label(format!("torque {torque}"))
+            .legend(move |(x, y)| {
+                PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
+            });
+        chart
+            .draw_series(
+                pts.iter()
+                    .skip(1)
+                    .map(|&p| Circle::new(p, 3, color.filled())),
+            )
+            .map_err(err)?;
+        chart
+            .draw_series(
+                st.reference
+                    .iter()
+                    .filter(|p| p.torque == *torque)
+                    .map(|p| Cross::new((a(p.amplitude), p.power), 7, color.stroke_width(2))),
+            )
+            .map_err(err)?;
+    }
+    chart
+        .configure_series_labels()
+        .background_style(WHITE.mix(0.8))
+        .border_style(BLACK)
+        .position(SeriesLabelPosition::UpperLeft)
+        .draw()
+        .map_err(err)?;
+    root.present().map_err(err)
+}

@@ -1,0 +1,166 @@
+//! Files of a loss study: loss.csv, loss.md (with the comparison against published
+//! points), loss.svg, and the contact maps of the scene's own torque at the largest
+//! amplitude (contact_ratio.svg, contact_energy.svg, contact_<interface>.vtu).
+
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+use super::maps::{self, MapKind};
+use super::{plot, LossStudySpec, Sample, StudyResult};
+use crate::scene::Scene;
+
+/// Power (reported unit) of a curve at `amplitude` by linear interpolation between its
+/// samples; `None` outside them.
+pub fn interpolate(samples: &[Sample], amplitude: f64, power_factor: f64) -> Option<f64> {
+    let mut pts: Vec<(f64, f64)> = samples
+        .iter()
+        .map(|s| (s.amplitude, s.power * power_factor))
+        .collect();
+    pts.sort_by(|a, b| a.0.total_cmp(&b.0));
+    pts.windows(2).find_map(|w| {
+        let ((a0, p0), (a1, p1)) = (w[0], w[1]);
+        (amplitude >= a0 * (1.0 - 1e-9) && amplitude <= a1 * (1.0 + 1e-9))
+            .then(|| p0 + (p1 - p0) * (amplitude - a0) / (a1 - a0))
+    })
+}
+
+/// loss.csv text.
+pub fn csv(st: &LossStudySpec, r: &StudyResult) -> String {
+    let mut s = format!(
+        "torque,amplitude,frequency,power_{},excitation_scale,max_amplitude_ratio\n",
+        st.power_unit
+    );
+    for (t, samples) in &r.curves {
+        for x in samples {
+            let _ = writeln!(
+                s,
+                "{t:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e}",
+                x.amplitude,
+                x.freq,
+                x.power * st.power_factor,
+                x.scale,
+                x.max_ratio()
+            );
+        }
+    }
+    s
+}
+
+/// loss.md text: the curves and the comparison with the reference points.
+pub fn markdown(scene: &Scene, st: &LossStudySpec, r: &StudyResult) -> String {
+    let au = &st.amplitude_unit;
+    let pu = &st.power_unit;
+    let mut s = String::new();
+    let _ = writeln!(
+        s,
+        "Joint power loss at resonance, `{}` ({}); output `{}`.\n",
+        scene.spec.title, scene.file, st.output
+    );
+    let _ = writeln!(
+        s,
+        "| torque | resonance | amplitude [{au}] | power [{pu}] | max A/δ* |\n|---:|---:|---:|---:|---:|"
+    );
+    for (t, samples) in &r.curves {
+        for x in samples {
+            let _ = writeln!(
+                s,
+                "| {t} | {:.1} | {:.2} | {:.4} | {:.3} |",
+                x.freq,
+                x.amplitude / st.amplitude_factor,
+                x.power * st.power_factor,
+                x.max_ratio()
+            );
+        }
+    }
+    if !st.reference.is_empty() {
+        let _ = writeln!(
+            s,
+            "\n| torque | amplitude [{au}] | reference [{pu}] | this model [{pu}] | deviation | source's own deviation | reference from |\n|---:|---:|---:|---:|---:|---:|---|"
+        );
+        for p in &st.reference {
+            let ours = r
+                .curves
+                .iter()
+                .find(|(t, _)| *t == p.torque)
+                .and_then(|(_, c)| interpolate(c, p.amplitude, st.power_factor));
+            let (o, d) = match ours {
+                Some(o) => (
+                    format!("{o:.3}"),
+                    format!("{:+.1} %", 100.0 * (o - p.power) / p.power),
+                ),
+                None => ("–".into(), "–".into()),
+            };
+            let src = p
+                .source_deviation_percent
+                .map_or("–".into(), |v| format!("{v} %"));
+            let _ = writeln!(
+                s,
+                "| {} | {:.1} | {:.3} | {o} | {d} | {src} | {} |",
+                p.torque,
+                p.amplitude / st.amplitude_factor,
+                p.power,
+                p.note
+            );
+        }
+    }
+    let _ = writeln!(s, "\n{} steady-state solves.", r.solves);
+    s
+}
+
+/// Writes every file into `dir`; returns the paths.
+pub fn write(dir: &Path, scene: &Scene, r: &StudyResult) -> Result<Vec<PathBuf>, String> {
+    let st = scene
+        .spec
+        .loss_study
+        .as_ref()
+        .ok_or("the scene has no [loss_study]")?;
+    let io = |e: std::io::Error| format!("{}: {e}", dir.display());
+    std::fs::create_dir_all(dir).map_err(io)?;
+    let mut out = Vec::new();
+    let mut put = |name: &str, text: String| -> Result<(), String> {
+        let p = dir.join(name);
+        std::fs::write(&p, text).map_err(io)?;
+        out.push(p);
+        Ok(())
+    };
+    put("loss.csv", csv(st, r))?;
+    put("loss.md", markdown(scene, st, r))?;
+    let p = dir.join("loss.svg");
+    plot::curves(&p, &scene.spec.title, st, r)?;
+    out.push(p);
+    if let Some((op, sample)) = &r.maps {
+        let vals = maps::values(&op.problem, &op.stat.pressure, &sample.points);
+        for (k, i) in op.problem.interfaces.iter().enumerate() {
+            let p = dir.join(format!("contact_{}.vtu", i.name));
+            std::fs::write(&p, maps::vtu(&op.problem, k, &vals)).map_err(io)?;
+            out.push(p);
+        }
+        let what = format!(
+            "{} at {:.2} {} and {:.1} Hz",
+            st.output,
+            sample.amplitude / st.amplitude_factor,
+            st.amplitude_unit,
+            sample.freq
+        );
+        for (name, kind, title) in [
+            ("contact_ratio.svg", MapKind::Ratio, "stick/slip A/δ*"),
+            (
+                "contact_energy.svg",
+                MapKind::EnergyDensity,
+                "dissipated energy density",
+            ),
+        ] {
+            let p = dir.join(name);
+            maps::svg(
+                &p,
+                &format!("{title}, {what}"),
+                &scene.spec.units.length,
+                &op.problem,
+                &vals,
+                kind,
+            )?;
+            out.push(p);
+        }
+    }
+    Ok(out)
+}
