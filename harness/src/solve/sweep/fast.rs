@@ -241,6 +241,7 @@ pub fn sweep(
         // between this frequency and the last: then one more try from the cold start.
         let mut cold = a.iter().all(|&v| v == it.initial_amplitude);
         let mut budget = it.max_passes;
+        let mut first = None;
         loop {
             while m > 0 && iterations < budget {
                 iterations += 1;
@@ -339,16 +340,33 @@ pub fn sweep(
                         })
                         .collect()
                 };
+                if a.iter().any(|v| !v.is_finite()) {
+                    break;
+                }
             }
             if converged || cold {
                 break;
             }
+            // Kept if the cold start does not converge either.
+            first = Some((
+                a.clone(),
+                a_star.clone(),
+                r.clone(),
+                delta.clone(),
+                lin.clone(),
+                ks.clone(),
+                u.clone(),
+                gmres_ok,
+            ));
             cold = true;
             budget += it.max_passes;
             a.iter_mut().for_each(|v| *v = it.initial_amplitude);
             acc = Anderson::new(DEPTH);
             bracket = Bracket::new();
             lin_fresh = false;
+        }
+        if let (false, Some(f)) = (converged, first) {
+            (a, a_star, r, delta, lin, ks, u, gmres_ok) = f;
         }
 
         drop(num);
