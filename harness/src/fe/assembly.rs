@@ -365,6 +365,28 @@ mod tests {
     }
 
     #[test]
+    fn tied_nodes_share_dofs_sum_forces_and_inherit_fixes() {
+        // Nodes 0–1–2 tied in a chain, node 3 free; z fixed on node 2 only.
+        let mut fixed = vec![false; 12];
+        fixed[3 * 2 + 2] = true;
+        let d = DofMap::new(&fixed, &[[1, 2], [0, 1]]);
+        assert_eq!(d.n_free(), 2 + 3);
+        for c in 0..2 {
+            assert_eq!(d.free(c), d.free(3 + c));
+            assert_eq!(d.free(c), d.free(6 + c));
+            assert_eq!(d.full(d.free(c).unwrap()), c); // numbered at the lowest node
+        }
+        assert!((0..3).all(|n| d.free(3 * n + 2).is_none()));
+        let f: Vec<f64> = (0..12).map(|i| i as f64).collect();
+        let r = d.restrict(&f);
+        assert_eq!(r, vec![0.0 + 3.0 + 6.0, 1.0 + 4.0 + 7.0, 9.0, 10.0, 11.0]);
+        let e = d.expand(&r);
+        assert_eq!(e[0], e[3]);
+        assert_eq!(e[7], 12.0);
+        assert_eq!(e[8], 0.0);
+    }
+
+    #[test]
     fn dynamic_stiffness_and_rayleigh() {
         let model = free_box();
         let sys = assemble(&model, Formulation::IncompatibleModes, &[]).unwrap();

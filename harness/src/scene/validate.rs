@@ -253,9 +253,6 @@ pub fn validate(s: &SceneFile) -> Vec<Problem> {
                 format!("must be >= 0, got {}", f.initial_gap),
             );
         }
-        if lumped && f.initial_gap != 0.0 {
-            c.fail(p.key("initial_gap"), "only for box interfaces");
-        }
         for (k, r) in f.exclude.iter().enumerate() {
             let rp = p.key("exclude").index(k);
             c.vec3(rp.key("min"), &r.min);

@@ -39,11 +39,12 @@ const MAX_NONMONOTONE: usize = 10;
 /// takes the points' tangent at this small penetration.
 const PROBE_REL: f64 = 1e-7;
 
-/// Newton matrix stand-in for an open point: this fraction of its probe (just closed)
-/// tangent. Open points carry no force and no stiffness, so a part held only by contact
-/// (a blade in a slot with play) would make the Newton matrix singular until it
-/// touches; the stand-in keeps it solvable and changes only the steps, never the
-/// residual, so the converged state is the exact one.
+/// Newton matrix stand-in for an open point of an interface with an initial gap: this
+/// fraction of its probe (just closed) tangent. Open points carry no force and no
+/// stiffness, so a part held only by contact across a gap (a blade in a slot with play)
+/// would make the Newton matrix singular until it touches; the stand-in keeps it
+/// solvable and changes only the steps, never the residual, so the converged state is
+/// the exact one. Interfaces without a gap keep the plain Newton matrix.
 const OPEN_STAND_IN: f64 = 1e-3;
 
 /// Errors of the static step.
@@ -272,7 +273,14 @@ pub fn solve(p: &Problem, nonlinear: bool) -> Result<StaticState, StaticError> {
             .iter()
             .zip(&ev.out)
             .zip(&probe.tangents)
-            .map(|((t, o), pt)| if o.closed { *t } else { pt * OPEN_STAND_IN })
+            .zip(&p.contacts)
+            .map(|(((t, o), pt), c)| {
+                if o.closed || p.interfaces[c.interface].initial_gap == 0.0 {
+                    *t
+                } else {
+                    pt * OPEN_STAND_IN
+                }
+            })
             .collect();
         if res <= RESIDUAL_TOL || (moved <= 1e-14 * norm(&u).max(f64::MIN_POSITIVE) && res < 1e-6) {
             let pressure = ev.out.iter().map(|o| o.stress[0].max(0.0)).collect();
@@ -314,6 +322,20 @@ mod tests {
         approx::assert_relative_eq!(-s.u[2], 2e-5, max_relative = 1e-9);
         assert!(s.closed[0] && s.normal_stiffness[0] == 1e5);
         assert!(s.newton_iterations <= 3, "{}", s.newton_iterations);
+    }
+
+    #[test]
+    fn an_initial_gap_is_closed_before_the_contact_carries_load() {
+        // The block with a 1 µm gap under it: it falls through the gap (held meanwhile
+        // only by the open-point stand-in), then the linear law carries the 2 N:
+        // −u_z = g₀ + p/k_N exactly, same pressure as without the gap.
+        let text =
+            crate::model::tests::BLOCK.replace("area = 1.0", "area = 1.0\ninitial_gap = 1e-3");
+        let p = build(&Scene::parse("b", &text).unwrap()).unwrap();
+        let s = solve(&p, true).unwrap();
+        approx::assert_relative_eq!(s.pressure[0], 2.0, max_relative = 1e-9);
+        approx::assert_relative_eq!(-s.u[2], 1e-3 + 2e-5, max_relative = 1e-9);
+        assert!(s.closed[0]);
     }
 
     #[test]
