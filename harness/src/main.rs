@@ -117,7 +117,7 @@ enum Command {
         /// Directory with block-stick.toml, block-slip.toml, three-beams.toml.
         #[arg(long, default_value = "scenes")]
         scenes: PathBuf,
-        /// Cases (default all): block-stick, block-slip, duffing, three-beams.
+        /// Cases (default all): block-stick, block-slip, duffing, softening-friction, three-beams.
         #[arg(long, value_delimiter = ',')]
         cases: Vec<String>,
     },

@@ -237,7 +237,10 @@ fn cubic_spring_keys_are_validated() {
     let e = Scene::parse("d.toml", &text).unwrap_err();
     assert_eq!(e.key, "springs[0].cubic");
     assert_eq!(e.line, line_of(&text, "cubic = 40.0"));
-    assert!(e.message.contains("no preload"), "{}", e.message);
+    assert!(e.message.contains("no preload along"), "{}", e.message);
+    // A preload across the spring (a contact's normal load) is allowed.
+    let across = text.replace("force = [1.0, 0.0, 0.0]", "force = [0.0, 0.0, -1.0]");
+    assert!(Scene::parse("d.toml", &across).is_ok());
     // The harmonic-balance mode has no cubic springs.
     let text = good.replace("mode = \"fast\"", "mode = \"harmonic_balance\"");
     let e = Scene::parse("d.toml", &text).unwrap_err();

@@ -377,11 +377,17 @@ pub fn validate(s: &SceneFile) -> Vec<Problem> {
                 "cubic springs are linearized to first order: use mode \"fast\" or \"thesis\"",
             );
         }
-        if sp.cubic != 0.0 && s.preload.iter().any(|l| l.body == sp.body) {
+        // A preload across the spring (e.g. the normal load of a friction contact under
+        // the mass) leaves its elongation at zero; one with a component along it would not.
+        let along = |l: &PreloadSpec| {
+            l.force
+                .is_none_or(|f| f.iter().zip(&sp.direction).any(|(a, b)| a * b != 0.0))
+        };
+        if sp.cubic != 0.0 && s.preload.iter().any(|l| l.body == sp.body && along(l)) {
             c.fail(
                 p.key("cubic"),
                 format!(
-                    "a cubic spring is linearized about zero static elongation: body `{}` must carry no preload",
+                    "a cubic spring is linearized about zero static elongation: body `{}` must carry no preload along the spring",
                     sp.body
                 ),
             );

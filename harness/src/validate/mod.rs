@@ -8,6 +8,9 @@
 //! - the Duffing oscillator (Appendix B) swept up and down: first-order harmonic balance
 //!   (closed form, the branch followed) vs RK4 (continued from frequency to frequency),
 //!   with the jump frequencies of both;
+//! - the softening friction oscillator (scenes/softening-friction.toml): folds of a dense
+//!   first-order residual scan and of continuation (H = 1, 3), the unstable stretch, and
+//!   H = 3 vs RK4 on both stable branches between the folds;
 //! - three beams on a coarse mesh at frequencies around both resonances: output amplitude
 //!   and joint energy per cycle, frequency domain vs Newmark.
 //!
@@ -17,6 +20,7 @@
 pub mod beams;
 pub mod block;
 pub mod duffing;
+pub mod softening;
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -79,6 +83,7 @@ pub struct Cases {
     pub block_stick: bool,
     pub block_slip: bool,
     pub duffing: bool,
+    pub softening_friction: bool,
     pub three_beams: bool,
 }
 
@@ -88,11 +93,12 @@ impl Cases {
             block_stick: true,
             block_slip: true,
             duffing: true,
+            softening_friction: true,
             three_beams: true,
         }
     }
 
-    /// From names: block-stick, block-slip, duffing, three-beams.
+    /// From names: block-stick, block-slip, duffing, softening-friction, three-beams.
     pub fn parse(names: &[String]) -> Result<Self, String> {
         if names.is_empty() {
             return Ok(Cases::all());
@@ -101,6 +107,7 @@ impl Cases {
             block_stick: false,
             block_slip: false,
             duffing: false,
+            softening_friction: false,
             three_beams: false,
         };
         for n in names {
@@ -108,10 +115,11 @@ impl Cases {
                 "block-stick" => c.block_stick = true,
                 "block-slip" => c.block_slip = true,
                 "duffing" => c.duffing = true,
+                "softening-friction" => c.softening_friction = true,
                 "three-beams" => c.three_beams = true,
                 o => {
                     return Err(format!(
-                        "unknown case `{o}` (block-stick, block-slip, duffing, three-beams)"
+                        "unknown case `{o}` (block-stick, block-slip, duffing, softening-friction, three-beams)"
                     ))
                 }
             }
@@ -140,6 +148,9 @@ pub fn run(scenes: &Path, cases: Cases, log: &dyn Fn(&str)) -> Result<Report, St
     }
     if cases.duffing {
         duffing::sweep(&mut rep, log)?;
+    }
+    if cases.softening_friction {
+        softening::sweep(&mut rep, log)?;
     }
     if cases.three_beams {
         beams::coarse(scenes, &mut rep, log)?;

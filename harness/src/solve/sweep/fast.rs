@@ -237,103 +237,136 @@ pub fn sweep(
         let mut converged = m == 0;
         r.copy_from_slice(&rec.r0);
         delta.iter_mut().for_each(|d| *d = C64::new(0.0, 0.0));
-        while m > 0 && iterations < it.max_passes {
-            iterations += 1;
-            if !lin_fresh {
+        // A start that is not the cold one may lie on a branch that ended at a fold
+        // between this frequency and the last: then one more try from the cold start.
+        let mut cold = a.iter().all(|&v| v == it.initial_amplitude);
+        let mut budget = it.max_passes;
+        let mut first = None;
+        loop {
+            while m > 0 && iterations < budget {
+                iterations += 1;
+                if !lin_fresh {
+                    let t = Instant::now();
+                    linearize_all(&a, omega, &mut lin, &mut res.macroslip_caps)?;
+                    res.time("linearization (C API)", t);
+                    let t = Instant::now();
+                    linearize_springs(&a, &mut ks)?;
+                    res.time(CUBIC_TIMING, t);
+                }
+                lin_fresh = false;
                 let t = Instant::now();
-                linearize_all(&a, omega, &mut lin, &mut res.macroslip_caps)?;
-                res.time("linearization (C API)", t);
-                let t = Instant::now();
-                linearize_springs(&a, &mut ks)?;
-                res.time(CUBIC_TIMING, t);
-            }
-            lin_fresh = false;
-            let t = Instant::now();
-            for j in 0..m {
-                let (now, reference) = if j < mc {
-                    (kappa_of(&lin[j], omega), kappa0[j / 2][j % 2])
-                } else {
-                    (C64::new(ks[j - mc], 0.0), C64::new(ks0[j - mc], 0.0))
-                };
-                delta[j] = (now - reference) * weight(j);
-            }
-            if krylov {
-                let s0 = &setup.s;
-                let stats = gmres.solve(
-                    &mut |xv: &[C64], y: &mut [C64]| {
-                        // y = S₀ x + Σⱼ Bⱼᵀ Δⱼ (Bⱼ x)
-                        y.iter_mut().for_each(|v| *v = C64::new(0.0, 0.0));
-                        let pt = &s0.pattern;
-                        for col in 0..pt.n {
-                            let xc = xv[col];
-                            for k in pt.col_ptr[col] as usize..pt.col_ptr[col + 1] as usize {
-                                y[pt.row_idx[k] as usize] += s0.values[k] * xc;
-                            }
-                        }
-                        for j in 0..m {
-                            let bx: C64 = row(j).iter().map(|&(i, w)| xv[i] * w).sum();
-                            let dbx = delta[j] * bx;
-                            for &(i, w) in row(j) {
-                                y[i] += dbx * w;
-                            }
-                        }
-                    },
-                    &mut |xv: &[C64], y: &mut [C64]| num.solve_into(xv, y),
-                    &p.excitation,
-                    &mut u,
-                    (GMRES_REL * it.tolerance).max(GMRES_FLOOR),
-                    GMRES_MAX,
-                );
-                let stats = stats.map_err(umf)?;
-                res.gmres_solves += stats.iterations;
-                gmres_ok &= stats.converged;
                 for j in 0..m {
-                    r[j] = row(j).iter().map(|&(i, w)| u[i] * w).sum();
+                    let (now, reference) = if j < mc {
+                        (kappa_of(&lin[j], omega), kappa0[j / 2][j % 2])
+                    } else {
+                        (C64::new(ks[j - mc], 0.0), C64::new(ks0[j - mc], 0.0))
+                    };
+                    delta[j] = (now - reference) * weight(j);
                 }
-            } else {
-                for jc in 0..m {
-                    for k in 0..m {
-                        work[k + m * jc] = rec.g[k + m * jc] * delta[jc];
+                if krylov {
+                    let s0 = &setup.s;
+                    let stats = gmres.solve(
+                        &mut |xv: &[C64], y: &mut [C64]| {
+                            // y = S₀ x + Σⱼ Bⱼᵀ Δⱼ (Bⱼ x)
+                            y.iter_mut().for_each(|v| *v = C64::new(0.0, 0.0));
+                            let pt = &s0.pattern;
+                            for col in 0..pt.n {
+                                let xc = xv[col];
+                                for k in pt.col_ptr[col] as usize..pt.col_ptr[col + 1] as usize {
+                                    y[pt.row_idx[k] as usize] += s0.values[k] * xc;
+                                }
+                            }
+                            for j in 0..m {
+                                let bx: C64 = row(j).iter().map(|&(i, w)| xv[i] * w).sum();
+                                let dbx = delta[j] * bx;
+                                for &(i, w) in row(j) {
+                                    y[i] += dbx * w;
+                                }
+                            }
+                        },
+                        &mut |xv: &[C64], y: &mut [C64]| num.solve_into(xv, y),
+                        &p.excitation,
+                        &mut u,
+                        (GMRES_REL * it.tolerance).max(GMRES_FLOOR),
+                        GMRES_MAX,
+                    );
+                    let stats = stats.map_err(umf)?;
+                    res.gmres_solves += stats.iterations;
+                    gmres_ok &= stats.converged;
+                    for j in 0..m {
+                        r[j] = row(j).iter().map(|&(i, w)| u[i] * w).sum();
                     }
-                    work[jc + m * jc] += C64::new(1.0, 0.0);
+                } else {
+                    for jc in 0..m {
+                        for k in 0..m {
+                            work[k + m * jc] = rec.g[k + m * jc] * delta[jc];
+                        }
+                        work[jc + m * jc] += C64::new(1.0, 0.0);
+                    }
+                    r.copy_from_slice(&rec.r0);
+                    if !lu_solve_in_place(&mut work, m, &mut r) {
+                        return Err(SweepError::Condensed { freq: f });
+                    }
                 }
-                r.copy_from_slice(&rec.r0);
-                if !lu_solve_in_place(&mut work, m, &mut r) {
-                    return Err(SweepError::Condensed { freq: f });
+                for j in 0..m {
+                    a_star[j] = r[j].norm();
+                }
+                let atol = super::atol(&it);
+                converged = a
+                    .iter()
+                    .zip(&a_star)
+                    .all(|(&e, &c)| (e - c).abs() <= it.tolerance * e.max(c) + atol);
+                res.time("condensed iterations", t);
+                if converged {
+                    break;
+                }
+                let floor = ZERO_AMP_REL
+                    * a.iter()
+                        .chain(&a_star)
+                        .fold(f64::MIN_POSITIVE, |x, &y| x.max(y));
+                let xs: Vec<f64> = a.iter().map(|v| v.max(floor).ln()).collect();
+                let gs: Vec<f64> = a_star.iter().map(|v| v.max(floor).ln()).collect();
+                a = if m == 1 {
+                    vec![bracket.next(xs[0], gs[0]).exp()]
+                } else {
+                    // Anderson extrapolates; keep each step within a decade of the bracket
+                    // [min(a, a*), max(a, a*)] (MAX_EXTRAPOLATION).
+                    acc.next(&xs, &gs)
+                        .iter()
+                        .zip(xs.iter().zip(&gs))
+                        .map(|(v, (x, g))| {
+                            v.clamp(x.min(*g) - MAX_EXTRAPOLATION, x.max(*g) + MAX_EXTRAPOLATION)
+                                .exp()
+                        })
+                        .collect()
+                };
+                if a.iter().any(|v| !v.is_finite()) {
+                    break;
                 }
             }
-            for j in 0..m {
-                a_star[j] = r[j].norm();
-            }
-            let atol = super::atol(&it);
-            converged = a
-                .iter()
-                .zip(&a_star)
-                .all(|(&e, &c)| (e - c).abs() <= it.tolerance * e.max(c) + atol);
-            res.time("condensed iterations", t);
-            if converged {
+            if converged || cold {
                 break;
             }
-            let floor = ZERO_AMP_REL
-                * a.iter()
-                    .chain(&a_star)
-                    .fold(f64::MIN_POSITIVE, |x, &y| x.max(y));
-            let xs: Vec<f64> = a.iter().map(|v| v.max(floor).ln()).collect();
-            let gs: Vec<f64> = a_star.iter().map(|v| v.max(floor).ln()).collect();
-            a = if m == 1 {
-                vec![bracket.next(xs[0], gs[0]).exp()]
-            } else {
-                // Anderson extrapolates; keep each step within a decade of the bracket
-                // [min(a, a*), max(a, a*)] (MAX_EXTRAPOLATION).
-                acc.next(&xs, &gs)
-                    .iter()
-                    .zip(xs.iter().zip(&gs))
-                    .map(|(v, (x, g))| {
-                        v.clamp(x.min(*g) - MAX_EXTRAPOLATION, x.max(*g) + MAX_EXTRAPOLATION)
-                            .exp()
-                    })
-                    .collect()
-            };
+            // Kept if the cold start does not converge either.
+            first = Some((
+                a.clone(),
+                a_star.clone(),
+                r.clone(),
+                delta.clone(),
+                lin.clone(),
+                ks.clone(),
+                u.clone(),
+                gmres_ok,
+            ));
+            cold = true;
+            budget += it.max_passes;
+            a.iter_mut().for_each(|v| *v = it.initial_amplitude);
+            acc = Anderson::new(DEPTH);
+            bracket = Bracket::new();
+            lin_fresh = false;
+        }
+        if let (false, Some(f)) = (converged, first) {
+            (a, a_star, r, delta, lin, ks, u, gmres_ok) = f;
         }
 
         drop(num);
