@@ -35,7 +35,11 @@ pub fn solve(sys: &System, omega: f64, a0: &[f64]) -> Result<Vec<C64>, MhbError>
         }
         for (e, &a) in sys.elements.iter().zip(&amp) {
             let z = match e.law {
-                Law::Cubic(k3) => C64::new(0.75 * k3 * a * a, 0.0),
+                Law::Cubic(k3) => {
+                    let k_star =
+                        capi::linearize_cubic(0.0, k3, a).map_err(super::AftError::from)?;
+                    C64::new(k_star, 0.0)
+                }
                 Law::Point(t) => {
                     let l = capi::linearize(&t, a, omega).map_err(super::AftError::from)?;
                     C64::new(l.k_star, omega * l.d_star)
