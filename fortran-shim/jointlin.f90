@@ -196,6 +196,17 @@ module jointlin
        integer(c_int32_t) :: jointlin_linearize_cubic
      end function jointlin_linearize_cubic
 
+     function jointlin_cubic_force(k_lin, alpha, x, force, tangent) &
+          bind(C, name='jointlin_cubic_force')
+       import :: c_int32_t, c_double
+       real(c_double), value :: k_lin
+       real(c_double), value :: alpha
+       real(c_double), value :: x
+       real(c_double), intent(out) :: force
+       real(c_double), intent(out) :: tangent
+       integer(c_int32_t) :: jointlin_cubic_force
+     end function jointlin_cubic_force
+
      ! C allows state_out == state; Fortran forbids passing one array as both (state is
      ! intent(in)): step a copy, or call with state_out = a second array.
      function jointlin_point_step(contact, state, slip, state_out, out) &

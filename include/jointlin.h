@@ -592,6 +592,25 @@ int32_t jointlin_linearize_cubic(double k_lin,
                                  struct jointlin_cubic_linearization *out);
 
 /**
+ * Force F = k_lin x + alpha x^3 (4.1) (force units) and tangent stiffness
+ * dF/dx = k_lin + 3 alpha x^2 (force/length) of the cubic spring at the elongation `x`
+ * (length, any finite sign).
+ *
+ * `force` and `tangent` must not be NULL. Errors: JOINTLIN_ERR_NULL,
+ * JOINTLIN_ERR_NON_FINITE (any NaN/Inf input), JOINTLIN_ERR_OUT_OF_RANGE (misaligned
+ * pointer), JOINTLIN_ERR_OVERFLOW (force or tangent not representable). The outputs are
+ * written only on JOINTLIN_OK.
+ *
+ * # Safety
+ * Non-NULL `force` and `tangent` must point to valid, aligned, writable doubles.
+ */
+int32_t jointlin_cubic_force(double k_lin,
+                             double alpha,
+                             double x,
+                             double *force,
+                             double *tangent);
+
+/**
  * A static, NUL-terminated English description of a status code. Never NULL; unknown codes
  * give "unknown status code". The caller must not free it.
  */

@@ -109,6 +109,61 @@ fn linearize_cubic_rejects_hard_inputs_without_writing() {
 }
 
 #[test]
+fn cubic_force_rejects_hard_inputs_without_writing() {
+    let (mut f, mut t) = (SENTINEL, SENTINEL);
+    unsafe {
+        assert_eq!(
+            jointlin_cubic_force(20.0, 40.0, 0.4, null_mut(), &mut t),
+            JOINTLIN_ERR_NULL
+        );
+        assert_eq!(
+            jointlin_cubic_force(20.0, 40.0, 0.4, &mut f, null_mut()),
+            JOINTLIN_ERR_NULL
+        );
+        for bad in BAD {
+            for field in 0..3 {
+                let mut v = [20.0, 40.0, 0.4];
+                v[field] = bad;
+                assert_eq!(
+                    jointlin_cubic_force(v[0], v[1], v[2], &mut f, &mut t),
+                    JOINTLIN_ERR_NON_FINITE
+                );
+            }
+        }
+        assert_eq!(
+            jointlin_cubic_force(20.0, 40.0, 1e200, &mut f, &mut t),
+            JOINTLIN_ERR_OVERFLOW
+        );
+        assert_eq!((f, t), (SENTINEL, SENTINEL));
+        // (4.1) at x = -0.5 (softening α): F = 20·(-0.5) - 40·(-0.125) = -5, dF/dx = 20 - 3·40·0.25 = -10.
+        assert_eq!(
+            jointlin_cubic_force(20.0, -40.0, -0.5, &mut f, &mut t),
+            JOINTLIN_OK
+        );
+        assert!(
+            (f + 5.0).abs() < 1e-15 && (t + 10.0).abs() < 1e-15,
+            "{f} {t}"
+        );
+        // The tangent is the force's derivative: central difference, error O(h²) ≈ 1e-9 relative.
+        let h = 1e-5;
+        let (mut fp, mut fm, mut dummy) = (0.0, 0.0, 0.0);
+        assert_eq!(
+            jointlin_cubic_force(20.0, 40.0, 0.3 + h, &mut fp, &mut dummy),
+            JOINTLIN_OK
+        );
+        assert_eq!(
+            jointlin_cubic_force(20.0, 40.0, 0.3 - h, &mut fm, &mut dummy),
+            JOINTLIN_OK
+        );
+        assert_eq!(
+            jointlin_cubic_force(20.0, 40.0, 0.3, &mut f, &mut t),
+            JOINTLIN_OK
+        );
+        assert!(((fp - fm) / (2.0 * h) - t).abs() < 1e-8 * t, "{t}");
+    }
+}
+
+#[test]
 fn linearize_rejects_null_and_non_finite_without_writing() {
     let c = block();
     let mut out = sentinel_lin();

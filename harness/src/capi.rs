@@ -10,7 +10,9 @@ use std::cell::Cell;
 use std::ffi::{c_char, CStr};
 use std::ptr::{self, NonNull};
 
-use jointlin::ffi::cubic::{jointlin_cubic_linearization, jointlin_linearize_cubic};
+use jointlin::ffi::cubic::{
+    jointlin_cubic_force, jointlin_cubic_linearization, jointlin_linearize_cubic,
+};
 use jointlin::ffi::error::{jointlin_last_error, jointlin_status_message, JOINTLIN_OK};
 use jointlin::ffi::linearize::{
     jointlin_contact, jointlin_linearization, jointlin_linearize, jointlin_method,
@@ -247,6 +249,16 @@ pub fn linearize_cubic(k: f64, alpha: f64, amplitude: f64) -> Result<f64, CapiEr
     let code = unsafe { jointlin_linearize_cubic(k, alpha, amplitude, &mut out) };
     check("jointlin_linearize_cubic", code)?;
     Ok(out.k_star)
+}
+
+/// Force (force units) and tangent (force/length) of the cubic spring F = k·x + α·x³ at
+/// the elongation x, through `jointlin_cubic_force`.
+pub fn cubic_force(k: f64, alpha: f64, x: f64) -> Result<(f64, f64), CapiError> {
+    let (mut force, mut tangent) = (0.0, 0.0);
+    // SAFETY: both are writable locals.
+    let code = unsafe { jointlin_cubic_force(k, alpha, x, &mut force, &mut tangent) };
+    check("jointlin_cubic_force", code)?;
+    Ok((force, tangent))
 }
 
 thread_local! {

@@ -1,6 +1,7 @@
 //! `jointlin_linearize_cubic`: the equivalent stiffness and damping of a cubic (Duffing)
 //! spring F(x) = k·x + α·x³ (4.1) for one amplitude, by first-order harmonic balance (3.8)
-//! and energy balance (3.14).
+//! and energy balance (3.14); `jointlin_cubic_force`: its force and tangent at one
+//! elongation (for hosts that march it in time or by alternating frequency–time balance).
 
 use super::error::boundary;
 use super::{check_ptr, put};
@@ -50,6 +51,38 @@ pub unsafe extern "C" fn jointlin_linearize_cubic(
         };
         // SAFETY: checked non-NULL and aligned above; writable by contract.
         unsafe { put(out, value) };
+        Ok(())
+    })
+}
+
+/// Force F = k_lin x + alpha x^3 (4.1) (force units) and tangent stiffness
+/// dF/dx = k_lin + 3 alpha x^2 (force/length) of the cubic spring at the elongation `x`
+/// (length, any finite sign).
+///
+/// `force` and `tangent` must not be NULL. Errors: JOINTLIN_ERR_NULL,
+/// JOINTLIN_ERR_NON_FINITE (any NaN/Inf input), JOINTLIN_ERR_OUT_OF_RANGE (misaligned
+/// pointer), JOINTLIN_ERR_OVERFLOW (force or tangent not representable). The outputs are
+/// written only on JOINTLIN_OK.
+///
+/// # Safety
+/// Non-NULL `force` and `tangent` must point to valid, aligned, writable doubles.
+#[no_mangle]
+pub unsafe extern "C" fn jointlin_cubic_force(
+    k_lin: f64,
+    alpha: f64,
+    x: f64,
+    force: *mut f64,
+    tangent: *mut f64,
+) -> i32 {
+    boundary("jointlin_cubic_force", || {
+        check_ptr(force, "force")?;
+        check_ptr(tangent, "tangent")?;
+        let (f, t) = CubicSpring::new(k_lin, alpha)?.force_and_tangent(x)?;
+        // SAFETY: both checked non-NULL and aligned above; writable by contract.
+        unsafe {
+            put(force, f);
+            put(tangent, t);
+        }
         Ok(())
     })
 }

@@ -3,7 +3,8 @@
 //!
 //! * [`error`]: status codes, `jointlin_status_message`, `jointlin_last_error`, panic boundary;
 //! * [`linearize`]: `jointlin_linearize` (one point, one amplitude, one frequency);
-//! * [`cubic`]: `jointlin_linearize_cubic` (the Duffing cubic spring, one amplitude);
+//! * [`cubic`]: `jointlin_linearize_cubic` (the Duffing cubic spring, one amplitude) and
+//!   `jointlin_cubic_force` (its force and tangent at one elongation);
 //! * [`point`]: `jointlin_point_step`, the time-domain hysteresis point for non-Abaqus hosts;
 //! * [`screw`]: `jointlin_screw_preload`, screw preload from torque (VDI 2230);
 //! * [`store`]: the iteration store object `jointlin_store` (thesis §4.3.2);

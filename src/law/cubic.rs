@@ -27,4 +27,20 @@ impl CubicSpring {
         // (4.1)
         self.k * x + self.alpha * x * x * x
     }
+
+    /// Tangent stiffness dF/dx = k + 3·α·x² of (4.1) (force/length) at the elongation x.
+    pub fn tangent(&self, x: f64) -> f64 {
+        self.k + 3.0 * self.alpha * x * x
+    }
+
+    /// Force and tangent at the elongation x (length). Errors: NonFinite (x), Overflow
+    /// (force or tangent not representable).
+    pub fn force_and_tangent(&self, x: f64) -> Result<(f64, f64), Error> {
+        let x = finite(x, "elongation x")?;
+        let (force, tangent) = (self.force(x), self.tangent(x));
+        if !(force.is_finite() && tangent.is_finite()) {
+            return Err(Error::Overflow("cubic spring force k x + alpha x^3"));
+        }
+        Ok((force, tangent))
+    }
 }

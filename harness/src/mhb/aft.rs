@@ -144,12 +144,18 @@ pub struct Period {
 pub fn march(law: &Law, delta: &[f64]) -> Result<Period, AftError> {
     let n = delta.len();
     match law {
-        Law::Cubic(k3) => Ok(Period {
-            force: delta.iter().map(|d| k3 * d * d * d).collect(),
-            tangent: delta.iter().map(|d| 3.0 * k3 * d * d).collect(),
-            dissipated: 0.0,
-            periods: 1,
-        }),
+        Law::Cubic(k3) => {
+            let mut cur = Period {
+                periods: 1,
+                ..Period::default()
+            };
+            for &d in delta {
+                let (force, tangent) = capi::cubic_force(0.0, *k3, d)?;
+                cur.force.push(force);
+                cur.tangent.push(tangent);
+            }
+            Ok(cur)
+        }
         Law::Point(t) => {
             let mut state = [0.0; POINT_STATE_LEN];
             let mut next = [0.0; POINT_STATE_LEN];
