@@ -598,18 +598,7 @@ fn time_domain_run(s: &Scene, out: &std::path::Path, quiet: bool) -> ExitCode {
             x.seconds
         );
     }
-    match scene_run::write(out, s, &r) {
-        Ok(files) => {
-            for f in files {
-                eprintln!("wrote {}", f.display());
-            }
-            ExitCode::SUCCESS
-        }
-        Err(e) => {
-            eprintln!("error writing reports: {e}");
-            ExitCode::from(1)
-        }
-    }
+    report_written(scene_run::write(out, s, &r))
 }
 
 /// Lists the files a report command wrote, or its write error; the exit code follows.
@@ -622,7 +611,7 @@ fn report_written<E: std::fmt::Display>(written: Result<Vec<std::path::PathBuf>,
             ExitCode::SUCCESS
         }
         Err(e) => {
-            eprintln!("error writing: {e}");
+            eprintln!("error writing reports: {e}");
             ExitCode::from(1)
         }
     }
