@@ -194,17 +194,22 @@ pub fn screw_preload(
     Ok(f)
 }
 
-/// k*, d*, η, energy per cycle, δ*, A/δ*, regime of one point for amplitude A (length)
-/// at ω (rad/time), default quadrature.
-pub fn linearize(t: &Tangential, amplitude: f64, omega: f64) -> Result<Linearized, CapiError> {
-    count(|c| c.linearize += 1);
-    let contact = jointlin_contact {
+/// The C description of a point's tangential law.
+fn c_contact(t: &Tangential) -> jointlin_contact {
+    jointlin_contact {
         law: law_code(t.law),
         rule: rule_code(t.rule),
         mu: t.mu,
         normal_force: t.normal,
         k_t0: t.k_t0,
-    };
+    }
+}
+
+/// k*, d*, η, energy per cycle, δ*, A/δ*, regime of one point for amplitude A (length)
+/// at ω (rad/time), default quadrature.
+pub fn linearize(t: &Tangential, amplitude: f64, omega: f64) -> Result<Linearized, CapiError> {
+    count(|c| c.linearize += 1);
+    let contact = c_contact(t);
     let mut out = jointlin_linearization {
         k_star: 0.0,
         d_star: 0.0,
@@ -287,13 +292,7 @@ pub fn point_step(
     state_out: &mut [f64; POINT_STATE_LEN],
 ) -> Result<PointStep, CapiError> {
     POINT_STEPS.with(|c| c.set(c.get() + 1));
-    let contact = jointlin_contact {
-        law: law_code(t.law),
-        rule: rule_code(t.rule),
-        mu: t.mu,
-        normal_force: t.normal,
-        k_t0: t.k_t0,
-    };
+    let contact = c_contact(t);
     let mut out = jointlin_step::default();
     // SAFETY: contact and out are valid locals; both state arrays hold
     // JOINTLIN_POINT_STATE_LEN doubles.
