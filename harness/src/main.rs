@@ -152,6 +152,11 @@ enum Command {
         /// reference point, print it, and write nothing.
         #[arg(long)]
         calibrate: bool,
+        /// Instead: a mesh study at the first reference point's torque (its amplitude
+        /// and a quarter of it) with every box's divisions × each factor, node-based
+        /// and area-sampled; writes mesh_study.md and mesh_study.csv.
+        #[arg(long, value_delimiter = ',', num_args = 1..)]
+        mesh_study: Vec<usize>,
         /// No progress bar.
         #[arg(long)]
         quiet: bool,
@@ -369,8 +374,9 @@ fn main() -> ExitCode {
             scene,
             out,
             calibrate,
+            mesh_study,
             quiet,
-        } => loss(&scene, &out, calibrate, quiet),
+        } => loss(&scene, &out, calibrate, &mesh_study, quiet),
         Command::Check { scene } => match Scene::load(&scene) {
             Ok(s) => {
                 println!(
@@ -502,7 +508,13 @@ fn main() -> ExitCode {
 }
 
 /// `jointlin loss`.
-fn loss(scene: &std::path::Path, out: &std::path::Path, calibrate: bool, quiet: bool) -> ExitCode {
+fn loss(
+    scene: &std::path::Path,
+    out: &std::path::Path,
+    calibrate: bool,
+    mesh_study: &[usize],
+    quiet: bool,
+) -> ExitCode {
     use jointlin_harness::loss;
     let s = match Scene::load(scene) {
         Ok(s) => s,
@@ -534,6 +546,9 @@ fn loss(scene: &std::path::Path, out: &std::path::Path, calibrate: bool, quiet: 
             }
         };
     }
+    if !mesh_study.is_empty() {
+        return loss_mesh_study(&s, out, mesh_study, quiet);
+    }
     let pb = progress_bar(quiet);
     pb.set_length(st.torques.len() as u64);
     let t = std::time::Instant::now();
@@ -552,6 +567,42 @@ fn loss(scene: &std::path::Path, out: &std::path::Path, calibrate: bool, quiet: 
     print!("{}", loss::report::markdown(&s, &st, &r));
     eprintln!("{:.1} s", t.elapsed().as_secs_f64());
     report_written(loss::report::write(out, &s, &r))
+}
+
+/// `jointlin loss --mesh-study`.
+fn loss_mesh_study(s: &Scene, out: &std::path::Path, factors: &[usize], quiet: bool) -> ExitCode {
+    use jointlin_harness::loss::mesh;
+    if factors.contains(&0) {
+        eprintln!("error: --mesh-study factors must be >= 1");
+        return ExitCode::from(2);
+    }
+    let pb = progress_bar(quiet);
+    pb.set_length(2 * factors.len() as u64);
+    let t = std::time::Instant::now();
+    let rows = mesh::study(s, factors, &|l| {
+        pb.set_message(l.to_string());
+        pb.inc(1);
+    });
+    pb.finish_and_clear();
+    let rows = match rows {
+        Ok(r) => r,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return ExitCode::from(1);
+        }
+    };
+    let md = mesh::markdown(s, &rows);
+    print!("{md}");
+    eprintln!("{:.1} s", t.elapsed().as_secs_f64());
+    let write = || -> Result<Vec<std::path::PathBuf>, String> {
+        let io = |e: std::io::Error| format!("{}: {e}", out.display());
+        std::fs::create_dir_all(out).map_err(io)?;
+        let (a, b) = (out.join("mesh_study.md"), out.join("mesh_study.csv"));
+        std::fs::write(&a, md).map_err(io)?;
+        std::fs::write(&b, mesh::csv(&rows)).map_err(io)?;
+        Ok(vec![a, b])
+    };
+    report_written(write())
 }
 
 /// `jointlin run --time-domain`.

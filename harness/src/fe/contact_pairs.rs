@@ -43,6 +43,25 @@ pub struct ContactPair {
     pub area: f64,
 }
 
+/// The element faces of `lower`'s z-max face whose centre `c` has `keep(c)`: the
+/// contact face of an interface, counter-clockwise quads as `Body::face_quads` gives.
+pub fn contact_quads(
+    model: &Model,
+    lower: usize,
+    keep: &dyn Fn([f64; 3]) -> bool,
+) -> Result<Vec<[usize; 4]>, PairError> {
+    Ok(model
+        .body(lower)?
+        .face_quads(Face::ZMax, &model.elements)
+        .into_iter()
+        .filter(|q| {
+            let c =
+                std::array::from_fn(|a| q.iter().map(|&n| model.nodes[n][a]).sum::<f64>() / 4.0);
+            keep(c)
+        })
+        .collect())
+}
+
 /// Pairs the coincident nodes of `lower`'s z-max face and `upper`'s z-min face.
 /// Nodes match when their positions differ by less than `rel_tol` times the smallest
 /// in-plane element size; every node of the lower face must find a partner (the upper
@@ -91,15 +110,7 @@ pub fn find_pairs_where(
     for n in hi.face_nodes(Face::ZMin) {
         grid.entry(cell(model.nodes[n])).or_default().push(n);
     }
-    let quads: Vec<[usize; 4]> = lo
-        .face_quads(Face::ZMax, &model.elements)
-        .into_iter()
-        .filter(|q| {
-            let c =
-                std::array::from_fn(|a| q.iter().map(|&n| model.nodes[n][a]).sum::<f64>() / 4.0);
-            keep(c)
-        })
-        .collect();
+    let quads = contact_quads(model, lower, keep)?;
     let areas = nodal_areas(model, &quads);
     let frame = Matrix3::new(0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 1.0, 0.0, 0.0);
     let mut out = Vec::with_capacity(areas.len());

@@ -11,6 +11,7 @@
 //! of the structure: 0.5 for a half model).
 
 pub mod maps;
+pub mod mesh;
 pub mod plot;
 pub mod report;
 

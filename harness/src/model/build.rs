@@ -5,9 +5,10 @@ use std::collections::BTreeMap;
 
 use nalgebra::{Complex, Matrix3, Vector3};
 
+use super::subgrid::{coupling_pairs, face_samples, AreaSample};
 use super::{BuildError, ContactPoint, CubicSpring, Interface, Output, Problem, Screw};
 use crate::fe::assembly::{assemble, System};
-use crate::fe::contact_pairs::find_pairs_where;
+use crate::fe::contact_pairs::{contact_quads, find_pairs_where};
 use crate::fe::csc::Csc;
 use crate::fe::hex8::{self, Formulation};
 use crate::fe::mesh::{BoxSpec, Face, Material, Model};
@@ -141,6 +142,7 @@ pub fn build(scene: &Scene) -> Result<Problem, BuildError> {
     // Interfaces and their contact pairs (before assembly: the pattern needs them).
     let mut interfaces = Vec::new();
     let mut raw_points = Vec::new(); // (nodes, frame, area, interface)
+    let mut sampled_faces = Vec::new(); // (interface, its element faces, samples per side)
     for (i, f) in s.interfaces.iter().enumerate() {
         let [lo, hi] = &f.between;
         interfaces.push(Interface {
@@ -154,6 +156,7 @@ pub fn build(scene: &Scene) -> Result<Problem, BuildError> {
             hertz_radius: f.hertz_radius,
             hertz_e_star: f.hertz_e_star,
             initial_gap: f.initial_gap,
+            area_samples: f.area_samples,
         });
         if lo == GROUND {
             let BodyRef::Mass { ground, node, .. } = body(hi) else {
@@ -172,6 +175,13 @@ pub fn build(scene: &Scene) -> Result<Problem, BuildError> {
                 source,
             }
         })?;
+        if let Some(per_side) = f.area_samples {
+            let quads = contact_quads(&model, a, &keep).map_err(|source| BuildError::Pairs {
+                name: f.name.clone(),
+                source,
+            })?;
+            sampled_faces.push((i, quads, per_side));
+        }
         for p in found {
             let all_fixed = p
                 .nodes
@@ -184,6 +194,21 @@ pub fn build(scene: &Scene) -> Result<Problem, BuildError> {
     }
     let first_contact = pairs.len();
     pairs.extend(raw_points.iter().map(|r| r.0));
+    // Sub-grid samples (point k = raw_points[k]); the static step's normal tangent
+    // couples a sampled point to the corners of its samples, so the pattern gets node
+    // pairs for every such couple (after the contact pairs; nothing else uses them).
+    let mut samples: Vec<Vec<AreaSample>> = vec![Vec::new(); raw_points.len()];
+    for (itf, quads, per_side) in sampled_faces {
+        let point_of_node: BTreeMap<usize, usize> = (0..raw_points.len())
+            .filter(|&k| raw_points[k].3 == itf)
+            .map(|k| (raw_points[k].0[0], k))
+            .collect();
+        let point_of = |n: usize| point_of_node.get(&n).copied();
+        for (k, _, list) in face_samples(&model, &quads, &point_of, per_side) {
+            samples[k] = list;
+        }
+    }
+    pairs.extend(coupling_pairs(&raw_points, &samples));
 
     let mut sys = assemble(&model, Formulation::IncompatibleModes, &pairs)?;
 
@@ -243,7 +268,7 @@ pub fn build(scene: &Scene) -> Result<Problem, BuildError> {
     };
 
     // Contact points with their B rows.
-    let contacts = raw_points
+    let mut contacts: Vec<ContactPoint> = raw_points
         .iter()
         .enumerate()
         .map(|(k, &(nodes, frame, area, interface))| {
@@ -269,9 +294,13 @@ pub fn build(scene: &Scene) -> Result<Problem, BuildError> {
                 interface,
                 position: model.nodes[nodes[0]],
                 rows,
+                samples: Vec::new(),
             }
         })
         .collect();
+    for (c, list) in contacts.iter_mut().zip(samples) {
+        c.samples = list;
+    }
 
     // Preload.
     let mut pre = vec![0.0; model.n_dofs()];

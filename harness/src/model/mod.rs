@@ -7,6 +7,7 @@
 //! its lower side.
 
 mod build;
+pub mod subgrid;
 
 pub use build::build;
 
@@ -68,6 +69,8 @@ pub struct Interface {
     pub hertz_e_star: Option<f64>,
     /// Initial normal gap g₀ (length): overclosure h = −δ_n − g₀.
     pub initial_gap: f64,
+    /// Sub-grid samples per quarter face and direction (`None`: node-based).
+    pub area_samples: Option<usize>,
 }
 
 /// One contact point: a node pair with a local frame and a tributary area.
@@ -88,6 +91,9 @@ pub struct ContactPoint {
     /// Local relative displacement component c (n, t₁, t₂) = Σ w·u_free: the sparse rows
     /// of the map B (u_free → Qᵀ(u_upper − u_lower)); fixed DOFs are left out.
     pub rows: [Vec<(usize, f64)>; 3],
+    /// Sub-grid samples of the tributary area (empty: the node value stands for all of
+    /// it), see [`subgrid`].
+    pub samples: Vec<subgrid::AreaSample>,
 }
 
 impl ContactPoint {
@@ -168,6 +174,13 @@ pub struct Problem {
     pub excitation: Vec<Complex<f64>>,
     pub outputs: Vec<Output>,
     pub screws: Vec<Screw>,
+}
+
+impl Problem {
+    /// Whether any contact point is sampled over its area (`area_samples`).
+    pub fn has_area_samples(&self) -> bool {
+        self.contacts.iter().any(|c| !c.samples.is_empty())
+    }
 }
 
 #[cfg(test)]

@@ -179,6 +179,12 @@ pub struct InterfaceSpec {
     /// centre lies inside one of these boxes carry no contact (a relieved face).
     #[serde(default)]
     pub exclude: Vec<RegionSpec>,
+    /// Sub-grid sampling of each point's tributary area (box interfaces): s × s samples
+    /// per quarter element face, overclosure interpolated from the face's nodes, the
+    /// point's law averaged over them (`model::subgrid`). Absent: the law at the node
+    /// alone, over its whole area (the thesis's node-based contact).
+    #[serde(default)]
+    pub area_samples: Option<usize>,
 }
 
 /// An axis-aligned region `min ≤ x ≤ max` (length).

@@ -250,3 +250,29 @@ fn cubic_spring_keys_are_validated() {
     let e = Scene::parse("d.toml", &text).unwrap_err();
     assert_eq!(e.line, line_of(&text, "sideways"));
 }
+
+#[test]
+fn area_samples_are_validated() {
+    let with = |v: &str| {
+        GOOD.replace(
+            "normal_stiffness_per_area = 1e5\n",
+            &format!("normal_stiffness_per_area = 1e5\narea_samples = {v}\n"),
+        )
+    };
+    let s = Scene::parse("x", &with("4")).unwrap();
+    assert_eq!(s.spec.interfaces[0].area_samples, Some(4));
+    for bad in ["0", "33"] {
+        let text = with(bad);
+        let e = err(&text);
+        assert_eq!(e.key, "interfaces[0].area_samples", "{e}");
+        assert_eq!(e.line, line_of(&text, &format!("area_samples = {bad}")));
+    }
+    // Only the fast mode samples the area.
+    let thesis = with("4").replace(
+        "count = 3\n",
+        "count = 3\n\n[iteration]\nmode = \"thesis\"\n",
+    );
+    let e = err(&thesis);
+    assert_eq!(e.key, "interfaces[0].area_samples", "{e}");
+    assert!(e.message.contains("fast"), "{e}");
+}

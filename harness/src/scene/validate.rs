@@ -264,6 +264,22 @@ pub fn validate(s: &SceneFile) -> Vec<Problem> {
         if lumped && !f.exclude.is_empty() {
             c.fail(p.key("exclude"), "only for box interfaces");
         }
+        if let Some(n) = f.area_samples {
+            if lumped {
+                c.fail(p.key("area_samples"), "only for box interfaces");
+            } else if !(1..=MAX_AREA_SAMPLES).contains(&n) {
+                c.fail(
+                    p.key("area_samples"),
+                    format!("must be 1 ..= {MAX_AREA_SAMPLES}, got {n}"),
+                );
+            }
+            if s.iteration.mode != Mode::Fast {
+                c.fail(
+                    p.key("area_samples"),
+                    "needs [iteration] mode = \"fast\" (the other modes evaluate each point at its node)",
+                );
+            }
+        }
         if lumped {
             match f.area {
                 Some(a) => c.positive(p.key("area"), a),
@@ -535,6 +551,8 @@ pub fn validate(s: &SceneFile) -> Vec<Problem> {
 /// Most harmonics and samples per period a scene may ask for (H = 64 is far past where
 /// the rungs have converged on any scene here; N bounds the march's memory and time).
 pub const MAX_HARMONICS: usize = 64;
+/// Most sub-grid samples per quarter face and direction (`area_samples`).
+pub const MAX_AREA_SAMPLES: usize = 32;
 pub const MAX_SAMPLES: usize = 1 << 16;
 
 /// `[iteration]` keys of the harmonic balance, and the effects it cannot switch off.

@@ -64,6 +64,8 @@ pub enum TimeError {
     Settings(String),
     #[error("the time-domain reference does not integrate cubic springs (the C API has no time-domain cubic spring); `jointlin validate` has the Duffing oscillator's own RK4 reference")]
     CubicSprings,
+    #[error("the time-domain reference evaluates each contact point at its node; remove `area_samples` from the interfaces")]
+    AreaSamples,
 }
 
 /// The dynamic state on the free DOFs.

@@ -276,6 +276,9 @@ pub fn sweep(
     if !problem.cubic_springs.is_empty() {
         return Err(TimeError::CubicSprings);
     }
+    if problem.has_area_samples() {
+        return Err(TimeError::AreaSamples);
+    }
     let mut results = Vec::new();
     let mut contacts = Contacts::new(problem, stat)?;
     let mut st = initial_state(

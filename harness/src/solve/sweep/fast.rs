@@ -28,7 +28,7 @@ use super::krylov::Gmres;
 use super::receptance::Receptance;
 use super::{Options, PassRecord, PointFreq, Setup, SweepError, SweepResult, C64};
 use crate::capi::{self, Linearized, Tangential};
-use crate::solve::contact::tangential;
+use crate::solve::contact::{area_average, tangential};
 use crate::solve::dense::lu_solve_in_place;
 
 /// Anderson history depth.
@@ -89,6 +89,22 @@ pub fn sweep(
         })
         .collect();
     let area: Vec<f64> = setup.active.iter().map(|&i| p.contacts[i].area).collect();
+    // Area samples of sampled points: (tangential data at the sample's pressure, area
+    // fraction), zero-pressure samples left out (they carry no friction).
+    let samples: Vec<Vec<(Tangential, f64)>> = setup
+        .active
+        .iter()
+        .map(|&i| {
+            let c = &p.contacts[i];
+            let itf = &p.interfaces[c.interface];
+            c.samples
+                .iter()
+                .zip(&setup.sample_pressure[i])
+                .filter(|(_, &pr)| pr > 0.0)
+                .map(|(s, &pr)| (tangential(itf, pr), s.fraction))
+                .collect()
+        })
+        .collect();
     // δ* per active point, only when macroslip is off (A = 0 gives δ* and k_T0).
     let t0 = Instant::now();
     let slip_limit: Vec<f64> = if eff.macroslip {
@@ -141,6 +157,9 @@ pub fn sweep(
                 *caps += 1;
             }
             lin[j] = capi::linearize(&tang[j / 2], amp, omega)?;
+            if !p.contacts[active[j / 2]].samples.is_empty() {
+                lin[j] = area_average(&lin[j], &samples[j / 2], amp, omega)?;
+            }
         }
         Ok(())
     };

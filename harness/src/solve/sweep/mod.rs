@@ -78,6 +78,8 @@ pub enum SweepError {
     },
     #[error("the harmonic-balance mode does not include cubic springs (their linearization is first order); use mode fast or thesis")]
     CubicInHarmonicBalance,
+    #[error("interfaces with `area_samples` are solved in mode fast only (the thesis store and the harmonic balance evaluate each point at its node)")]
+    AreaSamplesNeedFastMode,
 }
 
 /// What the sweep is asked to do (from the scene's iteration table and effects).
@@ -200,6 +202,8 @@ pub struct Setup<'a> {
     pub unit_blocks: Vec<[Matrix3<f64>; 2]>,
     /// Base pressure per contact point.
     pub pressure: Vec<f64>,
+    /// Per contact point: normal stress at its area samples (empty: node-based).
+    pub sample_pressure: Vec<Vec<f64>>,
     pub damping: Option<&'a Csc<f64>>,
     /// S(ω) scratch.
     pub s: Csc<C64>,
@@ -258,6 +262,7 @@ impl<'a> Setup<'a> {
             symbolic,
             base,
             active,
+            sample_pressure: stat.sample_pressure.clone(),
             unit_blocks,
             pressure: stat.pressure.clone(),
             damping,
@@ -334,6 +339,9 @@ pub fn run(
     } else {
         freqs.to_vec()
     };
+    if opts.iteration.mode != crate::scene::Mode::Fast && problem.has_area_samples() {
+        return Err(SweepError::AreaSamplesNeedFastMode);
+    }
     let mut r = match opts.iteration.mode {
         crate::scene::Mode::Fast => fast::sweep(&mut setup, &order, opts, progress)?,
         crate::scene::Mode::Thesis => thesis::sweep(&mut setup, stat, &order, opts, progress)?,
