@@ -106,6 +106,22 @@ impl Csc<f64> {
 }
 
 impl Csc<Complex<f64>> {
+    /// √(‖A‖₁‖A‖∞) (largest column and row sums of |aᵢⱼ|): an upper bound of the
+    /// spectral norm ‖A‖₂, within a factor √n of it.
+    pub fn norm2_bound(&self) -> f64 {
+        let p = &self.pattern;
+        let (mut cols, mut rows) = (vec![0.0f64; p.n], vec![0.0f64; p.n]);
+        for j in 0..p.n {
+            for k in p.col_ptr[j] as usize..p.col_ptr[j + 1] as usize {
+                let v = self.values[k].norm();
+                cols[j] += v;
+                rows[p.row_idx[k] as usize] += v;
+            }
+        }
+        let max = |s: &[f64]| s.iter().fold(0.0f64, |m, &v| m.max(v));
+        (max(&cols) * max(&rows)).sqrt()
+    }
+
     /// y = A x.
     pub fn mul_vec(&self, x: &[Complex<f64>]) -> Vec<Complex<f64>> {
         let p = &self.pattern;

@@ -356,6 +356,9 @@ impl<'s, 'a> FeBalance<'s, 'a> {
                 &big_r,
                 &mut du,
                 GMRES_TOL,
+                // No bound of ‖I + ĜΓ‖ at hand: the floor stays ROUNDOFF·ε·‖R‖, far
+                // below GMRES_TOL, which alone decides.
+                0.0,
                 GMRES_MAX,
             )?;
             self.stats.gmres_iterations += stats.iterations;

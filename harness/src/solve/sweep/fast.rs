@@ -38,11 +38,13 @@ const DEPTH: usize = 5;
 /// frequency's factorization ([`super::krylov`]), whose cost does not grow with m³.
 pub const CONDENSE_MAX: usize = 16;
 /// FGMRES stops at ‖f − S u‖ ≤ GMRES_REL × rtol × ‖f‖ (1e-7 at the default rtol 1e-3:
-/// far below the amplitude tolerance), but not below GMRES_FLOOR, where the unrefined
-/// LU preconditioner makes it stagnate (1e-10 did on the three-beam scene; 1e-7 needs
-/// ~1.4 solves per contact iteration there).
+/// far below the amplitude tolerance), or where that is below round-off, at the
+/// residual's round-off floor ([`super::krylov::ROUNDOFF`]: as accurate as a direct solve
+/// with the factorization); 1.1–1.3 solves per contact iteration on three-beams-coarse at
+/// rtol 1e-3…1e-8. A fixed relative floor instead (1e-9) was out of reach near resonance,
+/// where ‖S‖‖u‖/‖f‖ ≈ 4e7 there: those solves ran to GMRES_MAX and flagged their
+/// frequencies not converged at rtol ≤ 1e-5 although the amplitudes had converged.
 const GMRES_REL: f64 = 1e-4;
-const GMRES_FLOOR: f64 = 1e-9;
 /// FGMRES restart length and most preconditioner applications per contact iteration.
 const GMRES_RESTART: usize = 30;
 const GMRES_MAX: usize = 300;
@@ -51,11 +53,17 @@ const GMRES_MAX: usize = 300;
 /// scenes/hard/stiffness-ratio.toml near resonance) extrapolated to A/δ* ≈ 1e16, where
 /// the linearization is no longer representable and the run stopped.
 const MAX_EXTRAPOLATION: f64 = std::f64::consts::LN_10;
-/// Amplitudes below this fraction of the largest one are handed to the linearization as
-/// exactly 0 (k* = k_T0, d* = 0: the A → 0 limit, where relative differences of 1e-15 are
-/// below round-off) and floored there before taking logs. Without it a direction that is
-/// never excited (amplitude 0) would drive ln a to −∞.
-const ZERO_AMP_REL: f64 = 1e-15;
+/// Amplitudes below this fraction of the largest one are round-off: handed to the
+/// linearization as exactly 0 (k* = k_T0, d* = 0: the A → 0 limit; k* differs from it by
+/// O(A/δ*)), floored there before taking logs, and equal to each other in the
+/// convergence test. Without it a direction that is never excited (amplitude 0) would
+/// drive ln a to −∞. Such directions come out of a solve as noise: up to 2.4e-11 of the
+/// largest amplitude on three-beams-coarse (lateral directions of the bending modes),
+/// with LU or FGMRES alike. A floor below the noise (1e-15 was) let FGMRES's noise,
+/// different at each solve because each starts from the previous û, reach the Anderson
+/// step as O(1) changes of ln a: 2–3× the condensed path's contact iterations, and two
+/// frequencies near the second resonance that never converged at rtol ≤ 1e-6.
+const ZERO_AMP_REL: f64 = 1e-9;
 /// Timing key of the cubic springs' linearization calls.
 pub const CUBIC_TIMING: &str = "cubic springs (C API)";
 
@@ -142,6 +150,10 @@ pub fn sweep(
         }
     };
     let weight = |j: usize| if j < mc { area[j / 2] } else { 1.0 };
+    // ‖Bⱼ‖₂² per contact unknown: ‖Bⱼᵀ Δⱼ Bⱼ‖₂ = |Δⱼ|‖Bⱼ‖₂² bounds the update's norm.
+    let row_norm2: Vec<f64> = (0..m)
+        .map(|j| row(j).iter().map(|&(_, w)| w * w).sum())
+        .collect();
     let zero_floor = |a: &[f64]| ZERO_AMP_REL * a.iter().fold(0.0f64, |x, &y| x.max(y));
 
     let linearize_all = |a: &[f64],
@@ -237,6 +249,8 @@ pub fn sweep(
         let t = Instant::now();
         let umf = |e| SweepError::Umfpack { freq: f, source: e };
         let krylov = !condensed;
+        // Upper bound of ‖S₀‖₂ for FGMRES's round-off floor.
+        let s0_norm = if krylov { setup.s.norm2_bound() } else { 0.0 };
         if krylov {
             num.solve_into(&p.excitation, &mut u).map_err(umf)?;
             for j in 0..m {
@@ -284,6 +298,13 @@ pub fn sweep(
                 }
                 if krylov {
                     let s0 = &setup.s;
+                    // ‖S₀ + BᵀΔB‖₂ ≤ ‖S₀‖₂ + Σⱼ |Δⱼ|‖Bⱼ‖₂².
+                    let anorm = s0_norm
+                        + delta
+                            .iter()
+                            .zip(&row_norm2)
+                            .map(|(d, b2)| d.norm() * b2)
+                            .sum::<f64>();
                     let stats = gmres.solve(
                         &mut |xv: &[C64], y: &mut [C64]| {
                             // y = S₀ x + Σⱼ Bⱼᵀ Δⱼ (Bⱼ x)
@@ -306,12 +327,14 @@ pub fn sweep(
                         &mut |xv: &[C64], y: &mut [C64]| num.solve_into(xv, y),
                         &p.excitation,
                         &mut u,
-                        (GMRES_REL * it.tolerance).max(GMRES_FLOOR),
+                        GMRES_REL * it.tolerance,
+                        anorm,
                         GMRES_MAX,
                     );
                     let stats = stats.map_err(umf)?;
                     res.gmres_solves += stats.iterations;
-                    gmres_ok &= stats.converged;
+                    // The amplitudes tested below (and the outputs) come from this solve.
+                    gmres_ok = stats.converged;
                     for j in 0..m {
                         r[j] = row(j).iter().map(|&(i, w)| u[i] * w).sum();
                     }
@@ -331,18 +354,18 @@ pub fn sweep(
                     a_star[j] = r[j].norm();
                 }
                 let atol = super::atol(&it);
-                converged = a
-                    .iter()
-                    .zip(&a_star)
-                    .all(|(&e, &c)| (e - c).abs() <= it.tolerance * e.max(c) + atol);
-                res.time("condensed iterations", t);
-                if converged {
-                    break;
-                }
                 let floor = ZERO_AMP_REL
                     * a.iter()
                         .chain(&a_star)
                         .fold(f64::MIN_POSITIVE, |x, &y| x.max(y));
+                converged = a.iter().zip(&a_star).all(|(&e, &c)| {
+                    let (e, c) = (e.max(floor), c.max(floor));
+                    (e - c).abs() <= it.tolerance * e.max(c) + atol
+                });
+                res.time("condensed iterations", t);
+                if converged {
+                    break;
+                }
                 let xs: Vec<f64> = a.iter().map(|v| v.max(floor).ln()).collect();
                 let gs: Vec<f64> = a_star.iter().map(|v| v.max(floor).ln()).collect();
                 a = if m == 1 {
