@@ -187,8 +187,8 @@ fn refining_the_mesh_changes_the_loss_by_less_than_two_percent() {
     assert!(rel < 0.02, "coarse {c}, fine {f}: {rel}");
 }
 
-/// The mesh study's first row is the scene itself: its node-based powers are (bitwise) the
-/// study's at the reference torque (3 N·m) and amplitudes (12 µm, 3 µm); the area-sampled
+/// The mesh study's first row is the scene itself: its node-based powers are (bitwise)
+/// `power_at`'s at the reference torque (3 N·m) and amplitudes (3 µm, 12 µm); the area-sampled
 /// ones differ (the patch edge moves into the elements) but stay positive; the shares
 /// are fractions.
 #[test]
