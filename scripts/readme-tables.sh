@@ -8,12 +8,13 @@ declare -A commands=(
   [accuracy_table]="cargo run --release -q --example accuracy_table"
   [seed_cases]="cargo run --release -q --example seed_cases"
   [knife]="cargo run --release -q -p jointlin-harness --bin jointlin -- loss scenes/knife.toml --out harness/assets/knife --quiet"
+  [knife_mesh]="cargo run --release -q -p jointlin-harness --bin jointlin -- loss scenes/knife-coarse.toml --mesh-study 1,2,3 --out harness/assets/knife-mesh --quiet"
 )
 for name in "${!commands[@]}"; do
   grep -q "<!-- BEGIN $name -->" README.md || continue
   echo "== $name: ${commands[$name]}"
   out=$(mktemp)
-  if [ "$name" = accuracy_table ] || [ "$name" = knife ]; then
+  if [ "$name" = accuracy_table ] || [ "$name" = knife ] || [ "$name" = knife_mesh ]; then
     { echo "Produced by \`${commands[$name]}\`:"; echo; eval "${commands[$name]}"; } > "$out"
   else
     { echo '```text'; echo "\$ ${commands[$name]}"; eval "${commands[$name]}"; echo '```'; } > "$out"
