@@ -24,7 +24,7 @@ use std::collections::{BTreeMap, BTreeSet, HashMap};
 use std::path::PathBuf;
 use std::sync::{Mutex, MutexGuard, RwLock};
 
-use crate::iterate::{next_estimate, Scheme};
+use crate::iterate::next_estimate;
 
 /// Errors of the iteration store. Each maps to one C status code in `ffi/error.rs`.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
@@ -47,110 +47,6 @@ pub enum StoreError {
     /// A panic while the store was locked left it in an unknown state.
     #[error("the store was poisoned by an earlier panic")]
     Poisoned,
-}
-
-/// How the host numbers the increments of a re-run or final pass.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub enum KincNumbering {
-    /// KINC is the sweep increment number in every pass (a host that re-runs selected
-    /// frequencies of the original sweep and keeps their numbers).
-    #[default]
-    Original,
-    /// Every pass numbers its increments 1..m (a new Abaqus analysis over the m re-run
-    /// frequencies): KINC = i means the i-th scheduled sweep increment, ascending.
-    Sequential,
-}
-
-/// Settings of the iteration.
-#[derive(Debug, Clone, PartialEq)]
-pub struct StoreConfig {
-    /// Amplitude estimate for the first increment of pass 1 (length, > 0).
-    pub initial_amplitude: f64,
-    /// Relative tolerance: converged when |a − a*| ≤ rtol·max(a, a*) + atol per direction.
-    pub rtol: f64,
-    /// Absolute tolerance (length, ≥ 0).
-    pub atol: f64,
-    /// Update rule for later passes; `Direct` is the thesis's "last computed amplitude".
-    pub scheme: Scheme,
-    /// Most iteration passes (pass 1 and re-runs); the final pass comes on top.
-    pub max_passes: u32,
-    /// KSTEP of the steady-state step that is iterated; 0 = every step.
-    pub sweep_step: i32,
-    /// Increment numbering of re-run passes.
-    pub numbering: KincNumbering,
-    /// Restart file, written at LOP 2 when LRESTART ≥ 1 and at LOP 3; read at LOP 4.
-    pub restart_path: Option<PathBuf>,
-}
-
-/// Default relative tolerance on the amplitude (0.1 %: well below the 3–9 % model error
-/// of the linearization itself, model.md §8).
-pub const DEFAULT_RTOL: f64 = 1e-3;
-/// Pairs of a point's (estimate, computed) history handed to [`next_estimate`]. Between two
-/// passes the *other* points' amplitudes change too, so the map a ↦ a*(a) of one point
-/// drifts: older pairs (and brackets built from them) are stale and made the bracketing
-/// secant stall on a coupled two-point sweep (tests/ffi_sweep.rs: no convergence in 15
-/// passes with the full history, 5 passes + final with the last two). The full history is
-/// kept (restart file, status).
-pub const HISTORY_WINDOW: usize = 2;
-
-/// Default bound on iteration passes (the thesis's beam needed 5, Fig. 4.33).
-pub const DEFAULT_MAX_PASSES: u32 = 20;
-
-impl StoreConfig {
-    /// Defaults around an initial amplitude estimate: rtol 1e-3, atol 0, secant, 20 passes,
-    /// every step, original numbering, no restart file.
-    pub fn new(initial_amplitude: f64) -> Self {
-        Self {
-            initial_amplitude,
-            rtol: DEFAULT_RTOL,
-            atol: 0.0,
-            scheme: Scheme::Secant,
-            max_passes: DEFAULT_MAX_PASSES,
-            sweep_step: 0,
-            numbering: KincNumbering::Original,
-            restart_path: None,
-        }
-    }
-
-    fn validate(&self) -> Result<(), StoreError> {
-        for (v, what) in [
-            (self.initial_amplitude, "initial amplitude"),
-            (self.rtol, "rtol"),
-            (self.atol, "atol"),
-        ] {
-            if !v.is_finite() {
-                return Err(StoreError::NonFinite(what));
-            }
-        }
-        if self.initial_amplitude <= 0.0 {
-            return Err(StoreError::OutOfRange("initial amplitude must be > 0"));
-        }
-        if !(0.0..1.0).contains(&self.rtol) || self.atol < 0.0 {
-            return Err(StoreError::OutOfRange("need 0 <= rtol < 1 and atol >= 0"));
-        }
-        if self.max_passes == 0 {
-            return Err(StoreError::OutOfRange("max_passes must be >= 1"));
-        }
-        if self.sweep_step < 0 {
-            return Err(StoreError::OutOfRange("sweep_step must be >= 0"));
-        }
-        Ok(())
-    }
-
-    /// |a − a*| ≤ rtol·max(a, a*) + atol.
-    fn within(&self, a: f64, a_star: f64) -> bool {
-        (a - a_star).abs() <= self.rtol * a.max(a_star) + self.atol
-    }
-
-    /// Amplitudes fed to the log-space update rule are floored here (ln 0 = −∞): at or below
-    /// atol (or 1e-12 of the initial estimate when atol = 0) amplitudes are indistinguishable.
-    fn floor(&self) -> f64 {
-        if self.atol > 0.0 {
-            self.atol
-        } else {
-            1e-12 * self.initial_amplitude
-        }
-    }
 }
 
 /// What the host should do next.
@@ -216,43 +112,6 @@ pub struct PointStatus {
     /// Passes in which this point was evaluated at this increment.
     pub passes: u32,
     pub reason: Reason,
-}
-
-/// Identity of a contact point: interaction name, NODE and coordinate bits. NODE alone is
-/// not enough (it is 0 for surface-to-surface contact).
-#[derive(Debug, Clone, PartialEq, Eq, Hash)]
-pub struct PointKey {
-    name: Vec<u8>,
-    node: i32,
-    coords: Vec<u64>,
-}
-
-/// Longest interaction name accepted (Abaqus: CHARACTER*80).
-pub const MAX_NAME_LEN: usize = 256;
-
-impl PointKey {
-    /// Trailing blanks and NULs of `name` are ignored (Fortran pads CHARACTER*80 with
-    /// blanks); −0.0 and 0.0 are the same coordinate. At most 3 coordinates.
-    pub fn new(name: &[u8], node: i32, coords: &[f64]) -> Result<Self, StoreError> {
-        if name.len() > MAX_NAME_LEN {
-            return Err(StoreError::OutOfRange("interaction name longer than 256"));
-        }
-        if coords.len() > 3 {
-            return Err(StoreError::OutOfRange("more than 3 coordinates"));
-        }
-        if coords.iter().any(|c| !c.is_finite()) {
-            return Err(StoreError::NonFinite("coordinates"));
-        }
-        let end = name
-            .iter()
-            .rposition(|&c| c != b' ' && c != 0)
-            .map_or(0, |i| i + 1);
-        Ok(Self {
-            name: name[..end].to_vec(),
-            node,
-            coords: coords.iter().map(|c| (c + 0.0).to_bits()).collect(),
-        })
-    }
 }
 
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -846,7 +705,12 @@ impl Store {
     }
 }
 
+mod config;
+mod key;
 mod restart;
+
+pub use config::{KincNumbering, StoreConfig, DEFAULT_MAX_PASSES, DEFAULT_RTOL, HISTORY_WINDOW};
+pub use key::{PointKey, MAX_NAME_LEN};
 
 #[cfg(test)]
 mod tests;

@@ -1,6 +1,7 @@
 //! Store unit tests: multi-pass flows, schemes, restart, keys, sequence errors.
 
 use super::*;
+use crate::iterate::Scheme;
 
 fn key(name: &str, node: i32, x: f64) -> PointKey {
     PointKey::new(name.as_bytes(), node, &[x, 0.0, 1.0]).unwrap()
