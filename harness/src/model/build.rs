@@ -156,7 +156,6 @@ pub fn build(scene: &Scene) -> Result<Problem, BuildError> {
             hertz_radius: f.hertz_radius,
             hertz_e_star: f.hertz_e_star,
             initial_gap: f.initial_gap,
-            area_samples: f.area_samples,
         });
         if lo == GROUND {
             let BodyRef::Mass { ground, node, .. } = body(hi) else {
@@ -268,10 +267,11 @@ pub fn build(scene: &Scene) -> Result<Problem, BuildError> {
     };
 
     // Contact points with their B rows.
-    let mut contacts: Vec<ContactPoint> = raw_points
+    let contacts = raw_points
         .iter()
+        .zip(samples)
         .enumerate()
-        .map(|(k, &(nodes, frame, area, interface))| {
+        .map(|(k, (&(nodes, frame, area, interface), samples))| {
             let rows = std::array::from_fn(|c| {
                 let mut r = Vec::new();
                 for (side, sign) in [(0, -1.0), (1, 1.0)] {
@@ -294,13 +294,10 @@ pub fn build(scene: &Scene) -> Result<Problem, BuildError> {
                 interface,
                 position: model.nodes[nodes[0]],
                 rows,
-                samples: Vec::new(),
+                samples,
             }
         })
         .collect();
-    for (c, list) in contacts.iter_mut().zip(samples) {
-        c.samples = list;
-    }
 
     // Preload.
     let mut pre = vec![0.0; model.n_dofs()];

@@ -69,8 +69,6 @@ pub struct Interface {
     pub hertz_e_star: Option<f64>,
     /// Initial normal gap g₀ (length): overclosure h = −δ_n − g₀.
     pub initial_gap: f64,
-    /// Sub-grid samples per quarter face and direction (`None`: node-based).
-    pub area_samples: Option<usize>,
 }
 
 /// One contact point: a node pair with a local frame and a tributary area.

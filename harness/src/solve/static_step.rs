@@ -128,8 +128,9 @@ struct Eval {
     sample_stiffness: Vec<Option<f64>>,
 }
 
-/// UINTER at every area sample of point `k`: the overclosure interpolated from the
-/// points' overclosures `h` (3.1 per sample), the tangential slip the point's own. The
+/// UINTER at every area sample of point `k` (the normal law, linear or Hertz (2.31–2.35),
+/// per sample): the overclosure interpolated from the points' overclosures `h`, the
+/// tangential slip the point's own. The
 /// point's stress and tangent are the area averages (tangent: the part through its own
 /// overclosure; the parts through its neighbours' go to `couplings`), and the area
 /// average of dσ/dh.
@@ -188,22 +189,22 @@ fn evaluate(
     let mut couplings = Vec::new();
     let mut sample_pressure = Vec::with_capacity(p.contacts.len());
     let mut sample_stiffness = Vec::with_capacity(p.contacts.len());
-    let h: Vec<f64> = match probe {
-        Some(_) => Vec::new(),
-        None => p
-            .contacts
-            .iter()
-            .map(|c| overclosure(p, c, local(c, u))[0])
-            .collect(),
-    };
+    let rdisps: Vec<[f64; 3]> = p
+        .contacts
+        .iter()
+        .map(|c| match probe {
+            Some(h) => [h, 0.0, 0.0],
+            None => overclosure(p, c, local(c, u)),
+        })
+        .collect();
+    let h: Vec<f64> = rdisps.iter().map(|r| r[0]).collect();
     for (k, c) in p.contacts.iter().enumerate() {
         let pr = &props[c.interface];
         let pt = uinter_point(p, c, pr);
-        let rdisp = match probe {
-            Some(h) => [h, 0.0, 0.0],
-            None => overclosure(p, c, local(c, u)),
-        };
+        let rdisp = rdisps[k];
         let mut sv = [0.0; NSTATV];
+        // A sampled point keeps this call's STATEV (its node's state) and takes its
+        // stress and tangent from the samples.
         let mut out = capi::uinter_general(&pt, &mut sv, rdisp, rdisp, 1, 1)?;
         if probe.is_none() && !c.samples.is_empty() {
             let (mean, pressures, kn) = sampled_point(&pt, c, k, &h, rdisp, &mut couplings)?;
