@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Regenerates the README's measured tables: each block between
 #   <!-- BEGIN name -->  and  <!-- END name -->
-# is replaced by the output of the command registered for `name` below.
+# is replaced by the output of the command registered for `name` below. With arguments,
+# only the named blocks (e.g. `bash scripts/readme-tables.sh knife`).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 declare -A commands=(
@@ -10,7 +11,10 @@ declare -A commands=(
   [knife]="cargo run --release -q -p jointlin-harness --bin jointlin -- loss scenes/knife.toml --out harness/assets/knife --quiet"
   [knife_mesh]="cargo run --release -q -p jointlin-harness --bin jointlin -- loss scenes/knife-coarse.toml --mesh-study 1,2,3 --out harness/assets/knife-mesh --quiet"
 )
-for name in "${!commands[@]}"; do
+names=("$@")
+[ ${#names[@]} -gt 0 ] || names=("${!commands[@]}")
+for name in "${names[@]}"; do
+  [ -n "${commands[$name]:-}" ] || { echo "unknown block: $name" >&2; exit 2; }
   grep -q "<!-- BEGIN $name -->" README.md || continue
   echo "== $name: ${commands[$name]}"
   out=$(mktemp)

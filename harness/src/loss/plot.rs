@@ -11,8 +11,14 @@ fn err<E: std::fmt::Display>(e: E) -> String {
     e.to_string()
 }
 
-/// Draws `r` into `path`; axes in the study's reported units.
-pub fn curves(path: &Path, title: &str, st: &LossStudySpec, r: &StudyResult) -> Result<(), String> {
+/// Draws `r` into `path`; axes in the study's reported units, torques in `torque_unit`.
+pub fn curves(
+    path: &Path,
+    title: &str,
+    torque_unit: &str,
+    st: &LossStudySpec,
+    r: &StudyResult,
+) -> Result<(), String> {
     let root = SVGBackend::new(path, (900, 560)).into_drawing_area();
     root.fill(&WHITE).map_err(err)?;
     let a = |v: f64| v / st.amplitude_factor;
@@ -54,7 +60,7 @@ pub fn curves(path: &Path, title: &str, st: &LossStudySpec, r: &StudyResult) -> 
         chart
             .draw_series(LineSeries::new(pts.clone(), color.stroke_width(2)))
             .map_err(err)?
-            .label(format!("torque {torque}"))
+            .label(format!("torque {torque} {torque_unit}"))
             .legend(move |(x, y)| {
                 PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
             });

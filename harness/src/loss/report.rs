@@ -24,6 +24,11 @@ pub fn interpolate(samples: &[Sample], amplitude: f64, power_factor: f64) -> Opt
     })
 }
 
+/// Unit of a torque in the scene's units (force·length, e.g. N·mm).
+pub fn torque_unit(scene: &Scene) -> String {
+    format!("{}·{}", scene.spec.units.force, scene.spec.units.length)
+}
+
 /// loss.csv text.
 pub fn csv(st: &LossStudySpec, r: &StudyResult) -> String {
     let mut s = format!(
@@ -50,6 +55,7 @@ pub fn csv(st: &LossStudySpec, r: &StudyResult) -> String {
 pub fn markdown(scene: &Scene, st: &LossStudySpec, r: &StudyResult) -> String {
     let au = &st.amplitude_unit;
     let pu = &st.power_unit;
+    let tu = torque_unit(scene);
     let mut s = String::new();
     let _ = writeln!(
         s,
@@ -58,7 +64,7 @@ pub fn markdown(scene: &Scene, st: &LossStudySpec, r: &StudyResult) -> String {
     );
     let _ = writeln!(
         s,
-        "| torque | resonance | amplitude [{au}] | power [{pu}] | max A/δ* |\n|---:|---:|---:|---:|---:|"
+        "| torque [{tu}] | resonance | amplitude [{au}] | power [{pu}] | max A/δ* |\n|---:|---:|---:|---:|---:|"
     );
     for (t, samples) in &r.curves {
         for x in samples {
@@ -75,7 +81,7 @@ pub fn markdown(scene: &Scene, st: &LossStudySpec, r: &StudyResult) -> String {
     if !st.reference.is_empty() {
         let _ = writeln!(
             s,
-            "\n| torque | amplitude [{au}] | reference [{pu}] | this model [{pu}] | deviation | source's own deviation | reference from |\n|---:|---:|---:|---:|---:|---:|---|"
+            "\n| torque [{tu}] | amplitude [{au}] | reference [{pu}] | this model [{pu}] | deviation | source's own deviation | reference from |\n|---:|---:|---:|---:|---:|---:|---|"
         );
         for p in &st.reference {
             let ours = r
@@ -126,7 +132,7 @@ pub fn write(dir: &Path, scene: &Scene, r: &StudyResult) -> Result<Vec<PathBuf>,
     put("loss.csv", csv(st, r))?;
     put("loss.md", markdown(scene, st, r))?;
     let p = dir.join("loss.svg");
-    plot::curves(&p, &scene.spec.title, st, r)?;
+    plot::curves(&p, &scene.spec.title, &torque_unit(scene), st, r)?;
     out.push(p);
     if let Some((op, sample)) = &r.maps {
         let vals = maps::values(&op.problem, &op.stat.pressure, &sample.points);
