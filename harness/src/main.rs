@@ -549,24 +549,34 @@ fn loss(
     if !mesh_study.is_empty() {
         return loss_mesh_study(&s, out, mesh_study, quiet);
     }
-    let pb = progress_bar(quiet);
-    pb.set_length(st.torques.len() as u64);
     let t = std::time::Instant::now();
-    let r = loss::run_study(&s, &|l| {
-        pb.set_message(l.to_string());
-        pb.inc(1);
-    });
-    pb.finish_and_clear();
-    let r = match r {
+    let r = match with_progress(quiet, st.torques.len(), |p| loss::run_study(&s, p)) {
         Ok(r) => r,
-        Err(e) => {
-            eprintln!("error: {e}");
-            return ExitCode::from(1);
-        }
+        Err(code) => return code,
     };
     print!("{}", loss::report::markdown(&s, &st, &r));
     eprintln!("{:.1} s", t.elapsed().as_secs_f64());
     report_written(loss::report::write(out, &s, &r))
+}
+
+/// Runs `work` under a progress bar of `steps` steps (each message it reports is one
+/// step); an error is printed and becomes exit code 1.
+fn with_progress<T, E: std::fmt::Display>(
+    quiet: bool,
+    steps: usize,
+    work: impl FnOnce(&dyn Fn(&str)) -> Result<T, E>,
+) -> Result<T, ExitCode> {
+    let pb = progress_bar(quiet);
+    pb.set_length(steps as u64);
+    let r = work(&|l| {
+        pb.set_message(l.to_string());
+        pb.inc(1);
+    });
+    pb.finish_and_clear();
+    r.map_err(|e| {
+        eprintln!("error: {e}");
+        ExitCode::from(1)
+    })
 }
 
 /// `jointlin loss --mesh-study`.
@@ -576,20 +586,10 @@ fn loss_mesh_study(s: &Scene, out: &std::path::Path, factors: &[usize], quiet: b
         eprintln!("error: --mesh-study factors must be >= 1");
         return ExitCode::from(2);
     }
-    let pb = progress_bar(quiet);
-    pb.set_length(2 * factors.len() as u64);
     let t = std::time::Instant::now();
-    let rows = mesh::study(s, factors, &|l| {
-        pb.set_message(l.to_string());
-        pb.inc(1);
-    });
-    pb.finish_and_clear();
-    let rows = match rows {
+    let rows = match with_progress(quiet, 2 * factors.len(), |p| mesh::study(s, factors, p)) {
         Ok(r) => r,
-        Err(e) => {
-            eprintln!("error: {e}");
-            return ExitCode::from(1);
-        }
+        Err(code) => return code,
     };
     let md = mesh::markdown(s, &rows);
     print!("{md}");

@@ -175,6 +175,39 @@ mod tests {
     use crate::rng::Rng;
     use nalgebra::{DMatrix, DVector};
 
+    /// FGMRES(20) on the dense A from u = 0, preconditioned by the dense LU of
+    /// `precond` (identity when `None`), with ‖A‖ = ‖A‖_F as the norm bound.
+    fn solve_dense(
+        a: &DMatrix<C64>,
+        precond: Option<&DMatrix<C64>>,
+        f: &[C64],
+        tol: f64,
+        max_iter: usize,
+    ) -> (Vec<C64>, GmresStats) {
+        let lu = precond.map(|p| p.clone().lu());
+        let mut x = vec![C64::new(0.0, 0.0); f.len()];
+        let stats = Gmres::new(f.len(), 20)
+            .solve::<()>(
+                &mut |x, y| y.copy_from_slice((a * DVector::from_column_slice(x)).as_slice()),
+                &mut |x, y| {
+                    match &lu {
+                        Some(lu) => y.copy_from_slice(
+                            lu.solve(&DVector::from_column_slice(x)).unwrap().as_slice(),
+                        ),
+                        None => y.copy_from_slice(x),
+                    }
+                    Ok(())
+                },
+                f,
+                &mut x,
+                tol,
+                a.norm(),
+                max_iter,
+            )
+            .unwrap();
+        (x, stats)
+    }
+
     #[test]
     fn low_rank_update_converges_in_rank_plus_one_with_exact_preconditioner() {
         // A = A₀ + U Vᵀ (rank 3), preconditioned by A₀⁻¹: at most 4 iterations, solution
@@ -193,27 +226,7 @@ mod tests {
         let v = DMatrix::from_fn(n, 3, |_, _| c(&mut rng));
         let a = &a0 + &u * v.transpose();
         let f: Vec<C64> = (0..n).map(|_| c(&mut rng)).collect();
-        let lu0 = a0.clone().lu();
-        let mut x = vec![C64::new(0.0, 0.0); n];
-        let mut g = Gmres::new(n, 20);
-        let stats = g
-            .solve::<()>(
-                &mut |x, y| y.copy_from_slice((&a * DVector::from_column_slice(x)).as_slice()),
-                &mut |x, y| {
-                    y.copy_from_slice(
-                        lu0.solve(&DVector::from_column_slice(x))
-                            .unwrap()
-                            .as_slice(),
-                    );
-                    Ok(())
-                },
-                &f,
-                &mut x,
-                1e-12,
-                a.norm(),
-                50,
-            )
-            .unwrap();
+        let (x, stats) = solve_dense(&a, Some(&a0), &f, 1e-12, 50);
         assert!(stats.converged && stats.iterations <= 4, "{stats:?}");
         let exact = a.lu().solve(&DVector::from_column_slice(&f)).unwrap();
         let err = x
@@ -252,28 +265,8 @@ mod tests {
         // the forward error of a backward-stable solve: ≤ cond·ROUNDOFF·ε (1.9e-9; measured
         // 7.7e-12) against a dense LU of A, whose own error is ~cond·ε.
         let (a0, a, f) = ill_conditioned(&mut Rng::new(11));
-        let n = f.len();
-        let lu0 = a0.lu();
-        let mut x = vec![C64::new(0.0, 0.0); n];
         let anorm = a.norm();
-        let stats = Gmres::new(n, 20)
-            .solve::<()>(
-                &mut |x, y| y.copy_from_slice((&a * DVector::from_column_slice(x)).as_slice()),
-                &mut |x, y| {
-                    y.copy_from_slice(
-                        lu0.solve(&DVector::from_column_slice(x))
-                            .unwrap()
-                            .as_slice(),
-                    );
-                    Ok(())
-                },
-                &f,
-                &mut x,
-                1e-15,
-                anorm,
-                200,
-            )
-            .unwrap();
+        let (x, stats) = solve_dense(&a, Some(&a0), &f, 1e-15, 200);
         let x = DVector::from_column_slice(&x);
         let fv = DVector::from_column_slice(&f);
         let eta = (&fv - &a * &x).norm() / (anorm * x.norm() + fv.norm());
@@ -296,21 +289,7 @@ mod tests {
         // The same system without a preconditioner: 5 iterations leave the residual far
         // above both the tolerance and the floor, and the solve says so.
         let (_, a, f) = ill_conditioned(&mut Rng::new(11));
-        let mut x = vec![C64::new(0.0, 0.0); f.len()];
-        let stats = Gmres::new(f.len(), 20)
-            .solve::<()>(
-                &mut |x, y| y.copy_from_slice((&a * DVector::from_column_slice(x)).as_slice()),
-                &mut |x, y| {
-                    y.copy_from_slice(x);
-                    Ok(())
-                },
-                &f,
-                &mut x,
-                1e-15,
-                a.norm(),
-                5,
-            )
-            .unwrap();
+        let (_, stats) = solve_dense(&a, None, &f, 1e-15, 5);
         assert!(!stats.converged && stats.residual > 1e-3, "{stats:?}");
     }
 }
