@@ -37,7 +37,7 @@ use crate::capi::Tangential;
 use crate::solve::contact::tangential;
 use crate::solve::sweep::krylov::Gmres;
 use crate::solve::sweep::receptance::Receptance;
-use crate::solve::sweep::{Setup, C64};
+use crate::solve::sweep::{Setup, C64, SINGULAR_RCOND};
 use crate::solve::umfpack::UmfpackError;
 
 /// FGMRES restart length and most iterations per Newton step; the tolerance relative to
@@ -142,8 +142,10 @@ impl<'s, 'a> FeBalance<'s, 'a> {
         self.m() * self.tr.ncoef()
     }
 
-    /// The per-harmonic factorizations and receptances at ω (rad/time).
-    pub fn condense(&mut self, omega: f64) -> Result<(), UmfpackError> {
+    /// The per-harmonic factorizations and receptances at ω (rad/time). `Ok(false)` when
+    /// a harmonic's dynamic stiffness (stuck joint) is singular (UMFPACK status 1 or rcond
+    /// below [`SINGULAR_RCOND`], as in the other modes): no balance at this ω.
+    pub fn condense(&mut self, omega: f64) -> Result<bool, UmfpackError> {
         let (t, cpu) = (Instant::now(), cpu_seconds());
         self.omega = omega;
         let p = self.setup.problem;
@@ -157,8 +159,16 @@ impl<'s, 'a> FeBalance<'s, 'a> {
         for (h, rec) in self.rec.iter_mut().enumerate() {
             // No cubic springs here: sweep::run refuses them in this mode.
             self.setup.fill(h as f64 * omega, &kref, &[]);
-            let num = self.setup.symbolic.factor(&self.setup.s)?;
             self.stats.factorizations += 1;
+            let num = match self.setup.symbolic.factor(&self.setup.s) {
+                Ok(num) if num.rcond() >= SINGULAR_RCOND => num,
+                Ok(_) | Err(UmfpackError::Singular { .. }) => {
+                    self.stats.receptance_seconds += t.elapsed().as_secs_f64();
+                    self.stats.receptance_cpu += cpu_seconds() - cpu;
+                    return Ok(false);
+                }
+                Err(e) => return Err(e),
+            };
             if h == 1 {
                 rec.load(&num, &p.excitation, &row, &p.outputs)?;
                 self.stats.solves += 1;
@@ -168,7 +178,7 @@ impl<'s, 'a> FeBalance<'s, 'a> {
         }
         self.stats.receptance_seconds += t.elapsed().as_secs_f64();
         self.stats.receptance_cpu += cpu_seconds() - cpu;
-        Ok(())
+        Ok(true)
     }
 
     /// r₀: the stuck linear response (first harmonic only), the cold start.

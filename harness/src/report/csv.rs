@@ -57,8 +57,14 @@ pub fn harmonics(p: &Problem, r: &SweepResult) -> String {
         }
     }
     s.push('\n');
-    for (f, outs) in r.freqs.iter().zip(&r.harmonics) {
+    for (i, (f, outs)) in r.freqs.iter().zip(&r.harmonics).enumerate() {
         let _ = write!(s, "{f:.10e}");
+        if r.is_singular(i) {
+            // No response computed: empty fields, as in results.csv.
+            s.push_str(&",".repeat(outs.len() * nh));
+            s.push('\n');
+            continue;
+        }
         for v in outs.iter().flatten() {
             let _ = write!(s, ",{:.10e}", v.norm());
         }

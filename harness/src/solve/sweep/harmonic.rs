@@ -8,7 +8,7 @@
 
 use std::time::Instant;
 
-use super::{Options, PassRecord, PointFreq, Setup, SweepError, SweepResult};
+use super::{Options, PassRecord, PointFreq, Setup, SweepError, SweepResult, C64};
 use crate::capi;
 use crate::mhb::fe::FeBalance;
 use crate::mhb::{default_samples, NewtonOptions};
@@ -40,8 +40,27 @@ pub fn sweep(
     for (fi, &f) in freqs.iter().enumerate() {
         progress("frequency", fi + 1, freqs.len());
         let omega = 2.0 * std::f64::consts::PI * f;
-        hb.condense(omega)
+        let regular = hb
+            .condense(omega)
             .map_err(|source| SweepError::Umfpack { freq: f, source })?;
+        res.singular.push(!regular);
+        if !regular {
+            // Singular dynamic stiffness (e.g. an undamped eigenfrequency with the joint
+            // open): no response, as in the other modes; the next frequency starts afresh.
+            let nout = p.outputs.len();
+            res.outputs.push(vec![C64::new(0.0, 0.0); nout]);
+            res.harmonics
+                .push(vec![vec![C64::new(0.0, 0.0); h + 1]; nout]);
+            res.power.push(0.0);
+            if opts.point_results {
+                res.points
+                    .push(vec![PointFreq::default(); p.contacts.len()]);
+            }
+            res.iterations.push(0);
+            res.converged.push(false);
+            start = None;
+            continue;
+        }
         let from = start.take().unwrap_or_else(|| hb.linear_start());
         let balance = |source| SweepError::Balance { freq: f, source };
         let sol = match hb.solve(&from, newton) {
