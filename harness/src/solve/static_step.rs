@@ -16,7 +16,7 @@ use thiserror::Error;
 
 use crate::capi::{self, CapiError, UinterPoint, NSTATV};
 use crate::fe::pair_blocks::to_global;
-use crate::model::subgrid::sample_value;
+use crate::model::subgrid::{refine_at_patch_edge, sample_value, EDGE_DEPTH};
 use crate::model::{ContactPoint, Problem};
 use crate::solve::contact::{interface_props, normal_stiffness};
 use crate::solve::umfpack::{to_complex, Symbolic, UmfpackError};
@@ -73,10 +73,11 @@ pub struct StaticState {
     pub closed: Vec<bool>,
     /// STATEV per point after the step (p0, h0, closed flag, hysteresis).
     pub statev: Vec<[f64; NSTATV]>,
-    /// Per point: normal stress (≥ 0) at each of its area samples, in the order of
-    /// `ContactPoint::samples` (empty for a node-based point); `pressure` is their
-    /// area average.
-    pub sample_pressure: Vec<Vec<f64>>,
+    /// Per sampled point: (area fraction, normal stress ≥ 0) of each of its area
+    /// samples, refined where the final overclosure varies steeply
+    /// ([`refine_at_patch_edge`]), for the friction law (empty for a node-based point);
+    /// `pressure` is the area average over the unrefined samples.
+    pub friction_samples: Vec<Vec<(f64, f64)>>,
     pub newton_iterations: usize,
     /// ‖R‖/‖f_pre‖ at the end.
     pub residual: f64,
@@ -121,8 +122,6 @@ struct Eval {
     couplings: Vec<(usize, usize, f64)>,
     out: Vec<capi::UinterOut>,
     statev: Vec<[f64; NSTATV]>,
-    /// Per point: the normal stress at each of its area samples (empty: not sampled).
-    sample_pressure: Vec<Vec<f64>>,
     /// Per sampled point: the area average of dσ/dh over its samples (its normal
     /// stiffness per area under a uniform closure).
     sample_stiffness: Vec<Option<f64>>,
@@ -141,15 +140,13 @@ fn sampled_point(
     h: &[f64],
     rdisp: [f64; 3],
     couplings: &mut Vec<(usize, usize, f64)>,
-) -> Result<(capi::UinterOut, Vec<f64>, f64), CapiError> {
+) -> Result<(capi::UinterOut, f64), CapiError> {
     let mut mean = capi::UinterOut::default();
     let mut stiffness = 0.0;
-    let mut pressures = Vec::with_capacity(c.samples.len());
     for s in &c.samples {
         let mut sv = [0.0; NSTATV];
         let r = [sample_value(s, h), rdisp[1], rdisp[2]];
         let o = capi::uinter_general(pt, &mut sv, r, r, 1, 1)?;
-        pressures.push(o.stress[0].max(0.0));
         for a in 0..3 {
             mean.stress[a] += s.fraction * o.stress[a];
             for b in 0..3 {
@@ -169,7 +166,36 @@ fn sampled_point(
             }
         }
     }
-    Ok((mean, pressures, stiffness))
+    Ok((mean, stiffness))
+}
+
+/// Per point: (fraction, normal stress) at its area samples refined at the patch edge
+/// for displacements `u` (UINTER per sample, as [`sampled_point`]); empty when the point
+/// is node-based.
+fn friction_samples(
+    p: &Problem,
+    props: &[[f64; 12]],
+    u: &[f64],
+) -> Result<Vec<Vec<(f64, f64)>>, CapiError> {
+    let rdisps: Vec<[f64; 3]> = p
+        .contacts
+        .iter()
+        .map(|c| overclosure(p, c, local(c, u)))
+        .collect();
+    let h: Vec<f64> = rdisps.iter().map(|r| r[0]).collect();
+    let mut out = Vec::with_capacity(p.contacts.len());
+    for (c, rdisp) in p.contacts.iter().zip(&rdisps) {
+        let pt = uinter_point(p, c, &props[c.interface]);
+        let mut list = Vec::new();
+        for s in refine_at_patch_edge(&c.samples, &h, EDGE_DEPTH) {
+            let mut sv = [0.0; NSTATV];
+            let r = [sample_value(&s, &h), rdisp[1], rdisp[2]];
+            let o = capi::uinter_general(&pt, &mut sv, r, r, 1, 1)?;
+            list.push((s.fraction, o.stress[0].max(0.0)));
+        }
+        out.push(list);
+    }
+    Ok(out)
 }
 
 /// Residual K u + f_c(u) − f and per-point tangents, one UINTER call per point.
@@ -187,7 +213,6 @@ fn evaluate(
     let mut outs = Vec::with_capacity(p.contacts.len());
     let mut statevs = Vec::with_capacity(p.contacts.len());
     let mut couplings = Vec::new();
-    let mut sample_pressure = Vec::with_capacity(p.contacts.len());
     let mut sample_stiffness = Vec::with_capacity(p.contacts.len());
     let rdisps: Vec<[f64; 3]> = p
         .contacts
@@ -207,14 +232,12 @@ fn evaluate(
         // stress and tangent from the samples.
         let mut out = capi::uinter_general(&pt, &mut sv, rdisp, rdisp, 1, 1)?;
         if probe.is_none() && !c.samples.is_empty() {
-            let (mean, pressures, kn) = sampled_point(&pt, c, k, &h, rdisp, &mut couplings)?;
+            let (mean, kn) = sampled_point(&pt, c, k, &h, rdisp, &mut couplings)?;
             out.stress = mean.stress;
             out.ddsddr = mean.ddsddr;
             out.closed = mean.closed;
-            sample_pressure.push(pressures);
             sample_stiffness.push(Some(kn));
         } else {
-            sample_pressure.push(Vec::new());
             sample_stiffness.push(None);
         }
         if probe.is_none() {
@@ -237,7 +260,6 @@ fn evaluate(
         couplings,
         out: outs,
         statev: statevs,
-        sample_pressure,
         sample_stiffness,
     })
 }
@@ -306,7 +328,7 @@ pub fn solve(p: &Problem, nonlinear: bool) -> Result<StaticState, StaticError> {
             normal_stiffness: kn,
             closed,
             statev,
-            sample_pressure: vec![Vec::new(); p.contacts.len()],
+            friction_samples: vec![Vec::new(); p.contacts.len()],
             newton_iterations: 0,
             residual: 0.0,
         });
@@ -388,13 +410,14 @@ pub fn solve(p: &Problem, nonlinear: bool) -> Result<StaticState, StaticError> {
                 })
                 .collect();
             let closed = ev.out.iter().map(|o| o.closed).collect();
+            let friction_samples = friction_samples(p, &props, &u)?;
             return Ok(StaticState {
                 u,
                 pressure,
                 normal_stiffness,
                 closed,
                 statev: ev.statev,
-                sample_pressure: ev.sample_pressure,
+                friction_samples,
                 newton_iterations: it,
                 residual: res,
             });
@@ -498,26 +521,34 @@ mod tests {
         let (p, s, f_sampled) = carried(&sampled);
         approx::assert_relative_eq!(f_sampled, f_node, max_relative = 0.03);
         let mut partly = 0;
+        let p_max = s.pressure.iter().copied().fold(0.0, f64::max);
+        let mut refined = 0;
         for (k, c) in p.contacts.iter().enumerate() {
-            assert_eq!(s.sample_pressure[k].len(), c.samples.len());
             // 3 × 3 per quarter face: 9 (corner), 18 (edge) or 36 (interior point).
             assert!(
                 [9, 18, 36].contains(&c.samples.len()),
                 "{}",
                 c.samples.len()
             );
-            let mean: f64 = c
-                .samples
-                .iter()
-                .zip(&s.sample_pressure[k])
-                .map(|(x, pr)| x.fraction * pr)
-                .sum();
-            approx::assert_relative_eq!(mean, s.pressure[k], max_relative = 1e-12, epsilon = 1e-12);
-            let open = s.sample_pressure[k].iter().filter(|&&v| v == 0.0).count();
-            if open > 0 && open < c.samples.len() {
+            let list = &s.friction_samples[k];
+            assert!(list.len() >= c.samples.len());
+            refined += list.len() - c.samples.len();
+            let sum: f64 = list.iter().map(|x| x.0).sum();
+            approx::assert_relative_eq!(sum, 1.0, max_relative = 1e-12);
+            // The refined samples integrate the same pressure field; they differ from
+            // the unrefined average only in the cells the patch edge crosses.
+            let mean: f64 = list.iter().map(|x| x.0 * x.1).sum();
+            assert!(
+                (mean - s.pressure[k]).abs() <= 0.01 * p_max,
+                "{mean} {}",
+                s.pressure[k]
+            );
+            let open = list.iter().filter(|x| x.1 == 0.0).count();
+            if open > 0 && open < list.len() {
                 partly += 1;
             }
         }
+        assert!(refined > 0);
         // The patch edge runs through elements: points there are partly closed.
         assert!(partly > 0);
         println!(

@@ -103,13 +103,11 @@ pub fn sweep(
         .active
         .iter()
         .map(|&i| {
-            let c = &p.contacts[i];
-            let itf = &p.interfaces[c.interface];
-            c.samples
+            let itf = &p.interfaces[p.contacts[i].interface];
+            setup.friction_samples[i]
                 .iter()
-                .zip(&setup.sample_pressure[i])
-                .filter(|(_, &pr)| pr > 0.0)
-                .map(|(s, &pr)| (tangential(itf, pr), s.fraction))
+                .filter(|(_, pr)| *pr > 0.0)
+                .map(|&(f, pr)| (tangential(itf, pr), f))
                 .collect()
         })
         .collect();

@@ -202,8 +202,9 @@ pub struct Setup<'a> {
     pub unit_blocks: Vec<[Matrix3<f64>; 2]>,
     /// Base pressure per contact point.
     pub pressure: Vec<f64>,
-    /// Per contact point: normal stress at its area samples (empty: node-based).
-    pub sample_pressure: Vec<Vec<f64>>,
+    /// Per contact point: (area fraction, normal stress) of its friction samples
+    /// (`StaticState::friction_samples`; empty: node-based).
+    pub friction_samples: Vec<Vec<(f64, f64)>>,
     pub damping: Option<&'a Csc<f64>>,
     /// S(ω) scratch.
     pub s: Csc<C64>,
@@ -262,7 +263,7 @@ impl<'a> Setup<'a> {
             symbolic,
             base,
             active,
-            sample_pressure: stat.sample_pressure.clone(),
+            friction_samples: stat.friction_samples.clone(),
             unit_blocks,
             pressure: stat.pressure.clone(),
             damping,
