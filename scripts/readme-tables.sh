@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Regenerates the README's measured tables: each block between
+# Regenerates the measured tables of README.md and docs/accuracy.md: each block between
 #   <!-- BEGIN name -->  and  <!-- END name -->
 # is replaced by the output of the command registered for `name` below. With arguments,
 # only the named blocks (e.g. `bash scripts/readme-tables.sh knife`).
@@ -10,19 +10,30 @@ declare -A commands=(
   [seed_cases]="cargo run --release -q --example seed_cases"
   [knife]="cargo run --release -q -p jointlin-harness --bin jointlin -- loss scenes/knife.toml --out harness/assets/knife --quiet"
   [knife_mesh]="cargo run --release -q -p jointlin-harness --bin jointlin -- loss scenes/knife-coarse.toml --mesh-study 1,2,3 --out harness/assets/knife-mesh --quiet"
+  [tradeoff_beams]="cargo run --release -q -p jointlin-harness --bin jointlin -- tradeoff scenes/three-beams-coarse.toml --out out/tradeoff-beams"
+  [tradeoff_block]="cargo run --release -q -p jointlin-harness --bin jointlin -- tradeoff scenes/block-stick.toml --out out/tradeoff-block"
 )
+# Blocks whose command prints Markdown (the others are shown as terminal output).
+markdown=" accuracy_table knife knife_mesh tradeoff_beams tradeoff_block "
+files=(README.md docs/accuracy.md)
 names=("$@")
 [ ${#names[@]} -gt 0 ] || names=("${!commands[@]}")
 for name in "${names[@]}"; do
   [ -n "${commands[$name]:-}" ] || { echo "unknown block: $name" >&2; exit 2; }
-  grep -q "<!-- BEGIN $name -->" README.md || continue
+  targets=()
+  for f in "${files[@]}"; do
+    if grep -q "<!-- BEGIN $name -->" "$f"; then targets+=("$f"); fi
+  done
+  [ ${#targets[@]} -gt 0 ] || continue
   echo "== $name: ${commands[$name]}"
   out=$(mktemp)
-  if [ "$name" = accuracy_table ] || [ "$name" = knife ] || [ "$name" = knife_mesh ]; then
+  if [[ "$markdown" == *" $name "* ]]; then
     { echo "Produced by \`${commands[$name]}\`:"; echo; eval "${commands[$name]}"; } > "$out"
   else
     { echo '```text'; echo "\$ ${commands[$name]}"; eval "${commands[$name]}"; echo '```'; } > "$out"
   fi
-  perl -0pi -e "my \$t = do { local \$/; open my \$f, '<', '$out' or die; <\$f> }; s/(<!-- BEGIN $name -->\n).*?(<!-- END $name -->)/\$1\$t\$2/s" README.md
+  for f in "${targets[@]}"; do
+    perl -0pi -e "my \$t = do { local \$/; open my \$f, '<', '$out' or die; <\$f> }; s/(<!-- BEGIN $name -->\n).*?(<!-- END $name -->)/\$1\$t\$2/s" "$f"
+  done
   rm -f "$out"
 done
