@@ -13,6 +13,11 @@ declare -A commands=(
   [tradeoff_beams]="cargo run --release -q -p jointlin-harness --bin jointlin -- tradeoff scenes/three-beams-coarse.toml --out out/tradeoff-beams"
   [tradeoff_block]="cargo run --release -q -p jointlin-harness --bin jointlin -- tradeoff scenes/block-stick.toml --out out/tradeoff-block"
 )
+# Plots a block's command writes that the documents show: "from to" pairs.
+declare -A plots=(
+  [tradeoff_beams]="out/tradeoff-beams/tradeoff.svg docs/accuracy-three-beams.svg"
+  [tradeoff_block]="out/tradeoff-block/tradeoff.svg docs/accuracy-block.svg"
+)
 # Blocks whose command prints Markdown (the others are shown as terminal output).
 markdown=" accuracy_table knife knife_mesh tradeoff_beams tradeoff_block "
 files=(README.md docs/accuracy.md)
@@ -36,4 +41,8 @@ for name in "${names[@]}"; do
     perl -0pi -e "my \$t = do { local \$/; open my \$f, '<', '$out' or die; <\$f> }; s/(<!-- BEGIN $name -->\n).*?(<!-- END $name -->)/\$1\$t\$2/s" "$f"
   done
   rm -f "$out"
+  if [ -n "${plots[$name]:-}" ]; then
+    read -r from to <<< "${plots[$name]}"
+    cp "$from" "$to"
+  fi
 done
