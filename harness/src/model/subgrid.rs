@@ -8,6 +8,9 @@
 //! Sampling the tributary area on an s × s grid per quarter face, with the overclosure
 //! interpolated bilinearly from the face's four nodes, puts the patch edge inside the
 //! element and makes the point's law the area average of the law over its samples.
+//! For the friction law, after the static step, samples whose cell the patch edge
+//! crosses (or where the overclosure varies steeply) are split further
+//! ([`refine_at_patch_edge`]).
 
 use crate::fe::mesh::Model;
 
@@ -295,8 +298,9 @@ mod tests {
     /// Refined at the patch edge, the samples integrate max(h, 0) of a linear field
     /// that crosses zero inside an element to the finest cell's size: the average
     /// over each point's tributary cell [x₀, x₁] against the closed form
-    /// ((x₁ − c)² − (max(x₀, c) − c)²) / 2 / (x₁ − x₀) for h = x − c; unrefined, the midpoint rule errs by the
-    /// whole sample size. Fields without a zero crossing or steep part are not split.
+    /// ((x₁ − c)² − (max(x₀, c) − c)²) / 2 / (x₁ − x₀) for h = x − c; unrefined, the
+    /// midpoint rule errs by the whole sample size. Fields without a zero crossing or
+    /// steep part are not split.
     #[test]
     fn refining_at_the_patch_edge_integrates_the_closed_part_exactly() {
         let (m, quads) = face(false);

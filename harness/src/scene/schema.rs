@@ -181,7 +181,8 @@ pub struct InterfaceSpec {
     pub exclude: Vec<RegionSpec>,
     /// Sub-grid sampling of each point's tributary area (box interfaces): s × s samples
     /// per quarter element face, overclosure interpolated from the face's nodes, the
-    /// point's law averaged over them (`model::subgrid`). Absent: the law at the node
+    /// point's law averaged over them (`model::subgrid`; the friction law's samples are
+    /// split further where the static patch edge crosses them). Absent: the law at the node
     /// alone, over its whole area (the thesis's node-based contact).
     #[serde(default)]
     pub area_samples: Option<usize>,
