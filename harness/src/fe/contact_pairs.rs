@@ -87,11 +87,7 @@ pub fn find_pairs_where(
 ) -> Result<Vec<ContactPair>, PairError> {
     let lo = *model.body(lower)?;
     let hi = *model.body(upper)?;
-    let h = |b: &crate::fe::mesh::Body| {
-        (0..2)
-            .map(|a| b.spec.size[a] / b.spec.divisions[a] as f64)
-            .fold(f64::INFINITY, f64::min)
-    };
+    let h = |b: &crate::fe::mesh::Body| b.smallest_edge(0).min(b.smallest_edge(1));
     let tol = rel_tol * h(&lo).min(h(&hi));
     let top = lo.spec.origin[2] + lo.spec.size[2];
     let bottom = hi.spec.origin[2];

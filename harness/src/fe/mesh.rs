@@ -12,11 +12,15 @@
 
 use thiserror::Error;
 
+use crate::fe::grading::Grading;
+
 /// Errors in building a mesh or model.
 #[derive(Debug, Error, PartialEq)]
 pub enum MeshError {
     #[error("box size must be positive and finite, got {0:?}")]
     BadSize([f64; 3]),
+    #[error("box grading ratio must be finite and at least 1, got {0}")]
+    BadGrading(f64),
     #[error("box divisions must be at least 1, got {0:?}")]
     BadDivisions([usize; 3]),
     #[error("material {0} does not exist")]
@@ -68,7 +72,8 @@ impl Material {
 }
 
 /// An axis-aligned box occupying `origin .. origin + size`, divided into
-/// `divisions` equal hex8 elements per axis, of material index `material`.
+/// `divisions` hex8 elements per axis (equal ones, or graded by
+/// [`Model::add_graded_box`]), of material index `material`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct BoxSpec {
     pub origin: [f64; 3],
@@ -127,11 +132,25 @@ impl Face {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Body {
     pub spec: BoxSpec,
+    /// Per axis: how the element sizes vary along it.
+    pub grading: [Grading; 3],
     pub first_node: usize,
     pub first_element: usize,
 }
 
 impl Body {
+    /// The smallest element edge along axis `a` (length).
+    pub fn smallest_edge(&self, a: usize) -> f64 {
+        self.spec.size[a] * self.grading[a].smallest_fraction(self.spec.divisions[a])
+    }
+
+    /// The smallest element edge over all axes (length).
+    pub fn smallest_element_edge(&self) -> f64 {
+        (0..3)
+            .map(|a| self.smallest_edge(a))
+            .fold(f64::INFINITY, f64::min)
+    }
+
     /// Number of nodes (nx+1)(ny+1)(nz+1).
     pub fn n_nodes(&self) -> usize {
         let [nx, ny, nz] = self.spec.divisions;
@@ -267,8 +286,19 @@ impl Model {
         3 * self.nodes.len()
     }
 
-    /// Meshes a box as a new body with its own nodes; returns the body index.
+    /// Meshes a box of equal elements as a new body with its own nodes; returns the
+    /// body index.
     pub fn add_box(&mut self, spec: BoxSpec) -> Result<usize, MeshError> {
+        self.add_graded_box(spec, [Grading::UNIFORM; 3])
+    }
+
+    /// Meshes a box with the element sizes graded per axis as a new body with its own
+    /// nodes; returns the body index.
+    pub fn add_graded_box(
+        &mut self,
+        spec: BoxSpec,
+        grading: [Grading; 3],
+    ) -> Result<usize, MeshError> {
         if spec.size.iter().any(|&s| !(s.is_finite() && s > 0.0))
             || spec.origin.iter().any(|o| !o.is_finite())
         {
@@ -277,29 +307,34 @@ impl Model {
         if spec.divisions.contains(&0) {
             return Err(MeshError::BadDivisions(spec.divisions));
         }
+        if let Some(g) = grading.iter().find(|g| !g.is_valid()) {
+            return Err(MeshError::BadGrading(g.ratio));
+        }
         if spec.material >= self.materials.len() {
             return Err(MeshError::UnknownMaterial(spec.material));
         }
         let body = Body {
             spec,
+            grading,
             first_node: self.nodes.len(),
             first_element: self.elements.len(),
         };
         let [nx, ny, nz] = spec.divisions;
-        let h = [0, 1, 2].map(|a| spec.size[a] / spec.divisions[a] as f64);
+        // Grid lines per axis; the last one exactly at origin + size (no round-off
+        // drift), so stacked bodies' interface nodes coincide bit for bit.
+        let lines: [Vec<f64>; 3] = std::array::from_fn(|a| {
+            let f = grading[a].fractions(spec.divisions[a]);
+            let mut v: Vec<f64> = f
+                .iter()
+                .map(|t| spec.origin[a] + t * spec.size[a])
+                .collect();
+            v[spec.divisions[a]] = spec.origin[a] + spec.size[a];
+            v
+        });
         for k in 0..=nz {
             for j in 0..=ny {
                 for i in 0..=nx {
-                    // Last grid line placed exactly at origin + size (no round-off drift),
-                    // so stacked bodies' interface nodes coincide bit for bit.
-                    let coord = |a: usize, idx: usize| {
-                        if idx == spec.divisions[a] {
-                            spec.origin[a] + spec.size[a]
-                        } else {
-                            spec.origin[a] + idx as f64 * h[a]
-                        }
-                    };
-                    self.nodes.push([coord(0, i), coord(1, j), coord(2, k)]);
+                    self.nodes.push([lines[0][i], lines[1][j], lines[2][k]]);
                 }
             }
         }

@@ -39,12 +39,6 @@ fn boundary_nodes(b: &Body) -> Vec<usize> {
     v
 }
 
-fn smallest_element_edge(b: &Body) -> f64 {
-    (0..3)
-        .map(|a| b.spec.size[a] / b.spec.divisions[a] as f64)
-        .fold(f64::INFINITY, f64::min)
-}
-
 /// Whether `p` lies on the surface of box `b` (within `tol`).
 fn on_surface(b: &Body, p: [f64; 3], tol: f64) -> bool {
     let lo = b.spec.origin;
@@ -64,7 +58,7 @@ pub fn find_ties(
 ) -> Result<Vec<[usize; 2]>, TieError> {
     let ba = *model.body(a)?;
     let bb = *model.body(b)?;
-    let tol = rel_tol * smallest_element_edge(&ba).min(smallest_element_edge(&bb));
+    let tol = rel_tol * ba.smallest_element_edge().min(bb.smallest_element_edge());
     let cell = |p: [f64; 3]| p.map(|v| (v / tol).floor() as i64);
     let mut grid: HashMap<[i64; 3], Vec<usize>> = HashMap::new();
     let nodes_b = boundary_nodes(&bb);

@@ -87,12 +87,15 @@ pub fn build(scene: &Scene) -> Result<Problem, BuildError> {
     let mut pairs: Vec<[usize; 2]> = Vec::new();
     for b in &s.bodies {
         let r = match b.kind {
-            BodyKind::Box => BodyRef::Box(model.add_box(BoxSpec {
-                origin: b.origin.expect("validated"),
-                size: b.size.expect("validated"),
-                divisions: b.divisions.expect("validated"),
-                material: mat_index(b.material.as_deref().expect("validated")),
-            })?),
+            BodyKind::Box => BodyRef::Box(model.add_graded_box(
+                BoxSpec {
+                    origin: b.origin.expect("validated"),
+                    size: b.size.expect("validated"),
+                    divisions: b.divisions.expect("validated"),
+                    material: mat_index(b.material.as_deref().expect("validated")),
+                },
+                b.grading.unwrap_or_default().axes(),
+            )?),
             BodyKind::Mass => {
                 let p = b.position.expect("validated");
                 let ground = model.nodes.len();

@@ -104,12 +104,64 @@ pub struct BodySpec {
     pub size: Option<[f64; 3]>,
     /// Elements per axis.
     pub divisions: Option<[usize; 3]>,
+    /// Element sizes graded per axis (boxes; default equal elements). Example:
+    /// `grading = { x = { ratio = 20.0, toward = "both" } }`.
+    pub grading: Option<BoxGrading>,
     /// Material name (key of `[materials]`).
     pub material: Option<String>,
     /// Point-mass position (length).
     pub position: Option<[f64; 3]>,
     /// Point mass (mass).
     pub mass: Option<f64>,
+}
+
+/// Per-axis grading of a box; an axis left out has equal elements.
+#[derive(Debug, Clone, Copy, Deserialize, Serialize, PartialEq, Default)]
+#[serde(deny_unknown_fields)]
+pub struct BoxGrading {
+    pub x: Option<AxisGrading>,
+    pub y: Option<AxisGrading>,
+    pub z: Option<AxisGrading>,
+}
+
+/// Element sizes along one axis in geometric progression.
+#[derive(Debug, Clone, Copy, Deserialize, Serialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct AxisGrading {
+    /// Largest / smallest element (≥ 1; 1 = equal elements).
+    pub ratio: f64,
+    /// Where the smallest elements are.
+    pub toward: GradeToward,
+}
+
+/// End of an axis where a grading puts its smallest elements.
+#[derive(Debug, Clone, Copy, Deserialize, Serialize, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub enum GradeToward {
+    /// The smallest coordinate.
+    Min,
+    /// The largest coordinate.
+    Max,
+    /// Both ends (the largest elements in the middle).
+    Both,
+}
+
+impl BoxGrading {
+    /// The three axes' gradings, equal elements where none is given.
+    pub fn axes(&self) -> [crate::fe::grading::Grading; 3] {
+        use crate::fe::grading::{Grading, Toward};
+        [self.x, self.y, self.z].map(|g| match g {
+            None => Grading::UNIFORM,
+            Some(g) => Grading {
+                ratio: g.ratio,
+                toward: match g.toward {
+                    GradeToward::Min => Toward::Min,
+                    GradeToward::Max => Toward::Max,
+                    GradeToward::Both => Toward::Both,
+                },
+            },
+        })
+    }
 }
 
 /// Tangential contact law.

@@ -129,6 +129,14 @@ fn validation_errors_point_at_the_value() {
     assert_eq!(e.key, "interfaces[0].between[1]");
     let text = GOOD.replace("f_max = 200.0", "f_max = 50.0");
     assert_eq!(err(&text).key, "sweep.f_max");
+    let text = GOOD.replacen(
+        "divisions = [4, 1, 1]\n",
+        "divisions = [4, 1, 1]\ngrading = { x = { ratio = 0.5, toward = \"min\" } }\n",
+        1,
+    );
+    let e = err(&text);
+    assert_eq!(e.key, "bodies[0].grading.x.ratio", "{e}");
+    assert_eq!(e.line, line_of(&text, "grading"));
 }
 
 #[test]

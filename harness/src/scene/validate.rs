@@ -137,6 +137,18 @@ pub fn validate(s: &SceneFile) -> Vec<Problem> {
                 } else {
                     c.require(p.key("divisions"), &b.divisions, why);
                 }
+                if let Some(g) = &b.grading {
+                    for (name, a) in [("x", g.x), ("y", g.y), ("z", g.z)] {
+                        if let Some(a) = a {
+                            if !(a.ratio.is_finite() && a.ratio >= 1.0) {
+                                c.fail(
+                                    p.key("grading").key(name).key("ratio"),
+                                    "must be finite and >= 1",
+                                );
+                            }
+                        }
+                    }
+                }
                 match &b.material {
                     Some(m) if !s.materials.contains_key(m) => c.fail(
                         p.key("material"),
@@ -164,6 +176,7 @@ pub fn validate(s: &SceneFile) -> Vec<Problem> {
                 c.forbid(p.key("origin"), &b.origin, why);
                 c.forbid(p.key("size"), &b.size, why);
                 c.forbid(p.key("divisions"), &b.divisions, why);
+                c.forbid(p.key("grading"), &b.grading, why);
                 c.forbid(p.key("material"), &b.material, why);
             }
         }
