@@ -157,6 +157,11 @@ enum Command {
         /// and area-sampled; writes mesh_study.md and mesh_study.csv.
         #[arg(long, value_delimiter = ',', num_args = 1..)]
         mesh_study: Vec<usize>,
+        /// With --mesh-study: multiply only these divisions, AXES[:PREFIX,…] (e.g. `z`,
+        /// `x:jaw_,blade_in`: x of the boxes whose names start so); repeat for several,
+        /// each compared with the scene itself. Default: every axis of every box.
+        #[arg(long)]
+        refine: Vec<String>,
         /// No progress bar.
         #[arg(long)]
         quiet: bool,
@@ -375,8 +380,9 @@ fn main() -> ExitCode {
             out,
             calibrate,
             mesh_study,
+            refine,
             quiet,
-        } => loss(&scene, &out, calibrate, &mesh_study, quiet),
+        } => loss(&scene, &out, calibrate, &mesh_study, &refine, quiet),
         Command::Check { scene } => match Scene::load(&scene) {
             Ok(s) => {
                 println!(
@@ -513,6 +519,7 @@ fn loss(
     out: &std::path::Path,
     calibrate: bool,
     mesh_study: &[usize],
+    refine: &[String],
     quiet: bool,
 ) -> ExitCode {
     use jointlin_harness::loss;
@@ -547,7 +554,7 @@ fn loss(
         };
     }
     if !mesh_study.is_empty() {
-        return loss_mesh_study(&s, out, mesh_study, quiet);
+        return loss_mesh_study(&s, out, mesh_study, refine, quiet);
     }
     let t = std::time::Instant::now();
     let r = match with_progress(quiet, st.torques.len(), |p| loss::run_study(&s, p)) {
@@ -580,14 +587,32 @@ fn with_progress<T, E: std::fmt::Display>(
 }
 
 /// `jointlin loss --mesh-study`.
-fn loss_mesh_study(s: &Scene, out: &std::path::Path, factors: &[usize], quiet: bool) -> ExitCode {
+fn loss_mesh_study(
+    s: &Scene,
+    out: &std::path::Path,
+    factors: &[usize],
+    refine: &[String],
+    quiet: bool,
+) -> ExitCode {
     use jointlin_harness::loss::mesh;
     if factors.contains(&0) {
         eprintln!("error: --mesh-study factors must be >= 1");
         return ExitCode::from(2);
     }
+    let refinements = if refine.is_empty() {
+        vec![mesh::Refinement::everything()]
+    } else {
+        match refine.iter().map(|r| mesh::Refinement::parse(r)).collect() {
+            Ok(r) => r,
+            Err(e) => {
+                eprintln!("error: --refine {e}");
+                return ExitCode::from(2);
+            }
+        }
+    };
     let t = std::time::Instant::now();
-    let rows = match with_progress(quiet, 2 * factors.len(), |p| mesh::study(s, factors, p)) {
+    let steps = 2 * mesh::plan(factors, refinements.len()).len();
+    let rows = match with_progress(quiet, steps, |p| mesh::study(s, factors, &refinements, p)) {
         Ok(r) => r,
         Err(code) => return code,
     };

@@ -197,7 +197,7 @@ fn refining_the_mesh_changes_the_loss_by_less_than_two_percent() {
 #[test]
 fn mesh_study_row_one_is_the_scene_itself() {
     let s = coarse();
-    let rows = mesh::study(&s, &[1], &|_| {}).unwrap();
+    let rows = mesh::study(&s, &[1], &[mesh::Refinement::everything()], &|_| {}).unwrap();
     let r = &rows[0];
     let st = s.spec.loss_study.as_ref().unwrap();
     let at = |a: f64| loss::power_at(&s, 3000.0, a).unwrap().0.power * st.power_factor;
@@ -213,6 +213,50 @@ fn mesh_study_row_one_is_the_scene_itself() {
         mesh::refined(&s, 3).spec.bodies[0].divisions,
         Some([18, 6, 6])
     );
+}
+
+/// The graded scene (knife-graded.toml, for the mesh study) meshes the same part: its
+/// slab interfaces cover each 12 × 3 mm contact face of the half model exactly once
+/// (areas summed over the slabs, round-off 1e-12), like knife-coarse's, the screw acts
+/// at x = 72 on both, and its finest elements (0.05 mm) sit in the bands across the
+/// patch edges at 3 N·m, which the coarse scene's pressure puts between 69.3–69.9 and
+/// 76.1–76.8 mm.
+#[test]
+fn graded_scene_meshes_the_same_contact_faces() {
+    use jointlin_harness::model::build;
+    let graded = Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes/knife-graded.toml");
+    let graded = Scene::load(&graded).unwrap();
+    for s in [coarse(), graded.clone()] {
+        let p = build(&s).unwrap();
+        for face in ["face1", "face2"] {
+            let area: f64 = p
+                .contacts
+                .iter()
+                .filter(|c| p.interfaces[c.interface].name.starts_with(face))
+                .map(|c| c.area)
+                .sum();
+            approx::assert_relative_eq!(area, 36.0, max_relative = 1e-12);
+        }
+        let screw = &p.screws[0];
+        for n in screw.nodes {
+            approx::assert_relative_eq!(p.model.nodes[n][0], 72.0, max_relative = 1e-12);
+        }
+    }
+    let p = build(&graded).unwrap();
+    let xs: Vec<f64> = {
+        let mut v: Vec<f64> = p.contacts.iter().map(|c| c.position[0]).collect();
+        v.sort_by(f64::total_cmp);
+        v.dedup_by(|a, b| (*a - *b).abs() < 1e-9);
+        v
+    };
+    let finest = xs.windows(2).map(|w| w[1] - w[0]).fold(f64::MAX, f64::min);
+    approx::assert_relative_eq!(finest, 0.05, max_relative = 1e-9);
+    for band in [(69.3, 69.9), (76.1, 76.8)] {
+        let inside = xs
+            .iter()
+            .filter(|&&x| x >= band.0 - 1e-9 && x <= band.1 + 1e-9);
+        assert!(inside.count() >= 13, "band {band:?}");
+    }
 }
 
 /// The numbers of a `<DataArray Name="name">` of a `.vtu` text.

@@ -1,8 +1,9 @@
 //! Mesh study of a loss study (thesis §5.4.2, "a finer mesh changes the loss by less
 //! than 2 %"): the power at resonance at the first reference point's torque, at its
 //! amplitude and a quarter of it (each at its own resonance, as [`power_at`]), for every
-//! box's divisions multiplied by each factor, with the contact
-//! law at the nodes (the thesis's way) and averaged over area samples
+//! box's divisions multiplied by each factor, or only some axes' of some boxes
+//! ([`Refinement`]: which part of the discretization error a change comes from), with
+//! the contact law at the nodes (the thesis's way) and averaged over area samples
 //! ([`crate::model::subgrid`]).
 
 use std::fmt::Write as _;
@@ -13,11 +14,75 @@ use crate::scene::Scene;
 /// Samples per quarter face and direction of the area-sampled variant.
 pub const STUDY_AREA_SAMPLES: usize = 4;
 
+/// Which divisions a study multiplies: those along `axes` of the boxes whose name
+/// starts with one of `bodies` (every box when empty). Boxes tied or in contact must
+/// keep matching grids on their common faces (else the model build names the node).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Refinement {
+    pub axes: [bool; 3],
+    pub bodies: Vec<String>,
+}
+
+impl Refinement {
+    /// Every axis of every box.
+    pub fn everything() -> Self {
+        Refinement {
+            axes: [true; 3],
+            bodies: Vec::new(),
+        }
+    }
+
+    /// Parses `AXES` or `AXES:PREFIX,PREFIX…` with AXES letters from x, y, z, e.g. `z`,
+    /// `xyz`, `x:jaw_,blade_in`.
+    pub fn parse(spec: &str) -> Result<Self, String> {
+        let (axes_text, bodies) = match spec.split_once(':') {
+            Some((a, b)) => (a, b.split(',').map(str::to_string).collect::<Vec<_>>()),
+            None => (spec, Vec::new()),
+        };
+        let mut axes = [false; 3];
+        for ch in axes_text.chars() {
+            let a = "xyz"
+                .find(ch)
+                .ok_or_else(|| format!("refinement `{spec}`: axis `{ch}` is not x, y or z"))?;
+            axes[a] = true;
+        }
+        if !axes.contains(&true) || bodies.iter().any(String::is_empty) {
+            return Err(format!(
+                "refinement `{spec}`: expected AXES[:PREFIX,…], e.g. `z` or `x:jaw_,blade_in`"
+            ));
+        }
+        Ok(Refinement { axes, bodies })
+    }
+
+    /// Short description, e.g. "x of jaw_*, blade_in*".
+    pub fn label(&self) -> String {
+        let axes: String = "xyz"
+            .chars()
+            .zip(self.axes)
+            .filter_map(|(c, on)| on.then_some(c))
+            .collect();
+        if self.bodies.is_empty() {
+            format!("{axes} of every box")
+        } else {
+            let b: Vec<String> = self.bodies.iter().map(|b| format!("{b}*")).collect();
+            format!("{axes} of {}", b.join(", "))
+        }
+    }
+
+    fn applies_to(&self, body: &str) -> bool {
+        self.bodies.is_empty() || self.bodies.iter().any(|p| body.starts_with(p.as_str()))
+    }
+}
+
 /// One mesh of the study.
 #[derive(Debug, Clone)]
 pub struct MeshRow {
     /// Divisions multiplied by this.
     pub factor: usize,
+    /// Which divisions ([`Refinement::label`]).
+    pub refined: String,
+    /// Index of the row this one is compared with (the next coarser of its refinement).
+    pub compared_to: Option<usize>,
     pub free_dofs: usize,
     pub contact_points: usize,
     /// Resonance (1/time) per amplitude with the node-based law.
@@ -56,19 +121,57 @@ fn low_pressure_share(pressure: &[f64], sample: &super::Sample) -> f64 {
 
 /// The scene with every box's divisions multiplied by `factor`.
 pub fn refined(scene: &Scene, factor: usize) -> Scene {
+    refined_by(scene, factor, &Refinement::everything())
+}
+
+/// The scene with the divisions `r` selects multiplied by `factor`.
+pub fn refined_by(scene: &Scene, factor: usize, r: &Refinement) -> Scene {
     let mut s = scene.clone();
     for b in &mut s.spec.bodies {
+        if !r.applies_to(&b.name) {
+            continue;
+        }
         if let Some(d) = &mut b.divisions {
-            *d = d.map(|n| n * factor);
+            for (n, on) in d.iter_mut().zip(r.axes) {
+                if on {
+                    *n *= factor;
+                }
+            }
         }
     }
     s
 }
 
-/// Runs the study over `factors`; `progress(message)` before each model.
+/// The meshes a study computes for `factors` and `refinements`: (factor, refinement
+/// index, index of the row it is compared with). Factor 1 is the scene itself, once,
+/// and every refinement's first finer mesh is compared with it.
+pub fn plan(factors: &[usize], refinements: usize) -> Vec<(usize, usize, Option<usize>)> {
+    let mut out = Vec::new();
+    let mut base = None;
+    for r in 0..refinements {
+        let mut prev = base;
+        for &f in factors {
+            if f == 1 {
+                if base.is_none() {
+                    out.push((1, r, None));
+                    base = Some(out.len() - 1);
+                }
+                prev = base;
+                continue;
+            }
+            out.push((f, r, prev));
+            prev = Some(out.len() - 1);
+        }
+    }
+    out
+}
+
+/// Runs the study over `factors` and `refinements` ([`plan`]); `progress(message)`
+/// before each model (two per mesh).
 pub fn study(
     scene: &Scene,
     factors: &[usize],
+    refinements: &[Refinement],
     progress: &dyn Fn(&str),
 ) -> Result<Vec<MeshRow>, LossError> {
     let st = scene.spec.loss_study.as_ref().ok_or(LossError::NoStudy)?;
@@ -78,9 +181,17 @@ pub fn study(
         .ok_or_else(|| LossError::Spec("the mesh study needs a reference point".into()))?;
     let amplitudes = [0.25 * reference.amplitude, reference.amplitude];
     let mut rows = Vec::new();
-    for &factor in factors {
+    for (factor, r, compared_to) in plan(factors, refinements.len()) {
+        let refinement = &refinements[r];
+        let refined = if factor == 1 {
+            "none (the scene)".to_string()
+        } else {
+            refinement.label()
+        };
         let mut row = MeshRow {
             factor,
+            refined: refined.clone(),
+            compared_to,
             free_dofs: 0,
             contact_points: 0,
             freq: [0.0; 2],
@@ -91,10 +202,10 @@ pub fn study(
         };
         for samples in [None, Some(STUDY_AREA_SAMPLES)] {
             progress(&format!(
-                "divisions × {factor}, {}",
+                "divisions × {factor} ({refined}), {}",
                 samples.map_or("node-based".into(), |s| format!("{s} × {s} area samples"))
             ));
-            let mut sc = refined(scene, factor);
+            let mut sc = refined_by(scene, factor, refinement);
             sc.spec
                 .interfaces
                 .iter_mut()
@@ -131,9 +242,10 @@ pub fn markdown(scene: &Scene, rows: &[MeshRow]) -> String {
     };
     let (pu, au, af) = (&st.power_unit, &st.amplitude_unit, st.amplitude_factor);
     let mut s = format!(
-        "Mesh study, `{}` ({}): power loss at resonance, divisions of every box × factor; \
-         low-p share: part of the node-based loss from points below {:.0} % of the largest \
-         pressure.\n\n",
+        "Mesh study, `{}` ({}): power loss at resonance with the divisions named under \
+         \"refined\" × factor, each change against the next coarser mesh of its kind (the \
+         scene itself for the first); low-p share: part of the node-based loss from points \
+         below {:.0} % of the largest pressure.\n\n",
         scene.spec.title,
         scene.file,
         100.0 * LOW_PRESSURE
@@ -144,15 +256,16 @@ pub fn markdown(scene: &Scene, rows: &[MeshRow]) -> String {
     let [a0, a1] = first.amplitudes.map(|a| a / af);
     let _ = writeln!(
         s,
-        "| × | free DOFs | points | resonance at {a1:.1} {au} | node-based {a0:.1} {au} [{pu}] | change | low-p share | node-based {a1:.1} {au} [{pu}] | change | low-p share | sampled {a0:.1} {au} [{pu}] | change | sampled {a1:.1} {au} [{pu}] | change |"
+        "| × | refined | free DOFs | points | resonance at {a1:.1} {au} | node-based {a0:.1} {au} [{pu}] | change | low-p share | node-based {a1:.1} {au} [{pu}] | change | low-p share | sampled {a0:.1} {au} [{pu}] | change | sampled {a1:.1} {au} [{pu}] | change |"
     );
-    s.push_str("|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
-    for (i, r) in rows.iter().enumerate() {
-        let prev = i.checked_sub(1).map(|j| &rows[j]);
+    s.push_str("|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+    for r in rows {
+        let prev = r.compared_to.map(|j| &rows[j]);
         let _ = writeln!(
             s,
-            "| {} | {} | {} | {:.1} | {:.4} | {} | {:.0} % | {:.4} | {} | {:.0} % | {:.4} | {} | {:.4} | {} |",
+            "| {} | {} | {} | {} | {:.1} | {:.4} | {} | {:.0} % | {:.4} | {} | {:.0} % | {:.4} | {} | {:.4} | {} |",
             r.factor,
+            r.refined,
             r.free_dofs,
             r.contact_points,
             r.freq[1],
@@ -174,14 +287,15 @@ pub fn markdown(scene: &Scene, rows: &[MeshRow]) -> String {
 /// CSV of the study.
 pub fn csv(rows: &[MeshRow]) -> String {
     let mut s = String::from(
-        "factor,free_dofs,contact_points,frequency,amplitude,power_node_based,power_area_sampled,low_pressure_share\n",
+        "factor,refined,free_dofs,contact_points,frequency,amplitude,power_node_based,power_area_sampled,low_pressure_share\n",
     );
     for r in rows {
         for k in 0..2 {
             let _ = writeln!(
                 s,
-                "{},{},{},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e}",
+                "{},\"{}\",{},{},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e}",
                 r.factor,
+                r.refined,
                 r.free_dofs,
                 r.contact_points,
                 r.freq[k],
@@ -193,4 +307,50 @@ pub fn csv(rows: &[MeshRow]) -> String {
         }
     }
     s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn refinement_specs_parse_and_bad_ones_are_named() {
+        let r = Refinement::parse("x:jaw_,blade_in").unwrap();
+        assert_eq!(r.axes, [true, false, false]);
+        assert_eq!(r.bodies, ["jaw_", "blade_in"]);
+        assert_eq!(r.label(), "x of jaw_*, blade_in*");
+        assert_eq!(Refinement::parse("zy").unwrap().label(), "yz of every box");
+        for bad in ["", "w", "x:", "x:a,,b", ":jaw"] {
+            assert!(Refinement::parse(bad).is_err(), "{bad}");
+        }
+    }
+
+    /// Only the selected axes of the selected boxes change; the scene itself once, first.
+    #[test]
+    fn refined_by_multiplies_only_the_selected_divisions() {
+        let path =
+            std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes/knife-coarse.toml");
+        let s = Scene::load(&path).unwrap();
+        let r = refined_by(&s, 3, &Refinement::parse("xz:jaw_").unwrap());
+        for (a, b) in s.spec.bodies.iter().zip(&r.spec.bodies) {
+            let (da, db) = (a.divisions.unwrap(), b.divisions.unwrap());
+            let want = if a.name.starts_with("jaw_") {
+                [3 * da[0], da[1], 3 * da[2]]
+            } else {
+                da
+            };
+            assert_eq!(db, want, "{}", a.name);
+        }
+        assert_eq!(
+            plan(&[1, 2, 3], 2),
+            vec![
+                (1, 0, None),
+                (2, 0, Some(0)),
+                (3, 0, Some(1)),
+                (2, 1, Some(0)),
+                (3, 1, Some(3))
+            ]
+        );
+        assert_eq!(plan(&[2], 2), vec![(2, 0, None), (2, 1, None)]);
+    }
 }
