@@ -180,14 +180,41 @@ fn edge_points_slip_more_than_interior_points() {
 /// `jointlin loss scenes/knife-coarse.toml --mesh-study 1,2,3`).
 /// Ignored so that CI stays green; run it with
 /// `cargo test --release -p jointlin-harness --test knife -- --ignored`.
+/// The thesis's "a finer mesh changes the loss by less than 2 %", on the graded scene
+/// (knife-graded.toml) with the contact law averaged over area samples, each part of
+/// the discretization doubled on its own: x of the jaws and blade in the slot, x of the
+/// bar, y of every box, z of every box; area-sampled power at 3 N·m, 3 and 12 µm.
+/// Measured 2026-11-21 (scene copies with the divisions doubled by hand, as
+/// `jointlin loss scenes/knife-graded.toml --mesh-study 1,2 --refine x:jaw_,blade_in
+/// --refine x:bar_ --refine y --refine z` now does): x in the slot +0.9 % / +0.6 %
+/// (node-based +3.2 % / −0.2 %), z +4.3 % / +3.8 % (node-based +8.0 % / +3.6 %); so z
+/// is not converged yet (README "Ultrasonic knife"). About 2 h on this machine.
 #[test]
-#[ignore = "mesh convergence of the loss is not reached (−55 % at 3 µm from divisions ×1 to ×2)"]
+#[ignore = "z refinement still changes the loss by ~4 % (2026-11-21), and the study takes ~2 h"]
 fn refining_the_mesh_changes_the_loss_by_less_than_two_percent() {
-    let s = coarse();
-    let c = power(&s, 3000.0).power;
-    let f = power(&mesh::refined(&s, 2), 3000.0).power;
-    let rel = (f - c).abs() / f;
-    assert!(rel < 0.02, "coarse {c}, fine {f}: {rel}");
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes/knife-graded.toml");
+    let s = Scene::load(&path).unwrap();
+    let refinements: Vec<mesh::Refinement> = ["x:jaw_,blade_in", "x:bar_", "y", "z"]
+        .iter()
+        .map(|r| mesh::Refinement::parse(r).unwrap())
+        .collect();
+    let rows = mesh::study(&s, &[1, 2], &refinements, &|_| {}).unwrap();
+    let base = &rows[0];
+    for r in &rows[1..] {
+        for k in 0..2 {
+            let rel = (r.sampled[k] - base.sampled[k]).abs() / base.sampled[k];
+            assert!(
+                rel < 0.02,
+                "{} at {} mm: {} -> {} W ({rel:.3}); node-based {} -> {} W",
+                r.refined,
+                r.amplitudes[k],
+                base.sampled[k],
+                r.sampled[k],
+                base.node[k],
+                r.node[k]
+            );
+        }
+    }
 }
 
 /// The mesh study's first row is the scene itself: its node-based powers are (bitwise)
