@@ -320,16 +320,14 @@ impl Model {
             first_element: self.elements.len(),
         };
         let [nx, ny, nz] = spec.divisions;
-        // Grid lines per axis; the last one exactly at origin + size (no round-off
-        // drift), so stacked bodies' interface nodes coincide bit for bit.
+        // Grid lines per axis; the last fraction is exactly 1, so the last line is
+        // exactly origin + size and stacked bodies' interface nodes coincide bit for bit.
         let lines: [Vec<f64>; 3] = std::array::from_fn(|a| {
-            let f = grading[a].fractions(spec.divisions[a]);
-            let mut v: Vec<f64> = f
+            grading[a]
+                .fractions(spec.divisions[a])
                 .iter()
                 .map(|t| spec.origin[a] + t * spec.size[a])
-                .collect();
-            v[spec.divisions[a]] = spec.origin[a] + spec.size[a];
-            v
+                .collect()
         });
         for k in 0..=nz {
             for j in 0..=ny {
