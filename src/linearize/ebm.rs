@@ -8,14 +8,23 @@ use crate::hysteresis::Rule;
 use crate::law::Backbone;
 use std::f64::consts::PI;
 
-/// d* = A_hys/(π ω A²) (3.14); ω > 0, A > 0.
+/// d* = A_hys/(π ω A²) (3.14); ω > 0, A > 0. No loop, no damping (also where A²
+/// underflows: A = 1e-170, a round-off amplitude of a welded joint, made 0/0); A is
+/// divided out twice, not squared, so that d* stays finite while A_hys/A is.
 pub fn viscous_damping(area: f64, amplitude: f64, omega: f64) -> f64 {
-    area / (PI * omega * amplitude * amplitude) // (3.14)
+    if area == 0.0 {
+        return 0.0;
+    }
+    area / amplitude / (PI * omega * amplitude) // (3.14)
 }
 
-/// η = A_hys/(π k* A²): the frequency-independent loss factor of the same loop.
+/// η = A_hys/(π k* A²): the frequency-independent loss factor of the same loop (0
+/// without a loop, A divided out twice as in [`viscous_damping`]).
 pub fn loss_factor(area: f64, amplitude: f64, k_star: f64) -> f64 {
-    area / (PI * k_star * amplitude * amplitude)
+    if area == 0.0 {
+        return 0.0;
+    }
+    area / amplitude / (PI * k_star * amplitude)
 }
 
 /// A_hys by quadrature over x of the gap between the branches, as the thesis computes it

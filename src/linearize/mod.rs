@@ -180,7 +180,9 @@ pub fn linearize_point(
     let b = &point.backbone;
     let delta_star = b.slip_limit();
     let k0 = b.k_t0();
-    if amplitude == 0.0 {
+    // Zero or subnormal A (round-off in a welded joint): the stick limit, where F/A
+    // would have lost its digits (k* came out 641 for k_T0 = 1e5 at A = 1e-320).
+    if amplitude < f64::MIN_POSITIVE {
         return Ok(Linearization {
             k_star: k0,
             d_star: 0.0,

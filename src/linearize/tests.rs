@@ -251,6 +251,16 @@ fn hard_inputs_give_finite_answers_or_named_errors() {
         linearize(&c, 1e-200, 1e-200, Method::default()),
         Ok(_) | Err(Error::Overflow(_))
     ));
+    // Round-off amplitudes of a welded joint (A² underflows): the stick limit, finite
+    // (was 0/0 → a named overflow that stopped a sweep of scenes/hard/stiffness-ratio).
+    for a in [1e-320, 1e-250, 1e-170, 1e-120] {
+        let lin = linearize(&c, a, 1.0, Method::default()).unwrap();
+        assert!(
+            lin.d_star.is_finite() && lin.d_star >= 0.0 && lin.eta.is_finite(),
+            "{a:e}: {lin:?}"
+        );
+        assert!((lin.k_star / c.k_t0 - 1.0).abs() < 1e-12, "{a:e}: {lin:?}");
+    }
     // Named errors.
     assert!(matches!(
         linearize(&c, f64::NAN, 1.0, Method::default()),

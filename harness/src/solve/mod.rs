@@ -2,6 +2,7 @@
 
 pub mod contact;
 pub mod dense;
+pub mod line_search;
 pub mod modal;
 pub mod static_step;
 pub mod sweep;

@@ -1,6 +1,7 @@
-//! The static preload step: K u + f_c(u) = f_pre by Newton's method, with the contact
-//! law of every point from UINTER (LINPER = 0, KSTEP = 1, one increment), as Abaqus
-//! would call it. The converged pressures are the operating point of the steady-state
+//! The static preload step: K u + f_c(u) = f_pre by Newton's method with a line search
+//! on the energy's slope ([`line_search`]), with the contact law of every point from
+//! UINTER (LINPER = 0, KSTEP = 1, one increment), as Abaqus would call it; the Newton
+//! matrices are factored with UMFPACK's symmetric strategy ([`Symbolic::symmetric`]). The converged pressures are the operating point of the steady-state
 //! step; points open here stay open there.
 //!
 //! Per point, with δ = Qᵀ(u_upper − u_lower) = (δ_n, δ_t₁, δ_t₂): RDISP = S δ with
@@ -19,6 +20,7 @@ use crate::fe::pair_blocks::to_global;
 use crate::model::subgrid::{refine_at_patch_edge, sample_value, EDGE_DEPTH};
 use crate::model::{ContactPoint, Problem};
 use crate::solve::contact::{interface_props, normal_stiffness};
+use crate::solve::line_search;
 use crate::solve::umfpack::{to_complex, Symbolic, UmfpackError};
 
 /// Newton stops when ‖R‖ ≤ this × ‖f_pre‖ (round-off of K u with cond(K) ~1e8 is far
@@ -26,15 +28,6 @@ use crate::solve::umfpack::{to_complex, Symbolic, UmfpackError};
 pub const RESIDUAL_TOL: f64 = 1e-9;
 /// Most Newton iterations.
 pub const MAX_NEWTON: usize = 60;
-/// Backtracking halvings per Newton step.
-const MAX_HALVINGS: usize = 12;
-/// Full Newton steps taken although no halving lowered ‖R‖ (at most this many per
-/// solve). Contact with a linear penalty and friction is piecewise linear: a full step
-/// lands on the next active set (points opening, sliding), where ‖R‖ may first grow
-/// before the next step finishes. Backtracking alone stalled there: a beam stack with a
-/// lifted free end (scenes/hard/low-preload.toml at a 6 N lift) stopped at ‖R‖/‖f‖ = 0.2
-/// after 5 iterations; with one full step it converges in 7.
-const MAX_NONMONOTONE: usize = 10;
 /// Probe overclosure (relative to the model's size) used for the first tangent: at u = 0
 /// every point is just touching and Hertz has no stiffness, so the first Newton matrix
 /// takes the points' tangent at this small penetration.
@@ -98,6 +91,10 @@ pub fn overclosure(p: &Problem, c: &ContactPoint, delta: [f64; 3]) -> [f64; 3] {
     let mut r = s_flip(delta);
     r[0] -= p.interfaces[c.interface].initial_gap;
     r
+}
+
+fn dot(a: &[f64], b: &[f64]) -> f64 {
+    a.iter().zip(b).map(|(x, y)| x * y).sum()
 }
 
 fn norm(v: &[f64]) -> f64 {
@@ -267,7 +264,7 @@ fn evaluate(
 /// Solves the preload step.
 pub fn solve(p: &Problem, nonlinear: bool) -> Result<StaticState, StaticError> {
     let props: Vec<[f64; 12]> = p.interfaces.iter().map(interface_props).collect();
-    let sym = Symbolic::new(p.sys.pattern.clone())?;
+    let sym = Symbolic::symmetric(p.sys.pattern.clone())?;
     let n = p.sys.dofs.n_free();
     let fnorm = norm(&p.preload).max(f64::MIN_POSITIVE);
     let tangent_matrix = |tangents: &[Matrix3<f64>], couplings: &[(usize, usize, f64)]| {
@@ -348,40 +345,20 @@ pub fn solve(p: &Problem, nonlinear: bool) -> Result<StaticState, StaticError> {
     let mut tangents = probe.tangents.clone();
     let mut couplings = Vec::new();
     let mut res = norm(&ev.residual) / fnorm;
-    let mut nonmonotone = 0;
     for it in 1..=MAX_NEWTON {
         let neg: Vec<f64> = ev.residual.iter().map(|v| -v).collect();
         let du = solve_with(&tangent_matrix(&tangents, &couplings), &neg)?;
-        let mut step = 1.0;
-        let mut accepted = None;
-        for _ in 0..=MAX_HALVINGS {
-            let trial: Vec<f64> = u.iter().zip(&du).map(|(a, b)| a + step * b).collect();
-            let e = evaluate(p, &props, &trial, None)?;
-            let r = norm(&e.residual) / fnorm;
-            if r < res || it == 1 {
-                accepted = Some((trial, e, r));
-                break;
-            }
-            step *= 0.5;
-        }
-        if accepted.is_none() && nonmonotone < MAX_NONMONOTONE {
-            nonmonotone += 1;
-            step = 1.0;
-            let trial: Vec<f64> = u.iter().zip(&du).map(|(a, b)| a + b).collect();
-            let e = evaluate(p, &props, &trial, None)?;
-            let r = norm(&e.residual) / fnorm;
-            accepted = Some((trial, e, r));
-        }
-        let Some((trial, e, r)) = accepted else {
-            return Err(StaticError::NotConverged {
-                iterations: it,
-                residual: res,
-            });
-        };
-        let moved = step * norm(&du);
-        u = trial;
-        ev = e;
-        res = r;
+        let slope0 = -dot(&neg, &du);
+        let trial_at = |s: f64| -> Vec<f64> { u.iter().zip(&du).map(|(a, b)| a + s * b).collect() };
+        let found = line_search::search(slope0, |s| {
+            let e = evaluate(p, &props, &trial_at(s), None)?;
+            let g = dot(&e.residual, &du);
+            Ok::<_, CapiError>((e, g))
+        })?;
+        let moved = found.length * norm(&du);
+        u = trial_at(found.length);
+        ev = found.value;
+        res = norm(&ev.residual) / fnorm;
         couplings.clone_from(&ev.couplings);
         tangents = ev
             .tangents
