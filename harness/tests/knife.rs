@@ -188,8 +188,9 @@ fn edge_points_slip_more_than_interior_points() {
 /// `jointlin loss scenes/knife-graded.toml --mesh-study 1,2 --refine x:jaw_,blade_in
 /// --refine x:bar_ --refine y --refine z` now does): x in the slot +0.9 % / +0.6 %
 /// (node-based +3.2 % / −0.2 %), z +4.3 % / +3.8 % (node-based +8.0 % / +3.6 %); so z
-/// is not converged yet; bar x −0.7 % / −0.8 %; y: the static step did not converge
-/// on that mesh (README "Ultrasonic knife"). About 2 h on this machine.
+/// is not converged yet; bar x −0.7 % / −0.8 %; y: not measured (its static step
+/// failed until session 6 fixed the UMFPACK strategy; README "Ultrasonic knife").
+/// About 2 h on this machine.
 #[test]
 #[ignore = "z refinement still changes the loss by ~4 % (2026-11-21), and the study takes ~2 h"]
 fn refining_the_mesh_changes_the_loss_by_less_than_two_percent() {
