@@ -153,8 +153,8 @@ enum Command {
         #[arg(long)]
         calibrate: bool,
         /// Instead: a mesh study at the first reference point's torque (its amplitude
-        /// and a quarter of it) with every box's divisions × each factor, node-based
-        /// and area-sampled; writes mesh_study.md and mesh_study.csv.
+        /// and a quarter of it) with every box's divisions × each factor, area-sampled
+        /// and node-based; writes mesh_study.md and mesh_study.csv.
         #[arg(long, value_delimiter = ',', num_args = 1..)]
         mesh_study: Vec<usize>,
         /// With --mesh-study: multiply only these divisions, AXES[:PREFIX,…] (e.g. `z`,
@@ -162,6 +162,10 @@ enum Command {
         /// each compared with the scene itself. Default: every axis of every box.
         #[arg(long)]
         refine: Vec<String>,
+        /// With --mesh-study: only the area-sampled law (half the time; the node-based
+        /// columns are left out).
+        #[arg(long)]
+        sampled_only: bool,
         /// No progress bar.
         #[arg(long)]
         quiet: bool,
@@ -381,8 +385,17 @@ fn main() -> ExitCode {
             calibrate,
             mesh_study,
             refine,
+            sampled_only,
             quiet,
-        } => loss(&scene, &out, calibrate, &mesh_study, &refine, quiet),
+        } => loss(
+            &scene,
+            &out,
+            calibrate,
+            &mesh_study,
+            &refine,
+            !sampled_only,
+            quiet,
+        ),
         Command::Check { scene } => match Scene::load(&scene) {
             Ok(s) => {
                 println!(
@@ -520,6 +533,7 @@ fn loss(
     calibrate: bool,
     mesh_study: &[usize],
     refine: &[String],
+    node_based: bool,
     quiet: bool,
 ) -> ExitCode {
     use jointlin_harness::loss;
@@ -554,7 +568,7 @@ fn loss(
         };
     }
     if !mesh_study.is_empty() {
-        return loss_mesh_study(&s, out, mesh_study, refine, quiet);
+        return loss_mesh_study(&s, out, mesh_study, refine, node_based, quiet);
     }
     let t = std::time::Instant::now();
     let r = match with_progress(quiet, st.torques.len(), |p| loss::run_study(&s, p)) {
@@ -592,6 +606,7 @@ fn loss_mesh_study(
     out: &std::path::Path,
     factors: &[usize],
     refine: &[String],
+    node_based: bool,
     quiet: bool,
 ) -> ExitCode {
     use jointlin_harness::loss::mesh;
@@ -611,8 +626,11 @@ fn loss_mesh_study(
         }
     };
     let t = std::time::Instant::now();
-    let steps = 2 * mesh::plan(factors, refinements.len()).len();
-    let rows = match with_progress(quiet, steps, |p| mesh::study(s, factors, &refinements, p)) {
+    let laws = if node_based { 2 } else { 1 };
+    let steps = laws * mesh::plan(factors, refinements.len()).len();
+    let rows = match with_progress(quiet, steps, |p| {
+        mesh::study(s, factors, &refinements, node_based, p)
+    }) {
         Ok(r) => r,
         Err(code) => return code,
     };

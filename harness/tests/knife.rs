@@ -200,20 +200,18 @@ fn refining_the_mesh_changes_the_loss_by_less_than_two_percent() {
         .iter()
         .map(|r| mesh::Refinement::parse(r).unwrap())
         .collect();
-    let rows = mesh::study(&s, &[1, 2], &refinements, &|_| {}).unwrap();
+    let rows = mesh::study(&s, &[1, 2], &refinements, false, &|_| {}).unwrap();
     let base = &rows[0];
     for r in &rows[1..] {
         for k in 0..2 {
             let rel = (r.sampled[k] - base.sampled[k]).abs() / base.sampled[k];
             assert!(
                 rel < 0.02,
-                "{} at {} mm: {} -> {} W ({rel:.3}); node-based {} -> {} W",
+                "{} at {} mm: {} -> {} W ({rel:.3})",
                 r.refined,
                 r.amplitudes[k],
                 base.sampled[k],
                 r.sampled[k],
-                base.node[k],
-                r.node[k]
             );
         }
     }
@@ -222,22 +220,29 @@ fn refining_the_mesh_changes_the_loss_by_less_than_two_percent() {
 /// The mesh study's first row is the scene itself: its node-based powers are (bitwise)
 /// `power_at`'s at the reference torque (3 N·m) and amplitudes (3 µm, 12 µm); the area-sampled
 /// ones differ (the patch edge moves into the elements) but stay positive; the shares
-/// are fractions.
+/// are fractions; without the node-based law the area-sampled half is the same.
 #[test]
 fn mesh_study_row_one_is_the_scene_itself() {
     let s = coarse();
-    let rows = mesh::study(&s, &[1], &[mesh::Refinement::everything()], &|_| {}).unwrap();
+    let everything = [mesh::Refinement::everything()];
+    let rows = mesh::study(&s, &[1], &everything, true, &|_| {}).unwrap();
     let r = &rows[0];
+    let node = r.node.expect("the node-based law was asked for");
     let st = s.spec.loss_study.as_ref().unwrap();
     let at = |a: f64| loss::power_at(&s, 3000.0, a).unwrap().0.power * st.power_factor;
-    approx::assert_relative_eq!(r.node[0], at(0.003), max_relative = 1e-12);
-    approx::assert_relative_eq!(r.node[1], at(0.012), max_relative = 1e-12);
+    approx::assert_relative_eq!(node.power[0], at(0.003), max_relative = 1e-12);
+    approx::assert_relative_eq!(node.power[1], at(0.012), max_relative = 1e-12);
     assert_eq!(r.amplitudes, [0.003, 0.012]);
     assert!(r.sampled.iter().all(|&p| p > 0.0));
-    assert!(r
+    assert!(node
         .low_pressure_share
         .iter()
         .all(|&x| (0.0..=1.0).contains(&x)));
+    // Without the node-based law: the same area-sampled row, no node-based half.
+    let sampled_only = mesh::study(&s, &[1], &everything, false, &|_| {}).unwrap();
+    assert!(sampled_only[0].node.is_none());
+    assert_eq!(sampled_only[0].sampled, r.sampled);
+    assert_eq!(sampled_only[0].freq, r.freq);
     assert_eq!(
         mesh::refined(&s, 3).spec.bodies[0].divisions,
         Some([18, 6, 6])

@@ -3,12 +3,12 @@
 //! amplitude and a quarter of it (each at its own resonance, as [`power_at`]), for every
 //! box's divisions multiplied by each factor, or only some axes' of some boxes
 //! ([`Refinement`]: which part of the discretization error a change comes from), with
-//! the contact law at the nodes (the thesis's way) and averaged over area samples
-//! ([`crate::model::subgrid`]).
+//! the contact law averaged over area samples ([`crate::model::subgrid`]) and,
+//! optionally, at the nodes (the thesis's way).
 
 use std::fmt::Write as _;
 
-use super::{power_at, LossError};
+use super::{powers_at, LossError};
 use crate::scene::Scene;
 
 /// Samples per quarter face and direction of the area-sampled variant.
@@ -85,15 +85,23 @@ pub struct MeshRow {
     pub compared_to: Option<usize>,
     pub free_dofs: usize,
     pub contact_points: usize,
-    /// Resonance (1/time) per amplitude with the node-based law.
+    /// Resonance (1/time) per amplitude with the area-sampled law.
     pub freq: [f64; 2],
     /// Target amplitudes (scene length).
     pub amplitudes: [f64; 2],
-    /// Power (reported unit) per amplitude: node-based, area-sampled.
-    pub node: [f64; 2],
+    /// Power (reported unit) per amplitude, area-sampled.
     pub sampled: [f64; 2],
-    /// Node-based, per amplitude: share of the loss dissipated by points whose pressure
-    /// is below [`LOW_PRESSURE`] × the largest pressure (the edges of the contact patch).
+    /// Node-based (when the study ran it), per amplitude.
+    pub node: Option<NodeBased>,
+}
+
+/// The node-based half of a [`MeshRow`].
+#[derive(Debug, Clone, Copy)]
+pub struct NodeBased {
+    /// Power (reported unit) per amplitude.
+    pub power: [f64; 2],
+    /// Share of the loss dissipated by points whose pressure is below
+    /// [`LOW_PRESSURE`] × the largest pressure (the edges of the contact patch).
     pub low_pressure_share: [f64; 2],
 }
 
@@ -166,12 +174,13 @@ pub fn plan(factors: &[usize], refinements: usize) -> Vec<(usize, usize, Option<
     out
 }
 
-/// Runs the study over `factors` and `refinements` ([`plan`]); `progress(message)`
-/// before each model (two per mesh).
+/// Runs the study over `factors` and `refinements` ([`plan`]), with the node-based law
+/// too when `node_based`; `progress(message)` before each model (one per law and mesh).
 pub fn study(
     scene: &Scene,
     factors: &[usize],
     refinements: &[Refinement],
+    node_based: bool,
     progress: &dyn Fn(&str),
 ) -> Result<Vec<MeshRow>, LossError> {
     let st = scene.spec.loss_study.as_ref().ok_or(LossError::NoStudy)?;
@@ -180,6 +189,11 @@ pub fn study(
         .first()
         .ok_or_else(|| LossError::Spec("the mesh study needs a reference point".into()))?;
     let amplitudes = [0.25 * reference.amplitude, reference.amplitude];
+    let laws: &[Option<usize>] = if node_based {
+        &[None, Some(STUDY_AREA_SAMPLES)]
+    } else {
+        &[Some(STUDY_AREA_SAMPLES)]
+    };
     let mut rows = Vec::new();
     for (factor, r, compared_to) in plan(factors, refinements.len()) {
         let refinement = &refinements[r];
@@ -196,11 +210,10 @@ pub fn study(
             contact_points: 0,
             freq: [0.0; 2],
             amplitudes,
-            node: [0.0; 2],
             sampled: [0.0; 2],
-            low_pressure_share: [0.0; 2],
+            node: None,
         };
-        for samples in [None, Some(STUDY_AREA_SAMPLES)] {
+        for &samples in laws {
             progress(&format!(
                 "divisions × {factor} ({refined}), {}",
                 samples.map_or("node-based".into(), |s| format!("{s} × {s} area samples"))
@@ -211,18 +224,19 @@ pub fn study(
                 .iter_mut()
                 .for_each(|i| i.area_samples = samples);
             // Each amplitude at its own resonance, as `power_at` (the trend tests') does.
-            for (k, &a) in amplitudes.iter().enumerate() {
-                let (got, op) = power_at(&sc, reference.torque, a)?;
-                let power = got.power * st.power_factor;
-                if samples.is_none() {
-                    row.free_dofs = op.problem.sys.dofs.n_free();
-                    row.contact_points = op.problem.contacts.len();
-                    row.freq[k] = got.freq;
-                    row.node[k] = power;
-                    row.low_pressure_share[k] = low_pressure_share(&op.stat.pressure, &got);
-                } else {
-                    row.sampled[k] = power;
-                }
+            let (got, op) = powers_at(&sc, reference.torque, &amplitudes)?;
+            let power = [0, 1].map(|k| got[k].power * st.power_factor);
+            row.free_dofs = op.problem.sys.dofs.n_free();
+            row.contact_points = op.problem.contacts.len();
+            if samples.is_none() {
+                row.node = Some(NodeBased {
+                    power,
+                    low_pressure_share: [0, 1]
+                        .map(|k| low_pressure_share(&op.stat.pressure, &got[k])),
+                });
+            } else {
+                row.freq = [0, 1].map(|k| got[k].freq);
+                row.sampled = power;
             }
         }
         rows.push(row);
@@ -235,74 +249,107 @@ fn change(before: Option<f64>, now: f64) -> String {
     before.map_or("".into(), |b| format!("{:+.1} %", 100.0 * (now - b) / b))
 }
 
-/// Markdown table of the study (power in the study's unit, change to the coarser mesh).
+/// Markdown table of the study (power in the study's unit, change to the coarser mesh);
+/// node-based columns when the study ran that law.
 pub fn markdown(scene: &Scene, rows: &[MeshRow]) -> String {
     let Some(st) = scene.spec.loss_study.as_ref() else {
         return String::new();
     };
     let (pu, au, af) = (&st.power_unit, &st.amplitude_unit, st.amplitude_factor);
+    let node_based = rows.iter().any(|r| r.node.is_some());
     let mut s = format!(
         "Mesh study, `{}` ({}): power loss at resonance with the divisions named under \
          \"refined\" × factor, each change against the next coarser mesh of its kind (the \
-         scene itself for the first); low-p share: part of the node-based loss from points \
-         below {:.0} % of the largest pressure.\n\n",
+         scene itself for the first){}.\n\n",
         scene.spec.title,
         scene.file,
-        100.0 * LOW_PRESSURE
+        if node_based {
+            format!(
+                "; low-p share: part of the node-based loss from points below {:.0} % of \
+                 the largest pressure",
+                100.0 * LOW_PRESSURE
+            )
+        } else {
+            String::new()
+        }
     );
     let Some(first) = rows.first() else {
         return s;
     };
     let [a0, a1] = first.amplitudes.map(|a| a / af);
-    let _ = writeln!(
-        s,
-        "| × | refined | free DOFs | points | resonance at {a1:.1} {au} | node-based {a0:.1} {au} [{pu}] | change | low-p share | node-based {a1:.1} {au} [{pu}] | change | low-p share | sampled {a0:.1} {au} [{pu}] | change | sampled {a1:.1} {au} [{pu}] | change |"
-    );
-    s.push_str("|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+    s.push_str(&format!(
+        "| × | refined | free DOFs | points | resonance at {a1:.1} {au} |"
+    ));
+    let mut align = String::from("|---:|---|---:|---:|---:|");
+    if node_based {
+        for a in [a0, a1] {
+            let _ = write!(s, " node-based {a:.1} {au} [{pu}] | change | low-p share |");
+            align.push_str("---:|---:|---:|");
+        }
+    }
+    for a in [a0, a1] {
+        let _ = write!(s, " sampled {a:.1} {au} [{pu}] | change |");
+        align.push_str("---:|---:|");
+    }
+    let _ = writeln!(s, "\n{align}");
     for r in rows {
         let prev = r.compared_to.map(|j| &rows[j]);
-        let _ = writeln!(
+        let _ = write!(
             s,
-            "| {} | {} | {} | {} | {:.1} | {:.4} | {} | {:.0} % | {:.4} | {} | {:.0} % | {:.4} | {} | {:.4} | {} |",
-            r.factor,
-            r.refined,
-            r.free_dofs,
-            r.contact_points,
-            r.freq[1],
-            r.node[0],
-            change(prev.map(|p| p.node[0]), r.node[0]),
-            100.0 * r.low_pressure_share[0],
-            r.node[1],
-            change(prev.map(|p| p.node[1]), r.node[1]),
-            100.0 * r.low_pressure_share[1],
-            r.sampled[0],
-            change(prev.map(|p| p.sampled[0]), r.sampled[0]),
-            r.sampled[1],
-            change(prev.map(|p| p.sampled[1]), r.sampled[1]),
+            "| {} | {} | {} | {} | {:.1} |",
+            r.factor, r.refined, r.free_dofs, r.contact_points, r.freq[1],
         );
+        if node_based {
+            for k in 0..2 {
+                match &r.node {
+                    Some(n) => {
+                        let before = prev.and_then(|p| p.node).map(|p| p.power[k]);
+                        let _ = write!(
+                            s,
+                            " {:.4} | {} | {:.0} % |",
+                            n.power[k],
+                            change(before, n.power[k]),
+                            100.0 * n.low_pressure_share[k]
+                        );
+                    }
+                    None => s.push_str(" – | | |"),
+                }
+            }
+        }
+        for k in 0..2 {
+            let before = prev.map(|p| p.sampled[k]);
+            let _ = write!(
+                s,
+                " {:.4} | {} |",
+                r.sampled[k],
+                change(before, r.sampled[k])
+            );
+        }
+        s.push('\n');
     }
     s
 }
 
-/// CSV of the study.
+/// CSV of the study (node-based fields empty when not run).
 pub fn csv(rows: &[MeshRow]) -> String {
     let mut s = String::from(
         "factor,refined,free_dofs,contact_points,frequency,amplitude,power_node_based,power_area_sampled,low_pressure_share\n",
     );
+    let opt = |x: Option<f64>| x.map_or(String::new(), |v| format!("{v:.6e}"));
     for r in rows {
         for k in 0..2 {
             let _ = writeln!(
                 s,
-                "{},\"{}\",{},{},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e}",
+                "{},\"{}\",{},{},{:.6e},{:.6e},{},{:.6e},{}",
                 r.factor,
                 r.refined,
                 r.free_dofs,
                 r.contact_points,
                 r.freq[k],
                 r.amplitudes[k],
-                r.node[k],
+                opt(r.node.map(|n| n.power[k])),
                 r.sampled[k],
-                r.low_pressure_share[k]
+                opt(r.node.map(|n| n.low_pressure_share[k]))
             );
         }
     }

@@ -281,6 +281,43 @@ pub fn with_torque(scene: &Scene, screw: &str, torque: f64) -> Result<Scene, Los
     Ok(s)
 }
 
+/// The grid's peak of the output at the scene's excitation: its index and amplitude
+/// (the bracket of the resonance and a linear estimate of the excitation scale).
+fn grid_peak(op: &mut Operating, grid: &[f64]) -> Result<(usize, f64), LossError> {
+    let amp = op.response(grid, 1.0)?;
+    let k = (0..amp.len())
+        .max_by(|&a, &b| amp[a].total_cmp(&amp[b]))
+        .ok_or_else(|| LossError::Spec("the sweep has no frequencies".into()))?;
+    if amp[k] <= 0.0 || !amp[k].is_finite() {
+        return Err(LossError::Spec("the output does not move".into()));
+    }
+    Ok((k, amp[k]))
+}
+
+/// The resonance at `scale` around the grid's peak `k`: golden section between its
+/// neighbours (the grid point itself on grids of fewer than 3 points).
+fn resonance_near(
+    op: &mut Operating,
+    grid: &[f64],
+    k: usize,
+    scale: f64,
+) -> Result<f64, LossError> {
+    if grid.len() < 3 {
+        return Ok(grid[k]);
+    }
+    let (a, b) = (grid[k.saturating_sub(1)], grid[(k + 1).min(grid.len() - 1)]);
+    op.resonance(a, b, scale)
+}
+
+/// The largest of `amplitudes`, all of which must be > 0 (and at least one given).
+fn check_amplitudes(amplitudes: &[f64]) -> Result<f64, LossError> {
+    let top = amplitudes.iter().copied().fold(0.0, f64::max);
+    if top <= 0.0 || !amplitudes.iter().all(|&a| a > 0.0) {
+        return Err(LossError::Spec("amplitudes must be > 0".into()));
+    }
+    Ok(top)
+}
+
 /// The power-loss curve of one model: the resonance (the grid's peak at the scene's
 /// excitation, refined by golden section at the excitation of the largest amplitude;
 /// the grid must hold one peak of the output there), then each
@@ -291,26 +328,10 @@ pub fn curve(
     grid: &[f64],
     amplitudes: &[f64],
 ) -> Result<Vec<Sample>, LossError> {
-    let top = amplitudes.iter().copied().fold(0.0, f64::max);
-    if top <= 0.0 {
-        return Err(LossError::Spec("amplitudes must be > 0".into()));
-    }
-    // The grid's peak at the scene's excitation: the bracket of the resonance and a
-    // linear estimate of the scale for the top amplitude.
-    let amp = op.response(grid, 1.0)?;
-    let k = (0..amp.len())
-        .max_by(|&a, &b| amp[a].total_cmp(&amp[b]))
-        .ok_or_else(|| LossError::Spec("the sweep has no frequencies".into()))?;
-    if amp[k] <= 0.0 || !amp[k].is_finite() {
-        return Err(LossError::Spec("the output does not move".into()));
-    }
-    let mut scale = top / amp[k];
-    let f = if grid.len() < 3 {
-        grid[k]
-    } else {
-        let (a, b) = (grid[k.saturating_sub(1)], grid[(k + 1).min(grid.len() - 1)]);
-        op.resonance(a, b, scale)?
-    };
+    let top = check_amplitudes(amplitudes)?;
+    let (k, peak) = grid_peak(op, grid)?;
+    let mut scale = top / peak;
+    let f = resonance_near(op, grid, k, scale)?;
     let mut order: Vec<usize> = (0..amplitudes.len()).collect();
     order.sort_by(|&a, &b| amplitudes[b].total_cmp(&amplitudes[a]));
     let mut out: Vec<Option<Sample>> = vec![None; amplitudes.len()];
@@ -323,6 +344,25 @@ pub fn curve(
         .into_iter()
         .map(|s| s.expect("every level solved"))
         .collect())
+}
+
+/// Each target amplitude at its own resonance (the grid's peak refined by golden
+/// section at that amplitude's excitation), one grid sweep for all: what [`curve`] gives
+/// for each amplitude alone, without repeating the static step and the sweep.
+pub fn each_at_resonance(
+    op: &mut Operating,
+    grid: &[f64],
+    amplitudes: &[f64],
+) -> Result<Vec<Sample>, LossError> {
+    check_amplitudes(amplitudes)?;
+    let (k, peak) = grid_peak(op, grid)?;
+    amplitudes
+        .iter()
+        .map(|&a| {
+            let f = resonance_near(op, grid, k, a / peak)?;
+            op.level(f, a, a / peak)
+        })
+        .collect()
 }
 
 /// The study of a scene: one curve per torque.
@@ -376,12 +416,20 @@ pub fn power_at(
     torque: f64,
     amplitude: f64,
 ) -> Result<(Sample, Operating), LossError> {
+    let (mut s, op) = powers_at(scene, torque, &[amplitude])?;
+    Ok((s.pop().expect("one amplitude"), op))
+}
+
+/// [`power_at`] for several amplitudes, each at its own resonance, on one model.
+pub fn powers_at(
+    scene: &Scene,
+    torque: f64,
+    amplitudes: &[f64],
+) -> Result<(Vec<Sample>, Operating), LossError> {
     let st = scene.spec.loss_study.as_ref().ok_or(LossError::NoStudy)?;
     let sc = with_torque(scene, &st.screw, torque)?;
     let mut op = Operating::new(&sc, &st.output, st.model_share)?;
-    let s = curve(&mut op, &scene.frequencies(), &[amplitude])?
-        .pop()
-        .expect("one amplitude");
+    let s = each_at_resonance(&mut op, &scene.frequencies(), amplitudes)?;
     Ok((s, op))
 }
 
