@@ -349,15 +349,14 @@ pub fn solve(p: &Problem, nonlinear: bool) -> Result<StaticState, StaticError> {
         let neg: Vec<f64> = ev.residual.iter().map(|v| -v).collect();
         let du = solve_with(&tangent_matrix(&tangents, &couplings), &neg)?;
         let slope0 = -dot(&neg, &du);
-        let trial_at = |s: f64| -> Vec<f64> { u.iter().zip(&du).map(|(a, b)| a + s * b).collect() };
         let found = line_search::search(slope0, |s| {
-            let e = evaluate(p, &props, &trial_at(s), None)?;
+            let trial: Vec<f64> = u.iter().zip(&du).map(|(a, b)| a + s * b).collect();
+            let e = evaluate(p, &props, &trial, None)?;
             let g = dot(&e.residual, &du);
-            Ok::<_, CapiError>((e, g))
+            Ok::<_, CapiError>(((e, trial), g))
         })?;
         let moved = found.length * norm(&du);
-        u = trial_at(found.length);
-        ev = found.value;
+        (ev, u) = found.value;
         res = norm(&ev.residual) / fnorm;
         couplings.clone_from(&ev.couplings);
         tangents = ev
