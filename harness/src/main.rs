@@ -585,7 +585,7 @@ fn loss(
 fn with_progress<T, E: std::fmt::Display>(
     quiet: bool,
     steps: usize,
-    work: impl FnOnce(&dyn Fn(&str)) -> Result<T, E>,
+    work: impl FnOnce(&(dyn Fn(&str) + Sync)) -> Result<T, E>,
 ) -> Result<T, ExitCode> {
     let pb = progress_bar(quiet);
     pb.set_length(steps as u64);

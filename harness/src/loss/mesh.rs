@@ -7,6 +7,8 @@
 //! optionally, at the nodes (the thesis's way).
 
 use std::fmt::Write as _;
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::Mutex;
 
 use super::{powers_at, LossError};
 use crate::scene::Scene;
@@ -175,13 +177,14 @@ pub fn plan(factors: &[usize], refinements: usize) -> Vec<(usize, usize, Option<
 }
 
 /// Runs the study over `factors` and `refinements` ([`plan`]), with the node-based law
-/// too when `node_based`; `progress(message)` before each model (one per law and mesh).
+/// too when `node_based`; the meshes on as many threads as the machine has cores (each
+/// mesh is independent); `progress(message)` before each model (one per law and mesh).
 pub fn study(
     scene: &Scene,
     factors: &[usize],
     refinements: &[Refinement],
     node_based: bool,
-    progress: &dyn Fn(&str),
+    progress: &(dyn Fn(&str) + Sync),
 ) -> Result<Vec<MeshRow>, LossError> {
     let st = scene.spec.loss_study.as_ref().ok_or(LossError::NoStudy)?;
     let reference = st
@@ -194,8 +197,7 @@ pub fn study(
     } else {
         &[Some(STUDY_AREA_SAMPLES)]
     };
-    let mut rows = Vec::new();
-    for (factor, r, compared_to) in plan(factors, refinements.len()) {
+    let mesh_row = |&(factor, r, compared_to): &(usize, usize, Option<usize>)| {
         let refinement = &refinements[r];
         let refined = if factor == 1 {
             "none (the scene)".to_string()
@@ -239,9 +241,34 @@ pub fn study(
                 row.sampled = power;
             }
         }
-        rows.push(row);
-    }
-    Ok(rows)
+        Ok(row)
+    };
+    let jobs = plan(factors, refinements.len());
+    let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
+    in_parallel(&jobs, threads, mesh_row).into_iter().collect()
+}
+
+/// `work` applied to every job on up to `threads` threads; results in the jobs' order.
+fn in_parallel<J: Sync, T: Send>(
+    jobs: &[J],
+    threads: usize,
+    work: impl Fn(&J) -> T + Sync,
+) -> Vec<T> {
+    let next = AtomicUsize::new(0);
+    let done = Mutex::new(Vec::with_capacity(jobs.len()));
+    std::thread::scope(|s| {
+        for _ in 0..threads.clamp(1, jobs.len().max(1)) {
+            s.spawn(|| loop {
+                let i = next.fetch_add(1, Ordering::Relaxed);
+                let Some(job) = jobs.get(i) else { break };
+                let out = work(job);
+                done.lock().expect("a worker panicked").push((i, out));
+            });
+        }
+    });
+    let mut done = done.into_inner().expect("a worker panicked");
+    done.sort_by_key(|(i, _)| *i);
+    done.into_iter().map(|(_, t)| t).collect()
 }
 
 /// Change of `now` against `before`, percent.
@@ -359,6 +386,25 @@ pub fn csv(rows: &[MeshRow]) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Every job once, results in the jobs' order, for more, fewer and as many threads
+    /// as jobs (and none).
+    #[test]
+    fn in_parallel_keeps_the_jobs_order() {
+        let jobs: Vec<u64> = (0..37).collect();
+        for threads in [0, 1, 2, 5, 37, 64] {
+            let out = in_parallel(&jobs, threads, |&j| {
+                std::thread::sleep(std::time::Duration::from_micros(37 - j));
+                j * j
+            });
+            assert_eq!(
+                out,
+                jobs.iter().map(|j| j * j).collect::<Vec<_>>(),
+                "{threads}"
+            );
+        }
+        assert!(in_parallel(&[] as &[u64], 2, |&j| j).is_empty());
+    }
 
     #[test]
     fn refinement_specs_parse_and_bad_ones_are_named() {
