@@ -169,30 +169,20 @@ fn edge_points_slip_more_than_interior_points() {
     assert!(mean(&edge, &pr) < mean(&inner, &pr));
 }
 
-/// NOT met by this model (the thesis's < 2 % is not reproduced): the coarse scene and
-/// the same with every box's divisions doubled give 9.4e-3 and 4.2e-3 W at 3 µm (−55 %),
-/// tripled 3.1e-3 W; at 12 µm 4.13, 1.13, 0.25 W. 52–99 % of the loss comes from points
-/// below 20 % of the peak pressure, at the edges of the contact patch, where the pressure
-/// falls to zero inside an element and the slip is largest; the law integrated over area
-/// samples refined at the patch edge (`area_samples`) does not settle it either, and with
-/// a softer interface, where the sampling is converged, the FE field (the pressure at the
-/// jaw tip) still moves (README "Ultrasonic knife",
-/// `jointlin loss scenes/knife-coarse.toml --mesh-study 1,2,3`).
-/// Ignored so that CI stays green; run it with
+/// The thesis's "a finer mesh changes the loss by less than 2 %" (§5.4.2), on the graded
+/// scene (knife-graded.toml) with the contact law averaged over area samples: each part
+/// of the discretization doubled on its own (x of the jaws and the blade in the slot, x
+/// of the bar, y of every box, z of every box), area-sampled power at 3 N·m, 3 and
+/// 12 µm, each against the scene itself. Measured 2026-11-22 one row at a time
+/// (`jointlin loss scenes/knife-graded.toml --mesh-study 2 --refine R --sampled-only`;
+/// the scene 0.011172 / 0.76543 W): x in the slot +0.27 % / +0.45 %, bar x −1.1 % /
+/// −1.0 %, z +1.7 % / +1.8 %, y −0.20 % / −0.41 %. On the uniform meshes of
+/// knife-coarse the loss does not settle at all (README "Ultrasonic knife": the patch
+/// edge falls inside one element). Ignored because it takes about two hours on this
+/// machine's two cores (the y row alone ~1.5 h); run it with
 /// `cargo test --release -p jointlin-harness --test knife -- --ignored`.
-/// The thesis's "a finer mesh changes the loss by less than 2 %", on the graded scene
-/// (knife-graded.toml) with the contact law averaged over area samples, each part of
-/// the discretization doubled on its own: x of the jaws and blade in the slot, x of the
-/// bar, y of every box, z of every box; area-sampled power at 3 N·m, 3 and 12 µm.
-/// Measured 2026-11-21 (scene copies with the divisions doubled by hand, as
-/// `jointlin loss scenes/knife-graded.toml --mesh-study 1,2 --refine x:jaw_,blade_in
-/// --refine x:bar_ --refine y --refine z` now does): x in the slot +0.9 % / +0.6 %
-/// (node-based +3.2 % / −0.2 %), z +4.3 % / +3.8 % (node-based +8.0 % / +3.6 %); so z
-/// is not converged yet; bar x −0.7 % / −0.8 %; y: not measured (its static step
-/// failed until session 6 fixed the UMFPACK strategy; README "Ultrasonic knife").
-/// About 2 h on this machine.
 #[test]
-#[ignore = "z refinement still changes the loss by ~4 % (2026-11-21), and the study takes ~2 h"]
+#[ignore = "five meshes of 37k–71k DOFs: about two hours on two cores"]
 fn refining_the_mesh_changes_the_loss_by_less_than_two_percent() {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes/knife-graded.toml");
     let s = Scene::load(&path).unwrap();
