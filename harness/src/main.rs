@@ -626,8 +626,7 @@ fn loss_mesh_study(
         }
     };
     let t = std::time::Instant::now();
-    let laws = if node_based { 2 } else { 1 };
-    let steps = laws * mesh::plan(factors, refinements.len()).len();
+    let steps = mesh::laws(node_based).len() * mesh::plan(factors, refinements.len()).len();
     let rows = match with_progress(quiet, steps, |p| {
         mesh::study(s, factors, &refinements, node_based, p)
     }) {

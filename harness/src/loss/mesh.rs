@@ -176,6 +176,15 @@ pub fn plan(factors: &[usize], refinements: usize) -> Vec<(usize, usize, Option<
     out
 }
 
+/// The contact laws a study runs per mesh, as `area_samples` (`None`: node-based).
+pub fn laws(node_based: bool) -> &'static [Option<usize>] {
+    if node_based {
+        &[None, Some(STUDY_AREA_SAMPLES)]
+    } else {
+        &[Some(STUDY_AREA_SAMPLES)]
+    }
+}
+
 /// Runs the study over `factors` and `refinements` ([`plan`]), with the node-based law
 /// too when `node_based`; the meshes on as many threads as the machine has cores (each
 /// mesh is independent); `progress(message)` before each model (one per law and mesh).
@@ -192,11 +201,7 @@ pub fn study(
         .first()
         .ok_or_else(|| LossError::Spec("the mesh study needs a reference point".into()))?;
     let amplitudes = [0.25 * reference.amplitude, reference.amplitude];
-    let laws: &[Option<usize>] = if node_based {
-        &[None, Some(STUDY_AREA_SAMPLES)]
-    } else {
-        &[Some(STUDY_AREA_SAMPLES)]
-    };
+    let laws = laws(node_based);
     let mesh_row = |&(factor, r, compared_to): &(usize, usize, Option<usize>)| {
         let refinement = &refinements[r];
         let refined = if factor == 1 {
@@ -304,9 +309,10 @@ pub fn markdown(scene: &Scene, rows: &[MeshRow]) -> String {
         return s;
     };
     let [a0, a1] = first.amplitudes.map(|a| a / af);
-    s.push_str(&format!(
+    let _ = write!(
+        s,
         "| × | refined | free DOFs | points | resonance at {a1:.1} {au} |"
-    ));
+    );
     let mut align = String::from("|---:|---|---:|---:|---:|");
     if node_based {
         for a in [a0, a1] {
