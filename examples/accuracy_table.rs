@@ -12,7 +12,7 @@ use std::time::Instant;
 
 /// Amplitudes A/δ* covering microslip, the thesis rule's sliding onset (5/6) and sliding.
 const RATIOS: [f64; 6] = [0.01, 0.3, 0.8, 0.9, 2.0, 20.0];
-/// The accuracy at which the default and Simpson are compared (issue 2).
+/// The accuracy at which the default and Simpson are compared.
 const TARGET: f64 = 1e-8;
 
 fn contacts() -> [Contact; 2] {

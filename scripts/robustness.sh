@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Robustness checks of issue 7 (docs/robustness.md says what each one proves).
+# Robustness checks (docs/robustness.md says what each one proves).
 #
 #   bash scripts/robustness.sh ci          # what CI runs: tests + asan + valgrind + fuzz-ci
 #   bash scripts/robustness.sh tests       # tests/hard_cases.rs, threads.rs, restart.rs (release)

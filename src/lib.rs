@@ -1,6 +1,7 @@
 //! # jointlin
 //!
-//! Frequency-domain linearization of bolted and clamped joint contact, after Wang (KIT 2012):
+//! Frequency-domain linearization of bolted and clamped joint contact, after Tianyi Yu (KIT 2012;
+//! the method and its equations: `docs/model.md`):
 //! per contact point and vibration amplitude, the Hertz–Mindlin–Coulomb hysteresis is
 //! replaced by an equivalent spring k* (first-order harmonic balance, (3.8), (4.3)) and an
 //! equivalent damper d* (energy balance, (3.14)).

@@ -1,4 +1,4 @@
-//! Issue 7, stability suite at library level: hard inputs through the C API (and the core
+//! Stability suite at library level: hard inputs through the C API (and the core
 //! where the C API has no entry), each asserting a finite answer or a named diagnostic —
 //! never NaN/∞ on JOINTLIN_OK, never JOINTLIN_ERR_PANIC, never a hang (every loop is
 //! bounded; cases that iterate run under a wall-clock [`deadline`]).
@@ -823,7 +823,7 @@ fn store_survives_extreme_reported_amplitudes() {
     });
 }
 
-/// Library-level versions of two FE cases of issue 7 (the FE-model versions are the
+/// Library-level versions of two FE hard cases (the FE-model versions are the
 /// harness's): all contacts open at an undamped eigenfrequency is a named singular system,
 /// and near-zero damping at that resonance gives a finite amplitude or the same name.
 #[test]

@@ -1,4 +1,4 @@
-//! Issue 7, restart: a multi-pass sweep run as a child process (this test binary
+//! Restart: a multi-pass sweep run as a child process (this test binary
 //! re-executed in "host" mode), SIGKILLed after k increments — between increments, or in
 //! the middle of one (after its UINTER calls, before LOP 2) — and resumed in a new process
 //! from the restart file that jointlin_uexternaldb wrote at LOP 2 (LRESTART = 1): LOP 4,

@@ -1,4 +1,4 @@
-//! Issue 7, threads: what tests/ffi_uinter.rs does not cover already (16 threads of
+//! Threads: what tests/ffi_uinter.rs does not cover already (16 threads of
 //! LINPER = 1 calls against one store = a serial run). Here:
 //!
 //! * LINPER = 0 (time domain): 16 threads step their own points (separate STATEV) through

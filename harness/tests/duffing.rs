@@ -45,7 +45,7 @@ fn thesis_point_at_10_rad_s_in_both_modes() {
         assert!(r.main.converged[0], "{mode:?}");
         let a = r.main.outputs[0][0].norm();
         // Thesis: 0.395 (first-order HB, rounded); the closed form 0.39482 (the low
-        // branch, which a small start reaches). 1e-3: the tolerance on 0.3948.
+        // branch, which a small start reaches). 1e-3: the required tolerance on 0.3948.
         assert!((a - 0.3948).abs() <= 1e-3, "{mode:?}: {a}");
         let low = Duffing::appendix_b().hbm_amplitudes(10.0)[0];
         // The scene's amplitude tolerance is 1e-6 relative; measured 1.3e-7 (fast),

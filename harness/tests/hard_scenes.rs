@@ -1,4 +1,4 @@
-//! FE-level hard cases (issue 7): every scene in scenes/hard runs through the code path of
+//! FE-level hard cases: every scene in scenes/hard runs through the code path of
 //! `jointlin run` (run::run with the CLI's extras, then report::write_all) and must give
 //! finite results or a named diagnostic (status `singular` / `not_converged` in
 //! results.csv and run.json), never NaN, inf, a hang or a panic. Each test says what it

@@ -1,4 +1,4 @@
-//! Harmonic balance on an FE scene (issue 8 item 2), scenes/three-beams-coarse.toml
+//! Harmonic balance on an FE scene, scenes/three-beams-coarse.toml
 //! (324 free DOFs, 36 closed points = 72 contact directions, Mindlin with the thesis
 //! rule, microslip up to A/δ* ≈ 2 around the first bending resonance):
 //! - H = 1 reproduces the first-order fast sweep (the loop's first harmonic is the

@@ -1,4 +1,4 @@
-//! The softening friction oscillator with folds (issue 7 item 2,
+//! The softening friction oscillator with folds (
 //! scenes/softening-friction.toml): a Mindlin contact to ground on a mass whose support
 //! softens (cubic α < 0). Sweeps up and down through `jointlin run`'s engine jump at the
 //! folds of an independent first-order residual scan (validate::softening); continuation

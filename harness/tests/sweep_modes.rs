@@ -30,7 +30,7 @@ fn block_stick_amplitude_matches_the_thesis_in_both_modes() {
             r.main.passes.len()
         );
         // Thesis (Appendix C): linearized 4.267e-4 mm. The library reproduces it within
-        // 1 % (issue 2); the host adds a stiff normal spring and the mass (mω² ≪ k_T0).
+        // 1 %; the host adds a stiff normal spring and the mass (mω² ≪ k_T0).
         assert!((a / 4.267e-4 - 1.0).abs() < 0.01, "{mode:?}: {a}");
         amps.push(a);
     }

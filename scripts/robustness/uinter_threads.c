@@ -1,5 +1,5 @@
 /*
- * Issue 7: NTHREADS pthreads call jointlin_uinter concurrently against one store, as
+ * NTHREADS pthreads call jointlin_uinter concurrently against one store, as
  * Abaqus's threads call UINTER: per increment, every thread handles its share of the
  * points (a LINPER = 0 general-step call on the point's own STATEV, then LINPER = 1 with
  * the store's estimate, then jointlin_store_report), while the main thread makes the

@@ -1,4 +1,4 @@
-//! `jointlin mhb`: cost vs H on the 3-DOF Jenkins chain (issue 8, item 6): a sweep of
+//! `jointlin mhb`: cost vs H on the 3-DOF Jenkins chain: a sweep of
 //! `count` frequencies at H = 1, 3, 7, 15 (each frequency's Newton started from the
 //! previous frequency's solution), beside the first-order linearization, as a Markdown
 //! table.

@@ -1,4 +1,4 @@
-//! Harmonic balance on FE scenes (issue 8 item 2): the linear part condensed onto the
+//! Harmonic balance on FE scenes: the linear part condensed onto the
 //! contact directions per harmonic, the contacts by AFT through the C API, Newton on the
 //! condensed system.
 //!

@@ -1,5 +1,5 @@
-//! `jointlin mhb --scene SCENE`: cost vs H of the harmonic balance on an FE scene
-//! (issue 8, item 6): the scene's sweep replaced by `count` frequencies over a band
+//! `jointlin mhb --scene SCENE`: cost vs H of the harmonic balance on an FE scene:
+//! the scene's sweep replaced by `count` frequencies over a band
 //! (default the scene's first refine band: its first resonance), run in fast mode (first
 //! order) and with `mode = "harmonic_balance"` at each H, each frequency's Newton started
 //! from the previous one's solution. Per row: time per frequency split into the mesh part

@@ -1,4 +1,4 @@
-//! Multi-harmonic balance (issue 8): the rungs between the thesis's first-order
+//! Multi-harmonic balance: the rungs between the thesis's first-order
 //! linearization and time integration, for few-DOF lumped systems (mass/spring/damper
 //! chains with contact elements between DOFs or to ground).
 //!

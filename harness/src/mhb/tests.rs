@@ -572,7 +572,7 @@ fn first_order_solutions(amps: &[f64], kd: &[(f64, f64)], c: f64, f: f64, w: f64
 
 #[test]
 fn softening_friction_oscillators_have_no_first_order_folds() {
-    // Issue 7 item 2 asked for a softening friction case whose first-order FRF folds.
+    // A softening friction case whose first-order FRF folds.
     // For a unit mass on a ground spring k = 1 in parallel with a Jenkins element
     // (k_T0 = β, δ* = 1; k*, d* from jointlin_linearize) with viscous damping c, a dense
     // scan of the first-order residual finds one amplitude at every frequency for every

@@ -1,4 +1,4 @@
-//! Softening friction oscillator with folds (issue 7 item 2; scenes/softening-friction.toml):
+//! Softening friction oscillator with folds (scenes/softening-friction.toml):
 //! m ẍ + c ẋ + k x + α x³ + F_T(x) = F cos ωt, α < 0 (a softening support) and F_T a
 //! Mindlin contact to ground (Masing rule). A friction contact alone does not fold (the
 //! dissipation grows as fast as the stiffness falls; docs/mhb.md); the softening support
