@@ -10,14 +10,14 @@ C     DDFDDT, DDSDDT, DDFDDR (thermal), SED, SPD, SVD, SCD, TEMP, DTEMP, PREDEF,
 C     DPRED, SECNAME, MAINNAME, ALOCALDIR, DROT, CHRLNGTH, NPRED, KIT, LSTATE,
 C     LSDI, LPRINT.
 C
-C     PROPS (NPROPS >= 7; *SURFACE INTERACTION, USER=INTERFACE, PROPERTIES=12):
+C     PROPS (NPROPS >= 7; *SURFACE INTERACTION, NAME=.., USER, PROPERTIES=12):
 C       1 law 0 Mindlin / 1 Jenkins      2 unloading rule 0 thesis / 1 Masing
 C       3 mu                             4 k_T0 per area (PROPS(8) = 0)
 C       5 normal law 0 linear / 1 Hertz  6 k_N per area (linear) / E* (Hertz)
 C       7 r* (Hertz)                     8 k_T0 source 0 PROPS(4) / 1 Hertz-Mindlin
 C       9 G* (PROPS(8) = 1)              10 damping 0 DVISCOUS / 1 DSTRUCTURAL
 C      11 quadrature 0 graded / 1 Simpson / 2 Gauss   12 points (0 = default)
-C     STATEV (NSTATV >= 57; *USER INTERFACE, ... DEPVAR=57):
+C     STATEV (NSTATV >= 57; *SURFACE INTERACTION, ... DEPVAR=57):
 C       1 store point id   2 p0   3 h0   4 closed flag   5 dissipation per area
 C       6-28, 29-51 hysteresis states of tangential directions 1, 2
 C      52-53 k* per area  54-55 d* per area  56 energy per cycle per area

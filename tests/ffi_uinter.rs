@@ -177,7 +177,7 @@ fn linper_one_returns_exactly_the_core_linearization() {
 #[test]
 fn hertz_normal_law_and_hertz_mindlin_stiffness_per_area() {
     // PROPS: Mindlin, thesis, μ 0.2, k_T0 (unused), Hertz E* = 1.15e5, r* = 5, k_T0 from
-    // G* = 4e4 (2.38).
+    // G* = 4e4 (2.37), k_T0 = 8 r_A G* (2.38).
     let props = vec![0.0, 0.0, 0.2, 0.0, 1.0, 1.15e5, 5.0, 1.0, 4e4];
     let mut u = Uinter::new(props, 2);
     u.area = 0.25;

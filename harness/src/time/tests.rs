@@ -236,8 +236,8 @@ fn block_stick_loop_matches_the_library_loop_and_the_quasi_static_width() {
     assert_eq!(r.integrator, "rk4");
     let o = r.last.outputs[0];
     // Quasi-static width (mω² = 3.4e-3 N/mm ≪ k_T0): Mindlin to F̂ plus elastic unloading
-    // F̂/k_T0, halved (model.md §4): δ*(1 − (1 − F̂/μF_N)^{2/3}) = 4.8908e-4 and
-    // 3.8981e-4 mm, mean 4.3945e-4 mm (the thesis: 4.401e-4). Inertia and the ringing of
+    // F̂/k_T0, halved (model.md §4): δ*(1 − (1 − F̂/μF_N)^{2/3}) = 4.8915e-4 and
+    // 3.8981e-4 mm, mean 4.3948e-4 mm (the thesis: 4.401e-4). Inertia and the ringing of
     // the 800 rad/s block mode move it by less than 0.1 %.
     let dstar = 1.5 * 0.6 / 1282.7;
     let width = dstar * (1.0 - (1.0f64 - 0.5 / 0.6).powf(2.0 / 3.0)) + 0.5 / 1282.7;
