@@ -13,7 +13,8 @@
 #                                                 find it through .gnu_debuglink;
 #                                                 DEBUGINFO=no leaves it out)
 #   $(PREFIX)/lib/libjointlin_abaqus.a            UINTER, UEXTERNALDB + module code (PIC,
-#                                                 gfortran: needs libgfortran.so.5)
+#                                                 gfortran: needs libgfortran.so.5; ranks
+#                                                 agree through files, MPI=no)
 #   $(PREFIX)/lib/pkgconfig/jointlin.pc           pkg-config --cflags --libs jointlin
 #   $(PREFIX)/include/jointlin.h                  the C header
 #   $(PREFIX)/include/jointlin.mod, jointlin_abaqus.mod   Fortran modules ($(FC)'s format)
@@ -94,8 +95,10 @@ install: lib bin shim
 	install -m 644 include/jointlin.h $(BUILD)/shim/jointlin.mod \
 		$(BUILD)/shim/jointlin_abaqus.mod $(DEST)/include/
 	install -m 644 fortran-shim/jointlin.f90 fortran-shim/jointlin_abaqus.f90 \
-		fortran-shim/uinter.f fortran-shim/uexternaldb.f fortran-shim/abaqus_standin.f \
-		fortran-shim/shim_check.f90 fortran-shim/ABA_PARAM.INC fortran-shim/README.md \
+		fortran-shim/uinter.f fortran-shim/uexternaldb.f fortran-shim/agree_nompi.f90 \
+		fortran-shim/agree_mpi.f90 fortran-shim/abaqus_standin.f \
+		fortran-shim/abaqus_standin_mpi.f90 fortran-shim/shim_check.f90 \
+		fortran-shim/ABA_PARAM.INC fortran-shim/README.md \
 		$(DEST)/share/jointlin/fortran-shim/
 	sed 's|^JOINTLIN_LIBDIR ?= .*|JOINTLIN_LIBDIR ?= $(PREFIX)/lib|' fortran-shim/Makefile \
 		> $(DEST)/share/jointlin/fortran-shim/Makefile

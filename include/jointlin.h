@@ -25,7 +25,7 @@
 /**
  * Minor version of the C ABI: additions that keep existing callers working.
  */
-#define JOINTLIN_ABI_VERSION_MINOR 2
+#define JOINTLIN_ABI_VERSION_MINOR 3
 
 /**
  * Success.
@@ -862,6 +862,107 @@ int32_t jointlin_store_point_count(const struct jointlin_store *store,
  * `store` a live handle.
  */
 int32_t jointlin_store_restore(const struct jointlin_store *store);
+
+/**
+ * Creates the store of rank `rank` (0-based) of `ranks` processes: as jointlin_store_new,
+ * but with `ranks` > 1 its restart file is `<restart_path>.r<rank>` (e.g.
+ * `jointlin.restart.r3`), so that every rank saves and restores its own points. When
+ * that file does not exist (a new iteration), the rank's pass files of an earlier
+ * iteration (`<restart_path>.r<rank>.pass<P>`, jointlin_store_agree_files) are deleted.
+ * `ranks` = 1 is jointlin_store_new.
+ *
+ * Errors: those of jointlin_store_new; JOINTLIN_ERR_OUT_OF_RANGE (not 0 <= rank < ranks);
+ * JOINTLIN_ERR_IO (stale pass files that cannot be deleted).
+ *
+ * # Safety
+ * As jointlin_store_new.
+ */
+int32_t jointlin_store_new_ranked(const struct jointlin_store_config *config,
+                                  int32_t rank,
+                                  int32_t ranks,
+                                  struct jointlin_store **out);
+
+/**
+ * Writes the store's restart file path (bytes, not NUL-terminated) to `buf` and its
+ * length to `*len`; 0 when the store has none. When the length exceeds `cap`, returns
+ * JOINTLIN_ERR_SIZE and writes `*len` only. With `cap` = 0, `buf` may be NULL.
+ *
+ * # Safety
+ * `store` a live handle; `buf` points to `cap` writable bytes (or is NULL when `cap` is
+ * 0); `len` writable.
+ */
+int32_t jointlin_store_restart_path(const struct jointlin_store *store,
+                                    char *buf,
+                                    size_t cap,
+                                    size_t *len);
+
+/**
+ * Writes this rank's summary of the running pass to `summary` and its length (4 + 3n for
+ * n sweep increments) to `*len`: between the LOP 2 of the pass's last increment and LOP 3.
+ * The layout is made for an element-wise maximum over the ranks (`MPI_MAX`):
+ * `{pass, -pass, n, -n, k_1..k_n, -k_1..-k_n, r_1..r_n}`, k ascending sweep increments,
+ * r = 1 when the increment must be re-run on this rank (not converged here), else 0. After
+ * the maximum, r = 1 when any rank needs the re-run, and the negated copies carry the
+ * minimum, from which jointlin_store_pass_agree sees whether all ranks were at the same
+ * pass with the same increments.
+ *
+ * When `*len` exceeds `cap`, returns JOINTLIN_ERR_SIZE and writes `*len` only (with `cap`
+ * = 0, `summary` may be NULL: a size query). All ranks must reduce arrays of the same
+ * length: check that first (reduce {len, -len} by maximum).
+ *
+ * Errors: JOINTLIN_ERR_NULL, JOINTLIN_ERR_SIZE, JOINTLIN_ERR_SEQUENCE (no pass running or
+ * an increment open).
+ *
+ * # Safety
+ * `store` a live handle; `summary` points to `cap` writable int32_t (or is NULL when
+ * `cap` is 0); `len` writable.
+ */
+int32_t jointlin_store_pass_summary(const struct jointlin_store *store,
+                                    int32_t *summary,
+                                    size_t cap,
+                                    size_t *len);
+
+/**
+ * Replaces this rank's decision for the running pass by the agreed one: `reduced` (`len`
+ * integers) is the element-wise maximum over all ranks of their
+ * jointlin_store_pass_summary arrays. The next LOP 3 decides from it, so every rank
+ * decides the same next action and re-run list. Call between the last LOP 2 and LOP 3.
+ *
+ * Errors: JOINTLIN_ERR_NULL; JOINTLIN_ERR_OUT_OF_RANGE (not a summary); JOINTLIN_ERR_SEQUENCE
+ * (ranks at different passes or with different increments, a summary of another pass or
+ * increments than this store's, one that does not re-run an increment this rank must
+ * re-run, or no pass running). The store is unchanged on error.
+ *
+ * # Safety
+ * `store` a live handle; `reduced` points to `len` readable int32_t.
+ */
+int32_t jointlin_store_pass_agree(const struct jointlin_store *store,
+                                  const int32_t *reduced,
+                                  size_t len);
+
+/**
+ * The agreement without a communicator, through files beside the restart files (in a
+ * directory all ranks share): rank `rank` of `ranks` writes its summary to
+ * `<restart_path>.r<rank>.pass<P>` (atomically: a temporary file, then a rename), waits
+ * until the files of all ranks for pass P exist (polling every 20 ms, at most `timeout`
+ * seconds), reduces them by maximum, agrees (jointlin_store_pass_agree) and deletes its
+ * own file of pass P - 1. Call between the last LOP 2 and LOP 3 of every pass, on every
+ * rank. The store must come from jointlin_store_new_ranked with the same rank and ranks
+ * and a restart path. `ranks` = 1 agrees with itself and writes nothing.
+ *
+ * Errors: JOINTLIN_ERR_NULL; JOINTLIN_ERR_NON_FINITE, JOINTLIN_ERR_OUT_OF_RANGE (timeout
+ * <= 0, rank, a store not made for this rank); JOINTLIN_ERR_IO (no restart path, files
+ * that cannot be written or read, ranks still missing after `timeout`: the detail names
+ * them); JOINTLIN_ERR_SEQUENCE (ranks at different passes or increments, no pass
+ * running).
+ *
+ * # Safety
+ * `store` a live handle.
+ */
+int32_t jointlin_store_agree_files(const struct jointlin_store *store,
+                                   int32_t rank,
+                                   int32_t ranks,
+                                   double timeout);
 
 /**
  * Drives the store's iteration from Abaqus's UEXTERNALDB arguments:

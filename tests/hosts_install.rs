@@ -113,6 +113,9 @@ fn install_places_program_library_header_modules_and_pkg_config_file() {
         "share/jointlin/fortran-shim/uinter.f",
         "share/jointlin/fortran-shim/uexternaldb.f",
         "share/jointlin/fortran-shim/abaqus_standin.f",
+        "share/jointlin/fortran-shim/abaqus_standin_mpi.f90",
+        "share/jointlin/fortran-shim/agree_mpi.f90",
+        "share/jointlin/fortran-shim/agree_nompi.f90",
         "share/jointlin/examples/abaqus/abaqus_v6.env",
     ] {
         assert!(p.join(f).is_file(), "{f} not installed");
@@ -288,6 +291,28 @@ fn installed_shim_rebuilds_from_the_share_directory_with_other_flags() {
     // p = k_N h = 1e4 * 2e-4 (linear normal law, AREA = 1), the contact closed.
     let pressure: f64 = fields[1].parse().unwrap();
     assert!((pressure - 2.0).abs() < 1e-12, "{fields:?}");
+    // The MPI variant builds from the installed sources too, where an MPI compiler is.
+    if Command::new("mpif90")
+        .arg("--version")
+        .output()
+        .is_ok_and(|o| o.status.success())
+    {
+        let mpi = scratch("shim-rebuild-mpi");
+        run_ok(
+            Command::new("make")
+                .arg("-s")
+                .arg("-C")
+                .arg(p.join("share/jointlin/fortran-shim"))
+                .arg(format!("BUILD={}", mpi.display()))
+                .arg("FC=mpif90")
+                .arg("MPI=yes"),
+        );
+        assert!(mpi.join("libjointlin_abaqus.a").is_file());
+        let nm = run_ok(Command::new("nm").arg(mpi.join("libjointlin_abaqus.a")));
+        assert!(text(&nm).contains(" U mpi_allreduce_"), "{}", text(&nm));
+    } else {
+        eprintln!("mpif90 not found: the MPI build of the installed shim not checked");
+    }
 }
 
 fn pkg_config(prefix: &Path) -> Vec<String> {
