@@ -4,7 +4,8 @@
  *
  * Every function returns a JOINTLIN_* status code (0 = JOINTLIN_OK) unless documented
  * otherwise; outputs are written only on success; no output is ever NaN; all functions are
- * thread-safe and a jointlin_store may be shared between threads.
+ * thread-safe and a jointlin_store may be shared between threads (which calls may overlap
+ * on one store: the documentation of jointlin_store).
  * Units are the caller's, consistent; signs follow Abaqus (pressure positive in
  * compression, overclosure positive = penetration).
  */
@@ -279,8 +280,32 @@
 
 /**
  * An iteration store. Opaque; create with jointlin_store_new, destroy with
- * jointlin_store_free. All functions taking a `const jointlin_store *` may be called from
- * several threads at once.
+ * jointlin_store_free.
+ *
+ * Threads. Every function may be called from any thread and is memory-safe with any
+ * overlap: the store locks internally, each lock held for a few map operations, never
+ * during file I/O. What the results mean depends on which calls overlap on one store:
+ *
+ * - per-point calls (jointlin_uinter, jointlin_store_register_point,
+ *   jointlin_store_estimate, jointlin_store_report) and the queries
+ *   (jointlin_store_point_status, _point_count, _next_action, _rerun_increments,
+ *   _pass_stats, _restart_path): any number of threads at once, as Abaqus calls UINTER
+ *   from its threads, each call with its own arrays (one point's STATEV, STRESS, ... must
+ *   not be in two calls at once). The results do not depend on the threads' order;
+ * - sequence calls (jointlin_uexternaldb, jointlin_store_restore,
+ *   jointlin_store_pass_summary, _pass_agree, _agree_files): one thread at a time, as
+ *   Abaqus calls UEXTERNALDB from one thread per process, and not overlapping the
+ *   per-point calls of the increment they open or close: LOP 1 returns before the
+ *   increment's LINPER = 1 calls start; LOP 2 starts after all of them and their reports
+ *   returned; LOP 0, 3, 4 and the pass calls while no per-point call runs. A call that
+ *   overlaps anyway returns JOINTLIN_OK or a named code (JOINTLIN_ERR_SEQUENCE,
+ *   JOINTLIN_ERR_UNKNOWN_POINT) and the store stays usable, but which increment the
+ *   overlapping call counted for is undefined;
+ * - jointlin_store_free: no other call on the store during or after it.
+ *
+ * Different stores (one per rank, or per analysis) are independent. jointlin_last_error
+ * is per thread. The functions without a store (jointlin_linearize, jointlin_point_step,
+ * jointlin_uinter at LINPER = 0, ...) may run anywhere at any time.
  */
 typedef struct jointlin_store jointlin_store;
 
@@ -853,7 +878,7 @@ int32_t jointlin_store_point_count(const struct jointlin_store *store,
 
 /**
  * Replaces the store's points and iteration state by the content of its restart file
- * (what LOP 4 does). Use it when a new analysis job continues the iteration of an earlier
+ * (what LOP 4 does); a sequence call (see jointlin_store: not during per-point calls). Use it when a new analysis job continues the iteration of an earlier
  * one (each Abaqus pass is a separate job): restore, then LOP 0.
  * Errors: JOINTLIN_ERR_NULL, JOINTLIN_ERR_IO (no path configured, unreadable or corrupt
  * file; the store is unchanged then).
@@ -981,6 +1006,11 @@ int32_t jointlin_store_agree_files(const struct jointlin_store *store,
  * JOINTLIN_ERR_SEQUENCE (a call out of order, e.g. LOP 1 twice without LOP 2, LOP 0 while a
  * pass runs or after DONE), JOINTLIN_ERR_IO (restart file).
  *
+ * Threads: one thread at a time per store (Abaqus: one thread per process), never
+ * overlapping the per-point calls (jointlin_uinter, estimate, report) of the increment it
+ * opens (LOP 1: they start after it returns) or closes (LOP 2: it starts after they all
+ * returned); see jointlin_store.
+ *
  * # Safety
  * `store` a live handle; `time` points to 2 readable doubles.
  */
@@ -1028,6 +1058,10 @@ int32_t jointlin_uexternaldb(const struct jointlin_store *store,
  * otherwise. If the store iterates one step (sweep_step), KSTEP must be that step.
  *
  * PNEWDT is checked but not changed. TIME, DTIME are checked but not used.
+ *
+ * Threads: any number of jointlin_uinter calls may run at once on one store, each with its
+ * own arrays (Abaqus's UINTER threads); at LINPER = 1 not overlapping the LOP 1 or LOP 2
+ * of their increment (see jointlin_store).
  *
  * Errors (no output written): JOINTLIN_ERR_NULL (any pointer but `store`/`report` as
  * above), JOINTLIN_ERR_NON_FINITE (NaN/Inf in STRESS, RDISP, DRDISP, TIME, DTIME, FREQR,

@@ -18,7 +18,9 @@
 //! call returns `JOINTLIN_OK` (exceptions are documented); no output is ever NaN; a Rust
 //! panic is caught and returned as `JOINTLIN_ERR_PANIC`; `jointlin_last_error` gives the
 //! detail of a failure. All functions may be called from several threads at once; a
-//! `jointlin_store` may be shared between threads.
+//! `jointlin_store` may be shared between threads, with the ordering rules of the
+//! `jointlin_store` documentation (per-point calls from many threads, sequence calls such
+//! as UEXTERNALDB from one thread, not overlapping the increment they open or close).
 
 #![allow(non_camel_case_types)]
 
