@@ -411,19 +411,14 @@ fn link_sl(prefix: &Path) -> Vec<String> {
 fn abaqus_user_library_links_and_loads_with_the_env_file_alone() {
     let p = prefix();
     let dir = scratch("abaqus");
-    // The user's own subroutine file (none of jointlin's names), compiled as Abaqus
-    // compiles it, then linked by gcc: only link_sl brings jointlin and the Fortran
-    // runtime.
-    std::fs::write(
-        dir.join("user.f"),
-        "      SUBROUTINE USERSTUB\n      RETURN\n      END\n",
-    )
-    .unwrap();
+    // The job's user subroutine file (examples/abaqus/user.f: none of jointlin's names),
+    // compiled as Abaqus compiles it, then linked by gcc: only link_sl brings jointlin and
+    // the Fortran runtime.
     run_ok(
         Command::new("gfortran")
             .args(["-c", "-fPIC", "-o"])
             .arg(dir.join("user.o"))
-            .arg(dir.join("user.f")),
+            .arg(root().join("examples/abaqus/user.f")),
     );
     let lib = dir.join("libstandardU.so");
     run_ok(
@@ -498,6 +493,7 @@ fn readme_carries_the_examples_verbatim() {
         ("examples/abaqus/abaqus_v6.env", "python"),
         ("examples/abaqus/jointlin.cfg", "ini"),
         ("examples/abaqus/block.inp", "text"),
+        ("examples/abaqus/user.f", "fortran"),
     ] {
         let body = std::fs::read_to_string(root().join(file)).unwrap();
         let block = format!("```{lang}\n{body}```\n");
