@@ -30,7 +30,7 @@ module jointlin
 
   ! ---- constants (#define in jointlin.h) ----
   integer(c_int32_t), parameter :: JOINTLIN_ABI_VERSION_MAJOR = 0
-  integer(c_int32_t), parameter :: JOINTLIN_ABI_VERSION_MINOR = 2
+  integer(c_int32_t), parameter :: JOINTLIN_ABI_VERSION_MINOR = 3
   integer(c_int32_t), parameter :: JOINTLIN_OK = 0
   integer(c_int32_t), parameter :: JOINTLIN_ERR_NULL = 1
   integer(c_int32_t), parameter :: JOINTLIN_ERR_NON_FINITE = 2
@@ -331,6 +331,55 @@ module jointlin
        type(c_ptr), value :: store
        integer(c_int32_t) :: jointlin_store_restore
      end function jointlin_store_restore
+
+     function jointlin_store_new_ranked(config, rank, ranks, out) &
+          bind(C, name='jointlin_store_new_ranked')
+       import :: c_int32_t, c_ptr, jointlin_store_config
+       type(jointlin_store_config), intent(in) :: config
+       integer(c_int32_t), value :: rank
+       integer(c_int32_t), value :: ranks
+       type(c_ptr), intent(out) :: out
+       integer(c_int32_t) :: jointlin_store_new_ranked
+     end function jointlin_store_new_ranked
+
+     function jointlin_store_restart_path(store, buf, cap, len) &
+          bind(C, name='jointlin_store_restart_path')
+       import :: c_int32_t, c_size_t, c_char, c_ptr
+       type(c_ptr), value :: store
+       character(kind=c_char), intent(out) :: buf(*)
+       integer(c_size_t), value :: cap
+       integer(c_size_t), intent(out) :: len
+       integer(c_int32_t) :: jointlin_store_restart_path
+     end function jointlin_store_restart_path
+
+     function jointlin_store_pass_summary(store, summary, cap, len) &
+          bind(C, name='jointlin_store_pass_summary')
+       import :: c_int32_t, c_size_t, c_ptr
+       type(c_ptr), value :: store
+       integer(c_int32_t), intent(inout) :: summary(*)
+       integer(c_size_t), value :: cap
+       integer(c_size_t), intent(out) :: len
+       integer(c_int32_t) :: jointlin_store_pass_summary
+     end function jointlin_store_pass_summary
+
+     function jointlin_store_pass_agree(store, reduced, len) &
+          bind(C, name='jointlin_store_pass_agree')
+       import :: c_int32_t, c_size_t, c_ptr
+       type(c_ptr), value :: store
+       integer(c_int32_t), intent(in) :: reduced(*)
+       integer(c_size_t), value :: len
+       integer(c_int32_t) :: jointlin_store_pass_agree
+     end function jointlin_store_pass_agree
+
+     function jointlin_store_agree_files(store, rank, ranks, timeout) &
+          bind(C, name='jointlin_store_agree_files')
+       import :: c_int32_t, c_double, c_ptr
+       type(c_ptr), value :: store
+       integer(c_int32_t), value :: rank
+       integer(c_int32_t), value :: ranks
+       real(c_double), value :: timeout
+       integer(c_int32_t) :: jointlin_store_agree_files
+     end function jointlin_store_agree_files
 
      function jointlin_uexternaldb(store, lop, lrestart, time, dtime, kstep, kinc) &
           bind(C, name='jointlin_uexternaldb')

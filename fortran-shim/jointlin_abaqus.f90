@@ -5,8 +5,22 @@
 ! the file named by the environment variable JOINTLIN_CONFIG, else ./jointlin.cfg. No
 ! file: no store; UINTER then works in general steps (LINPER = 0) and stops the analysis
 ! with a message at LINPER = 1. The handle is never freed by the shims (an Abaqus job ends
-! with its process); hosts that outlive the analysis call jl_close. UEXTERNALDB is called
-! by one thread; UINTER, called by many, only reads the handle.
+! with its process); hosts that outlive the analysis call jl_close.
+!
+! Threads: UEXTERNALDB is called by one thread of the process; UINTER, called by many
+! threads at once, only reads the handle (the store itself is thread-safe). jl_open,
+! jl_close and jl_after_pass change module state and run only inside UEXTERNALDB.
+!
+! Processes (ranks): at jl_open the shim asks the host for its process number and the
+! number of processes, with Abaqus's utility routines GETRANK(KPROCESSNUM) and
+! GETNUMCPUS(NUMPROCESSES) (outside Abaqus: abaqus_standin.f, or abaqus_standin_mpi.f90
+! under MPI). With more than one process every rank has its own store for the contact
+! points of its domain and its own restart file, <restart_file>.r<rank>. At LOP 3 the
+! ranks first agree on the increments to re-run (jl_agree): through the host's MPI
+! communicator (GETCOMMUNICATOR) when the shim was built with MPI=yes and MPI is up,
+! else through files beside the restart files (jointlin_store_agree_files; the job
+! directory must be shared by all ranks). Only rank 0 logs the next action and writes
+! the action file.
 !
 ! Configuration file: one "key = value" per line; "#" or "!" starts a comment; keys and
 ! word values are case-insensitive; unset keys keep the C API defaults
@@ -21,8 +35,11 @@
 !   kinc_numbering = sequential    ! original | sequential (a new job per re-run pass)
 !   restart_file = jointlin.restart  ! store file: written at LOP 2 (LRESTART >= 1) and 3,
 !                                  ! read at LOP 4, and at LOP 0 when it exists
+!                                  ! (several ranks: jointlin.restart.r<rank>)
 !   action_file = jointlin.next    ! written at LOP 3: "action NAME", "pass N",
 !                                  ! "increments k1 k2 ..." (for a driver script)
+!   agree_timeout = 600            ! seconds a rank waits for the others' pass files
+!                                  ! (file protocol only)
 !
 ! With restart_file set, every pass can be a separate Abaqus job: the first LOP 0 of a
 ! job restores the store from the file when it exists (delete it to start over).
@@ -37,12 +54,17 @@ module jointlin_abaqus
   implicit none
   private
   public :: jl_store, jl_open, jl_close, jl_check, jl_error_text, jl_report, jl_after_pass
+  public :: jl_agree, jl_rank
 
   !> The store shared by UINTER and UEXTERNALDB (c_null_ptr until LOP 0 created it).
   type(c_ptr), save :: handle = c_null_ptr
   !> 1 once jl_open looked for the configuration (found or not).
   logical, save :: opened = .false.
   character(len=1024), save :: action_file = ' '
+  !> This process's rank (0-based) and the number of ranks, from GETRANK and GETNUMCPUS.
+  integer, save :: rank = 0, ranks = 1
+  !> Seconds a rank waits for the other ranks' pass files (file protocol).
+  real(c_double), save :: agree_timeout = 600
 
 contains
 
@@ -85,22 +107,35 @@ contains
   subroutine jl_check(status, where)
     integer(c_int32_t), intent(in) :: status
     character(len=*), intent(in) :: where
+    if (status == JOINTLIN_OK) return
+    call jl_stop(where // ': ' // jl_error_text(status))
+  end subroutine jl_check
+
+  !> Stops the analysis (STDB_ABQERR, LOP = -3) with "jointlin <text>".
+  subroutine jl_stop(text)
+    character(len=*), intent(in) :: text
     external :: stdb_abqerr
     integer :: intv(1)
     real(c_double) :: realv(1)
     character(len=8) :: charv(1)
-    character(len=:), allocatable :: text
+    character(len=:), allocatable :: msg
     integer :: i
-    if (status == JOINTLIN_OK) return
-    text = 'jointlin ' // where // ': ' // jl_error_text(status)
-    do i = 1, len(text)
-       if (text(i:i) == '%') text(i:i) = ' ' ! STDB_ABQERR substitutes %I, %R, %S
+    msg = 'jointlin ' // text
+    do i = 1, len(msg)
+       if (msg(i:i) == '%') msg(i:i) = ' ' ! STDB_ABQERR substitutes %I, %R, %S
     end do
-    intv = status
+    intv = 0
     realv = 0
     charv = ' '
-    call stdb_abqerr(-3, text(1:min(len(text), 500)), intv, realv, charv)
-  end subroutine jl_check
+    call stdb_abqerr(-3, msg(1:min(len(msg), 500)), intv, realv, charv)
+  end subroutine jl_stop
+
+  !> This process's rank and the number of ranks (valid after jl_open).
+  subroutine jl_rank(r, n)
+    integer, intent(out) :: r, n
+    r = rank
+    n = ranks
+  end subroutine jl_rank
 
   !> Creates the store at the first LOP 0 or 4 of the process (see the module header).
   subroutine jl_open(lop)
@@ -110,7 +145,9 @@ contains
     ! The store copies the path bytes; the buffer only has to outlive jointlin_store_new.
     character(kind=c_char), target :: rbuf(1024)
     integer :: plen, status, i
+    integer(c_size_t) :: n
     logical :: exists
+    external :: getrank, getnumcpus
     if (opened) return
     opened = .true.
     call get_environment_variable('JOINTLIN_CONFIG', path, plen, status)
@@ -120,6 +157,12 @@ contains
        write (error_unit, '(3a)') 'jointlin: no configuration file ', trim(path), &
             ': no iteration store (LINPER = 1 will stop the analysis)'
        return
+    end if
+    call getnumcpus(ranks)
+    call getrank(rank)
+    if (ranks < 1 .or. rank < 0 .or. rank >= ranks) then
+       write (path, '(a,i0,a,i0)') 'GETRANK gave ', rank, ', GETNUMCPUS ', ranks
+       call jl_stop(trim(path))
     end if
     call jl_check(jointlin_store_config_default(config), 'configuration defaults')
     restart = ' '
@@ -131,8 +174,16 @@ contains
        config%restart_path = c_loc(rbuf)
        config%restart_path_len = int(len_trim(restart), c_size_t)
     end if
-    call jl_check(jointlin_store_new(config, handle), 'store from ' // trim(path))
+    call jl_check(jointlin_store_new_ranked(config, int(rank, c_int32_t), &
+         int(ranks, c_int32_t), handle), 'store from ' // trim(path))
     if (lop == 0 .and. len_trim(restart) > 0) then
+       ! This rank's restart file (with several ranks <restart_file>.r<rank>).
+       call jl_check(jointlin_store_restart_path(handle, rbuf, int(size(rbuf), c_size_t), n), &
+            'restart path')
+       restart = ' '
+       do i = 1, int(n)
+          restart(i:i) = rbuf(i)
+       end do
        inquire (file=trim(restart), exist=exists)
        if (exists) then
           call jl_check(jointlin_store_restore(handle), 'restore from ' // trim(restart))
@@ -157,7 +208,52 @@ contains
     call jl_check(jointlin_store_report(handle, point, int(kinc, c_int32_t), amp), 'report')
   end subroutine jl_report
 
-  !> After LOP 3: logs the next action to stderr and writes the action file if configured.
+  !> Before LOP 3, with several ranks: the ranks agree on the increments to re-run (module
+  !> header). Through MPI: {len, -len} and then the pass summaries reduced by maximum over
+  !> the host's communicator (jl_allreduce_max, agree_mpi.f90); without MPI
+  !> (agree_nompi.f90, or MPI not running): jointlin_store_agree_files.
+  subroutine jl_agree()
+    integer(c_int32_t), allocatable :: buf(:)
+    integer(c_int32_t) :: lens(2)
+    integer(c_size_t) :: n, cap
+    integer(c_int32_t) :: status
+    integer :: mpi
+    character(len=200) :: what
+    external :: jl_allreduce_max
+    if (ranks <= 1 .or. .not. c_associated(handle)) return
+    lens = 0
+    status = jointlin_store_pass_summary(handle, lens, 0_c_size_t, n)
+    if (status /= JOINTLIN_ERR_SIZE) call jl_check(status, 'pass summary')
+    lens = [int(n, c_int32_t), -int(n, c_int32_t)]
+    call jl_allreduce_max(lens, 2, ranks, mpi)
+    select case (mpi)
+    case (0)
+    case (1) ! no communicator: the file protocol
+       call jl_check(jointlin_store_agree_files(handle, int(rank, c_int32_t), &
+            int(ranks, c_int32_t), agree_timeout), 'agreement through files')
+       return
+    case (3)
+       write (what, '(a,i0,a)') 'agreement: the MPI communicator does not have the ', &
+            ranks, ' processes of GETNUMCPUS'
+       call jl_stop(trim(what))
+    case default
+       call jl_stop('agreement: MPI_ALLREDUCE of the pass summary lengths failed')
+    end select
+    if (lens(1) /= -lens(2)) then
+       write (what, '(a,i0,a,i0,a)') 'agreement: the ranks know different numbers of ' // &
+            'increments (', (-lens(2) - 4) / 3, ' to ', (lens(1) - 4) / 3, ')'
+       call jl_stop(trim(what))
+    end if
+    cap = n
+    allocate (buf(cap))
+    call jl_check(jointlin_store_pass_summary(handle, buf, cap, n), 'pass summary')
+    call jl_allreduce_max(buf, int(n), ranks, mpi)
+    if (mpi /= 0) call jl_stop('agreement: MPI_ALLREDUCE of the pass summaries failed')
+    call jl_check(jointlin_store_pass_agree(handle, buf, n), 'pass agreement')
+  end subroutine jl_agree
+
+  !> After LOP 3: logs the next action to stderr and writes the action file if configured
+  !> (rank 0 only: all ranks agreed on it).
   subroutine jl_after_pass()
     integer(c_int32_t) :: action, pass
     integer(c_int32_t), allocatable :: kinc(:)
@@ -174,6 +270,7 @@ contains
     allocate (kinc(max(count, 1_c_size_t)))
     call jl_check(jointlin_store_rerun_increments(handle, kinc, int(size(kinc), c_size_t), &
          count), 'rerun increments')
+    if (rank /= 0) return
     write (error_unit, '(a,a,a,i0,a,i0,a)') 'jointlin: next action ', &
          trim(names(action)), ' (pass ', pass, ', ', count, ' increments)'
     if (len_trim(action_file) > 0) then
@@ -242,6 +339,9 @@ contains
           restart = trim(value)
        case ('action_file')
           action_file = trim(value)
+       case ('agree_timeout')
+          agree_timeout = real_value()
+          if (.not. (agree_timeout > 0)) call fail('agree_timeout must be > 0 (seconds)')
        case default
           call fail('unknown key "' // trim(key) // '"')
        end select

@@ -4,7 +4,8 @@
  *
  * Every function returns a JOINTLIN_* status code (0 = JOINTLIN_OK) unless documented
  * otherwise; outputs are written only on success; no output is ever NaN; all functions are
- * thread-safe and a jointlin_store may be shared between threads.
+ * thread-safe and a jointlin_store may be shared between threads (which calls may overlap
+ * on one store: the documentation of jointlin_store).
  * Units are the caller's, consistent; signs follow Abaqus (pressure positive in
  * compression, overclosure positive = penetration).
  */
@@ -25,7 +26,7 @@
 /**
  * Minor version of the C ABI: additions that keep existing callers working.
  */
-#define JOINTLIN_ABI_VERSION_MINOR 2
+#define JOINTLIN_ABI_VERSION_MINOR 3
 
 /**
  * Success.
@@ -279,8 +280,32 @@
 
 /**
  * An iteration store. Opaque; create with jointlin_store_new, destroy with
- * jointlin_store_free. All functions taking a `const jointlin_store *` may be called from
- * several threads at once.
+ * jointlin_store_free.
+ *
+ * Threads. Every function may be called from any thread and is memory-safe with any
+ * overlap: the store locks internally, each lock held for a few map operations, never
+ * during file I/O. What the results mean depends on which calls overlap on one store:
+ *
+ * - per-point calls (jointlin_uinter, jointlin_store_register_point,
+ *   jointlin_store_estimate, jointlin_store_report) and the queries
+ *   (jointlin_store_point_status, _point_count, _next_action, _rerun_increments,
+ *   _pass_stats, _restart_path): any number of threads at once, as Abaqus calls UINTER
+ *   from its threads, each call with its own arrays (one point's STATEV, STRESS, ... must
+ *   not be in two calls at once). The results do not depend on the threads' order;
+ * - sequence calls (jointlin_uexternaldb, jointlin_store_restore,
+ *   jointlin_store_pass_summary, _pass_agree, _agree_files): one thread at a time, as
+ *   Abaqus calls UEXTERNALDB from one thread per process, and not overlapping the
+ *   per-point calls of the increment they open or close: LOP 1 returns before the
+ *   increment's LINPER = 1 calls start; LOP 2 starts after all of them and their reports
+ *   returned; LOP 0, 3, 4 and the pass calls while no per-point call runs. A call that
+ *   overlaps anyway returns JOINTLIN_OK or a named code (JOINTLIN_ERR_SEQUENCE,
+ *   JOINTLIN_ERR_UNKNOWN_POINT) and the store stays usable, but which increment the
+ *   overlapping call counted for is undefined;
+ * - jointlin_store_free: no other call on the store during or after it.
+ *
+ * Different stores (one per rank, or per analysis) are independent. jointlin_last_error
+ * is per thread. The functions without a store (jointlin_linearize, jointlin_point_step,
+ * jointlin_uinter at LINPER = 0, ...) may run anywhere at any time.
  */
 typedef struct jointlin_store jointlin_store;
 
@@ -853,7 +878,7 @@ int32_t jointlin_store_point_count(const struct jointlin_store *store,
 
 /**
  * Replaces the store's points and iteration state by the content of its restart file
- * (what LOP 4 does). Use it when a new analysis job continues the iteration of an earlier
+ * (what LOP 4 does); a sequence call (see jointlin_store: not during per-point calls). Use it when a new analysis job continues the iteration of an earlier
  * one (each Abaqus pass is a separate job): restore, then LOP 0.
  * Errors: JOINTLIN_ERR_NULL, JOINTLIN_ERR_IO (no path configured, unreadable or corrupt
  * file; the store is unchanged then).
@@ -862,6 +887,107 @@ int32_t jointlin_store_point_count(const struct jointlin_store *store,
  * `store` a live handle.
  */
 int32_t jointlin_store_restore(const struct jointlin_store *store);
+
+/**
+ * Creates the store of rank `rank` (0-based) of `ranks` processes: as jointlin_store_new,
+ * but with `ranks` > 1 its restart file is `<restart_path>.r<rank>` (e.g.
+ * `jointlin.restart.r3`), so that every rank saves and restores its own points. When
+ * that file does not exist (a new iteration), the rank's pass files of an earlier
+ * iteration (`<restart_path>.r<rank>.pass<P>`, jointlin_store_agree_files) are deleted.
+ * `ranks` = 1 is jointlin_store_new.
+ *
+ * Errors: those of jointlin_store_new; JOINTLIN_ERR_OUT_OF_RANGE (not 0 <= rank < ranks);
+ * JOINTLIN_ERR_IO (stale pass files that cannot be deleted).
+ *
+ * # Safety
+ * As jointlin_store_new.
+ */
+int32_t jointlin_store_new_ranked(const struct jointlin_store_config *config,
+                                  int32_t rank,
+                                  int32_t ranks,
+                                  struct jointlin_store **out);
+
+/**
+ * Writes the store's restart file path (bytes, not NUL-terminated) to `buf` and its
+ * length to `*len`; 0 when the store has none. When the length exceeds `cap`, returns
+ * JOINTLIN_ERR_SIZE and writes `*len` only. With `cap` = 0, `buf` may be NULL.
+ *
+ * # Safety
+ * `store` a live handle; `buf` points to `cap` writable bytes (or is NULL when `cap` is
+ * 0); `len` writable.
+ */
+int32_t jointlin_store_restart_path(const struct jointlin_store *store,
+                                    char *buf,
+                                    size_t cap,
+                                    size_t *len);
+
+/**
+ * Writes this rank's summary of the running pass to `summary` and its length (4 + 3n for
+ * n sweep increments) to `*len`: between the LOP 2 of the pass's last increment and LOP 3.
+ * The layout is made for an element-wise maximum over the ranks (`MPI_MAX`):
+ * `{pass, -pass, n, -n, k_1..k_n, -k_1..-k_n, r_1..r_n}`, k ascending sweep increments,
+ * r = 1 when the increment must be re-run on this rank (not converged here), else 0. After
+ * the maximum, r = 1 when any rank needs the re-run, and the negated copies carry the
+ * minimum, from which jointlin_store_pass_agree sees whether all ranks were at the same
+ * pass with the same increments.
+ *
+ * When `*len` exceeds `cap`, returns JOINTLIN_ERR_SIZE and writes `*len` only (with `cap`
+ * = 0, `summary` may be NULL: a size query). All ranks must reduce arrays of the same
+ * length: check that first (reduce {len, -len} by maximum).
+ *
+ * Errors: JOINTLIN_ERR_NULL, JOINTLIN_ERR_SIZE, JOINTLIN_ERR_SEQUENCE (no pass running or
+ * an increment open).
+ *
+ * # Safety
+ * `store` a live handle; `summary` points to `cap` writable int32_t (or is NULL when
+ * `cap` is 0); `len` writable.
+ */
+int32_t jointlin_store_pass_summary(const struct jointlin_store *store,
+                                    int32_t *summary,
+                                    size_t cap,
+                                    size_t *len);
+
+/**
+ * Replaces this rank's decision for the running pass by the agreed one: `reduced` (`len`
+ * integers) is the element-wise maximum over all ranks of their
+ * jointlin_store_pass_summary arrays. The next LOP 3 decides from it, so every rank
+ * decides the same next action and re-run list. Call between the last LOP 2 and LOP 3.
+ *
+ * Errors: JOINTLIN_ERR_NULL; JOINTLIN_ERR_OUT_OF_RANGE (not a summary); JOINTLIN_ERR_SEQUENCE
+ * (ranks at different passes or with different increments, a summary of another pass or
+ * increments than this store's, one that does not re-run an increment this rank must
+ * re-run, or no pass running). The store is unchanged on error.
+ *
+ * # Safety
+ * `store` a live handle; `reduced` points to `len` readable int32_t.
+ */
+int32_t jointlin_store_pass_agree(const struct jointlin_store *store,
+                                  const int32_t *reduced,
+                                  size_t len);
+
+/**
+ * The agreement without a communicator, through files beside the restart files (in a
+ * directory all ranks share): rank `rank` of `ranks` writes its summary to
+ * `<restart_path>.r<rank>.pass<P>` (atomically: a temporary file, then a rename), waits
+ * until the files of all ranks for pass P exist (polling every 20 ms, at most `timeout`
+ * seconds), reduces them by maximum, agrees (jointlin_store_pass_agree) and deletes its
+ * own file of pass P - 1. Call between the last LOP 2 and LOP 3 of every pass, on every
+ * rank. The store must come from jointlin_store_new_ranked with the same rank and ranks
+ * and a restart path. `ranks` = 1 agrees with itself and writes nothing.
+ *
+ * Errors: JOINTLIN_ERR_NULL; JOINTLIN_ERR_NON_FINITE, JOINTLIN_ERR_OUT_OF_RANGE (timeout
+ * <= 0, rank, a store not made for this rank); JOINTLIN_ERR_IO (no restart path, files
+ * that cannot be written or read, ranks still missing after `timeout`: the detail names
+ * them); JOINTLIN_ERR_SEQUENCE (ranks at different passes or increments, no pass
+ * running).
+ *
+ * # Safety
+ * `store` a live handle.
+ */
+int32_t jointlin_store_agree_files(const struct jointlin_store *store,
+                                   int32_t rank,
+                                   int32_t ranks,
+                                   double timeout);
 
 /**
  * Drives the store's iteration from Abaqus's UEXTERNALDB arguments:
@@ -879,6 +1005,11 @@ int32_t jointlin_store_restore(const struct jointlin_store *store);
  * JOINTLIN_ERR_NON_FINITE, JOINTLIN_ERR_OUT_OF_RANGE (LOP not in 0..6),
  * JOINTLIN_ERR_SEQUENCE (a call out of order, e.g. LOP 1 twice without LOP 2, LOP 0 while a
  * pass runs or after DONE), JOINTLIN_ERR_IO (restart file).
+ *
+ * Threads: one thread at a time per store (Abaqus: one thread per process), never
+ * overlapping the per-point calls (jointlin_uinter, estimate, report) of the increment it
+ * opens (LOP 1: they start after it returns) or closes (LOP 2: it starts after they all
+ * returned); see jointlin_store.
  *
  * # Safety
  * `store` a live handle; `time` points to 2 readable doubles.
@@ -927,6 +1058,10 @@ int32_t jointlin_uexternaldb(const struct jointlin_store *store,
  * otherwise. If the store iterates one step (sweep_step), KSTEP must be that step.
  *
  * PNEWDT is checked but not changed. TIME, DTIME are checked but not used.
+ *
+ * Threads: any number of jointlin_uinter calls may run at once on one store, each with its
+ * own arrays (Abaqus's UINTER threads); at LINPER = 1 not overlapping the LOP 1 or LOP 2
+ * of their increment (see jointlin_store).
  *
  * Errors (no output written): JOINTLIN_ERR_NULL (any pointer but `store`/`report` as
  * above), JOINTLIN_ERR_NON_FINITE (NaN/Inf in STRESS, RDISP, DRDISP, TIME, DTIME, FREQR,

@@ -34,6 +34,15 @@ lib() {
     CARGO_TARGET_DIR=$TARGET cargo build --release -q -p jointlin --lib
     LIBDIR=$TARGET/release
     test -f "$LIBDIR/libjointlin.so"
+    soname_link "$LIBDIR"
+}
+
+# Programs load libjointlin.so by its SONAME (libjointlin.so.MAJOR, set by build.rs);
+# cargo's output directory gets a link of that name.
+soname_link() { # dir
+    local so
+    so=$(readelf -d "$1/libjointlin.so" | sed -n 's/.*Library soname: \[\(.*\)\]/\1/p')
+    [ -z "$so" ] || [ -e "$1/$so" ] || ln -s libjointlin.so "$1/$so"
 }
 
 # Runs a host program in a fresh directory; fails on a nonzero exit or any sanitizer
@@ -71,6 +80,7 @@ cmd_asan() {
         RUSTFLAGS="-Zsanitizer=address -Cunsafe-allow-abi-mismatch=sanitizer" \
             CARGO_TARGET_DIR=$TARGET/asan-lib cargo +nightly build --release -q -p jointlin --lib \
             --target x86_64-unknown-linux-gnu
+        soname_link "$TARGET/asan-lib/x86_64-unknown-linux-gnu/release"
         asan_hosts instrumented "$TARGET/asan-lib/x86_64-unknown-linux-gnu/release"
     else
         echo "no nightly toolchain: libjointlin.so itself not ASan-instrumented (hosts are)"

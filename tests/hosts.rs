@@ -326,8 +326,8 @@ fn hosts_link_the_shared_library_with_an_rpath() {
         let out = run_ok(Command::new("readelf").arg("-d").arg(&exe));
         let dynamic = String::from_utf8_lossy(&out.stdout);
         assert!(
-            dynamic.contains("Shared library: [libjointlin.so]"),
-            "{} does not load libjointlin.so:\n{dynamic}",
+            dynamic.contains(&format!("Shared library: [{}]", soname())),
+            "{} does not load the library by its SONAME:\n{dynamic}",
             exe.display()
         );
         assert!(

@@ -120,6 +120,18 @@ int main(void) {
             db(store, 2, 2, kinc);
         }
         db(store, 6, 2, 0);
+        /* The end-of-pass agreement of a job with several ranks, here over one rank (the
+         * maximum over itself): size query, summary, agreement (tests/hosts_mpi.rs runs it
+         * over several). */
+        size_t len = 0;
+        int32_t summary[4 + 3 * NINC];
+        if (jointlin_store_pass_summary(store, NULL, 0, &len) != JOINTLIN_ERR_SIZE ||
+            len > sizeof summary / sizeof summary[0]) {
+            fprintf(stderr, "pass summary size query failed\n");
+            return 1;
+        }
+        host_check(jointlin_store_pass_summary(store, summary, len, &len), "pass summary");
+        host_check(jointlin_store_pass_agree(store, summary, len), "pass agree");
         db(store, 3, 0, 0);
         jointlin_pass_stats st;
         host_check(jointlin_store_pass_stats(store, pass, &st), "pass stats");

@@ -8,6 +8,8 @@
 //! * [`point`]: `jointlin_point_step`, the time-domain hysteresis point for non-Abaqus hosts;
 //! * [`screw`]: `jointlin_screw_preload`, screw preload from torque (VDI 2230);
 //! * [`store`]: the iteration store object `jointlin_store` (thesis §4.3.2);
+//! * [`store_ranks`]: stores of a job with several processes (MPI ranks): per-rank restart
+//!   files and the end-of-pass agreement on the increments to re-run;
 //! * [`uexternaldb`] and [`uinter`]: Abaqus-convention entry points (model.md §7);
 //! * [`props`]: the UINTER PROPS and STATEV layouts.
 //!
@@ -16,7 +18,9 @@
 //! call returns `JOINTLIN_OK` (exceptions are documented); no output is ever NaN; a Rust
 //! panic is caught and returned as `JOINTLIN_ERR_PANIC`; `jointlin_last_error` gives the
 //! detail of a failure. All functions may be called from several threads at once; a
-//! `jointlin_store` may be shared between threads.
+//! `jointlin_store` may be shared between threads, with the ordering rules of the
+//! `jointlin_store` documentation (per-point calls from many threads, sequence calls such
+//! as UEXTERNALDB from one thread, not overlapping the increment they open or close).
 
 #![allow(non_camel_case_types)]
 
@@ -27,6 +31,7 @@ pub mod point;
 pub mod props;
 pub mod screw;
 pub mod store;
+pub mod store_ranks;
 pub mod uexternaldb;
 pub mod uinter;
 
@@ -37,7 +42,7 @@ use error::{
 /// Major version of the C ABI: changes break existing callers.
 pub const JOINTLIN_ABI_VERSION_MAJOR: u32 = 0;
 /// Minor version of the C ABI: additions that keep existing callers working.
-pub const JOINTLIN_ABI_VERSION_MINOR: u32 = 2;
+pub const JOINTLIN_ABI_VERSION_MINOR: u32 = 3;
 
 /// The ABI version of the loaded library, (major << 16) | minor. A caller compiled against
 /// this header should check that the major part equals JOINTLIN_ABI_VERSION_MAJOR.

@@ -11,8 +11,32 @@ use crate::iterate::Scheme;
 use crate::store::{Action, KincNumbering, PassKind, PointKey, Reason, Store, StoreConfig};
 
 /// An iteration store. Opaque; create with jointlin_store_new, destroy with
-/// jointlin_store_free. All functions taking a `const jointlin_store *` may be called from
-/// several threads at once.
+/// jointlin_store_free.
+///
+/// Threads. Every function may be called from any thread and is memory-safe with any
+/// overlap: the store locks internally, each lock held for a few map operations, never
+/// during file I/O. What the results mean depends on which calls overlap on one store:
+///
+/// - per-point calls (jointlin_uinter, jointlin_store_register_point,
+///   jointlin_store_estimate, jointlin_store_report) and the queries
+///   (jointlin_store_point_status, _point_count, _next_action, _rerun_increments,
+///   _pass_stats, _restart_path): any number of threads at once, as Abaqus calls UINTER
+///   from its threads, each call with its own arrays (one point's STATEV, STRESS, ... must
+///   not be in two calls at once). The results do not depend on the threads' order;
+/// - sequence calls (jointlin_uexternaldb, jointlin_store_restore,
+///   jointlin_store_pass_summary, _pass_agree, _agree_files): one thread at a time, as
+///   Abaqus calls UEXTERNALDB from one thread per process, and not overlapping the
+///   per-point calls of the increment they open or close: LOP 1 returns before the
+///   increment's LINPER = 1 calls start; LOP 2 starts after all of them and their reports
+///   returned; LOP 0, 3, 4 and the pass calls while no per-point call runs. A call that
+///   overlaps anyway returns JOINTLIN_OK or a named code (JOINTLIN_ERR_SEQUENCE,
+///   JOINTLIN_ERR_UNKNOWN_POINT) and the store stays usable, but which increment the
+///   overlapping call counted for is undefined;
+/// - jointlin_store_free: no other call on the store during or after it.
+///
+/// Different stores (one per rank, or per analysis) are independent. jointlin_last_error
+/// is per thread. The functions without a store (jointlin_linearize, jointlin_point_step,
+/// jointlin_uinter at LINPER = 0, ...) may run anywhere at any time.
 pub struct jointlin_store {
     _private: [u8; 0],
 }
@@ -536,7 +560,7 @@ pub unsafe extern "C" fn jointlin_store_point_count(
 }
 
 /// Replaces the store's points and iteration state by the content of its restart file
-/// (what LOP 4 does). Use it when a new analysis job continues the iteration of an earlier
+/// (what LOP 4 does); a sequence call (see jointlin_store: not during per-point calls). Use it when a new analysis job continues the iteration of an earlier
 /// one (each Abaqus pass is a separate job): restore, then LOP 0.
 /// Errors: JOINTLIN_ERR_NULL, JOINTLIN_ERR_IO (no path configured, unreadable or corrupt
 /// file; the store is unchanged then).

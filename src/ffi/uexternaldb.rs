@@ -21,6 +21,11 @@ use super::{finite, load_finite};
 /// JOINTLIN_ERR_SEQUENCE (a call out of order, e.g. LOP 1 twice without LOP 2, LOP 0 while a
 /// pass runs or after DONE), JOINTLIN_ERR_IO (restart file).
 ///
+/// Threads: one thread at a time per store (Abaqus: one thread per process), never
+/// overlapping the per-point calls (jointlin_uinter, estimate, report) of the increment it
+/// opens (LOP 1: they start after it returns) or closes (LOP 2: it starts after they all
+/// returned); see jointlin_store.
+///
 /// # Safety
 /// `store` a live handle; `time` points to 2 readable doubles.
 #[no_mangle]

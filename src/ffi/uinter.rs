@@ -114,6 +114,10 @@ fn err(code: i32, msg: String) -> FfiError {
 ///
 /// PNEWDT is checked but not changed. TIME, DTIME are checked but not used.
 ///
+/// Threads: any number of jointlin_uinter calls may run at once on one store, each with its
+/// own arrays (Abaqus's UINTER threads); at LINPER = 1 not overlapping the LOP 1 or LOP 2
+/// of their increment (see jointlin_store).
+///
 /// Errors (no output written): JOINTLIN_ERR_NULL (any pointer but `store`/`report` as
 /// above), JOINTLIN_ERR_NON_FINITE (NaN/Inf in STRESS, RDISP, DRDISP, TIME, DTIME, FREQR,
 /// PROPS(1:min(NPROPS,12)), COORDS, AREA, PNEWDT, STATEV(1:57)), JOINTLIN_ERR_OUT_OF_RANGE

@@ -707,10 +707,12 @@ impl Store {
 
 mod config;
 mod key;
+mod ranks;
 mod restart;
 
 pub use config::{KincNumbering, StoreConfig, DEFAULT_MAX_PASSES, DEFAULT_RTOL, HISTORY_WINDOW};
 pub use key::{PointKey, MAX_NAME_LEN};
+pub use ranks::PassSummary;
 
 #[cfg(test)]
 mod tests;

@@ -273,3 +273,28 @@ fn kind(code: i32) -> Result<PassKind, StoreError> {
         _ => Err(bad("pass kind")),
     }
 }
+
+/// The restart file of rank `rank` of a job with several ranks: `<base>.r<rank>`.
+pub(super) fn rank_path(base: &std::path::Path, rank: u32) -> PathBuf {
+    let mut name = base.as_os_str().to_owned();
+    name.push(format!(".r{rank}"));
+    PathBuf::from(name)
+}
+
+/// `base` of a rank's restart file `<base>.r<rank>` ([`rank_path`]), if it is one.
+pub(super) fn rank_base(path: &std::path::Path, rank: u32) -> Option<PathBuf> {
+    let suffix = format!(".r{rank}");
+    #[cfg(unix)]
+    {
+        use std::os::unix::ffi::OsStrExt;
+        let base = path
+            .as_os_str()
+            .as_bytes()
+            .strip_suffix(suffix.as_bytes())?;
+        Some(PathBuf::from(std::ffi::OsStr::from_bytes(base)))
+    }
+    #[cfg(not(unix))]
+    {
+        Some(PathBuf::from(path.to_str()?.strip_suffix(&suffix)?))
+    }
+}

@@ -22,11 +22,39 @@ fn exe_dir() -> PathBuf {
     exe.parent().expect("deps directory").to_path_buf()
 }
 
+/// The SONAME build.rs gives libjointlin.so: `libjointlin.so.<ABI major>`. Programs linked
+/// against the library load it by this name.
+pub fn soname() -> String {
+    format!(
+        "libjointlin.so.{}",
+        jointlin::ffi::JOINTLIN_ABI_VERSION_MAJOR
+    )
+}
+
 /// The directory holding the libjointlin.so that `cargo test` built with this test
 /// binary: target/<profile>/deps (or target/<profile> when cargo uplifted it). `cargo
 /// test` builds the cdylib with the package's tests; should it be missing (another test
 /// runner), `cargo build --lib` builds it into the same target directory and profile.
+/// The directory also gets the link `libjointlin.so.<major>` → `libjointlin.so` (cargo
+/// makes none), so that programs linked against it find it by its SONAME.
 pub fn lib_dir() -> PathBuf {
+    static LINKED: std::sync::OnceLock<PathBuf> = std::sync::OnceLock::new();
+    LINKED
+        .get_or_init(|| {
+            let dir = cargo_lib_dir();
+            let link = dir.join(soname());
+            if std::fs::symlink_metadata(&link).is_err() {
+                // Another test binary may create it at the same time: only its existence
+                // matters.
+                let _ = std::os::unix::fs::symlink("libjointlin.so", &link);
+            }
+            assert!(link.exists(), "cannot create {}", link.display());
+            dir
+        })
+        .clone()
+}
+
+fn cargo_lib_dir() -> PathBuf {
     static DIR: std::sync::OnceLock<PathBuf> = std::sync::OnceLock::new();
     DIR.get_or_init(|| {
         let deps = exe_dir();
