@@ -11,7 +11,9 @@
 #![allow(dead_code)]
 
 use std::path::{Path, PathBuf};
-use std::sync::{Barrier, Mutex};
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::{Condvar, Mutex};
+use std::time::Duration;
 
 use crate::ffi_common::*;
 use jointlin::ffi::error::*;
@@ -114,9 +116,74 @@ fn store_for(dir: &Path, rank: usize, ranks: usize) -> *mut jointlin_store {
     store
 }
 
+/// A barrier for the ranks that a panicking rank breaks: the others then panic too instead
+/// of waiting forever (a failed assertion in one rank must fail the test, not hang it), and
+/// a rank that waits longer than `LIMIT` panics with the barrier's state.
+struct RankBarrier {
+    ranks: usize,
+    state: Mutex<(usize, u64, bool)>, // (arrived, generation, broken)
+    turn: Condvar,
+}
+
+impl RankBarrier {
+    const LIMIT: Duration = Duration::from_secs(120);
+
+    fn new(ranks: usize) -> Self {
+        RankBarrier {
+            ranks,
+            state: Mutex::new((0, 0, false)),
+            turn: Condvar::new(),
+        }
+    }
+
+    fn wait(&self) {
+        let mut s = self.state.lock().unwrap_or_else(|e| e.into_inner());
+        assert!(!s.2, "another rank panicked");
+        let generation = s.1;
+        s.0 += 1;
+        if s.0 == self.ranks {
+            s.0 = 0;
+            s.1 += 1;
+            self.turn.notify_all();
+            return;
+        }
+        while s.1 == generation && !s.2 {
+            let (next, timeout) = self
+                .turn
+                .wait_timeout(s, Self::LIMIT)
+                .unwrap_or_else(|e| e.into_inner());
+            s = next;
+            assert!(
+                !timeout.timed_out(),
+                "rank barrier: {} of {} ranks arrived within {:?}",
+                s.0,
+                self.ranks,
+                Self::LIMIT
+            );
+        }
+        assert!(!s.2, "another rank panicked");
+    }
+
+    fn break_it(&self) {
+        self.state.lock().unwrap_or_else(|e| e.into_inner()).2 = true;
+        self.turn.notify_all();
+    }
+}
+
+/// Breaks the barrier when its rank unwinds.
+struct BreakOnPanic<'a>(&'a RankBarrier);
+
+impl Drop for BreakOnPanic<'_> {
+    fn drop(&mut self) {
+        if std::thread::panicking() {
+            self.0.break_it();
+        }
+    }
+}
+
 /// The shared memory of the ranks: k*, d* per point, summaries, a barrier.
 struct Exchange {
-    barrier: Barrier,
+    barrier: RankBarrier,
     k: Mutex<Vec<f64>>,
     d: Mutex<Vec<f64>>,
     summaries: Mutex<Vec<Vec<i32>>>,
@@ -149,6 +216,7 @@ fn rank_main(
     kill: Option<Kill>,
     ex: &Exchange,
 ) -> Run {
+    let _guard = BreakOnPanic(&ex.barrier);
     let mine = block(rank, ranks);
     let mut points: Vec<Uinter> = mine
         .clone()
@@ -270,7 +338,7 @@ fn rank_main(
 pub fn run_job(ranks: usize, agreement: Agreement, kill: Option<Kill>) -> Run {
     let dir = scratch(&format!("ranks-{ranks}-{agreement:?}-{}", kill.is_some()));
     let ex = Exchange {
-        barrier: Barrier::new(ranks),
+        barrier: RankBarrier::new(ranks),
         k: Mutex::new(vec![0.0; POINTS]),
         d: Mutex::new(vec![0.0; POINTS]),
         summaries: Mutex::new(Vec::new()),
@@ -304,8 +372,15 @@ pub fn run_job(ranks: usize, agreement: Agreement, kill: Option<Kill>) -> Run {
     all
 }
 
+/// A directory of its own for every job (tests run concurrently in one process, and two
+/// jobs sharing the rank files would read each other's passes).
 fn scratch(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("jointlin-ranks-{}-{name}", std::process::id()));
+    static JOBS: AtomicUsize = AtomicUsize::new(0);
+    let job = JOBS.fetch_add(1, Ordering::Relaxed);
+    let d = std::env::temp_dir().join(format!(
+        "jointlin-ranks-{}-{job}-{name}",
+        std::process::id()
+    ));
     let _ = std::fs::remove_dir_all(&d);
     std::fs::create_dir_all(&d).unwrap();
     d
