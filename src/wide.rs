@@ -54,6 +54,29 @@ impl Wide {
     }
 }
 
+impl Wide {
+    /// The sum of non-negative values, rounded as an f64 sum of the values scaled to the
+    /// largest one (terms below its rounding vanish, as they would in f64).
+    pub fn sum_non_negative(values: &[Wide]) -> Wide {
+        let Some(top) = values.iter().filter(|v| !v.is_zero()).map(|v| v.e).max() else {
+            return Wide::new(0.0);
+        };
+        let scaled: f64 = values
+            .iter()
+            .map(|v| {
+                debug_assert!(v.m >= 0.0);
+                Wide {
+                    m: v.m,
+                    e: v.e - top,
+                }
+                .to_f64()
+            })
+            .sum();
+        let (m, e) = frexp(scaled);
+        Wide { m, e: e + top }
+    }
+}
+
 impl From<f64> for Wide {
     fn from(x: f64) -> Self {
         Wide::new(x)
@@ -160,5 +183,21 @@ mod tests {
         assert_eq!(x.to_f64(), 1.234_567_890_123e-200 * 3.3e-110);
         assert_eq!((Wide::new(f64::MAX) * 0.5 * 2.0).to_f64(), f64::MAX);
         assert_eq!((Wide::new(-2.0) * 4.0).to_f64(), -8.0);
+    }
+
+    #[test]
+    fn sums_keep_the_largest_terms() {
+        let w = |x: f64| Wide::new(x);
+        let huge = Wide::sum_non_negative(&[w(1e300) * w(1e300), w(1e300) * w(1e300), w(1.0)]);
+        assert_eq!((huge / w(1e300)).to_f64(), 2e300);
+        let tiny = Wide::sum_non_negative(&[w(5e-324) * 0.16, w(5e-324) * w(5e-324)]);
+        assert!(!tiny.is_zero());
+        let back = (tiny * w(1e300) * w(1e30)).to_f64();
+        assert!(
+            (back / (5e-324 * 0.16e300 * 1e30) - 1.0).abs() < 1e-15,
+            "{back}"
+        );
+        assert!(Wide::sum_non_negative(&[w(0.0), w(0.0)]).is_zero());
+        assert_eq!(Wide::sum_non_negative(&[w(0.5), w(0.25)]).to_f64(), 0.75);
     }
 }

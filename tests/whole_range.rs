@@ -6,6 +6,7 @@
 
 use jointlin::ffi::error::*;
 use jointlin::ffi::linearize::*;
+use jointlin::ffi::screw::jointlin_screw_preload;
 use std::f64::consts::PI;
 
 const MU: f64 = 0.3;
@@ -227,4 +228,56 @@ fn plain_gauss_needs_two_points() {
     let (s, l) = lin_with(&c, 3e-4, Some(graded));
     assert_eq!(s, JOINTLIN_OK);
     assert!(l.k_star > 0.0);
+}
+
+/// jointlin_screw_preload; asserts no panic, a finite F ≥ 0 on OK, nothing written otherwise.
+fn preload(t: f64, p: f64, d2: f64, mu_g: f64, mu_k: f64, d_km: f64) -> (i32, f64) {
+    let mut f = -1.0;
+    let status = unsafe { jointlin_screw_preload(t, p, d2, mu_g, mu_k, d_km, &mut f) };
+    assert_ne!(status, JOINTLIN_ERR_PANIC);
+    if status == JOINTLIN_OK {
+        assert!(f.is_finite() && f >= 0.0, "T={t:e} P={p:e}: {f}");
+    } else {
+        assert_eq!(f, -1.0, "written on error {status}");
+    }
+    (status, f)
+}
+
+#[test]
+fn screw_preload_is_finite_or_a_named_overflow() {
+    // T = 1, P = 5e-324, μ = 0, D_Km = 0 gave +Inf with JOINTLIN_OK: F = T/(0.16 P)
+    // = 1.25e324 is beyond the largest double.
+    assert_eq!(
+        preload(1.0, 5e-324, 7.188, 0.0, 0.0, 0.0).0,
+        JOINTLIN_ERR_OVERFLOW
+    );
+    // All-tiny inputs gave NaN (every lever term underflowed to 0): the exact quotient.
+    let (s, f) = preload(5e-324, 5e-324, 5e-324, 5e-324, 5e-324, 5e-324);
+    assert_eq!(s, JOINTLIN_OK);
+    assert!(close(f, 1.0 / 0.16, 1e-15), "{f}");
+    let (s, f) = preload(1e-300, 1e-300, 1e-300, 0.1, 0.1, 1e-300);
+    assert_eq!(s, JOINTLIN_OK);
+    assert!(close(f, 1.0 / (0.16 + 0.058 + 0.05), 1e-15), "{f}");
+    // T = 1.7e308 on an M8 screw (P = 1.25, d2 = 7.188, D_Km = 11.6 mm): the lever is
+    // 1.3963 mm with μ = 0.12, F = 1.22e308; frictionless (lever 0.2 mm) F overflows.
+    let (s, f) = preload(1.7e308, 1.25, 7.188, 0.12, 0.12, 11.6);
+    assert_eq!(s, JOINTLIN_OK);
+    assert!(close(
+        f,
+        1.7e308 / (0.2 + 0.58 * 7.188 * 0.12 + 5.8 * 0.12),
+        1e-15
+    ));
+    assert_eq!(
+        preload(1.7e308, 1.25, 7.188, 0.0, 0.0, 11.6).0,
+        JOINTLIN_ERR_OVERFLOW
+    );
+    // A lever term beyond the double range (d2 μ_G = 1e400) gave F = 0: now its quotient.
+    let (s, f) = preload(1e300, 1.0, 1e300, 1e100, 0.0, 0.0);
+    assert_eq!(s, JOINTLIN_OK);
+    assert!(close(f, 1e-100 / 0.58, 1e-15), "{f}");
+    // Zero torque: zero preload.
+    assert_eq!(
+        preload(0.0, 1.25, 7.188, 0.12, 0.12, 11.6),
+        (JOINTLIN_OK, 0.0)
+    );
 }
