@@ -26,7 +26,7 @@
 /**
  * Minor version of the C ABI: additions that keep existing callers working.
  */
-#define JOINTLIN_ABI_VERSION_MINOR 3
+#define JOINTLIN_ABI_VERSION_MINOR 4
 
 /**
  * Success.
@@ -901,6 +901,28 @@ int32_t jointlin_store_point_count(const struct jointlin_store *store,
  * `store` a live handle.
  */
 int32_t jointlin_store_restore(const struct jointlin_store *store);
+
+/**
+ * Sets the store's model fingerprint: `len` bytes (at most 4096, not NUL-terminated;
+ * NULL with `len` 0 clears it) that identify the model the sweep runs, e.g. a hash of
+ * the input deck, the job's contact definitions and frequencies. Call it right after
+ * creating the store, before LOP 0 or LOP 4.
+ *
+ * The restart file (format 2) carries the fingerprint and the store's settings
+ * (initial_amplitude, rtol, atol, scheme, max_passes, sweep_step, kinc_numbering);
+ * LOP 4 and jointlin_store_restore reject a file whose fingerprint or settings differ
+ * with JOINTLIN_ERR_IO, leaving the store unchanged. A file of the older format 1 (no
+ * fingerprints) is read only by a store without a fingerprint.
+ *
+ * Errors: JOINTLIN_ERR_NULL (`store`, or `bytes` with `len` > 0), JOINTLIN_ERR_OUT_OF_RANGE
+ * (`len` > 4096).
+ *
+ * # Safety
+ * `store` a live handle; `bytes` points to `len` readable bytes (or is NULL when `len` is 0).
+ */
+int32_t jointlin_store_set_model(const struct jointlin_store *store,
+                                 const char *bytes,
+                                 size_t len);
 
 /**
  * Creates the store of rank `rank` (0-based) of `ranks` processes: as jointlin_store_new,
