@@ -30,7 +30,7 @@ module jointlin
 
   ! ---- constants (#define in jointlin.h) ----
   integer(c_int32_t), parameter :: JOINTLIN_ABI_VERSION_MAJOR = 0
-  integer(c_int32_t), parameter :: JOINTLIN_ABI_VERSION_MINOR = 3
+  integer(c_int32_t), parameter :: JOINTLIN_ABI_VERSION_MINOR = 4
   integer(c_int32_t), parameter :: JOINTLIN_OK = 0
   integer(c_int32_t), parameter :: JOINTLIN_ERR_NULL = 1
   integer(c_int32_t), parameter :: JOINTLIN_ERR_NON_FINITE = 2
@@ -351,6 +351,15 @@ module jointlin
        integer(c_size_t), intent(out) :: len
        integer(c_int32_t) :: jointlin_store_restart_path
      end function jointlin_store_restart_path
+
+     function jointlin_store_set_model(store, bytes, len) &
+          bind(C, name='jointlin_store_set_model')
+       import :: c_int32_t, c_size_t, c_char, c_ptr
+       type(c_ptr), value :: store
+       character(kind=c_char), intent(in) :: bytes(*)
+       integer(c_size_t), value :: len
+       integer(c_int32_t) :: jointlin_store_set_model
+     end function jointlin_store_set_model
 
      function jointlin_store_pass_summary(store, summary, cap, len) &
           bind(C, name='jointlin_store_pass_summary')

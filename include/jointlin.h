@@ -26,7 +26,7 @@
 /**
  * Minor version of the C ABI: additions that keep existing callers working.
  */
-#define JOINTLIN_ABI_VERSION_MINOR 3
+#define JOINTLIN_ABI_VERSION_MINOR 4
 
 /**
  * Success.
@@ -365,7 +365,7 @@ typedef struct jointlin_method {
    */
   int32_t kind;
   /**
-   * Gauss points per panel (graded, 1..128), Gauss points (gauss, 1..128) or Simpson
+   * Gauss points per panel (graded, 1..128), Gauss points (gauss, 2..128) or Simpson
    * intervals (simpson, even, 2..2^26); 0 = the method's default.
    */
   int32_t points;
@@ -662,11 +662,19 @@ size_t jointlin_last_error(char *buf,
  * energy balance (3.14). An open contact (F_N <= 0) or mu = 0 gives all zeros and
  * JOINTLIN_REGIME_OPEN with status JOINTLIN_OK.
  *
+ * Every output is right over the whole double range: the loop is evaluated in the
+ * point's own units (mu F_N = 1, delta* = 1) and scaled back without intermediate
+ * overflow or underflow, so a subnormal delta* (k_t0 = DBL_MAX) or A/delta*
+ * (F_N = 1e308, A = 1e-8), or mu F_N = 1e-165, give the scaled loop; an output below the
+ * smallest double is 0 or subnormal. A = 0 is JOINTLIN_REGIME_STICK with k* = k_t0; any
+ * A > 0 on a Mindlin point is at least JOINTLIN_REGIME_MICROSLIP.
+ *
  * `contact` and `out` must not be NULL; `method` may be NULL (default quadrature).
  * Errors: JOINTLIN_ERR_NULL, JOINTLIN_ERR_NON_FINITE (any NaN/Inf input),
  * JOINTLIN_ERR_OUT_OF_RANGE (amplitude < 0, omega <= 0, mu < 0, k_t0 <= 0, unknown codes,
- * bad point count), JOINTLIN_ERR_OVERFLOW (d* or eta not representable). `*out` is written
- * only on JOINTLIN_OK.
+ * bad point count: plain Gauss needs >= 2 points), JOINTLIN_ERR_OVERFLOW (an output
+ * beyond DBL_MAX: mu F_N, delta*, A/delta*, the energy per cycle, d* or eta). `*out` is
+ * written only on JOINTLIN_OK.
  *
  * # Safety
  * Non-NULL pointers must point to valid, aligned objects of their types.
@@ -709,8 +717,14 @@ int32_t jointlin_point_step(const struct jointlin_contact *contact,
  * R13). Lengths in one unit: thread pitch `pitch` P > 0, flank diameter `d2` > 0,
  * effective head bearing diameter `d_km` >= 0; friction coefficients >= 0; T >= 0.
  *
+ * On JOINTLIN_OK the preload is finite and >= 0 for any finite inputs: the lever and the
+ * quotient are formed without intermediate overflow or underflow (P = 5e-324 or
+ * d2 mu_thread = 1e400 keep their value); a preload beyond DBL_MAX is
+ * JOINTLIN_ERR_OVERFLOW, never Inf or NaN.
+ *
  * Errors: JOINTLIN_ERR_NULL (`preload` NULL), JOINTLIN_ERR_NON_FINITE,
- * JOINTLIN_ERR_OUT_OF_RANGE. `*preload` is written only on JOINTLIN_OK.
+ * JOINTLIN_ERR_OUT_OF_RANGE, JOINTLIN_ERR_OVERFLOW. `*preload` is written only on
+ * JOINTLIN_OK.
  *
  * # Safety
  * `preload` must be NULL or point to a writable double.
@@ -887,6 +901,28 @@ int32_t jointlin_store_point_count(const struct jointlin_store *store,
  * `store` a live handle.
  */
 int32_t jointlin_store_restore(const struct jointlin_store *store);
+
+/**
+ * Sets the store's model fingerprint: `len` bytes (at most 4096, not NUL-terminated;
+ * NULL with `len` 0 clears it) that identify the model the sweep runs, e.g. a hash of
+ * the input deck, the job's contact definitions and frequencies. Call it right after
+ * creating the store, before LOP 0 or LOP 4.
+ *
+ * The restart file (format 2) carries the fingerprint and the store's settings
+ * (initial_amplitude, rtol, atol, scheme, max_passes, sweep_step, kinc_numbering);
+ * LOP 4 and jointlin_store_restore reject a file whose fingerprint or settings differ
+ * with JOINTLIN_ERR_IO, leaving the store unchanged. A file of the older format 1 (no
+ * fingerprints) is read only by a store without a fingerprint.
+ *
+ * Errors: JOINTLIN_ERR_NULL (`store`, or `bytes` with `len` > 0), JOINTLIN_ERR_OUT_OF_RANGE
+ * (`len` > 4096).
+ *
+ * # Safety
+ * `store` a live handle; `bytes` points to `len` readable bytes (or is NULL when `len` is 0).
+ */
+int32_t jointlin_store_set_model(const struct jointlin_store *store,
+                                 const char *bytes,
+                                 size_t len);
 
 /**
  * Creates the store of rank `rank` (0-based) of `ranks` processes: as jointlin_store_new,

@@ -21,5 +21,6 @@ pub mod iterate;
 pub mod law;
 pub mod linearize;
 pub mod store;
+mod wide;
 
 pub use error::Error;

@@ -8,6 +8,7 @@
 //! * [`point`]: `jointlin_point_step`, the time-domain hysteresis point for non-Abaqus hosts;
 //! * [`screw`]: `jointlin_screw_preload`, screw preload from torque (VDI 2230);
 //! * [`store`]: the iteration store object `jointlin_store` (thesis §4.3.2);
+//! * [`store_model`]: the host's model fingerprint, checked in restart files;
 //! * [`store_ranks`]: stores of a job with several processes (MPI ranks): per-rank restart
 //!   files and the end-of-pass agreement on the increments to re-run;
 //! * [`uexternaldb`] and [`uinter`]: Abaqus-convention entry points (model.md §7);
@@ -31,6 +32,7 @@ pub mod point;
 pub mod props;
 pub mod screw;
 pub mod store;
+pub mod store_model;
 pub mod store_ranks;
 pub mod uexternaldb;
 pub mod uinter;
@@ -42,7 +44,7 @@ use error::{
 /// Major version of the C ABI: changes break existing callers.
 pub const JOINTLIN_ABI_VERSION_MAJOR: u32 = 0;
 /// Minor version of the C ABI: additions that keep existing callers working.
-pub const JOINTLIN_ABI_VERSION_MINOR: u32 = 3;
+pub const JOINTLIN_ABI_VERSION_MINOR: u32 = 4;
 
 /// The ABI version of the loaded library, (major << 16) | minor. A caller compiled against
 /// this header should check that the major part equals JOINTLIN_ABI_VERSION_MAJOR.
