@@ -154,7 +154,7 @@ pub unsafe extern "C" fn jointlin_point3d_step(
     out: *mut jointlin_step3d,
 ) -> i32 {
     boundary("jointlin_point3d_step", || {
-        // SAFETY: pointers checked by the helpers; sizes by contract.
+        // SAFETY: pointers checked by `load`, `load_finite` and `check_ptr`; sizes by contract.
         let c = unsafe { load(contact, "contact") }?.to_core()?;
         let slots: [f64; STATE3D_LEN] = unsafe { load_finite(state, STATE3D_LEN, "state") }?;
         let d: [f64; 3] = unsafe { load_finite(disp, 3, "disp") }?;

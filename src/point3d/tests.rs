@@ -247,8 +247,8 @@ fn stick_conserves_energy() {
 #[test]
 fn mindlin_cells_on_a_straight_path_approach_mindlin_masing_as_cells_are_added() {
     // Energy per cycle of the cells on a straight path vs the 1D Masing–Mindlin loop,
-    // 4H(A) (model.md §4): measured error at 32 cells ≤ 2 % for A/δ* ∈ [0.01, 3], and 64
-    // cells are better than 16.
+    // 4H(A) (model.md §4): at these nine amplitudes 32 cells stay within 2 % (between
+    // them the error reaches 4.4 %, docs/contact3d.md §2), and 64 cells beat 16.
     let n = 2.0;
     let b = Backbone::new(TangentialLaw::Mindlin, MU * n, K_T).unwrap();
     let delta = b.slip_limit();
