@@ -6,6 +6,8 @@
 //! * [`cubic`]: `jointlin_linearize_cubic` (the Duffing cubic spring, one amplitude) and
 //!   `jointlin_cubic_force` (its force and tangent at one elongation);
 //! * [`point`]: `jointlin_point_step`, the time-domain hysteresis point for non-Abaqus hosts;
+//! * [`point3d`]: `jointlin_point3d_step` and `jointlin_linearize3d`, the contact point in
+//!   three directions (unilateral normal law, coupled slip limit) and its describing function;
 //! * [`screw`]: `jointlin_screw_preload`, screw preload from torque (VDI 2230);
 //! * [`store`]: the iteration store object `jointlin_store` (thesis §4.3.2);
 //! * [`store_model`]: the host's model fingerprint, checked in restart files;
@@ -29,6 +31,7 @@ pub mod cubic;
 pub mod error;
 pub mod linearize;
 pub mod point;
+pub mod point3d;
 pub mod props;
 pub mod screw;
 pub mod store;
