@@ -29,12 +29,12 @@ pub mod fe;
 pub mod loss;
 pub mod mhb;
 pub mod model;
+pub mod names;
 pub mod report;
 pub mod run;
 pub mod scene;
 pub mod solve;
 pub mod time;
 pub mod tradeoff;
+pub mod util;
 pub mod validate;
-
-pub(crate) mod rng;

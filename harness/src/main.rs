@@ -478,7 +478,7 @@ fn main() -> ExitCode {
             band,
             force,
         } => {
-            use jointlin_harness::mhb::{bench, fe_bench};
+            use jointlin_harness::bench::{mhb_chain as bench, mhb_fe as fe_bench};
             if scene.is_empty() {
                 let freqs = freqs.unwrap_or(200);
                 let rows = bench::sweep_table(force, 0.3, 0.8, freqs, &harmonics);

@@ -254,7 +254,7 @@ pub fn volume(x: &[[f64; 3]; 8]) -> Result<f64, ElementError> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::rng::Rng;
+    use crate::util::rng::Rng;
     use nalgebra::{DMatrix, DVector, SVector};
 
     fn steel() -> Material {

@@ -18,7 +18,7 @@ use crate::fe::assembly::{AssemblyError, System};
 use crate::fe::contact_pairs::PairError;
 use crate::fe::csc::Csc;
 use crate::fe::mesh::{MeshError, Model};
-use crate::scene::{LawName, NormalLawName, RuleName};
+use crate::names::{LawName, NormalLawName, RuleName};
 
 /// Errors building a problem from a (valid) scene: mesh-level inconsistencies.
 #[derive(Debug, Error)]

@@ -2,7 +2,7 @@
 
 use crate::capi::{self, NormalProps, Tangential, NPROPS};
 use crate::model::Interface;
-use crate::scene::NormalLawName;
+use crate::names::NormalLawName;
 
 /// UINTER PROPS of an interface (src/ffi/props.rs layout).
 pub fn interface_props(i: &Interface) -> [f64; NPROPS] {

@@ -422,7 +422,7 @@ pub fn to_complex(a: &Csc<f64>) -> Csc<C64> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::rng::Rng;
+    use crate::util::rng::Rng;
     use nalgebra::{DMatrix, DVector};
 
     /// Random n×n complex matrix with ~`per_col` off-diagonal entries per column and a
