@@ -11,9 +11,9 @@
 use std::fmt::Write as _;
 
 use crate::capi;
+use crate::input::scene::{Mode, Scene, Spacing};
 use crate::mhb::default_samples;
 use crate::run::{run, Extras};
-use crate::scene::{Mode, Scene, Spacing};
 use crate::util::rusage::cpu_seconds;
 
 /// One row of the table.

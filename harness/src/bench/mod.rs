@@ -15,8 +15,8 @@ use std::io::Write;
 use std::time::Instant;
 
 use crate::fe::csc::Csc;
+use crate::input::scene::{Mode, Scene};
 use crate::model::build;
-use crate::scene::{Mode, Scene};
 use crate::solve::modal::{lowest_modes, ModalOptions};
 use crate::solve::static_step;
 use crate::solve::sweep::{self, Options, Setup};

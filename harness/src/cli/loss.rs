@@ -4,8 +4,8 @@
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
+use jointlin_harness::input::scene::Scene;
 use jointlin_harness::loss::{self, mesh};
-use jointlin_harness::scene::Scene;
 
 use super::{load_scene, report_written, with_progress};
 

@@ -16,7 +16,7 @@ use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
 
-use jointlin_harness::scene::Scene;
+use jointlin_harness::input::{self, scene::Scene, Input};
 use jointlin_harness::util::progress::progress_bar;
 
 #[derive(Parser)]
@@ -129,12 +129,16 @@ pub fn dispatch(command: Command) -> ExitCode {
     }
 }
 
-/// Reads a scene; a bad one is printed (file:line:column and key) and becomes exit code 2.
+/// Reads an input through the one input path ([`input::load`]) as a scene; a bad one is
+/// printed (a scene's error names file:line:column and key) and becomes exit code 2.
 fn load_scene(path: &Path) -> Result<Scene, ExitCode> {
-    Scene::load(path).map_err(|e| {
-        eprintln!("error: {e}");
-        ExitCode::from(2)
-    })
+    match input::load(path) {
+        Ok(Input::Scene(s)) => Ok(s),
+        Err(e) => {
+            eprintln!("error: {e}");
+            Err(ExitCode::from(2))
+        }
+    }
 }
 
 /// Runs `work` under a progress bar of `steps` steps (each message it reports is one

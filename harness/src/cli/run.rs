@@ -6,9 +6,9 @@ use std::process::ExitCode;
 
 use clap::ValueEnum;
 
+use jointlin_harness::input::scene::{validate, Mode, Scene};
 use jointlin_harness::report::{self, ReportOptions};
 use jointlin_harness::run::{run, Extras};
-use jointlin_harness::scene::{validate, Mode, Scene};
 use jointlin_harness::util::progress::progress_bar;
 
 use super::{load_scene, report_written};

@@ -17,9 +17,9 @@ pub mod report;
 
 use thiserror::Error;
 
+use crate::input::scene::Scene;
+pub use crate::input::scene::{LossStudySpec, ReferencePoint};
 use crate::model::{build, BuildError, Problem};
-use crate::scene::Scene;
-pub use crate::scene::{LossStudySpec, ReferencePoint};
 use crate::solve::static_step::{self, StaticError, StaticState};
 use crate::solve::sweep::{self, Options, PointFreq, SweepError, C64};
 

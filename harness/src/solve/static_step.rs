@@ -408,8 +408,8 @@ pub fn solve(p: &Problem, nonlinear: bool) -> Result<StaticState, StaticError> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::input::scene::Scene;
     use crate::model::build;
-    use crate::scene::Scene;
 
     #[test]
     fn block_preload_gives_the_normal_force_as_pressure() {
@@ -440,7 +440,7 @@ mod tests {
     fn pressed_plates_carry_the_pressure_and_hertz_converges() {
         // Two plates pressed together by 1 N/mm² top and bottom: the interface carries
         // 1 N/mm² on average (total 100 N over 20×5 mm²).
-        let base = crate::scene::tests::GOOD.to_string()
+        let base = crate::input::scene::tests::GOOD.to_string()
             + "\n[[preload]]\nkind = \"pressure\"\nbody = \"upper\"\nface = \"z_max\"\npressure = 1.0\n\
                [[preload]]\nkind = \"pressure\"\nbody = \"lower\"\nface = \"z_min\"\npressure = 1.0\n";
         for text in [

@@ -14,7 +14,7 @@
 
 use serde::Serialize;
 
-pub use crate::scene::{Integrator, Start, TimeDomainSpec};
+pub use crate::input::scene::{Integrator, Start, TimeDomainSpec};
 
 /// Largest model (free DOFs) for which `auto` picks RK4.
 pub const AUTO_RK4_MAX_DOFS: usize = 12;
