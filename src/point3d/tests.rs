@@ -431,3 +431,45 @@ fn hard_inputs_give_named_errors() {
     let open = describe(&c, -1.0, [1.0, 1.0], 1.0).unwrap();
     assert_eq!((open.k_star, open.regime), ([0.0; 2], Regime::Open));
 }
+
+#[test]
+fn describing_function_is_fast_and_finite_for_a_vanishing_normal_load_and_continuous_at_the_rigid_limit(
+) {
+    use super::describing::RIGID_RATIO;
+    // Just below and above the ratio where a cell is taken as rigid–plastic: the time
+    // integration and the rigid–plastic sums agree to the O(x/R) of the model switch.
+    // The switch is at the path's smallest radius of curvature min²/max = RIGID_RATIO.
+    for (a, b) in [(1.0, 0.5), (1.0, 1.0), (0.5, 1.0)] {
+        let scale = RIGID_RATIO * f64::max(a, b) / f64::min(a, b).powi(2);
+        let below = cell_on_ellipse(0.999 * scale * a, 0.999 * scale * b).0;
+        let above = unit_cell(1.001 * scale * a, 1.001 * scale * b);
+        for (x, y) in [
+            (below.c1, above.c1),
+            (below.s1, above.s1),
+            (below.c2, above.c2),
+            (below.s2, above.s2),
+        ] {
+            assert!((x - y).abs() < 3e-4, "{a} {b}: {x} vs {y}");
+        }
+        // The energy grows with the path: compare per unit of the scale factor.
+        let (eb, ea) = (below.energy / 0.999, above.energy / 1.001);
+        assert!((eb - ea).abs() < 3e-4 * ea, "{a} {b}: {eb} vs {ea}");
+    }
+    let c = contact(Tangential3d::MindlinMasing { cells: 32 });
+    for n in [1e-3, 1e-300] {
+        let d = describe(&c, n, [1e-3, 4e-4], 1.0).unwrap();
+        assert!(d
+            .k_star
+            .iter()
+            .chain(&d.d_star)
+            .all(|v| v.is_finite() && *v >= -1e-12 * K_T));
+        assert!(d.energy_per_cycle <= 2.0 * PI * 1e-3 * MU * n * 1.0001);
+    }
+    // A straight path along direction 2 is the line's loop.
+    let j = contact(Tangential3d::Jenkins);
+    let along1 = describe(&j, 2.0, [3e-3, 0.0], 1.0).unwrap();
+    let along2 = describe(&j, 2.0, [0.0, 3e-3], 1.0).unwrap();
+    assert!((along1.k_star[0] - along2.k_star[1]).abs() < 1e-12 * K_T);
+    assert!((along1.d_star[0] - along2.d_star[1]).abs() < 1e-12 * K_T);
+    assert_eq!(along1.energy_per_cycle, along2.energy_per_cycle);
+}
