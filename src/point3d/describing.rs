@@ -12,7 +12,7 @@
 //! the displacement by β, cos β = x/R, so k* = k x²/R², ωd* = k (x/R)√(1 − x²/R²) and the
 //! energy per cycle is 2π f √(R² − x²) (the slider runs on a circle of radius √(R² − x²)).
 //! A straight path (A₂ = 0) is the 1D Jenkins loop of model.md §10. Any other ellipse is
-//! integrated in time ([`super::ellipse`]). The point's coefficients are the sum over its
+//! integrated in time (`ellipse.rs`). The point's coefficients are the sum over its
 //! cells.
 
 use std::f64::consts::PI;
