@@ -247,26 +247,34 @@ fn stick_conserves_energy() {
 #[test]
 fn mindlin_cells_on_a_straight_path_approach_mindlin_masing_as_cells_are_added() {
     // Energy per cycle of the cells on a straight path vs the 1D Masing–Mindlin loop,
-    // 4H(A) (model.md §4): at these nine amplitudes 32 cells stay within 2 % (between
-    // them the error reaches 4.4 %, docs/contact3d.md §2), and 64 cells beat 16.
+    // 4H(A) (model.md §4), worst over A/δ* = 10^(k/20) ∈ [0.01, 3.2] (the table of
+    // docs/contact3d.md §2; `--nocapture` prints it): 19 %, 4.4 %, 1.2 %, 0.27 % for 16, 32,
+    // 64, 128 cells, falling like n⁻².
     let n = 2.0;
     let b = Backbone::new(TangentialLaw::Mindlin, MU * n, K_T).unwrap();
     let delta = b.slip_limit();
-    let err = |cells: usize, ratio: f64| -> f64 {
+    let counts = [16, 32, 64, 128];
+    let mut worst = [0.0f64; 4];
+    for (i, cells) in counts.into_iter().enumerate() {
         let c = contact(Tangential3d::MindlinMasing { cells });
-        let a = ratio * delta;
-        let d = describe(&c, n, [a, 0.0], 1.0).unwrap();
-        let exact = 4.0 * b.iwan_dissipation(a);
-        (d.energy_per_cycle - exact).abs() / exact
-    };
-    let mut worst = [0.0f64; 3];
-    for ratio in [0.01, 0.03, 0.1, 0.3, 0.6, 0.9, 1.0, 1.5, 3.0] {
-        for (i, cells) in [16, 32, 64].into_iter().enumerate() {
-            worst[i] = worst[i].max(err(cells, ratio));
+        for k in -40..=10 {
+            let a = 10f64.powf(k as f64 / 20.0) * delta;
+            let d = describe(&c, n, [a, 0.0], 1.0).unwrap();
+            let exact = 4.0 * b.iwan_dissipation(a);
+            worst[i] = worst[i].max((d.energy_per_cycle - exact).abs() / exact);
         }
+        println!(
+            "{cells} cells: worst relative energy error {:.2e}",
+            worst[i]
+        );
     }
-    assert!(worst[1] < 2e-2, "{worst:?}");
-    assert!(worst[2] < 0.5 * worst[0], "{worst:?}");
+    for (w, bound) in worst.iter().zip([0.2, 0.05, 0.013, 0.003]) {
+        assert!(*w < bound, "{worst:?}");
+    }
+    assert!(
+        worst[3] < 0.3 * worst[2] && worst[2] < 0.3 * worst[1],
+        "{worst:?}"
+    );
 }
 
 #[test]
