@@ -60,9 +60,9 @@ module jointlin
   integer(c_int32_t), parameter :: JOINTLIN_POINT_STATE_LEN = 23
   integer(c_int32_t), parameter :: JOINTLIN_NORMAL_LINEAR = 0
   integer(c_int32_t), parameter :: JOINTLIN_NORMAL_HERTZ = 1
-  integer(c_int32_t), parameter :: JOINTLIN_POINT3D_MAX_CELLS = 64
+  integer(c_int32_t), parameter :: JOINTLIN_POINT3D_MAX_CELLS = 128
   integer(c_int32_t), parameter :: JOINTLIN_POINT3D_DEFAULT_CELLS = 32
-  integer(c_int32_t), parameter :: JOINTLIN_POINT3D_STATE_LEN = 133
+  integer(c_int32_t), parameter :: JOINTLIN_POINT3D_STATE_LEN = 261
   integer(c_int32_t), parameter :: JOINTLIN_UINTER_MIN_NPROPS = 7
   integer(c_int32_t), parameter :: JOINTLIN_UINTER_MAX_NPROPS = 12
   integer(c_int32_t), parameter :: JOINTLIN_UINTER_MIN_NSTATV = 57

@@ -179,7 +179,7 @@
 /**
  * Largest number of Jenkins cells of a Mindlin–Masing point.
  */
-#define JOINTLIN_POINT3D_MAX_CELLS 64
+#define JOINTLIN_POINT3D_MAX_CELLS 128
 
 /**
  * Cells used by a Mindlin–Masing point when `cells` is 0.
@@ -191,7 +191,7 @@
  * the tangential displacement of the last step, 3 its overclosure, 4 the energy dissipated
  * since the virgin state, then two slider coordinates per cell.
  */
-#define JOINTLIN_POINT3D_STATE_LEN 133
+#define JOINTLIN_POINT3D_STATE_LEN 261
 
 /**
  * Smallest NPROPS accepted by jointlin_uinter. The UINTER property layout:

@@ -14,13 +14,13 @@ pub const JOINTLIN_NORMAL_LINEAR: i32 = 0;
 /// Normal law code: Hertz N = (4/3) E* sqrt(r*) h^(3/2) for h > 0 (2.34).
 pub const JOINTLIN_NORMAL_HERTZ: i32 = 1;
 /// Largest number of Jenkins cells of a Mindlin–Masing point.
-pub const JOINTLIN_POINT3D_MAX_CELLS: i32 = 64;
+pub const JOINTLIN_POINT3D_MAX_CELLS: i32 = 128;
 /// Cells used by a Mindlin–Masing point when `cells` is 0.
 pub const JOINTLIN_POINT3D_DEFAULT_CELLS: i32 = 32;
 /// Number of doubles in the state of a three-direction point: slot 0 the cell count, 1–2
 /// the tangential displacement of the last step, 3 its overclosure, 4 the energy dissipated
 /// since the virgin state, then two slider coordinates per cell.
-pub const JOINTLIN_POINT3D_STATE_LEN: usize = 133;
+pub const JOINTLIN_POINT3D_STATE_LEN: usize = 261;
 const _: () = assert!(JOINTLIN_POINT3D_STATE_LEN == STATE3D_LEN);
 const _: () = assert!(JOINTLIN_POINT3D_MAX_CELLS as usize == MAX_CELLS);
 const _: () = assert!(JOINTLIN_POINT3D_DEFAULT_CELLS as usize == DEFAULT_CELLS);
@@ -299,7 +299,7 @@ mod tests {
             jointlin_contact3d { mu: -0.1, ..c },
             jointlin_contact3d {
                 law: JOINTLIN_LAW_MINDLIN,
-                cells: 65,
+                cells: 129,
                 ..c
             },
         ] {

@@ -15,7 +15,7 @@
 //! and in the plane each has its own circular limit (coupled slip).
 
 /// Largest number of cells a point may use.
-pub const MAX_CELLS: usize = 64;
+pub const MAX_CELLS: usize = 128;
 /// Cells used when the caller asks for the default.
 pub const DEFAULT_CELLS: usize = 32;
 /// v = 1 − w at the first boundary above 0: sets the smallest slipping cell, x ≈ 2v δ*.

@@ -101,7 +101,7 @@ impl Contact3d {
         }
         if let Tangential3d::MindlinMasing { cells } = self.tangential {
             if !(1..=MAX_CELLS).contains(&cells) {
-                return Err(Error::OutOfRange("cells must be in 1..=64"));
+                return Err(Error::OutOfRange("cells must be in 1..=128"));
             }
         }
         match self.normal {
@@ -278,5 +278,7 @@ impl State3d {
     }
 }
 
+#[cfg(test)]
+mod prop_tests;
 #[cfg(test)]
 mod tests;
