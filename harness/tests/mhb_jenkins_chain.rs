@@ -9,7 +9,7 @@ use jointlin_harness::mhb::continuation::{trace, Options};
 use jointlin_harness::mhb::{
     default_samples, first_order, Element, Hb, Law, NewtonOptions, System,
 };
-use jointlin_harness::scene::{LawName, RuleName};
+use jointlin_harness::names::{LawName, RuleName};
 use nalgebra::{Complex, DMatrix};
 
 fn chain(force: f64) -> System {

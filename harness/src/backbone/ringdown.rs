@@ -1,7 +1,7 @@
 //! Free decay (ring-down) of a lumped system, integrated in time by the harness's RK4
 //! ([`crate::time::rk4::rk4_step`], thesis (D.2)) with every contact force from the
 //! library's stateful point (`jointlin_point_step`, trial forces from the committed
-//! state, committed once per step, as [`crate::mhb::reference`] does), and its cycle by
+//! state, committed once per step, as [`crate::time::mhb_reference`] does), and its cycle by
 //! cycle frequency and damping ratio: the reference a backbone is checked against.
 
 use crate::capi::{self, POINT_STATE_LEN};

@@ -7,12 +7,39 @@ use super::modes::complex_modes;
 use super::ringdown::{cycles, free_decay};
 use super::{epmc, first_order, log_space, BackbonePoint, C64};
 use crate::capi::Tangential;
-use crate::mhb::bench::jenkins_chain;
 use crate::mhb::{first_order as fo_forced, Element, Law, System};
-use crate::scene::{LawName, RuleName};
+use crate::names::{LawName, RuleName};
 
-/// The validation chain of `mhb::bench` without load: ground –1– m₁ –1– m₂ –1– m₃,
-/// D = 0.01 K, Jenkins elements (μF_N = 0.1, k_T0 = 2) m₁–ground and m₃–m₂.
+/// The validation chain of `jointlin mhb` (bench::mhb_chain): ground –1– m₁ –1– m₂ –1– m₃,
+/// D = 0.01 K, Jenkins elements (μF_N = 0.1, k_T0 = 2) m₁–ground and m₃–m₂, force
+/// f cos ωt on m₃.
+fn jenkins_chain(f: f64) -> System {
+    let k = DMatrix::from_row_slice(3, 3, &[2.0, -1.0, 0.0, -1.0, 2.0, -1.0, 0.0, -1.0, 1.0]);
+    let law = Law::Point(Tangential {
+        law: LawName::Jenkins,
+        rule: RuleName::Masing,
+        mu: 1.0,
+        normal: 0.1,
+        k_t0: 2.0,
+    });
+    let z = C64::new(0.0, 0.0);
+    System {
+        m: DMatrix::identity(3, 3),
+        d: &k * 0.01,
+        k,
+        f0: vec![0.0; 3],
+        f1: vec![z, z, C64::new(f, 0.0)],
+        elements: vec![
+            Element { i: 0, j: None, law },
+            Element {
+                i: 2,
+                j: Some(1),
+                law,
+            },
+        ],
+    }
+}
+
 fn chain() -> System {
     jenkins_chain(0.0)
 }

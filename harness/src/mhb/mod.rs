@@ -16,15 +16,15 @@
 //! through folds. H = 1 is the thesis's first-order harmonic balance (3.5–3.8) applied to
 //! the actual force rather than to the Ersatzfunktion (4.3); [`first_order`] is the
 //! library's linearization (`jointlin_linearize`) iterated to consistency, for comparison.
+//!
+//! Built on this room: the FE sweep's harmonic balance (`solve::sweep::harmonic_fe`), the
+//! RK4 reference of these systems (`time::mhb_reference`) and the cost tables of
+//! `jointlin mhb` (`bench::mhb_chain`, `bench::mhb_fe`).
 
 pub mod aft;
-pub mod bench;
 pub mod consistency;
 pub mod continuation;
-pub mod fe;
-pub mod fe_bench;
 pub mod first_order;
-pub mod reference;
 
 #[cfg(test)]
 mod tests;
