@@ -23,6 +23,7 @@
 // would hide the maths.
 #![allow(clippy::needless_range_loop)]
 
+pub mod backbone;
 pub mod bench;
 pub mod capi;
 pub mod fe;
