@@ -6,6 +6,7 @@
 pub mod assembly;
 pub mod contact_pairs;
 pub mod csc;
+pub mod elements;
 pub mod grading;
 pub mod hex8;
 pub mod mesh;
