@@ -26,6 +26,7 @@
 pub mod bench;
 pub mod capi;
 pub mod fe;
+pub mod input;
 pub mod loss;
 pub mod mhb;
 pub mod model;

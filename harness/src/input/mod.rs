@@ -1,0 +1,3 @@
+//! Model input formats.
+
+pub mod deck;
