@@ -11,5 +11,6 @@ pub mod grading;
 pub mod hex8;
 pub mod mesh;
 pub mod pair_blocks;
+pub mod pairing;
 pub mod surface;
 pub mod ties;
