@@ -7,10 +7,12 @@ pub mod assembly;
 pub mod contact_pairs;
 pub mod csc;
 pub mod dofs;
+pub mod elements;
 pub mod grading;
 pub mod hex8;
 pub mod mesh;
 pub mod pair_blocks;
+pub mod pairing;
 pub mod surface;
 pub mod ties;
 

@@ -5,8 +5,11 @@
 //! Readers, one directory each:
 //! - [`scene`]: the project's TOML scenes (`*.toml`), validated with file:line:key errors.
 //! - Abaqus input decks (`*.inp`, or a file whose first keyword line starts with `*`):
-//!   recognized, not read yet ([`InputError::NotYetSupported`]).
+//!   recognized; [`deck`] reads them into a plain `Deck` (nodes, elements, sets, surfaces,
+//!   materials, contact pairs, steps), not yet built into a `Problem`
+//!   ([`InputError::NotYetSupported`]).
 
+pub mod deck;
 pub mod scene;
 
 use std::path::Path;

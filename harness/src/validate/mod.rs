@@ -19,6 +19,7 @@
 
 pub mod beams;
 pub mod block;
+pub mod ccx;
 pub mod duffing;
 pub mod softening;
 
