@@ -4,6 +4,9 @@
 //!
 //! Units: the block of Appendix C (N, mm, s): μ = 0.3, k_T0 = 1282.7 N/mm unless stated.
 
+mod ffi_common;
+
+use ffi_common::*;
 use jointlin::ffi::error::*;
 use jointlin::ffi::linearize::*;
 use jointlin::ffi::screw::jointlin_screw_preload;
@@ -280,4 +283,44 @@ fn screw_preload_is_finite_or_a_named_overflow() {
         preload(0.0, 1.25, 7.188, 0.12, 0.12, 11.6),
         (JOINTLIN_OK, 0.0)
     );
+}
+
+/// The calling thread's last error detail.
+fn last_error() -> String {
+    let mut buf = vec![0u8; 1024];
+    let n = unsafe { jointlin_last_error(buf.as_mut_ptr().cast(), buf.len()) };
+    String::from_utf8_lossy(&buf[..n.min(buf.len())])
+        .trim_end_matches('\0')
+        .to_string()
+}
+
+#[test]
+fn uinter_freqr_1e308_is_an_overflow_and_messages_print_short_numbers() {
+    // FREQR = 1e308 is finite; 2π FREQR is not: JOINTLIN_ERR_OVERFLOW naming the angular
+    // frequency (was JOINTLIN_ERR_NON_FINITE, "non-finite input: omega").
+    let store = new_store(1e-4, 1e-3, 0);
+    assert_eq!(uexternaldb(store, 0, 0, 1, 0), 0);
+    assert_eq!(uexternaldb(store, 1, 0, 1, 1), 0);
+    let mut u = Uinter::new(block_props(), 3);
+    u.stress[0] = 2.0;
+    u.linper = 1;
+    u.kinc = 1;
+    u.freqr = 1e308;
+    assert_eq!(u.call(store), JOINTLIN_ERR_OVERFLOW);
+    let msg = last_error();
+    assert!(msg.contains("2 pi FREQR"), "{msg}");
+    u.freqr = 1e300;
+    assert_eq!(u.call(store), JOINTLIN_OK);
+    // A number in a message: 1e300, not its 301 digits (was "PROPS(3) = -1000…000").
+    let mut bad = Uinter::new(block_props(), 3);
+    bad.props[2] = -1e300;
+    assert_eq!(bad.call(store), JOINTLIN_ERR_PROPS);
+    let msg = last_error();
+    assert!(msg.contains("-1e300") && msg.len() < 200, "{msg}");
+    bad.props[2] = 0.3;
+    bad.area = -1e300;
+    assert_ne!(bad.call(store), JOINTLIN_OK);
+    let msg = last_error();
+    assert!(msg.contains("-1e300") && msg.len() < 200, "{msg}");
+    unsafe { jointlin::ffi::store::jointlin_store_free(store) };
 }

@@ -483,18 +483,11 @@ impl Store {
         match lop {
             0 => self.begin_pass(),
             1 if in_sweep => self.begin_increment(kinc),
-            2 if in_sweep => {
-                self.end_increment(kinc)?;
-                if lrestart >= 1 {
-                    self.save()?;
-                }
-                Ok(())
-            }
+            // All or nothing: when the restart data cannot be written, the store stays
+            // where it was, so the host can retry the same LOP.
+            2 if in_sweep => self.advance(|st| self.end_increment_in(st, kinc), lrestart >= 1),
             1 | 2 => Ok(()),
-            3 => {
-                self.end_pass()?;
-                self.save()
-            }
+            3 => self.advance(|st| self.end_pass_in(st), true),
             4 => self.restore(),
             5 | 6 => {
                 self.state()?.step = if lop == 5 { kstep } else { 0 };
@@ -584,8 +577,10 @@ impl Store {
     /// LOP 2: compares estimate and computed amplitude of every point queried in the open
     /// increment; a point queried but not reported is not converged.
     pub fn end_increment(&self, kinc: i32) -> Result<(), StoreError> {
-        let mut guard = self.state()?;
-        let state = &mut *guard;
+        self.advance(|st| self.end_increment_in(st, kinc), false)
+    }
+
+    fn end_increment_in(&self, state: &mut State, kinc: i32) -> Result<(), StoreError> {
         let Phase::Running(run) = &mut state.phase else {
             return Err(seq("LOP 2 without a running pass"));
         };
@@ -639,8 +634,10 @@ impl Store {
 
     /// LOP 3: closes the pass and decides the next action.
     pub fn end_pass(&self) -> Result<(), StoreError> {
-        let mut guard = self.state()?;
-        let state = &mut *guard;
+        self.advance(|st| self.end_pass_in(st), false)
+    }
+
+    fn end_pass_in(&self, state: &mut State) -> Result<(), StoreError> {
         let Phase::Running(run) = &state.phase else {
             return Err(seq("LOP 3 without a running pass"));
         };
@@ -746,13 +743,38 @@ impl Store {
         let Some(path) = &self.config.restart_path else {
             return Ok(());
         };
-        let text = self.serialize()?;
-        let mut tmp = path.clone().into_os_string();
-        tmp.push(format!(".tmp{}", std::process::id()));
-        let tmp = PathBuf::from(tmp);
-        std::fs::write(&tmp, text)
-            .and_then(|_| std::fs::rename(&tmp, path))
-            .map_err(|e| StoreError::Io(format!("writing {}: {e}", path.display())))
+        write_atomically(path, &self.serialize()?)
+    }
+
+    /// Applies `step` to the state; with `save` (and a restart path) only once the new
+    /// state is in the restart file: on a write error the state stays as it was. A step
+    /// that fails keeps what it changed (as without `save`) and writes nothing. Holds the
+    /// registry (read) and the state during the write: LOP 2 and 3 run while no increment
+    /// is open, so no per-point call waits on it.
+    fn advance(
+        &self,
+        step: impl FnOnce(&mut State) -> Result<(), StoreError>,
+        save: bool,
+    ) -> Result<(), StoreError> {
+        let path = match (&self.config.restart_path, save) {
+            (Some(path), true) => path,
+            _ => return step(&mut *self.state()?),
+        };
+        let registry = self.registry.read().map_err(|_| StoreError::Poisoned)?;
+        let mut guard = self.state()?;
+        let mut next = guard.clone();
+        if let Err(e) = step(&mut next) {
+            *guard = next;
+            return Err(e);
+        }
+        let model = self.model()?;
+        let fp = restart::Fingerprint {
+            model: &model,
+            config: &self.config,
+        };
+        write_atomically(path, &restart::write(&registry.keys, &next, &fp))?;
+        *guard = next;
+        Ok(())
     }
 
     /// Replaces registry and iteration state by the restart file's content (LOP 4).
@@ -788,6 +810,20 @@ impl Store {
         };
         Ok(restart::write(&keys, &state, &fp))
     }
+}
+
+/// Writes `text` to `path` through a temporary file in the same directory and a rename,
+/// so that the path holds the old or the new content, never a part.
+fn write_atomically(path: &std::path::Path, text: &str) -> Result<(), StoreError> {
+    let mut tmp = path.to_path_buf().into_os_string();
+    tmp.push(format!(".tmp{}", std::process::id()));
+    let tmp = PathBuf::from(tmp);
+    std::fs::write(&tmp, text)
+        .and_then(|_| std::fs::rename(&tmp, path))
+        .map_err(|e| {
+            let _ = std::fs::remove_file(&tmp);
+            StoreError::Io(format!("writing {}: {e}", path.display()))
+        })
 }
 
 mod config;
