@@ -10,7 +10,7 @@
 //!
 //! This store holds, per contact point × increment and for both tangential directions, the
 //! estimate handed out, the amplitude the host reported back, the (estimate, computed)
-//! history of earlier passes (fed to the shared rule [`next_estimate`]), the converged flag
+//! history of earlier passes (fed to the shared rule [`crate::iterate::next_estimate`]), the converged flag
 //! and the pass count. It follows Abaqus's UEXTERNALDB calls ([`Store::external_db`]: LOP
 //! 0 start of analysis, 1 start of increment, 2 end of increment, 3 end of analysis, 4
 //! start of a restart analysis, 5 start of step, 6 end of step) and says what to run next
@@ -23,8 +23,6 @@
 use std::collections::{BTreeMap, BTreeSet, HashMap};
 use std::path::PathBuf;
 use std::sync::{Mutex, MutexGuard, RwLock};
-
-use crate::iterate::next_estimate;
 
 /// Errors of the iteration store. Each maps to one C status code in `ffi/error.rs`.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
@@ -409,23 +407,14 @@ impl Store {
             .map(|(_, r)| r.reported);
         let rec = records.entry(sweep).or_default();
         if rec.estimate_pass != pass {
-            let floor = self.config.floor();
             let fallback = previous.unwrap_or([self.config.initial_amplitude; 2]);
             for (d, &back) in fallback.iter().enumerate() {
                 rec.estimate[d] = if rec.history[d].is_empty() {
                     back
                 } else {
                     let hist = &rec.history[d];
-                    let h: Vec<(f64, f64)> = hist[hist.len().saturating_sub(HISTORY_WINDOW)..]
-                        .iter()
-                        .map(|&(a, b)| (a.max(floor), b.max(floor)))
-                        .collect();
-                    let next = next_estimate(self.config.scheme, &h);
-                    if next.is_finite() {
-                        next
-                    } else {
-                        h[h.len() - 1].1
-                    }
+                    self.config
+                        .next_from(&hist[hist.len().saturating_sub(HISTORY_WINDOW)..])
                 };
             }
             rec.estimate_pass = pass;
