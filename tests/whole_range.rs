@@ -205,6 +205,33 @@ fn huge_amplitude_ratios_keep_the_digits_of_k_star() {
 }
 
 #[test]
+fn omega_near_the_largest_double_scales_d_star() {
+    // Fuzz finding: π ω overflowed for ω ≥ 5.8e307 and d* came from a wrong exponent
+    // (π ω read as 2^1024). d* ω is the same at every ω (3.14).
+    let c = contact(JOINTLIN_LAW_MINDLIN, JOINTLIN_RULE_MASING, MU, 2.0, KT0);
+    let a = 3e-4;
+    let mut reference = jointlin_linearization::default();
+    assert_eq!(
+        unsafe { jointlin_linearize(&c, a, 1.0, std::ptr::null(), &mut reference) },
+        JOINTLIN_OK
+    );
+    for omega in [1e300, 1e307, 1e308, f64::MAX] {
+        let mut l = jointlin_linearization::default();
+        let s = unsafe { jointlin_linearize(&c, a, omega, std::ptr::null(), &mut l) };
+        assert_eq!(s, JOINTLIN_OK);
+        assert!(
+            close(l.d_star * omega, reference.d_star, 1e-14),
+            "ω = {omega:e}: {l:?}"
+        );
+        assert_eq!(l.k_star, reference.k_star);
+    }
+    // A/δ* near the largest double: the loop area ≈ 4 A/δ* (normalized) overflows: named.
+    let stiff = contact(JOINTLIN_LAW_MINDLIN, JOINTLIN_RULE_THESIS, MU, 2.0, 1e300);
+    let (s, _) = lin_with(&stiff, 1e4, None);
+    assert!(s == JOINTLIN_OK || s == JOINTLIN_ERR_OVERFLOW, "{s}");
+}
+
+#[test]
 fn plain_gauss_needs_two_points() {
     // One Gauss point samples only θ = 0, where sin θ = 0: k* = 0 for every loop, and the
     // call returned JOINTLIN_ERR_OVERFLOW (η = A_hys/(πk*A²)) although documented valid.
