@@ -962,7 +962,9 @@ int32_t jointlin_store_register_point(const struct jointlin_store *store,
  * running pass to `amp[0]`, `amp[1]` (tangential directions 1 and 2). The estimate is
  * fixed at the first query in a pass; pass 1: the initial amplitude at the first
  * increment, else the amplitude computed at the nearest earlier increment; later passes:
- * the configured update rule on the point's history. Both directions take part in the
+ * the configured update rule on the point's history, in the point's own scale (no floor
+ * tied to initial_amplitude): a point whose latest computed amplitude was exactly 0 gets
+ * 0, so a zero load gives zero and converges. Both directions take part in the
  * convergence test (jointlin_uinter queries only NDIR - 1 of them).
  *
  * Errors: JOINTLIN_ERR_NULL, JOINTLIN_ERR_UNKNOWN_POINT, JOINTLIN_ERR_SEQUENCE (no pass
@@ -1270,7 +1272,8 @@ int32_t jointlin_uexternaldb(const struct jointlin_store *store,
  * (NDIR not in 1..3, MCRD not in 1..3, AREA <= 0, LINPER not 0/1, FREQR <= 0 at LINPER = 1,
  * CINAME longer than 256, a corrupt hysteresis state), JOINTLIN_ERR_SIZE (NSTATV < 57,
  * NPROPS < 7), JOINTLIN_ERR_PROPS (see the PROPS table), JOINTLIN_ERR_OVERFLOW (a result
- * would not be finite), and the store's errors at LINPER = 1 (JOINTLIN_ERR_SEQUENCE outside
+ * would not be finite, e.g. 2 pi FREQR for FREQR = 1e308; messages print numbers in
+ * shortest round-trip form, 1e300 rather than its 301 digits), and the store's errors at LINPER = 1 (JOINTLIN_ERR_SEQUENCE outside
  * an open increment, ...).
  *
  * # Safety

@@ -11,12 +11,13 @@
 #                                          # minimizes the corpus (cargo fuzz cmin); nightly
 #   bash scripts/robustness.sh tsan        # the ThreadSanitizer attempts (see the doc)
 #
-# Fuzzing uses `cargo +nightly fuzz` (libFuzzer, ASan) when a nightly toolchain and
-# cargo-fuzz are installed; otherwise (stable only, the usual CI machine) the same targets
-# are built on stable as plain binaries (fuzz/Cargo.toml feature `replay`) that replay the
-# committed corpus and then mutate it at random for the time budget: a random search, not
+# Fuzzing uses libFuzzer with ASan wherever a nightly toolchain exists: through
+# `cargo +nightly fuzz` when cargo-fuzz is installed, else built here with the flags cargo
+# fuzz passes (mode "nightly"). With stable only (the usual CI machine) the same targets
+# are built as plain binaries (fuzz/Cargo.toml feature `replay`) that replay the committed
+# corpus and then mutate it at random for the time budget: a random search, not
 # coverage-guided fuzzing. The line "fuzz mode:" says which one ran; ROBUST_FUZZ=replay
-# forces the fallback.
+# or ROBUST_FUZZ=nightly forces a mode.
 #
 # Build products go to $CARGO_TARGET_DIR (default target/) and $ROBUST_DIR (default
 # $CARGO_TARGET_DIR/robustness). Needs gcc, gfortran, make; valgrind for `valgrind`.
@@ -65,8 +66,9 @@ run_host() { # name dir program [config]
 }
 
 cmd_tests() {
-    log "tests: hard_cases, threads, restart (release)"
-    CARGO_TARGET_DIR=$TARGET cargo test --release -p jointlin --test hard_cases --test threads --test restart
+    log "tests: hard_cases, whole_range, threads, restart, restart_files, store_scale (release)"
+    CARGO_TARGET_DIR=$TARGET cargo test --release -p jointlin --test hard_cases \
+        --test whole_range --test threads --test restart --test restart_files --test store_scale
 }
 
 # The hosts built with gcc/gfortran -fsanitize=address,undefined against a
@@ -126,47 +128,101 @@ have_cargo_fuzz() {
     cargo +nightly --version >/dev/null 2>&1 && cargo +nightly fuzz --version >/dev/null 2>&1
 }
 
+# How the targets get libFuzzer: "cargo-fuzz" (nightly + cargo fuzz), "nightly" (nightly
+# without cargo-fuzz: the same instrumented build, made here with the flags cargo fuzz
+# passes), or "replay" (stable only). ROBUST_FUZZ=replay|nightly forces a mode.
+fuzz_mode() {
+    case "${ROBUST_FUZZ:-auto}" in
+    replay | nightly) echo "$ROBUST_FUZZ" ;;
+    *)
+        if have_cargo_fuzz; then
+            echo cargo-fuzz
+        elif cargo +nightly --version >/dev/null 2>&1; then
+            echo nightly
+        else
+            echo replay
+        fi
+        ;;
+    esac
+}
+
+FUZZ_TRIPLE=$(rustc -vV | sed -n 's/^host: //p')
+FUZZ_NIGHTLY_DIR=$TARGET/fuzz-nightly
+
+# What `cargo fuzz build` does: sanitizer coverage for libFuzzer, --cfg fuzzing, ASan,
+# debug assertions and overflow checks; libfuzzer-sys compiles libFuzzer (needs a C++
+# compiler). Binaries in $FUZZ_NIGHTLY_DIR/$FUZZ_TRIPLE/release.
+build_libfuzzer_nightly() {
+    RUSTFLAGS="--cfg fuzzing -Cpasses=sancov-module -Cllvm-args=-sanitizer-coverage-level=4 \
+-Cllvm-args=-sanitizer-coverage-inline-8bit-counters -Cllvm-args=-sanitizer-coverage-pc-table \
+-Cllvm-args=-sanitizer-coverage-trace-compares -Cdebug-assertions -Coverflow-checks \
+-Zsanitizer=address" \
+        cargo +nightly build -q --release --manifest-path fuzz/Cargo.toml \
+        --target "$FUZZ_TRIPLE" --target-dir "$FUZZ_NIGHTLY_DIR" --bins
+}
+
+# Runs libFuzzer target $1 on corpus directory $2 for $3 s (log in $OUT/fuzz-$1.log).
+run_libfuzzer() { # target corpus secs
+    local t=$1 c=$2 secs=$3 ok=0
+    mkdir -p "fuzz/artifacts/$t"
+    local opts=(-max_total_time="$secs" -timeout=10 -rss_limit_mb=2048 -print_final_stats=1)
+    if [ "$MODE" = cargo-fuzz ]; then
+        cargo +nightly fuzz run --target-dir "$TARGET/fuzz" "$t" "$c" -- "${opts[@]}" \
+            >"$OUT/fuzz-$t.log" 2>&1 || ok=1
+    else
+        "$FUZZ_NIGHTLY_DIR/$FUZZ_TRIPLE/release/$t" "$c" "${opts[@]}" \
+            -artifact_prefix="fuzz/artifacts/$t/" >"$OUT/fuzz-$t.log" 2>&1 || ok=1
+    fi
+    if [ $ok != 0 ]; then
+        tail -40 "$OUT/fuzz-$t.log" >&2
+        echo "FAIL: fuzz target $t (artifact in fuzz/artifacts/$t)" >&2
+    fi
+    return $ok
+}
+
 cmd_fuzz_ci() {
     local secs=${1:-15}
-    # ROBUST_FUZZ=replay forces the stable fallback (to test it where nightly exists).
-    if [ "${ROBUST_FUZZ:-auto}" != replay ] && have_cargo_fuzz; then
-        log "fuzz mode: cargo fuzz (libFuzzer + ASan, nightly), $secs s per target"
-        for t in "${TARGETS[@]}"; do
-            # A scratch copy of the corpus: CI must not grow the committed one.
-            local c=$OUT/fuzz-corpus/$t
-            rm -rf "$c" && mkdir -p "$c" && cp fuzz/corpus/"$t"/* "$c"/
-            if ! cargo +nightly fuzz run --target-dir "$TARGET/fuzz" "$t" "$c" -- \
-                -max_total_time="$secs" -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 \
-                >"$OUT/fuzz-$t.log" 2>&1; then
-                tail -40 "$OUT/fuzz-$t.log" >&2
-                echo "FAIL: fuzz target $t (artifact in fuzz/artifacts/$t)" >&2
-                return 1
-            fi
-            echo "ok: $t $(grep -E '^Done' "$OUT/fuzz-$t.log")"
-        done
-    else
-        log "fuzz mode: stable replay + random mutation (no nightly cargo-fuzz), $secs s per target"
+    MODE=$(fuzz_mode)
+    if [ "$MODE" = replay ]; then
+        log "fuzz mode: stable replay + random mutation (no nightly), $secs s per target"
         CARGO_TARGET_DIR=$TARGET/fuzz-replay cargo build --release -q \
             --manifest-path fuzz/Cargo.toml --no-default-features --features replay
         for t in "${TARGETS[@]}"; do
             "$TARGET/fuzz-replay/release/$t" "fuzz/corpus/$t" --seconds "$secs" --seed "$RANDOM"
         done
+        return
     fi
+    log "fuzz mode: $MODE (libFuzzer + ASan, nightly), $secs s per target"
+    [ "$MODE" = cargo-fuzz ] || build_libfuzzer_nightly
+    for t in "${TARGETS[@]}"; do
+        # A scratch copy of the corpus: CI must not grow the committed one.
+        local c=$OUT/fuzz-corpus/$t
+        rm -rf "$c" && mkdir -p "$c" && cp fuzz/corpus/"$t"/* "$c"/
+        run_libfuzzer "$t" "$c" "$secs" || return 1
+        echo "ok: $t $(grep -E '^Done' "$OUT/fuzz-$t.log")"
+    done
 }
 
 cmd_fuzz_long() {
     local secs=${1:-240}
-    have_cargo_fuzz || { echo "fuzz-long needs cargo +nightly fuzz" >&2; exit 1; }
+    MODE=$(fuzz_mode)
+    [ "$MODE" != replay ] || { echo "fuzz-long needs a nightly toolchain" >&2; exit 1; }
+    [ "$MODE" = cargo-fuzz ] || build_libfuzzer_nightly
     for t in "${TARGETS[@]}"; do
-        log "fuzz $t for $secs s"
-        if ! cargo +nightly fuzz run --target-dir "$TARGET/fuzz" "$t" "fuzz/corpus/$t" -- \
-            -max_total_time="$secs" -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 \
-            >"$OUT/fuzz-$t.log" 2>&1; then
-            tail -40 "$OUT/fuzz-$t.log" >&2
-            exit 1
-        fi
+        log "fuzz $t for $secs s ($MODE)"
+        run_libfuzzer "$t" "fuzz/corpus/$t" "$secs" || exit 1
         grep -E '^(stat::number_of_executed_units|Done)' "$OUT/fuzz-$t.log"
-        cargo +nightly fuzz cmin --target-dir "$TARGET/fuzz" "$t" "fuzz/corpus/$t" 2>&1 | tail -1
+        if [ "$MODE" = cargo-fuzz ]; then
+            cargo +nightly fuzz cmin --target-dir "$TARGET/fuzz" "$t" "fuzz/corpus/$t" 2>&1 | tail -1
+        else
+            # cmin by hand: merge the corpus into an empty directory, keep the result.
+            local m=$OUT/fuzz-min/$t
+            rm -rf "$m" && mkdir -p "$m"
+            "$FUZZ_NIGHTLY_DIR/$FUZZ_TRIPLE/release/$t" -merge=1 -set_cover_merge=1 "$m" \
+                "fuzz/corpus/$t" >"$OUT/fuzz-min-$t.log" 2>&1
+            rm -rf "fuzz/corpus/$t" && cp -r "$m" "fuzz/corpus/$t"
+            echo "corpus $t: $(ls "fuzz/corpus/$t" | wc -l) files"
+        fi
     done
 }
 

@@ -18,7 +18,7 @@ pub struct Wide {
 const EXP_MASK: u64 = 0x7ff << 52;
 
 impl Wide {
-    /// `x` exactly; `x` must be finite.
+    /// `x` exactly; `x` must be finite (callers check: ±∞ would read as ±2^1024).
     pub fn new(x: f64) -> Self {
         debug_assert!(x.is_finite());
         let (m, e) = frexp(x);

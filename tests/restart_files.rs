@@ -271,3 +271,61 @@ fn counters_near_u32_max_are_rejected_not_wrapped() {
     unsafe { jointlin_store_free(store) };
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+#[test]
+fn lop_2_and_3_are_all_or_nothing_when_the_restart_file_cannot_be_written() {
+    // LOP 2/3 returned JOINTLIN_ERR_IO after the store had advanced (the increment closed,
+    // the pass decided), so the host's retry got JOINTLIN_ERR_SEQUENCE. Now a failed write
+    // leaves the store where it was and the same call succeeds once the disk is back.
+    let dir = fresh_dir("atomic");
+    let sub = dir.join("sub");
+    std::fs::create_dir_all(&sub).unwrap();
+    let path = sub.join("store.restart");
+    let store = store_at(&path, 1e-3, b"model A");
+    let good = real_file(store, &path);
+    assert_eq!(uexternaldb(store, 1, 0, 1, 3), 0);
+    let mut amp = [0.0; 2];
+    assert_eq!(
+        unsafe { jointlin_store_estimate(store, 1, 3, amp.as_mut_ptr()) },
+        0
+    );
+    assert_eq!(
+        unsafe { jointlin_store_report(store, 1, 3, [1e-4, 1e-4].as_ptr()) },
+        0
+    );
+    std::fs::remove_dir_all(&sub).unwrap();
+    for _ in 0..2 {
+        assert_eq!(uexternaldb(store, 2, 1, 1, 3), JOINTLIN_ERR_IO);
+    }
+    // Still open: the report can be repeated, and the estimate is the same.
+    let mut again = [0.0; 2];
+    assert_eq!(
+        unsafe { jointlin_store_estimate(store, 1, 3, again.as_mut_ptr()) },
+        0
+    );
+    assert_eq!(again, amp);
+    std::fs::create_dir_all(&sub).unwrap();
+    assert_eq!(uexternaldb(store, 2, 1, 1, 3), JOINTLIN_OK);
+    let mut st = jointlin_point_status::default();
+    assert_eq!(
+        unsafe { jointlin_store_point_status(store, 1, 3, &mut st) },
+        0
+    );
+    assert_eq!(st.passes, 1);
+    // LOP 3: the pass stays running until its decision is written.
+    std::fs::remove_dir_all(&sub).unwrap();
+    assert_eq!(uexternaldb(store, 3, 0, 1, 0), JOINTLIN_ERR_IO);
+    let (mut action, mut pass) = (0, 0);
+    let status = unsafe { jointlin_store_next_action(store, &mut action, &mut pass) };
+    assert_eq!(status, JOINTLIN_OK);
+    assert_eq!(
+        action, JOINTLIN_ACTION_RUNNING,
+        "still running after a failed LOP 3"
+    );
+    std::fs::create_dir_all(&sub).unwrap();
+    assert_eq!(uexternaldb(store, 3, 0, 1, 0), JOINTLIN_OK);
+    assert_eq!(next_action(store), (JOINTLIN_ACTION_RUN_PASS, 2));
+    assert_ne!(std::fs::read_to_string(&path).unwrap(), good);
+    unsafe { jointlin_store_free(store) };
+    std::fs::remove_dir_all(&dir).unwrap();
+}

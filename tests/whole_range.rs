@@ -4,6 +4,9 @@
 //!
 //! Units: the block of Appendix C (N, mm, s): μ = 0.3, k_T0 = 1282.7 N/mm unless stated.
 
+mod ffi_common;
+
+use ffi_common::*;
 use jointlin::ffi::error::*;
 use jointlin::ffi::linearize::*;
 use jointlin::ffi::screw::jointlin_screw_preload;
@@ -202,6 +205,33 @@ fn huge_amplitude_ratios_keep_the_digits_of_k_star() {
 }
 
 #[test]
+fn omega_near_the_largest_double_scales_d_star() {
+    // Fuzz finding: π ω overflowed for ω ≥ 5.8e307 and d* came from a wrong exponent
+    // (π ω read as 2^1024). d* ω is the same at every ω (3.14).
+    let c = contact(JOINTLIN_LAW_MINDLIN, JOINTLIN_RULE_MASING, MU, 2.0, KT0);
+    let a = 3e-4;
+    let mut reference = jointlin_linearization::default();
+    assert_eq!(
+        unsafe { jointlin_linearize(&c, a, 1.0, std::ptr::null(), &mut reference) },
+        JOINTLIN_OK
+    );
+    for omega in [1e300, 1e307, 1e308, f64::MAX] {
+        let mut l = jointlin_linearization::default();
+        let s = unsafe { jointlin_linearize(&c, a, omega, std::ptr::null(), &mut l) };
+        assert_eq!(s, JOINTLIN_OK);
+        assert!(
+            close(l.d_star * omega, reference.d_star, 1e-14),
+            "ω = {omega:e}: {l:?}"
+        );
+        assert_eq!(l.k_star, reference.k_star);
+    }
+    // A/δ* near the largest double: the loop area ≈ 4 A/δ* (normalized) overflows: named.
+    let stiff = contact(JOINTLIN_LAW_MINDLIN, JOINTLIN_RULE_THESIS, MU, 2.0, 1e300);
+    let (s, _) = lin_with(&stiff, 1e4, None);
+    assert!(s == JOINTLIN_OK || s == JOINTLIN_ERR_OVERFLOW, "{s}");
+}
+
+#[test]
 fn plain_gauss_needs_two_points() {
     // One Gauss point samples only θ = 0, where sin θ = 0: k* = 0 for every loop, and the
     // call returned JOINTLIN_ERR_OVERFLOW (η = A_hys/(πk*A²)) although documented valid.
@@ -280,4 +310,44 @@ fn screw_preload_is_finite_or_a_named_overflow() {
         preload(0.0, 1.25, 7.188, 0.12, 0.12, 11.6),
         (JOINTLIN_OK, 0.0)
     );
+}
+
+/// The calling thread's last error detail.
+fn last_error() -> String {
+    let mut buf = vec![0u8; 1024];
+    let n = unsafe { jointlin_last_error(buf.as_mut_ptr().cast(), buf.len()) };
+    String::from_utf8_lossy(&buf[..n.min(buf.len())])
+        .trim_end_matches('\0')
+        .to_string()
+}
+
+#[test]
+fn uinter_freqr_1e308_is_an_overflow_and_messages_print_short_numbers() {
+    // FREQR = 1e308 is finite; 2π FREQR is not: JOINTLIN_ERR_OVERFLOW naming the angular
+    // frequency (was JOINTLIN_ERR_NON_FINITE, "non-finite input: omega").
+    let store = new_store(1e-4, 1e-3, 0);
+    assert_eq!(uexternaldb(store, 0, 0, 1, 0), 0);
+    assert_eq!(uexternaldb(store, 1, 0, 1, 1), 0);
+    let mut u = Uinter::new(block_props(), 3);
+    u.stress[0] = 2.0;
+    u.linper = 1;
+    u.kinc = 1;
+    u.freqr = 1e308;
+    assert_eq!(u.call(store), JOINTLIN_ERR_OVERFLOW);
+    let msg = last_error();
+    assert!(msg.contains("2 pi FREQR"), "{msg}");
+    u.freqr = 1e300;
+    assert_eq!(u.call(store), JOINTLIN_OK);
+    // A number in a message: 1e300, not its 301 digits (was "PROPS(3) = -1000…000").
+    let mut bad = Uinter::new(block_props(), 3);
+    bad.props[2] = -1e300;
+    assert_eq!(bad.call(store), JOINTLIN_ERR_PROPS);
+    let msg = last_error();
+    assert!(msg.contains("-1e300") && msg.len() < 200, "{msg}");
+    bad.props[2] = 0.3;
+    bad.area = -1e300;
+    assert_ne!(bad.call(store), JOINTLIN_OK);
+    let msg = last_error();
+    assert!(msg.contains("-1e300") && msg.len() < 200, "{msg}");
+    unsafe { jointlin::ffi::store::jointlin_store_free(store) };
 }

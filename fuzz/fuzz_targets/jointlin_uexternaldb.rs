@@ -13,6 +13,7 @@ mod common;
 use arbitrary::{Arbitrary, Unstructured};
 use common::*;
 use jointlin::ffi::store::*;
+use jointlin::ffi::store_model::jointlin_store_set_model;
 use jointlin::ffi::uexternaldb::jointlin_uexternaldb;
 use std::path::PathBuf;
 use std::sync::OnceLock;
@@ -73,6 +74,9 @@ enum Op {
         at: u8,
         flip: Option<(u16, u8)>,
     },
+    /// Sets the model fingerprint (none for 0), then saved files and restores check it;
+    /// `utf8` puts a two-byte character into the file at `at` (fraction of 256).
+    Model { id: u8, utf8: Option<u8> },
 }
 
 fn restart_path() -> &'static PathBuf {
@@ -282,6 +286,19 @@ fn run(data: &[u8]) {
                         text[i] = b;
                     }
                     std::fs::write(path, text).unwrap();
+                }
+            }
+            Op::Model { id, utf8 } => {
+                let fp = [id];
+                let len = usize::from(id != 0);
+                let s = unsafe { jointlin_store_set_model(store, fp.as_ptr().cast(), len) };
+                assert_eq!(s, 0, "set_model");
+                if let (Some(at), Ok(text)) = (utf8, std::fs::read(path)) {
+                    let cut = text.len() * usize::from(at) / 255;
+                    let mut t = text[..cut].to_vec();
+                    t.extend_from_slice("é".as_bytes());
+                    t.extend_from_slice(&text[cut..]);
+                    std::fs::write(path, t).unwrap();
                 }
             }
         }

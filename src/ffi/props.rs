@@ -117,7 +117,7 @@ fn code(props: &[f64; 12], pos: usize, max: i32) -> FfiResult<i32> {
         Ok(v as i32)
     } else {
         Err(bad(format!(
-            "PROPS({pos}) = {v} is not a code in 0..={max}"
+            "PROPS({pos}) = {v:?} is not a code in 0..={max}"
         )))
     }
 }
@@ -127,7 +127,7 @@ fn positive(props: &[f64; 12], pos: usize, what: &str) -> FfiResult<f64> {
     if v > 0.0 {
         Ok(v)
     } else {
-        Err(bad(format!("PROPS({pos}) = {v}: {what} must be > 0")))
+        Err(bad(format!("PROPS({pos}) = {v:?}: {what} must be > 0")))
     }
 }
 
@@ -142,7 +142,7 @@ impl Props {
         let mu = props[2];
         if mu < 0.0 {
             return Err(bad(format!(
-                "PROPS(3) = {mu}: friction coefficient must be >= 0"
+                "PROPS(3) = {mu:?}: friction coefficient must be >= 0"
             )));
         }
         let normal = match code(props, 5, 1)? {
@@ -178,11 +178,11 @@ impl Props {
         let kind = code(props, 11, 2)?;
         let points = props[11];
         if points.fract() != 0.0 || !(0.0..=f64::from(1 << 26)).contains(&points) {
-            return Err(bad(format!("PROPS(12) = {points} is not a point count")));
+            return Err(bad(format!("PROPS(12) = {points:?} is not a point count")));
         }
         let method = method_from_codes(kind, points as i32).ok_or_else(|| {
             bad(format!(
-                "PROPS(11..12) = {kind}, {points}: invalid quadrature"
+                "PROPS(11..12) = {kind:?}, {points:?}: invalid quadrature"
             ))
         })?;
         Ok(Self {

@@ -326,7 +326,9 @@ pub(crate) unsafe fn key_from_raw(
 /// running pass to `amp[0]`, `amp[1]` (tangential directions 1 and 2). The estimate is
 /// fixed at the first query in a pass; pass 1: the initial amplitude at the first
 /// increment, else the amplitude computed at the nearest earlier increment; later passes:
-/// the configured update rule on the point's history. Both directions take part in the
+/// the configured update rule on the point's history, in the point's own scale (no floor
+/// tied to initial_amplitude): a point whose latest computed amplitude was exactly 0 gets
+/// 0, so a zero load gives zero and converges. Both directions take part in the
 /// convergence test (jointlin_uinter queries only NDIR - 1 of them).
 ///
 /// Errors: JOINTLIN_ERR_NULL, JOINTLIN_ERR_UNKNOWN_POINT, JOINTLIN_ERR_SEQUENCE (no pass

@@ -124,7 +124,8 @@ fn err(code: i32, msg: String) -> FfiError {
 /// (NDIR not in 1..3, MCRD not in 1..3, AREA <= 0, LINPER not 0/1, FREQR <= 0 at LINPER = 1,
 /// CINAME longer than 256, a corrupt hysteresis state), JOINTLIN_ERR_SIZE (NSTATV < 57,
 /// NPROPS < 7), JOINTLIN_ERR_PROPS (see the PROPS table), JOINTLIN_ERR_OVERFLOW (a result
-/// would not be finite), and the store's errors at LINPER = 1 (JOINTLIN_ERR_SEQUENCE outside
+/// would not be finite, e.g. 2 pi FREQR for FREQR = 1e308; messages print numbers in
+/// shortest round-trip form, 1e300 rather than its 301 digits), and the store's errors at LINPER = 1 (JOINTLIN_ERR_SEQUENCE outside
 /// an open increment, ...).
 ///
 /// # Safety
@@ -218,7 +219,7 @@ pub unsafe extern "C" fn jointlin_uinter(
         if area <= 0.0 {
             return Err(err(
                 JOINTLIN_ERR_OUT_OF_RANGE,
-                format!("AREA {area} must be > 0"),
+                format!("AREA {area:?} must be > 0"),
             ));
         }
         let props_parsed = Props::parse(&props_in, area)?;
@@ -238,7 +239,7 @@ pub unsafe extern "C" fn jointlin_uinter(
             if freqr <= 0.0 {
                 return Err(err(
                     JOINTLIN_ERR_OUT_OF_RANGE,
-                    format!("FREQR {freqr} must be > 0 at LINPER = 1"),
+                    format!("FREQR {freqr:?} must be > 0 at LINPER = 1"),
                 ));
             }
             let point = |dirs: usize| -> FfiResult<([f64; 2], i64)> {
@@ -403,7 +404,11 @@ fn steady_state(
     }
     let dirs = n - 1;
     let (amp, id) = point(dirs)?;
-    let omega = 2.0 * std::f64::consts::PI * freqr;
+    // FREQR = 1e308 is finite, 2π FREQR is not: an overflow, not a non-finite input.
+    let omega = derived(
+        2.0 * std::f64::consts::PI * freqr,
+        "angular frequency 2 pi FREQR",
+    )?;
     let contact = Contact {
         law: props.law,
         rule: props.rule,
@@ -430,12 +435,16 @@ fn steady_state(
         r.eta[d] = l.eta;
         r.regime[d] = regime_code(l.regime);
     }
+    let power = derived(
+        energy * freqr,
+        "dissipated power (energy per cycle x FREQR)",
+    )?;
     out.statev[slot::ID] = id as f64;
     out.statev[slot::ENERGY] = energy;
-    out.statev[slot::POWER] = energy * freqr; // energy per cycle x cycles per time
+    out.statev[slot::POWER] = power; // energy per cycle x cycles per time
     out.report.point = id;
     out.report.directions = dirs as i32;
     out.report.energy_per_cycle = energy;
-    out.report.dissipated_power = energy * freqr;
+    out.report.dissipated_power = power;
     Ok(())
 }

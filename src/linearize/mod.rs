@@ -239,14 +239,14 @@ pub fn linearize(
     let n = if amplitude_ratio < SMALL_RATIO {
         small_amplitude(contact.law, ratio)
     } else {
-        normalized(contact.law, contact.rule, amplitude_ratio, method)
+        normalized(contact.law, contact.rule, amplitude_ratio, method)?
     };
     let energy = limit * delta * n.alpha; // A_hys = μF_N δ* α
     let energy_per_cycle = energy.to_f64();
     if energy_per_cycle.is_infinite() {
         return Err(Error::Overflow("energy per cycle (mu F_N A too large)"));
     }
-    let d_star = (energy / (Wide::new(PI * omega) * Wide::new(amplitude) * amplitude)).to_f64(); // (3.14)
+    let d_star = (energy / (Wide::new(PI) * omega * Wide::new(amplitude) * amplitude)).to_f64(); // (3.14)
     if d_star.is_infinite() {
         return Err(Error::Overflow(
             "d* = A_hys/(pi omega A^2) (omega too small)",
@@ -307,8 +307,10 @@ fn small_amplitude(law: TangentialLaw, ratio: Wide) -> Normalized {
     }
 }
 
-/// The loop of half-width a = A/δ* ≥ [`SMALL_RATIO`] in the point's units, by `method`.
-fn normalized(law: TangentialLaw, rule: Rule, a: f64, method: Method) -> Normalized {
+/// The loop of half-width a = A/δ* ≥ [`SMALL_RATIO`] in the point's units, by `method`;
+/// [`Error::Overflow`] where the loop area (≈ 4a) or the quadrature leaves the double range
+/// (a beyond ≈ 4e307).
+fn normalized(law: TangentialLaw, rule: Rule, a: f64, method: Method) -> Result<Normalized, Error> {
     let k0 = normalized_k_t0(law);
     let b = Backbone::new(law, 1.0, k0).expect("unit backbone is valid");
     let shape = LoopShape::new(&b, rule, a);
@@ -326,6 +328,11 @@ fn normalized(law: TangentialLaw, rule: Rule, a: f64, method: Method) -> Normali
             ebm::area_by_rule(&b, rule, &shape, false, n),
         ),
     };
+    if !sum.is_finite() || !area.is_finite() {
+        return Err(Error::Overflow(
+            "loop area or in-phase sum (A/delta* beyond about 4e307)",
+        ));
+    }
     let kappa = match method {
         Method::Graded { .. } if shape.slides() && a >= hbm::TANGENT_FORM_FROM => {
             hbm::stiffness_ratio_sliding(&b, rule, a)
@@ -340,12 +347,12 @@ fn normalized(law: TangentialLaw, rule: Rule, a: f64, method: Method) -> Normali
     } else {
         Regime::Microslip
     };
-    Normalized {
+    Ok(Normalized {
         kappa,
         alpha: Wide::new(area),
         phi: Wide::new(shape.peak_force),
         regime,
-    }
+    })
 }
 
 #[cfg(test)]

@@ -4,7 +4,7 @@
 use std::path::PathBuf;
 
 use super::StoreError;
-use crate::iterate::Scheme;
+use crate::iterate::{next_estimate, Scheme};
 
 /// How the host numbers the increments of a re-run or final pass.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -42,13 +42,17 @@ pub struct StoreConfig {
 /// Default relative tolerance on the amplitude (0.1 %: well below the 3–9 % model error
 /// of the linearization itself, model.md §8).
 pub const DEFAULT_RTOL: f64 = 1e-3;
-/// Pairs of a point's (estimate, computed) history handed to [`next_estimate`]. Between two
+/// Pairs of a point's (estimate, computed) history handed to [`crate::iterate::next_estimate`]. Between two
 /// passes the *other* points' amplitudes change too, so the map a ↦ a*(a) of one point
 /// drifts: older pairs (and brackets built from them) are stale and made the bracketing
 /// secant stall on a coupled two-point sweep (tests/ffi_sweep.rs: no convergence in 15
 /// passes with the full history, 5 passes + final with the last two). The full history is
 /// kept (restart file, status).
 pub const HISTORY_WINDOW: usize = 2;
+
+/// Amplitudes below this fraction of a point's own largest recent amplitude are
+/// indistinguishable from 0 for the log-space update rule.
+pub const RELATIVE_FLOOR: f64 = 1e-12;
 
 /// Default bound on iteration passes (the thesis's beam needed 5, Fig. 4.33).
 pub const DEFAULT_MAX_PASSES: u32 = 20;
@@ -99,13 +103,29 @@ impl StoreConfig {
         (a - a_star).abs() <= self.rtol * a.max(a_star) + self.atol
     }
 
-    /// Amplitudes fed to the log-space update rule are floored here (ln 0 = −∞): at or below
-    /// atol (or 1e-12 of the initial estimate when atol = 0) amplitudes are indistinguishable.
-    pub(super) fn floor(&self) -> f64 {
-        if self.atol > 0.0 {
-            self.atol
+    /// The next estimate from the recent (estimate, computed) pairs of one point and
+    /// direction (non-empty), in the point's own scale: a point whose latest computed
+    /// amplitude is exactly 0 did not move (no load, or a node at rest by symmetry) and
+    /// gets 0 in every scheme, so zero load gives zero and converges (|0 − 0| ≤ tolerance);
+    /// otherwise amplitudes fed to the log-space rule (ln 0 = −∞) are floored at
+    /// [`RELATIVE_FLOOR`] times the largest amplitude of these pairs (or at atol when that
+    /// is larger), not at a fraction of the user's initial guess.
+    pub(super) fn next_from(&self, pairs: &[(f64, f64)]) -> f64 {
+        let (_, last) = pairs[pairs.len() - 1];
+        if last == 0.0 {
+            return 0.0;
+        }
+        let scale = pairs.iter().fold(0.0f64, |m, &(a, b)| m.max(a).max(b));
+        let floor = self.atol.max(RELATIVE_FLOOR * scale);
+        let h: Vec<(f64, f64)> = pairs
+            .iter()
+            .map(|&(a, b)| (a.max(floor), b.max(floor)))
+            .collect();
+        let next = next_estimate(self.scheme, &h);
+        if next.is_finite() {
+            next
         } else {
-            1e-12 * self.initial_amplitude
+            last
         }
     }
 }

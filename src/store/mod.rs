@@ -10,7 +10,7 @@
 //!
 //! This store holds, per contact point × increment and for both tangential directions, the
 //! estimate handed out, the amplitude the host reported back, the (estimate, computed)
-//! history of earlier passes (fed to the shared rule [`next_estimate`]), the converged flag
+//! history of earlier passes (fed to the shared rule [`crate::iterate::next_estimate`]), the converged flag
 //! and the pass count. It follows Abaqus's UEXTERNALDB calls ([`Store::external_db`]: LOP
 //! 0 start of analysis, 1 start of increment, 2 end of increment, 3 end of analysis, 4
 //! start of a restart analysis, 5 start of step, 6 end of step) and says what to run next
@@ -23,8 +23,6 @@
 use std::collections::{BTreeMap, BTreeSet, HashMap};
 use std::path::PathBuf;
 use std::sync::{Mutex, MutexGuard, RwLock};
-
-use crate::iterate::next_estimate;
 
 /// Errors of the iteration store. Each maps to one C status code in `ffi/error.rs`.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
@@ -409,23 +407,14 @@ impl Store {
             .map(|(_, r)| r.reported);
         let rec = records.entry(sweep).or_default();
         if rec.estimate_pass != pass {
-            let floor = self.config.floor();
             let fallback = previous.unwrap_or([self.config.initial_amplitude; 2]);
             for (d, &back) in fallback.iter().enumerate() {
                 rec.estimate[d] = if rec.history[d].is_empty() {
                     back
                 } else {
                     let hist = &rec.history[d];
-                    let h: Vec<(f64, f64)> = hist[hist.len().saturating_sub(HISTORY_WINDOW)..]
-                        .iter()
-                        .map(|&(a, b)| (a.max(floor), b.max(floor)))
-                        .collect();
-                    let next = next_estimate(self.config.scheme, &h);
-                    if next.is_finite() {
-                        next
-                    } else {
-                        h[h.len() - 1].1
-                    }
+                    self.config
+                        .next_from(&hist[hist.len().saturating_sub(HISTORY_WINDOW)..])
                 };
             }
             rec.estimate_pass = pass;
@@ -483,18 +472,11 @@ impl Store {
         match lop {
             0 => self.begin_pass(),
             1 if in_sweep => self.begin_increment(kinc),
-            2 if in_sweep => {
-                self.end_increment(kinc)?;
-                if lrestart >= 1 {
-                    self.save()?;
-                }
-                Ok(())
-            }
+            // All or nothing: when the restart data cannot be written, the store stays
+            // where it was, so the host can retry the same LOP.
+            2 if in_sweep => self.advance(|st| self.end_increment_in(st, kinc), lrestart >= 1),
             1 | 2 => Ok(()),
-            3 => {
-                self.end_pass()?;
-                self.save()
-            }
+            3 => self.advance(|st| self.end_pass_in(st), true),
             4 => self.restore(),
             5 | 6 => {
                 self.state()?.step = if lop == 5 { kstep } else { 0 };
@@ -584,8 +566,10 @@ impl Store {
     /// LOP 2: compares estimate and computed amplitude of every point queried in the open
     /// increment; a point queried but not reported is not converged.
     pub fn end_increment(&self, kinc: i32) -> Result<(), StoreError> {
-        let mut guard = self.state()?;
-        let state = &mut *guard;
+        self.advance(|st| self.end_increment_in(st, kinc), false)
+    }
+
+    fn end_increment_in(&self, state: &mut State, kinc: i32) -> Result<(), StoreError> {
         let Phase::Running(run) = &mut state.phase else {
             return Err(seq("LOP 2 without a running pass"));
         };
@@ -639,8 +623,10 @@ impl Store {
 
     /// LOP 3: closes the pass and decides the next action.
     pub fn end_pass(&self) -> Result<(), StoreError> {
-        let mut guard = self.state()?;
-        let state = &mut *guard;
+        self.advance(|st| self.end_pass_in(st), false)
+    }
+
+    fn end_pass_in(&self, state: &mut State) -> Result<(), StoreError> {
         let Phase::Running(run) = &state.phase else {
             return Err(seq("LOP 3 without a running pass"));
         };
@@ -746,13 +732,38 @@ impl Store {
         let Some(path) = &self.config.restart_path else {
             return Ok(());
         };
-        let text = self.serialize()?;
-        let mut tmp = path.clone().into_os_string();
-        tmp.push(format!(".tmp{}", std::process::id()));
-        let tmp = PathBuf::from(tmp);
-        std::fs::write(&tmp, text)
-            .and_then(|_| std::fs::rename(&tmp, path))
-            .map_err(|e| StoreError::Io(format!("writing {}: {e}", path.display())))
+        write_atomically(path, &self.serialize()?)
+    }
+
+    /// Applies `step` to the state; with `save` (and a restart path) only once the new
+    /// state is in the restart file: on a write error the state stays as it was. A step
+    /// that fails keeps what it changed (as without `save`) and writes nothing. Holds the
+    /// registry (read) and the state during the write: LOP 2 and 3 run while no increment
+    /// is open, so no per-point call waits on it.
+    fn advance(
+        &self,
+        step: impl FnOnce(&mut State) -> Result<(), StoreError>,
+        save: bool,
+    ) -> Result<(), StoreError> {
+        let path = match (&self.config.restart_path, save) {
+            (Some(path), true) => path,
+            _ => return step(&mut *self.state()?),
+        };
+        let registry = self.registry.read().map_err(|_| StoreError::Poisoned)?;
+        let mut guard = self.state()?;
+        let mut next = guard.clone();
+        if let Err(e) = step(&mut next) {
+            *guard = next;
+            return Err(e);
+        }
+        let model = self.model()?;
+        let fp = restart::Fingerprint {
+            model: &model,
+            config: &self.config,
+        };
+        write_atomically(path, &restart::write(&registry.keys, &next, &fp))?;
+        *guard = next;
+        Ok(())
     }
 
     /// Replaces registry and iteration state by the restart file's content (LOP 4).
@@ -788,6 +799,20 @@ impl Store {
         };
         Ok(restart::write(&keys, &state, &fp))
     }
+}
+
+/// Writes `text` to `path` through a temporary file in the same directory and a rename,
+/// so that the path holds the old or the new content, never a part.
+fn write_atomically(path: &std::path::Path, text: &str) -> Result<(), StoreError> {
+    let mut tmp = path.to_path_buf().into_os_string();
+    tmp.push(format!(".tmp{}", std::process::id()));
+    let tmp = PathBuf::from(tmp);
+    std::fs::write(&tmp, text)
+        .and_then(|_| std::fs::rename(&tmp, path))
+        .map_err(|e| {
+            let _ = std::fs::remove_file(&tmp);
+            StoreError::Io(format!("writing {}: {e}", path.display()))
+        })
 }
 
 mod config;
