@@ -12,6 +12,8 @@ declare -A commands=(
   [knife_mesh]="cargo run --release -q -p jointlin-harness --bin jointlin -- loss scenes/knife-coarse.toml --mesh-study 1,2,3 --out harness/assets/knife-mesh --quiet"
   [tradeoff_beams]="cargo run --release -q -p jointlin-harness --bin jointlin -- tradeoff scenes/three-beams-coarse.toml --out out/tradeoff-beams"
   [tradeoff_block]="cargo run --release -q -p jointlin-harness --bin jointlin -- tradeoff scenes/block-stick.toml --out out/tradeoff-block"
+  [backbone_plot]="cargo run --release -q -p jointlin-harness --bin jointlin -- backbone scenes/jenkins-chain.toml --out harness/assets/backbone-chain 2>&1"
+  [backbone_cost]="cargo run --release -q -p jointlin-harness --bin jointlin -- mhb --backbones"
 )
 # Plots a block's command writes that the documents show: "from to" pairs.
 declare -A plots=(
@@ -19,7 +21,7 @@ declare -A plots=(
   [tradeoff_block]="out/tradeoff-block/tradeoff.svg docs/accuracy-block.svg"
 )
 # Blocks whose command prints Markdown (the others are shown as terminal output).
-markdown=" accuracy_table knife knife_mesh tradeoff_beams tradeoff_block "
+markdown=" accuracy_table knife knife_mesh tradeoff_beams tradeoff_block backbone_cost "
 files=(README.md docs/accuracy.md)
 names=("$@")
 [ ${#names[@]} -gt 0 ] || names=("${!commands[@]}")

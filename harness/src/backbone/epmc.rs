@@ -200,6 +200,33 @@ pub fn backbone_sampled(
     samples: usize,
     q: &[f64],
 ) -> Result<Vec<EpmcPoint>, BackboneError> {
+    let t = trace(sys, mode, h, samples, q)?;
+    match t.stopped {
+        Some(e) => Err(e),
+        None => Ok(t.points),
+    }
+}
+
+/// The points of [`backbone_sampled`] up to the first amplitude Newton could not
+/// reach, and why it stopped there.
+#[derive(Debug)]
+pub struct Traced {
+    pub points: Vec<EpmcPoint>,
+    pub stopped: Option<BackboneError>,
+}
+
+/// [`backbone_sampled`] keeping the points converged before a failure. Errors that
+/// concern the whole run (no such mode, a bad amplitude) are `Err`.
+pub fn trace(
+    sys: &System,
+    mode: usize,
+    h: usize,
+    samples: usize,
+    q: &[f64],
+) -> Result<Traced, BackboneError> {
+    if let Some(&bad) = q.iter().find(|v| !(v.is_finite() && **v > 0.0)) {
+        return Err(BackboneError::Amplitude(bad));
+    }
     let n = sys.n();
     let free = System {
         f0: vec![0.0; n],
@@ -263,9 +290,12 @@ pub fn backbone_sampled(
                 Err(res) => {
                     halvings += 1;
                     if halvings > MAX_HALVINGS {
-                        return Err(BackboneError::NotConverged {
-                            modal_amplitude: target,
-                            residual: res,
+                        return Ok(Traced {
+                            points: out,
+                            stopped: Some(BackboneError::NotConverged {
+                                modal_amplitude: target,
+                                residual: res,
+                            }),
                         });
                     }
                 }
@@ -273,7 +303,10 @@ pub fn backbone_sampled(
         };
         out.push(point(&ep.hb, sys, &sol, target, diss));
     }
-    Ok(out)
+    Ok(Traced {
+        points: out,
+        stopped: None,
+    })
 }
 
 fn push_last(last: &mut Vec<(f64, State)>, lq: f64, s: State) {

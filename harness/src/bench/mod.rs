@@ -8,6 +8,7 @@
 //! reports the time ratios and the peak resident memory (getrusage ru_maxrss, which only
 //! grows: the value after each row is the peak so far).
 
+pub mod backbone;
 pub mod mhb_chain;
 pub mod mhb_fe;
 

@@ -24,12 +24,19 @@ pub struct Args {
     /// Band f_min,f_max (1/time) for scenes; default each scene's first refine band.
     #[arg(long, value_delimiter = ',', num_args = 2)]
     band: Vec<f64>,
+    /// Print the cost of backbones of the chain instead (first order, EPMC H = 1, 3, 7).
+    #[arg(long)]
+    backbones: bool,
     /// Force amplitude on the last mass.
     #[arg(long, default_value_t = 0.05)]
     force: f64,
 }
 
 pub fn main(a: Args) -> ExitCode {
+    if a.backbones {
+        println!("{}", jointlin_harness::bench::backbone::table());
+        return ExitCode::SUCCESS;
+    }
     if a.scene.is_empty() {
         let freqs = a.freqs.unwrap_or(200);
         let rows = mhb_chain::sweep_table(a.force, 0.3, 0.8, freqs, &a.harmonics);

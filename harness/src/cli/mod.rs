@@ -2,6 +2,7 @@
 //! input to the study, the run log on stderr and the exit code (0 done, 1 the run
 //! failed, 2 the input or the arguments are wrong).
 
+mod backbone;
 mod bench;
 mod check;
 mod loss;
@@ -113,6 +114,12 @@ pub enum Command {
     /// frequency split into mesh and contact parts), beside the first-order
     /// linearization. Prints a Markdown table per system.
     Mhb(mhb::Args),
+    /// Backbone of a lumped scene's mode: natural frequency and damping ratio against the
+    /// modal amplitude, first order (complex eigenvalues with every joint's k*, d*
+    /// through jointlin_linearize consistent with the mode's own amplitudes) or with
+    /// --harmonics H the extended periodic motion concept (AFT through
+    /// jointlin_point_step). Writes backbone.csv, backbone.svg and run.json.
+    Backbone(backbone::Args),
 }
 
 /// Runs the command.
@@ -126,6 +133,7 @@ pub fn dispatch(command: Command) -> ExitCode {
         Command::Modes(a) => modes::main(a),
         Command::Bench(a) => bench::main(a),
         Command::Mhb(a) => mhb::main(a),
+        Command::Backbone(a) => backbone::main(a),
     }
 }
 

@@ -73,6 +73,12 @@ fn nearest(model: &Model, body: BodyRef, p: Option<[f64; 3]>) -> usize {
 /// Builds the problem of a validated scene.
 pub fn build(scene: &Scene) -> Result<Problem, BuildError> {
     let s = &scene.spec;
+    if !s.joints.is_empty() || s.springs.iter().any(|sp| sp.between.is_some()) {
+        return Err(BuildError::Other(
+            "[[joints]] and springs `between` two bodies are read by `jointlin backbone` only"
+                .into(),
+        ));
+    }
     let names: Vec<&String> = s.materials.keys().collect();
     let mats = s
         .materials

@@ -7,6 +7,7 @@
 //! its lower side.
 
 mod build;
+pub mod lumped;
 pub mod subgrid;
 
 pub use build::build;

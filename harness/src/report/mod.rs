@@ -1,5 +1,6 @@
 //! Reports of a run: CSV tables, run.json and SVG plots. Reports read results only.
 
+pub mod backbone;
 pub mod csv;
 pub mod svg;
 

@@ -40,6 +40,10 @@ pub struct SceneFile {
     /// Grounded springs and dashpots on lumped (`mass`) bodies.
     #[serde(default)]
     pub springs: Vec<SpringSpec>,
+    /// Discrete contact elements between mass bodies or to the ground (lumped models;
+    /// read by `jointlin backbone`).
+    #[serde(default)]
+    pub joints: Vec<JointSpec>,
     pub excitation: Vec<ExcitationSpec>,
     pub sweep: SweepSpec,
     #[serde(default)]
@@ -330,13 +334,40 @@ fn all_components() -> [bool; 3] {
     [true; 3]
 }
 
-/// A grounded spring and dashpot on a mass body along a direction: force
+/// A discrete contact element (`[[joints]]`): one tangential direction between two mass
+/// bodies (or a mass body and `"ground"`), force form (not per area).
+#[derive(Debug, Clone, Deserialize, Serialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct JointSpec {
+    pub name: String,
+    pub between: [String; 2],
+    /// Tangential direction (a coordinate axis).
+    pub direction: [f64; 3],
+    pub law: LawName,
+    #[serde(default)]
+    pub rule: RuleName,
+    /// Friction coefficient μ > 0.
+    pub mu: f64,
+    /// Normal force F_N > 0 (force).
+    pub normal_force: f64,
+    /// Tangential stiffness k_T0 > 0 (force/length).
+    pub k_t0: f64,
+}
+
+/// A spring and dashpot on a mass body (grounded) or `between` two bodies along a
+/// direction: force
 /// k·x + α·x³ + c·ẋ for the elongation x along it (the Duffing oscillator (4.1) with
 /// α ≠ 0).
 #[derive(Debug, Clone, Deserialize, Serialize, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub struct SpringSpec {
+    /// The mass body the spring grounds (or `between`).
+    #[serde(default)]
     pub body: String,
+    /// Two mass bodies, or a mass body and `"ground"`, the spring connects (instead of
+    /// `body`; read by `jointlin backbone`).
+    #[serde(default)]
+    pub between: Option<[String; 2]>,
     /// Direction (normalized on use).
     pub direction: [f64; 3],
     /// Linear stiffness k (force/length).

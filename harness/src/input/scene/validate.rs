@@ -388,9 +388,33 @@ pub fn validate(s: &SceneFile) -> Vec<Problem> {
         }
     }
 
+    let mut joint_names = BTreeSet::new();
+    for (i, j) in s.joints.iter().enumerate() {
+        let p = root.key("joints").index(i);
+        if !joint_names.insert(j.name.as_str()) {
+            c.fail(p.key("name"), format!("duplicate joint `{}`", j.name));
+        }
+        lumped_ends(&mut c, p.key("between"), &j.between, &body_kind);
+        c.direction(p.key("direction"), &j.direction);
+        if j.direction.iter().filter(|v| **v != 0.0).count() > 1 {
+            c.fail(
+                p.key("direction"),
+                "must be a coordinate axis, e.g. [1, 0, 0]",
+            );
+        }
+        c.positive(p.key("mu"), j.mu);
+        c.positive(p.key("normal_force"), j.normal_force);
+        c.positive(p.key("k_t0"), j.k_t0);
+    }
+
     for (i, sp) in s.springs.iter().enumerate() {
         let p = root.key("springs").index(i);
-        if check_body(&mut c, p.key("body"), &sp.body) == Some(BodyKind::Box) {
+        if let Some(ends) = &sp.between {
+            if !sp.body.is_empty() {
+                c.fail(p.key("body"), "not allowed with `between`");
+            }
+            lumped_ends(&mut c, p.key("between"), ends, &body_kind);
+        } else if check_body(&mut c, p.key("body"), &sp.body) == Some(BodyKind::Box) {
             c.fail(p.key("body"), "springs attach to mass bodies");
         }
         c.direction(p.key("direction"), &sp.direction);
@@ -608,5 +632,27 @@ fn harmonic_balance(c: &mut Checker, s: &SceneFile) {
     }
     if !s.effects.contact_damping {
         c.fail(eff.key("contact_damping"), why);
+    }
+}
+
+/// The two ends of a lumped element: mass bodies or `"ground"`, not the same twice.
+fn lumped_ends(
+    c: &mut Checker,
+    path: KeyPath,
+    ends: &[String; 2],
+    kind: &dyn Fn(&str) -> Option<BodyKind>,
+) {
+    for (k, e) in ends.iter().enumerate() {
+        if e == GROUND {
+            continue;
+        }
+        match kind(e) {
+            Some(BodyKind::Mass) => {}
+            Some(BodyKind::Box) => c.fail(path.index(k), "must be a mass body or \"ground\""),
+            None => c.fail(path.index(k), format!("unknown body `{e}`")),
+        }
+    }
+    if ends[0] == ends[1] {
+        c.fail(path, "the two ends must differ");
     }
 }

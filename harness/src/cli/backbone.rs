@@ -1,0 +1,200 @@
+//! `jointlin backbone`: frequency and damping ratio of one mode of a lumped scene
+//! against its amplitude, first order or EPMC; backbone.csv, backbone.svg, run.json.
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use serde_json::json;
+
+use jointlin_harness::backbone::{epmc, first_order, log_space, BackbonePoint, C64};
+use jointlin_harness::mhb::default_samples;
+use jointlin_harness::model::lumped::{self, Lumped};
+use jointlin_harness::report::backbone::{self as report, Row};
+
+use super::{load_scene, report_written};
+
+// The command's help is the doc comment of `Command::Backbone`.
+#[derive(clap::Args)]
+pub struct Args {
+    /// Lumped scene (mass bodies, springs, [[joints]]).
+    scene: PathBuf,
+    /// Mode number (1 = lowest frequency with every contact stuck).
+    #[arg(long, default_value_t = 1)]
+    mode: usize,
+    /// Output directory.
+    #[arg(long)]
+    out: PathBuf,
+    /// Harmonics of the EPMC; without it, the first-order backbone.
+    #[arg(long)]
+    harmonics: Option<usize>,
+    /// Modal amplitudes FROM,TO,COUNT (log spaced); default from a tenth of the first
+    /// contact's slip onset to 30 times the last one's, 60 points.
+    #[arg(long, value_delimiter = ',', num_args = 3)]
+    amplitudes: Vec<f64>,
+}
+
+/// Default amplitude range: stuck … fully sliding for the scene's contacts.
+fn default_range(l: &Lumped, mode: usize) -> Result<(f64, f64), String> {
+    let st = first_order::stuck_mode(&l.system, mode).map_err(|e| e.to_string())?;
+    let rel = first_order::relative(&l.system, &st.shape);
+    let mut onsets = Vec::new();
+    for (e, r) in l.system.elements.iter().zip(rel) {
+        if let jointlin_harness::mhb::Law::Point(t) = e.law {
+            let ds = jointlin_harness::capi::linearize(&t, 0.0, 1.0)
+                .map_err(|e| e.to_string())?
+                .slip_limit;
+            if r > 0.0 {
+                onsets.push(ds / r);
+            }
+        }
+    }
+    let lo = onsets.iter().copied().fold(f64::INFINITY, f64::min);
+    let hi = onsets.iter().copied().fold(0.0, f64::max);
+    if !lo.is_finite() {
+        return Err("no contact moves in this mode: give --amplitudes FROM,TO,COUNT".into());
+    }
+    Ok((0.1 * lo, 30.0 * hi))
+}
+
+pub fn main(a: Args) -> ExitCode {
+    let scene = match load_scene(&a.scene) {
+        Ok(s) => s,
+        Err(code) => return code,
+    };
+    let l = match lumped::build(&scene) {
+        Ok(l) => l,
+        Err(e) => {
+            eprintln!("error: {}: {e}", a.scene.display());
+            return ExitCode::from(2);
+        }
+    };
+    let q = if a.amplitudes.len() == 3 {
+        let (f, t, n) = (a.amplitudes[0], a.amplitudes[1], a.amplitudes[2]);
+        if !(f > 0.0 && t > 0.0 && f.is_finite() && t.is_finite() && (1.0..=1e6).contains(&n)) {
+            eprintln!(
+                "error: --amplitudes FROM,TO,COUNT: positive finite amplitudes, 1 ≤ COUNT ≤ 1e6"
+            );
+            return ExitCode::from(2);
+        }
+        log_space(f, t, n as usize)
+    } else {
+        match default_range(&l, a.mode) {
+            Ok((f, t)) => log_space(f, t, 60),
+            Err(e) => {
+                eprintln!("error: {e}");
+                return ExitCode::from(1);
+            }
+        }
+    };
+    // EPMC keeps the points converged before a failure: they are written, the failure
+    // is printed and the exit code is 1.
+    let (method, result) = match a.harmonics {
+        None => (
+            "first order (jointlin_linearize)".to_string(),
+            first_order::backbone(&l.system, a.mode, &q).map(|p| (p, None)),
+        ),
+        Some(h) => (
+            format!("EPMC, H = {h}"),
+            epmc::trace(&l.system, a.mode, h, default_samples(h.max(1)), &q).map(|t| {
+                (
+                    t.points
+                        .into_iter()
+                        .map(|p| p.point)
+                        .collect::<Vec<BackbonePoint>>(),
+                    t.stopped,
+                )
+            }),
+        ),
+    };
+    let (points, stopped) = match result {
+        Ok(p) => p,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return ExitCode::from(1);
+        }
+    };
+    let rows: Vec<Row> = points
+        .into_iter()
+        .map(|p| {
+            let outputs = l
+                .outputs
+                .iter()
+                .map(|(_, w)| {
+                    w.iter()
+                        .zip(&p.shape)
+                        .map(|(w, x)| x * *w)
+                        .sum::<C64>()
+                        .norm()
+                })
+                .collect();
+            Row { point: p, outputs }
+        })
+        .collect();
+    if rows.is_empty() {
+        eprintln!(
+            "error: {}",
+            stopped.map_or("no amplitudes".into(), |e| e.to_string())
+        );
+        return ExitCode::from(1);
+    }
+    let code = report_written(write(&a, &scene, &l, &method, &rows));
+    match stopped {
+        Some(e) => {
+            eprintln!(
+                "error: {e}; the {} amplitudes below it are written",
+                rows.len()
+            );
+            ExitCode::from(1)
+        }
+        None => code,
+    }
+}
+
+fn write(
+    a: &Args,
+    scene: &jointlin_harness::input::scene::Scene,
+    l: &Lumped,
+    method: &str,
+    rows: &[Row],
+) -> Result<Vec<PathBuf>, String> {
+    let units = &scene.spec.units;
+    std::fs::create_dir_all(&a.out).map_err(|e| format!("{}: {e}", a.out.display()))?;
+    let names: Vec<String> = l.outputs.iter().map(|o| o.0.clone()).collect();
+    let csv = a.out.join("backbone.csv");
+    let text = report::csv(units, &names, &l.elements, rows);
+    std::fs::write(&csv, text).map_err(|e| format!("{}: {e}", csv.display()))?;
+    let svg = a.out.join("backbone.svg");
+    let x_label = match names.first() {
+        Some(n) => format!("{n} amplitude [{}]", units.length),
+        None => format!("modal amplitude [{}·{}^½]", units.length, units.mass),
+    };
+    let title = format!("{}: mode {}, {method}", scene.spec.title, a.mode);
+    report::svg(&svg, &title, units, &x_label, rows)?;
+    let json_rows: Vec<_> = rows
+        .iter()
+        .map(|r| {
+            json!({
+                "modal_amplitude": r.point.modal_amplitude,
+                "omega": r.point.omega,
+                "frequency": report::frequency(r.point.omega),
+                "damping_ratio": r.point.damping_ratio,
+                "outputs": names.iter().zip(&r.outputs).map(|(n, v)| json!({"name": n, "amplitude": v})).collect::<Vec<_>>(),
+                "elements": l.elements.iter().zip(r.point.element_amplitudes.iter().zip(&r.point.energy_per_cycle)).map(|(n, (amp, e))| json!({"name": n, "amplitude": amp, "energy_per_cycle": e})).collect::<Vec<_>>(),
+            })
+        })
+        .collect();
+    let run = json!({
+        "command": "backbone",
+        "scene": {"file": scene.file, "spec": scene.spec, "text": scene.text},
+        "units": units,
+        "mode": a.mode,
+        "method": method,
+        "dofs": l.dofs,
+        "frequency_unit": report::frequency_unit(units),
+        "rows": json_rows,
+    });
+    let run_path = a.out.join("run.json");
+    let text = serde_json::to_string_pretty(&run).map_err(|e| e.to_string())?;
+    std::fs::write(&run_path, text).map_err(|e| format!("{}: {e}", run_path.display()))?;
+    Ok(vec![csv, svg, run_path])
+}

@@ -1,0 +1,151 @@
+//! Reports of `jointlin backbone`: backbone.csv (one row per modal amplitude, columns
+//! carrying the scene's units) and backbone.svg (frequency and damping ratio against
+//! an output's first-harmonic amplitude, log amplitude axis).
+
+use std::fmt::Write as _;
+
+use plotters::prelude::*;
+
+use crate::backbone::BackbonePoint;
+use crate::input::scene::schema::Units;
+
+/// One row of the report: the point and its outputs' first-harmonic amplitudes.
+#[derive(Debug, Clone)]
+pub struct Row {
+    pub point: BackbonePoint,
+    /// Per output (length).
+    pub outputs: Vec<f64>,
+}
+
+/// Frequency (1/time) of ω (rad/time).
+pub fn frequency(omega: f64) -> f64 {
+    omega / (2.0 * std::f64::consts::PI)
+}
+
+/// "Hz" for seconds, else "per_<time>".
+pub fn frequency_unit(units: &Units) -> String {
+    if units.time == "s" {
+        "Hz".into()
+    } else {
+        format!("per_{}", units.time)
+    }
+}
+
+/// backbone.csv: `modal_amplitude` (length·mass^½), `frequency_<unit>`, `damping_ratio`,
+/// `<output>_amp_<length>`, `<element>_energy_<force>_<length>` (per cycle).
+pub fn csv(units: &Units, outputs: &[String], elements: &[String], rows: &[Row]) -> String {
+    let mut s = format!(
+        "modal_amplitude,frequency_{},damping_ratio",
+        frequency_unit(units)
+    );
+    for o in outputs {
+        let _ = write!(s, ",{o}_amp_{}", units.length);
+    }
+    for e in elements {
+        let _ = write!(s, ",{e}_energy_{}_{}", units.force, units.length);
+    }
+    s.push('\n');
+    for r in rows {
+        let p = &r.point;
+        let _ = write!(
+            s,
+            "{:.10e},{:.10e},{:.10e}",
+            p.modal_amplitude,
+            frequency(p.omega),
+            p.damping_ratio
+        );
+        for a in &r.outputs {
+            let _ = write!(s, ",{a:.10e}");
+        }
+        for e in &p.energy_per_cycle {
+            let _ = write!(s, ",{e:.10e}");
+        }
+        s.push('\n');
+    }
+    s
+}
+
+fn err<E: std::fmt::Display>(e: E) -> String {
+    e.to_string()
+}
+
+/// backbone.svg: frequency (top) and damping ratio (bottom) against the first output's
+/// amplitude (the modal amplitude without outputs), log amplitude axis.
+pub fn svg(
+    path: &std::path::Path,
+    title: &str,
+    units: &Units,
+    x_label: &str,
+    rows: &[Row],
+) -> Result<(), String> {
+    let x = |r: &Row| {
+        r.outputs
+            .first()
+            .copied()
+            .unwrap_or(r.point.modal_amplitude)
+    };
+    let pts: Vec<(f64, f64, f64)> = rows
+        .iter()
+        .map(|r| (x(r), frequency(r.point.omega), r.point.damping_ratio))
+        .filter(|p| p.0 > 0.0 && p.0.is_finite() && p.1.is_finite() && p.2.is_finite())
+        .collect();
+    if pts.is_empty() {
+        return Err("no backbone points to plot".into());
+    }
+    let fold = |f: fn(&(f64, f64, f64)) -> f64| {
+        pts.iter()
+            .map(f)
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| {
+                (a.min(v), b.max(v))
+            })
+    };
+    let (x0, x1) = fold(|p| p.0);
+    let (f0, f1) = fold(|p| p.1);
+    let (z0, z1) = fold(|p| p.2);
+    let pad = |a: f64, b: f64| {
+        let m = 0.05 * (b - a).max(1e-6 * b.abs().max(1e-300));
+        (a - m, b + m)
+    };
+    let root = SVGBackend::new(path, (900, 700)).into_drawing_area();
+    root.fill(&WHITE).map_err(err)?;
+    let root = root.titled(title, ("sans-serif", 20)).map_err(err)?;
+    let panels = root.split_evenly((2, 1));
+    let unit = frequency_unit(units).replace("per_", "1/");
+    let (fl, fh) = pad(f0, f1);
+    let (zl, zh) = pad(z0.min(0.0), z1);
+    let series = [
+        (fl, fh, format!("frequency [{unit}]"), 1usize),
+        (zl, zh, "damping ratio [1]".to_string(), 2usize),
+    ];
+    for (area, (lo, hi, label, col)) in panels.iter().zip(series) {
+        let mut chart = ChartBuilder::on(area)
+            .margin(12)
+            .x_label_area_size(40)
+            .y_label_area_size(80)
+            .build_cartesian_2d((x0 * 0.9..x1 * 1.1).log_scale(), lo..hi)
+            .map_err(err)?;
+        chart
+            .configure_mesh()
+            .x_desc(x_label)
+            .y_desc(label)
+            .x_label_formatter(&|v: &f64| format!("{v:.0e}"))
+            .draw()
+            .map_err(err)?;
+        let line: Vec<(f64, f64)> = pts
+            .iter()
+            .map(|p| (p.0, if col == 1 { p.1 } else { p.2 }))
+            .collect();
+        let color = if col == 1 {
+            RGBColor(0, 90, 180)
+        } else {
+            RGBColor(190, 60, 0)
+        };
+        chart
+            .draw_series(LineSeries::new(line.clone(), color.stroke_width(2)))
+            .map_err(err)?;
+        chart
+            .draw_series(line.iter().map(|&p| Circle::new(p, 2, color.filled())))
+            .map_err(err)?;
+    }
+    root.present().map_err(err)
+}

@@ -1,0 +1,90 @@
+//! Lumped scenes for `jointlin backbone`: springs `between`, `[[joints]]`, the lumped
+//! system they build (against the hand-built chain of `jointlin mhb`), the backbone and
+//! its reports, and named errors for bad joints.
+
+use std::path::Path;
+
+use jointlin_harness::backbone::{first_order, log_space};
+use jointlin_harness::bench::mhb_chain::jenkins_chain;
+use jointlin_harness::input::{self, Input};
+use jointlin_harness::model::lumped;
+
+fn scene_path() -> std::path::PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes/jenkins-chain.toml")
+}
+
+#[test]
+fn jenkins_chain_scene_is_the_hand_built_chain() {
+    let Input::Scene(scene) = input::load(&scene_path()).unwrap();
+    let l = lumped::build(&scene).unwrap();
+    let hand = jenkins_chain(0.0);
+    // y and z of every mass carry nothing and are left out.
+    assert_eq!(l.dofs, ["m1.x", "m2.x", "m3.x"]);
+    assert_eq!(l.system.m, hand.m);
+    assert_eq!(l.system.k, hand.k);
+    assert!((&l.system.d - &hand.d).abs().max() < 1e-15);
+    assert_eq!(l.elements, ["j1", "j2"]);
+    // Element ends may be listed the other way round: compare as sets of DOF pairs.
+    let pairs = |s: &jointlin_harness::mhb::System| {
+        let mut v: Vec<(usize, Option<usize>)> = s
+            .elements
+            .iter()
+            .map(|e| match e.j {
+                Some(j) => (e.i.min(j), Some(e.i.max(j))),
+                None => (e.i, None),
+            })
+            .collect();
+        v.sort();
+        v
+    };
+    assert_eq!(pairs(&l.system), pairs(&hand));
+    let q = log_space(0.01, 10.0, 12);
+    let a = first_order::backbone(&l.system, 1, &q).unwrap();
+    let b = first_order::backbone(&hand, 1, &q).unwrap();
+    for (x, y) in a.iter().zip(&b) {
+        assert!((x.omega / y.omega - 1.0).abs() < 1e-12);
+        assert!((x.damping_ratio - y.damping_ratio).abs() < 1e-12);
+    }
+    assert_eq!(l.outputs[0].0, "m3_x");
+    assert_eq!(l.outputs[0].1, [0.0, 0.0, 1.0]);
+}
+
+#[test]
+fn bad_joints_are_named_errors() {
+    let text = std::fs::read_to_string(scene_path()).unwrap();
+    let dir = std::env::temp_dir().join(format!("jointlin-backbone-scene-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    for (from, to, key) in [
+        (
+            "direction = [1.0, 0.0, 0.0]\nlaw",
+            "direction = [1.0, 1.0, 0.0]\nlaw",
+            "joints[0].direction",
+        ),
+        (
+            "normal_force = 0.1\nk_t0 = 2.0\n\n[[joints]]",
+            "normal_force = -0.1\nk_t0 = 2.0\n\n[[joints]]",
+            "joints[0].normal_force",
+        ),
+        (
+            "between = [\"m2\", \"m3\"]\ndirection = [1.0, 0.0, 0.0]\nlaw",
+            "between = [\"m2\", \"m9\"]\ndirection = [1.0, 0.0, 0.0]\nlaw",
+            "joints[1].between[1]",
+        ),
+        (
+            "between = [\"m1\", \"m2\"]",
+            "between = [\"m1\", \"m1\"]",
+            "springs[1].between",
+        ),
+    ] {
+        assert!(text.contains(from), "{from}");
+        let bad = text.replacen(from, to, 1);
+        let path = dir.join("bad.toml");
+        std::fs::write(&path, bad).unwrap();
+        let e = match input::load(&path) {
+            Ok(_) => panic!("{key}: accepted"),
+            Err(e) => e.to_string(),
+        };
+        assert!(e.contains(key), "{key}: {e}");
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
