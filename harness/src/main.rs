@@ -170,7 +170,8 @@ enum Command {
         #[arg(long)]
         quiet: bool,
     },
-    /// Validate a scene and print a summary (nothing is run or written).
+    /// Validate a scene or an Abaqus-format deck (.inp) and print a summary (nothing is
+    /// run or written).
     Check { scene: PathBuf },
     /// Eigenfrequencies of the scene's model with every closed joint stuck (k_T0) after
     /// the static step: where to put the sweep.
@@ -396,6 +397,9 @@ fn main() -> ExitCode {
             !sampled_only,
             quiet,
         ),
+        Command::Check { scene } if jointlin_harness::input::deck::summary::is_deck(&scene) => {
+            check_deck(&scene)
+        }
         Command::Check { scene } => match Scene::load(&scene) {
             Ok(s) => {
                 println!(
@@ -706,6 +710,28 @@ fn report_written<E: std::fmt::Display>(written: Result<Vec<std::path::PathBuf>,
         Err(e) => {
             eprintln!("error writing reports: {e}");
             ExitCode::from(1)
+        }
+    }
+}
+
+/// `jointlin check DECK.inp`: reads the deck, pairs its contact surfaces, prints the
+/// summary and the reader's warnings.
+fn check_deck(path: &std::path::Path) -> ExitCode {
+    use jointlin_harness::input::deck;
+    let result = deck::read(path).and_then(|(d, warnings)| {
+        deck::summary::summary(&d, &path.display().to_string()).map(|s| (s, warnings))
+    });
+    match result {
+        Ok((summary, warnings)) => {
+            print!("{summary}");
+            for w in warnings {
+                eprintln!("warning: {w}");
+            }
+            ExitCode::SUCCESS
+        }
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::from(2)
         }
     }
 }
