@@ -1,9 +1,11 @@
-//! `jointlin check SCENE`: validates a scene and prints a summary.
+//! `jointlin check SCENE|DECK.inp`: validates a scene, or reads an Abaqus-format deck and
+//! pairs its contact surfaces, and prints a summary.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use super::load_scene;
+use jointlin_harness::input::{deck, format_of, Format};
 
 // The command's help is the doc comment of `Command::Check`.
 #[derive(clap::Args)]
@@ -12,6 +14,9 @@ pub struct Args {
 }
 
 pub fn main(a: Args) -> ExitCode {
+    if format_of(&a.scene) == Format::AbaqusDeck {
+        return check_deck(&a.scene);
+    }
     let s = match load_scene(&a.scene) {
         Ok(s) => s,
         Err(code) => return code,
@@ -27,4 +32,25 @@ pub fn main(a: Args) -> ExitCode {
         s.spec.iteration.mode
     );
     ExitCode::SUCCESS
+}
+
+/// `jointlin check DECK.inp`: reads the deck, pairs its contact surfaces, prints the
+/// summary and the reader's warnings; exit 2 with `file:line: *KEYWORD: message`.
+fn check_deck(path: &Path) -> ExitCode {
+    let result = deck::read(path).and_then(|(d, warnings)| {
+        deck::summary::summary(&d, &path.display().to_string()).map(|s| (s, warnings))
+    });
+    match result {
+        Ok((summary, warnings)) => {
+            print!("{summary}");
+            for w in warnings {
+                eprintln!("warning: {w}");
+            }
+            ExitCode::SUCCESS
+        }
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::from(2)
+        }
+    }
 }

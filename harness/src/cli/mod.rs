@@ -100,7 +100,8 @@ pub enum Command {
     /// contact_ratio.svg, contact_energy.svg and contact_<interface>.vtu (ParaView).
     #[command(verbatim_doc_comment)]
     Loss(loss::Args),
-    /// Validate a scene and print a summary (nothing is run or written).
+    /// Validate a scene or an Abaqus-format deck (.inp) and print a summary (nothing is
+    /// run or written).
     Check(check::Args),
     /// Eigenfrequencies of the scene's model with every closed joint stuck (k_T0) after
     /// the static step: where to put the sweep.

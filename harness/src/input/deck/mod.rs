@@ -14,6 +14,7 @@ pub mod lexer;
 pub mod model;
 pub mod parse;
 pub mod sets;
+pub mod summary;
 
 #[cfg(test)]
 mod tests;

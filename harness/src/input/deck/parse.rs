@@ -255,8 +255,11 @@ impl Reader {
         let kw = card.keyword.as_str();
         match kw {
             "HEADING" => {
-                let text: Vec<String> = card.data.iter().map(|l| l.fields.join(",")).collect();
-                self.deck.heading = text.join("\n");
+                // The first heading is the model's (an included mesh file may bring its own).
+                if self.deck.heading.is_empty() {
+                    let text: Vec<String> = card.data.iter().map(|l| l.fields.join(", ")).collect();
+                    self.deck.heading = text.join("\n");
+                }
             }
             "ASSEMBLY" | "END ASSEMBLY" | "OUTPUT" => {}
             "NODE" => self.nodes(card, scope)?,

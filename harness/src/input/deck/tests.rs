@@ -159,6 +159,8 @@ fn part_instances_are_translated_prefixed_and_offset() {
 1, 1, 2, 3, 4, 5, 6, 7, 8
 *Surface, name=UP
 ALL, S2
+*Surface, name=DOWN
+ALL, S1
 *Solid Section, elset=ALL, material=M
 *End Part
 *Assembly, name=A
@@ -176,7 +178,7 @@ Upper.5, Lower.1
 *Elastic
 1000., 0.25
 *Tie, name=T
-Upper.UP, Lower.UP
+Upper.DOWN, Lower.UP
 ";
     let (d, _) = read_text(deck).unwrap();
     assert_eq!(d.nodes.len(), 16);
@@ -187,7 +189,30 @@ Upper.UP, Lower.UP
     assert_eq!(d.node_sets["LOCAL"], vec![18]);
     assert_eq!(d.element_sets["UPPER.ALL"], vec![11]);
     assert_eq!(d.sections.len(), 2);
-    assert_eq!(d.ties[0].slave, "UPPER.UP");
+    assert_eq!(d.ties[0].slave, "UPPER.DOWN");
+    // The upper instance's bottom lies on the lower's top: 4 tied nodes.
+    let s = summary::summary(&d, "test.inp").unwrap();
+    assert!(
+        s.contains("tie T (UPPER.DOWN / LOWER.UP): 4 tied nodes"),
+        "{s}"
+    );
+    assert!(
+        s.contains("16 nodes (48 DOFs), 2 elements (2 C3D8I)"),
+        "{s}"
+    );
+}
+
+#[test]
+fn contact_surfaces_that_do_not_overlap_are_an_error() {
+    // FLAT pairs the brick's top with its own bottom, 20 length units apart.
+    let (d, _) = read_text(FLAT).unwrap();
+    let e = summary::summary(&d, "test.inp").unwrap_err();
+    assert_eq!(e.kind, DeckErrorKind::BadValue);
+    assert!(
+        e.to_string()
+            .starts_with("test.inp:38: *CONTACT PAIR: slave TOP and master BASE do not overlap"),
+        "{e}"
+    );
 }
 
 #[test]
