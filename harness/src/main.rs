@@ -291,6 +291,11 @@ fn main() -> ExitCode {
                 );
                 return ExitCode::from(2);
             }
+            // No earlier run's marker survives this one; an interrupt says so.
+            if let Err(e) = report::atomic::begin(&out) {
+                eprintln!("error: {}: {e}", out.display());
+                return ExitCode::from(1);
+            }
             if time_domain {
                 return time_domain_run(&s, &out, quiet);
             }
@@ -365,16 +370,22 @@ fn main() -> ExitCode {
                     return ExitCode::from(1);
                 }
             }
+            for (i, f) in r.main.freqs.iter().enumerate() {
+                if let Some(e) = r.main.failure(i) {
+                    eprintln!("warning: {f:e} Hz failed (status failed in results.csv): {e}");
+                }
+            }
+            let failed = r.main.failed.iter().filter(|e| e.is_some()).count();
             let singular = r.main.singular.iter().filter(|&&c| c).count();
             if singular > 0 {
                 eprintln!(
                     "warning: {singular} frequencies have a singular dynamic stiffness (an undamped resonance?): no response there (status singular in results.csv, singular_frequencies in run.json)"
                 );
             }
-            if unconverged > singular {
+            if unconverged > singular + failed {
                 eprintln!(
                     "warning: {} frequencies did not converge (see run.json)",
-                    unconverged - singular
+                    unconverged - singular - failed
                 );
             }
             ExitCode::SUCCESS

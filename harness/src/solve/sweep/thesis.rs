@@ -104,11 +104,16 @@ pub fn sweep(
         return Ok(res);
     }
 
+    // atol from the stuck response's scale (one factorization per frequency), not from
+    // the start estimate.
+    let t = Instant::now();
+    let atol = super::ATOL_REL * super::scale::stuck_scale(setup, freqs)?;
+    res.time("amplitude scale (stuck response)", t);
     let t = Instant::now();
     let store = Store::new(
         it.initial_amplitude,
         it.tolerance,
-        super::atol(&it),
+        atol,
         it.scheme,
         it.max_passes,
         SWEEP_STEP,
