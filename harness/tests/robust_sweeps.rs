@@ -284,3 +284,64 @@ fn a_hard_frequency_fails_alone_and_the_sweep_goes_on() {
         o.stderr
     );
 }
+
+/// Material damping off, microslip off (joints stuck at k_T0): a sweep that holds the
+/// `jointlin modes` frequencies exactly has no response there. Those rows are
+/// `singular` (as the open joint's are), the frequency between converged. They were
+/// 1.38e6 mm and 1.17e6 mm, labelled converged, with no singular frequency.
+#[test]
+fn an_undamped_stuck_resonance_is_singular() {
+    let undamped = [
+        (
+            "tangential_microslip = true",
+            "tangential_microslip = false",
+        ),
+        ("material_damping = true", "material_damping = false"),
+    ];
+    let d = scratch("modes");
+    let scene = d.join("scene.toml");
+    std::fs::write(&scene, scene_text("three-beams-coarse.toml", &undamped)).unwrap();
+    let out = Command::new(env!("CARGO_BIN_EXE_jointlin"))
+        .args(["modes", "--count", "3"])
+        .arg(&scene)
+        .output()
+        .unwrap();
+    std::fs::remove_dir_all(&d).unwrap();
+    // "mode 1: 1174.4981218347955 (1/time)"
+    let modes: Vec<String> = String::from_utf8(out.stdout)
+        .unwrap()
+        .lines()
+        .map(|l| l.split_whitespace().nth(2).unwrap().to_string())
+        .collect();
+    assert_eq!(modes.len(), 3);
+    let (f1, f3) = (&modes[0], &modes[2]);
+    let band = |f: &str| format!("{{ f_min = {f}, f_max = {f}, count = 1 }},");
+    let mut edits = undamped.to_vec();
+    let (b1, b3) = (band(f1), band(f3));
+    edits.extend([
+        ("f_min = 900.0", "f_min = 1000.0"),
+        ("f_max = 9000.0", "f_max = 1000.0"),
+        ("count = 40", "count = 1"),
+        (
+            "{ f_min = 1100.0, f_max = 1250.0, count = 30 },",
+            b1.as_str(),
+        ),
+        (
+            "{ f_min = 7000.0, f_max = 7500.0, count = 30 },",
+            b3.as_str(),
+        ),
+    ]);
+    let text = scene_text("three-beams-coarse.toml", &edits);
+    for mode in MODES {
+        let o = run("stuck-resonance", &text, mode);
+        assert!(o.ok, "{mode}: {}", o.stderr);
+        let status: Vec<&str> = o.results.iter().map(|r| r["status"].as_str()).collect();
+        assert_eq!(
+            status,
+            ["converged", "singular", "singular"],
+            "{mode} at {f1}, {f3}"
+        );
+        // 1000 Hz, below the first mode: the stuck beams' 5.7e-4 mm.
+        assert!(rel(num(&o.results[0], "top_tip_amp"), 5.7142e-4) < 1e-4);
+    }
+}

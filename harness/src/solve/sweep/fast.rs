@@ -252,16 +252,7 @@ pub fn sweep(
         let Some(num) = num else {
             // Singular dynamic stiffness (e.g. an undamped eigenfrequency with the joint
             // open): no response; the next frequency starts afresh.
-            res.outputs.push(vec![C64::new(0.0, 0.0); nout]);
-            res.power.push(0.0);
-            if opts.point_results {
-                res.points
-                    .push(vec![PointFreq::default(); p.contacts.len()]);
-            }
-            res.iterations.push(0);
-            res.converged.push(false);
-            res.singular.push(true);
-            res.failed.push(None);
+            res.push_singular(nout, opts.point_results.then_some(p.contacts.len()));
             hist.clear();
             continue;
         };
@@ -278,6 +269,16 @@ pub fn sweep(
             }
         } else {
             per_freq!(rec.load(&num, &p.excitation, &row, &p.outputs).map_err(umf));
+        }
+        // Singular by the bound of the load's solve (an undamped resonance that no pivot
+        // shows): as above.
+        let x0 = if krylov { &u } else { &rec.x };
+        if setup.rcond_bound(&p.excitation, x0) < super::SINGULAR_RCOND {
+            res.push_singular(nout, opts.point_results.then_some(p.contacts.len()));
+            hist.clear();
+            continue;
+        }
+        if !krylov {
             per_freq!(rec.condense(&num, &row, &p.outputs).map_err(umf));
         }
         res.time("receptance solves", t);

@@ -52,6 +52,7 @@ pub const ATOL_REL: f64 = 1e-6;
 /// A frequency whose dynamic stiffness factorizes with UMFPACK's reciprocal condition
 /// estimate min|Uᵢᵢ|/max|Uᵢᵢ| below this (or with UMFPACK status 1, an exactly zero
 /// pivot) is reported singular: no response is computed there, the sweep goes on.
+/// The same threshold applies to the bound of one solve ([`Setup::rcond_bound`]).
 /// Measured on scenes/hard: healthy matrices 1.5e-9 (joint stiffness ratio
 /// k_T0·L/(E·A) = 1e6) to 3e-3; the undamped open joint of open-resonance.toml 6.9e-17
 /// exactly at its eigenfrequency, 9.2e-16 1e-10 below it (the response there has at
@@ -185,6 +186,19 @@ impl SweepResult {
         self.converged.reverse();
         self.singular.reverse();
         self.failed.reverse();
+    }
+
+    /// The next frequency is singular: a row of zeros, not converged.
+    pub(crate) fn push_singular(&mut self, nout: usize, points: Option<usize>) {
+        self.outputs.push(vec![C64::new(0.0, 0.0); nout]);
+        self.power.push(0.0);
+        if let Some(n) = points {
+            self.points.push(vec![PointFreq::default(); n]);
+        }
+        self.iterations.push(0);
+        self.converged.push(false);
+        self.singular.push(true);
+        self.failed.push(None);
     }
 
     /// Why frequency `i` failed, if it did.
@@ -336,6 +350,30 @@ impl<'a> Setup<'a> {
             Ok(_) | Err(UmfpackError::Singular { .. }) => Ok(None),
             Err(source) => Err(SweepError::Umfpack { freq: f, source }),
         }
+    }
+
+    /// An upper bound of the reciprocal 2-norm condition number of `self.s` from one
+    /// solve x = S⁻¹ f: ‖S⁻¹‖₂ ≥ ‖x‖₂/‖f‖₂ and ‖S‖₂ ≥ c, the largest column 2-norm, so
+    /// rcond₂ ≤ ‖f‖₂/(c‖x‖₂). Below [`SINGULAR_RCOND`] the matrix is singular by the
+    /// same rule as UMFPACK's pivot estimate, which misses a near-zero eigenvalue that no
+    /// single pivot shows: the undamped stuck joint of three-beams-coarse at its
+    /// `jointlin modes` frequency 1174.498 Hz had a pivot ratio above 1e-14 and a
+    /// response of 1.38e6 mm (bound 1e-15 from that solve).
+    pub fn rcond_bound(&self, f: &[C64], x: &[C64]) -> f64 {
+        let p = &self.s.pattern;
+        let c = (0..p.n)
+            .map(|j| {
+                let k = p.col_ptr[j] as usize..p.col_ptr[j + 1] as usize;
+                self.s.values[k].iter().map(|v| v.norm_sqr()).sum::<f64>()
+            })
+            .fold(0.0f64, f64::max)
+            .sqrt();
+        let norm = |v: &[C64]| v.iter().map(|z| z.norm_sqr()).sum::<f64>().sqrt();
+        let (nf, nx) = (norm(f), norm(x));
+        if nx == 0.0 {
+            return 1.0;
+        }
+        nf / (c * nx)
     }
 
     /// Tangential relative displacement amplitudes (complex) of active point j.

@@ -296,5 +296,10 @@ fn solve_one(
     num.solve_into(&setup.problem.excitation, x)
         .map_err(|source| SweepError::Umfpack { freq: f, source })?;
     res.time("solves", t);
+    // Singular by the bound of this solve too (an undamped resonance no pivot shows).
+    if setup.rcond_bound(&setup.problem.excitation, x) < super::SINGULAR_RCOND {
+        x.iter_mut().for_each(|v| *v = C64::new(0.0, 0.0));
+        return Ok(false);
+    }
     Ok(true)
 }
