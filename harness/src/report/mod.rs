@@ -55,6 +55,7 @@ pub fn run_json(scene: &Scene, r: &RunResult) -> serde_json::Value {
         "all_converged": m.converged.iter().all(|&c| c),
         "singular_frequencies": m.freqs.iter().enumerate().filter(|(i, _)| m.is_singular(*i)).map(|(_, f)| *f).collect::<Vec<f64>>(),
         "failed_frequencies": m.freqs.iter().enumerate().filter_map(|(i, f)| m.failure(i).map(|e| json!({"freq_hz": f, "error": e}))).collect::<Vec<_>>(),
+        "a_posteriori_checks": m.checks,
         "singular_rcond_threshold": crate::solve::sweep::SINGULAR_RCOND,
         "factorizations": m.factorizations,
         "gmres_solves": m.gmres_solves,

@@ -25,6 +25,7 @@ use std::time::Instant;
 use super::anderson::Anderson;
 use super::bracket::Bracket;
 use super::krylov::Gmres;
+use super::posteriori::{self, Claim};
 use super::receptance::Receptance;
 use super::{Options, PassRecord, PointFreq, Setup, SweepError, SweepResult, C64};
 use crate::capi::{self, Linearized, Tangential};
@@ -127,6 +128,9 @@ pub fn sweep(
     let mut rec = Receptance::new(n, if condensed { m } else { 0 }, nout);
     rec.r0 = vec![C64::new(0.0, 0.0); m];
     let mut u = vec![C64::new(0.0, 0.0); if condensed { 0 } else { n }];
+    // The condensed path's full solution for the a-posteriori check, and its right side.
+    let mut x_full = vec![C64::new(0.0, 0.0); if condensed { n } else { 0 }];
+    let mut x_rhs = x_full.clone();
     let mut gmres = Gmres::<C64>::new(if condensed { 0 } else { n }, GMRES_RESTART);
     let mut work = vec![C64::new(0.0, 0.0); if condensed { m * m } else { 0 }];
     let mut r = vec![C64::new(0.0, 0.0); m];
@@ -446,6 +450,51 @@ pub fn sweep(
             (a, a_star, r, delta, lin, ks, u, gmres_ok) = f;
         }
 
+        // Independent check of a converged frequency (posteriori.rs); the condensed path
+        // forms x = S₀⁻¹(f̂ − Bᵀ Δ r) for it (one more solve).
+        let mut check = None;
+        if converged && gmres_ok {
+            let t = Instant::now();
+            if !krylov {
+                x_rhs.copy_from_slice(&p.excitation);
+                for j in 0..m {
+                    let c = delta[j] * r[j];
+                    for &(i, w) in row(j) {
+                        x_rhs[i] -= c * w;
+                    }
+                }
+                per_freq!(num.solve_into(&x_rhs, &mut x_full).map_err(umf));
+            }
+            let kappa: Vec<[C64; 2]> = (0..na)
+                .map(|q| {
+                    [
+                        kappa_of(&lin[2 * q], omega),
+                        kappa_of(&lin[2 * q + 1], omega),
+                    ]
+                })
+                .collect();
+            let amplitudes: Vec<[f64; 2]> = (0..na).map(|q| [a[2 * q], a[2 * q + 1]]).collect();
+            let claim = Claim {
+                kappa: &kappa,
+                amplitudes: &amplitudes,
+                caps: &vec![f64::INFINITY; na],
+                spring_k: &ks,
+            };
+            let scale = a.iter().chain(&a_star).fold(0.0f64, |x, &y| x.max(y));
+            let x = if krylov { &u } else { &x_full };
+            let v = posteriori::check(
+                setup,
+                omega,
+                &claim,
+                x,
+                it.tolerance,
+                super::ATOL_REL * scale,
+            );
+            check = Some(v);
+            converged = v.passes(it.tolerance);
+            res.time("a-posteriori check", t);
+        }
+
         drop(num);
         // Outputs: ŷ = o₀ − O Δ r (condensed) or C u (Krylov).
         let outs: Vec<C64> = if krylov {
@@ -499,6 +548,7 @@ pub fn sweep(
         res.converged.push(converged && gmres_ok);
         res.singular.push(false);
         res.failed.push(None);
+        res.checks.push(check);
         // The next frequency starts from this converged state (extrapolated).
         if converged && m > 0 {
             hist.push((f, a.clone()));

@@ -16,6 +16,7 @@ pub mod bracket;
 pub mod fast;
 pub mod harmonic;
 pub mod krylov;
+pub mod posteriori;
 pub mod receptance;
 pub mod scale;
 pub mod thesis;
@@ -164,6 +165,10 @@ pub struct SweepResult {
     /// outputs and power are zeros standing for "no response computed" (status `failed`,
     /// empty fields), and the frequency counts as not converged. Empty: none failed.
     pub failed: Vec<Option<String>>,
+    /// Per frequency (fast and thesis modes): the independent check of the converged
+    /// solution ([`posteriori`]; `None` where not converged or not checked); a frequency
+    /// that fails it is not converged.
+    pub checks: Vec<Option<posteriori::Verdict>>,
     pub passes: Vec<PassRecord>,
     pub factorizations: usize,
     /// Fast mode with FGMRES: preconditioner applications (solves) in all.
@@ -186,6 +191,7 @@ impl SweepResult {
         self.converged.reverse();
         self.singular.reverse();
         self.failed.reverse();
+        self.checks.reverse();
     }
 
     /// The next frequency is singular: a row of zeros, not converged.
@@ -199,6 +205,7 @@ impl SweepResult {
         self.converged.push(false);
         self.singular.push(true);
         self.failed.push(None);
+        self.checks.push(None);
     }
 
     /// Why frequency `i` failed, if it did.
@@ -218,6 +225,7 @@ impl SweepResult {
         self.converged.push(false);
         self.singular.push(false);
         self.failed.push(Some(e.to_string()));
+        self.checks.push(None);
     }
 
     /// Whether frequency `i` was singular (no response computed there).

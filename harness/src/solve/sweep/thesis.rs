@@ -16,6 +16,7 @@
 
 use std::time::Instant;
 
+use super::posteriori::{self, Claim};
 use super::{Options, PassRecord, PointFreq, Setup, SweepError, SweepResult, C64};
 use crate::capi::{self, Action, Store, NSTATV};
 use crate::solve::contact::{interface_props, tangential};
@@ -45,8 +46,11 @@ pub fn sweep(
         iterations: vec![0; nf],
         converged: vec![na == 0 && springs.is_empty(); nf],
         singular: vec![false; nf],
+        checks: vec![None; nf],
         ..Default::default()
     };
+    // Per frequency: the last solve passed the a-posteriori check (posteriori.rs).
+    let mut checked = vec![true; nf];
     if opts.point_results {
         res.points = vec![vec![PointFreq::default(); p.contacts.len()]; nf];
     }
@@ -180,6 +184,25 @@ pub fn sweep(
             if res.singular[fi] && opts.point_results {
                 res.points[fi].fill(PointFreq::default());
             }
+            if !res.singular[fi] {
+                let t = Instant::now();
+                let amplitudes: Vec<[f64; 2]> = outs.iter().map(|o| o.report.amplitude).collect();
+                let caps: Vec<f64> = if eff.macroslip {
+                    vec![f64::INFINITY; na]
+                } else {
+                    slip_limit.clone()
+                };
+                let claim = Claim {
+                    kappa: &kappa,
+                    amplitudes: &amplitudes,
+                    caps: &caps,
+                    spring_k: &ks,
+                };
+                let v = posteriori::check(setup, omega, &claim, &x, it.tolerance, atol);
+                res.checks[fi] = Some(v);
+                checked[fi] = v.passes(it.tolerance);
+                res.time("a-posteriori check", t);
+            }
             let t = Instant::now();
             let mut power = 0.0;
             for (j, &i) in setup.active.iter().enumerate() {
@@ -266,8 +289,13 @@ pub fn sweep(
     }
     // A final pass that found an increment out of tolerance turns into a re-run; what
     // the store left unconverged was marked above. A singular frequency has no response.
-    for (c, &s) in res.converged.iter_mut().zip(&res.singular) {
-        *c &= !s;
+    for ((c, &s), &ok) in res.converged.iter_mut().zip(&res.singular).zip(&checked) {
+        *c &= !s && ok;
+    }
+    for (b, &c) in res.checks.iter_mut().zip(&res.converged) {
+        if !c {
+            *b = None;
+        }
     }
     Ok(res)
 }
