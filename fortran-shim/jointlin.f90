@@ -30,7 +30,7 @@ module jointlin
 
   ! ---- constants (#define in jointlin.h) ----
   integer(c_int32_t), parameter :: JOINTLIN_ABI_VERSION_MAJOR = 0
-  integer(c_int32_t), parameter :: JOINTLIN_ABI_VERSION_MINOR = 3
+  integer(c_int32_t), parameter :: JOINTLIN_ABI_VERSION_MINOR = 4
   integer(c_int32_t), parameter :: JOINTLIN_OK = 0
   integer(c_int32_t), parameter :: JOINTLIN_ERR_NULL = 1
   integer(c_int32_t), parameter :: JOINTLIN_ERR_NON_FINITE = 2
@@ -58,6 +58,11 @@ module jointlin
   integer(c_int32_t), parameter :: JOINTLIN_REGIME_MICROSLIP = 2
   integer(c_int32_t), parameter :: JOINTLIN_REGIME_SLIDING = 3
   integer(c_int32_t), parameter :: JOINTLIN_POINT_STATE_LEN = 23
+  integer(c_int32_t), parameter :: JOINTLIN_NORMAL_LINEAR = 0
+  integer(c_int32_t), parameter :: JOINTLIN_NORMAL_HERTZ = 1
+  integer(c_int32_t), parameter :: JOINTLIN_POINT3D_MAX_CELLS = 128
+  integer(c_int32_t), parameter :: JOINTLIN_POINT3D_DEFAULT_CELLS = 32
+  integer(c_int32_t), parameter :: JOINTLIN_POINT3D_STATE_LEN = 261
   integer(c_int32_t), parameter :: JOINTLIN_UINTER_MIN_NPROPS = 7
   integer(c_int32_t), parameter :: JOINTLIN_UINTER_MAX_NPROPS = 12
   integer(c_int32_t), parameter :: JOINTLIN_UINTER_MIN_NSTATV = 57
@@ -109,6 +114,30 @@ module jointlin
      real(c_double) :: tangent
      real(c_double) :: dissipated
   end type jointlin_step
+
+  type, bind(C) :: jointlin_contact3d
+     integer(c_int32_t) :: law
+     integer(c_int32_t) :: cells
+     real(c_double) :: mu
+     real(c_double) :: k_t0
+     integer(c_int32_t) :: normal_law
+     real(c_double) :: normal_stiffness
+     real(c_double) :: r_star
+  end type jointlin_contact3d
+
+  type, bind(C) :: jointlin_step3d
+     real(c_double) :: force(3)
+     real(c_double) :: stiffness(9)
+     real(c_double) :: dissipated
+     integer(c_int32_t) :: regime
+  end type jointlin_step3d
+
+  type, bind(C) :: jointlin_linearization3d
+     real(c_double) :: k_star(2)
+     real(c_double) :: d_star(2)
+     real(c_double) :: energy_per_cycle
+     integer(c_int32_t) :: regime
+  end type jointlin_linearization3d
 
   type, bind(C) :: jointlin_store_config
      real(c_double) :: initial_amplitude
@@ -219,6 +248,29 @@ module jointlin
        type(jointlin_step), intent(out) :: out
        integer(c_int32_t) :: jointlin_point_step
      end function jointlin_point_step
+
+     function jointlin_point3d_step(contact, state, disp, state_out, out) &
+          bind(C, name='jointlin_point3d_step')
+       import :: c_int32_t, c_double, jointlin_contact3d, jointlin_step3d
+       type(jointlin_contact3d), intent(in) :: contact
+       real(c_double), intent(in) :: state(*)
+       real(c_double), intent(in) :: disp(*)
+       real(c_double), intent(inout) :: state_out(*)
+       type(jointlin_step3d), intent(out) :: out
+       integer(c_int32_t) :: jointlin_point3d_step
+     end function jointlin_point3d_step
+
+     function jointlin_linearize3d(contact, normal_force, amplitude_1, amplitude_2, &
+          omega, out) bind(C, name='jointlin_linearize3d')
+       import :: c_int32_t, c_double, jointlin_contact3d, jointlin_linearization3d
+       type(jointlin_contact3d), intent(in) :: contact
+       real(c_double), value :: normal_force
+       real(c_double), value :: amplitude_1
+       real(c_double), value :: amplitude_2
+       real(c_double), value :: omega
+       type(jointlin_linearization3d), intent(out) :: out
+       integer(c_int32_t) :: jointlin_linearize3d
+     end function jointlin_linearize3d
 
      function jointlin_screw_preload(torque, pitch, d2, mu_thread, mu_head, d_km, &
           preload) bind(C, name='jointlin_screw_preload')
@@ -351,6 +403,15 @@ module jointlin
        integer(c_size_t), intent(out) :: len
        integer(c_int32_t) :: jointlin_store_restart_path
      end function jointlin_store_restart_path
+
+     function jointlin_store_set_model(store, bytes, len) &
+          bind(C, name='jointlin_store_set_model')
+       import :: c_int32_t, c_size_t, c_char, c_ptr
+       type(c_ptr), value :: store
+       character(kind=c_char), intent(in) :: bytes(*)
+       integer(c_size_t), value :: len
+       integer(c_int32_t) :: jointlin_store_set_model
+     end function jointlin_store_set_model
 
      function jointlin_store_pass_summary(store, summary, cap, len) &
           bind(C, name='jointlin_store_pass_summary')

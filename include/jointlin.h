@@ -26,7 +26,7 @@
 /**
  * Minor version of the C ABI: additions that keep existing callers working.
  */
-#define JOINTLIN_ABI_VERSION_MINOR 3
+#define JOINTLIN_ABI_VERSION_MINOR 4
 
 /**
  * Success.
@@ -165,6 +165,33 @@
  * Number of doubles in the state of one tangential direction of a point.
  */
 #define JOINTLIN_POINT_STATE_LEN 23
+
+/**
+ * Normal law code: linear penalty N = k_N h for h > 0 (k_N in force/length).
+ */
+#define JOINTLIN_NORMAL_LINEAR 0
+
+/**
+ * Normal law code: Hertz N = (4/3) E* sqrt(r*) h^(3/2) for h > 0 (2.34).
+ */
+#define JOINTLIN_NORMAL_HERTZ 1
+
+/**
+ * Largest number of Jenkins cells of a Mindlin–Masing point.
+ */
+#define JOINTLIN_POINT3D_MAX_CELLS 128
+
+/**
+ * Cells used by a Mindlin–Masing point when `cells` is 0.
+ */
+#define JOINTLIN_POINT3D_DEFAULT_CELLS 32
+
+/**
+ * Number of doubles in the state of a three-direction point: slot 0 the cell count, 1–2
+ * the tangential displacement of the last step, 3 its overclosure, 4 the energy dissipated
+ * since the virgin state, then two slider coordinates per cell.
+ */
+#define JOINTLIN_POINT3D_STATE_LEN 261
 
 /**
  * Smallest NPROPS accepted by jointlin_uinter. The UINTER property layout:
@@ -365,7 +392,7 @@ typedef struct jointlin_method {
    */
   int32_t kind;
   /**
-   * Gauss points per panel (graded, 1..128), Gauss points (gauss, 1..128) or Simpson
+   * Gauss points per panel (graded, 1..128), Gauss points (gauss, 2..128) or Simpson
    * intervals (simpson, even, 2..2^26); 0 = the method's default.
    */
   int32_t points;
@@ -427,6 +454,89 @@ typedef struct jointlin_step {
    */
   double dissipated;
 } jointlin_step;
+
+/**
+ * A contact point in three directions (force form: forces, force/length).
+ */
+typedef struct jointlin_contact3d {
+  /**
+   * JOINTLIN_LAW_JENKINS (one cell: k_t0 and mu N) or JOINTLIN_LAW_MINDLIN (Mindlin's
+   * curve and Masing's rule by parallel Jenkins cells).
+   */
+  int32_t law;
+  /**
+   * Cells of a Mindlin point, 1..JOINTLIN_POINT3D_MAX_CELLS, 0 = default; 0 or 1 for
+   * Jenkins.
+   */
+  int32_t cells;
+  /**
+   * Friction coefficient mu >= 0.
+   */
+  double mu;
+  /**
+   * Full-stick tangential stiffness k_T0 > 0 (force/length), both directions.
+   */
+  double k_t0;
+  /**
+   * JOINTLIN_NORMAL_LINEAR or JOINTLIN_NORMAL_HERTZ.
+   */
+  int32_t normal_law;
+  /**
+   * k_N > 0 (force/length) for the linear law, E* > 0 (force/length^2) for Hertz.
+   */
+  double normal_stiffness;
+  /**
+   * r* > 0 (length) for Hertz (2.31); ignored (any finite value) for the linear law.
+   */
+  double r_star;
+} jointlin_contact3d;
+
+/**
+ * Result of one step of a three-direction point.
+ */
+typedef struct jointlin_step3d {
+  /**
+   * (t1, t2, N): tangential forces with the sign of the displacement (positive stiffness
+   * convention) and the normal force (>= 0, compression).
+   */
+  double force[3];
+  /**
+   * d force / d (u1, u2, h) for continued motion, row-major (rows t1, t2, N).
+   */
+  double stiffness[9];
+  /**
+   * Energy dissipated during the step (>= 0, force x length).
+   */
+  double dissipated;
+  /**
+   * JOINTLIN_REGIME_* of the step: open (N = 0 or mu = 0), stick (no cell slipped),
+   * microslip (some cells slipped), sliding (all cells slipped).
+   */
+  int32_t regime;
+} jointlin_step3d;
+
+/**
+ * Describing function of a three-direction point on an elliptic path.
+ */
+typedef struct jointlin_linearization3d {
+  /**
+   * Equivalent stiffness per tangential direction (force/length).
+   */
+  double k_star[2];
+  /**
+   * Equivalent viscous damping per tangential direction, energy of the direction per
+   * cycle / (pi omega A^2) (3.14).
+   */
+  double d_star[2];
+  /**
+   * Energy dissipated per cycle by the point (force x length).
+   */
+  double energy_per_cycle;
+  /**
+   * JOINTLIN_REGIME_* code.
+   */
+  int32_t regime;
+} jointlin_linearization3d;
 
 /**
  * Settings of a store. Get the defaults from jointlin_store_config_default, then set at
@@ -662,11 +772,19 @@ size_t jointlin_last_error(char *buf,
  * energy balance (3.14). An open contact (F_N <= 0) or mu = 0 gives all zeros and
  * JOINTLIN_REGIME_OPEN with status JOINTLIN_OK.
  *
+ * Every output is right over the whole double range: the loop is evaluated in the
+ * point's own units (mu F_N = 1, delta* = 1) and scaled back without intermediate
+ * overflow or underflow, so a subnormal delta* (k_t0 = DBL_MAX) or A/delta*
+ * (F_N = 1e308, A = 1e-8), or mu F_N = 1e-165, give the scaled loop; an output below the
+ * smallest double is 0 or subnormal. A = 0 is JOINTLIN_REGIME_STICK with k* = k_t0; any
+ * A > 0 on a Mindlin point is at least JOINTLIN_REGIME_MICROSLIP.
+ *
  * `contact` and `out` must not be NULL; `method` may be NULL (default quadrature).
  * Errors: JOINTLIN_ERR_NULL, JOINTLIN_ERR_NON_FINITE (any NaN/Inf input),
  * JOINTLIN_ERR_OUT_OF_RANGE (amplitude < 0, omega <= 0, mu < 0, k_t0 <= 0, unknown codes,
- * bad point count), JOINTLIN_ERR_OVERFLOW (d* or eta not representable). `*out` is written
- * only on JOINTLIN_OK.
+ * bad point count: plain Gauss needs >= 2 points), JOINTLIN_ERR_OVERFLOW (an output
+ * beyond DBL_MAX: mu F_N, delta*, A/delta*, the energy per cycle, d* or eta). `*out` is
+ * written only on JOINTLIN_OK.
  *
  * # Safety
  * Non-NULL pointers must point to valid, aligned objects of their types.
@@ -704,13 +822,74 @@ int32_t jointlin_point_step(const struct jointlin_contact *contact,
                             struct jointlin_step *out);
 
 /**
+ * Moves a three-direction contact point from `state` to the displacement `disp`: the two
+ * tangential relative displacements u1, u2 (length) and the overclosure h (length;
+ * penetration when positive, open when h <= 0). Writes the new state to `state_out` and
+ * the forces, stiffness, dissipated energy and regime to `out`. Both state arrays hold
+ * JOINTLIN_POINT3D_STATE_LEN doubles; an all-zero state is a virgin point at the
+ * displacement 0. `state_out` may equal `state`. Pure (no hidden state): trial steps may
+ * be evaluated and only accepted states kept.
+ *
+ * The tangential path between two calls is taken as the straight segment; the friction
+ * limit of each cell is its share of mu N(h) at the new displacement. An open contact
+ * carries no force; the tangential elastic energy it held is counted as dissipated.
+ *
+ * No pointer may be NULL. Errors: JOINTLIN_ERR_NULL, JOINTLIN_ERR_NON_FINITE (NaN/Inf in
+ * the contact, the state or `disp`), JOINTLIN_ERR_OUT_OF_RANGE (unknown codes, mu < 0,
+ * k_t0 <= 0, normal constants <= 0, a cell count out of range, a state written for
+ * another cell count or corrupt), JOINTLIN_ERR_OVERFLOW (a displacement so large that the
+ * forces are not representable). Outputs are written only on JOINTLIN_OK.
+ *
+ * # Safety
+ * `contact` must point to a valid jointlin_contact3d, `disp` to 3 doubles, `state` and
+ * `state_out` to JOINTLIN_POINT3D_STATE_LEN doubles each, `out` to a writable
+ * jointlin_step3d.
+ */
+int32_t jointlin_point3d_step(const struct jointlin_contact3d *contact,
+                              const double *state,
+                              const double *disp,
+                              double *state_out,
+                              struct jointlin_step3d *out);
+
+/**
+ * Describing function of a three-direction point at the constant normal force
+ * `normal_force` (force; <= 0 open: all zeros, JOINTLIN_REGIME_OPEN) on the elliptic path
+ * u = (amplitude_1 cos(omega t), amplitude_2 sin(omega t)) in the point's principal axes,
+ * from a virgin start: per direction k* (in-phase first harmonic over the amplitude,
+ * (3.8)) and d* (the direction's energy per cycle over pi omega A^2, (3.14)), and the
+ * energy per cycle. The normal law is not used. A direction with zero amplitude gets
+ * k* = d* = 0 (nothing to balance); both zero give k* = k_t0 (stick). Meaningful only
+ * while the normal force stays constant and positive over the cycle (docs/contact3d.md).
+ *
+ * Errors: JOINTLIN_ERR_NULL, JOINTLIN_ERR_NON_FINITE, JOINTLIN_ERR_OUT_OF_RANGE
+ * (amplitudes < 0, omega <= 0, invalid contact), JOINTLIN_ERR_OVERFLOW (d* not
+ * representable). `*out` is written only on JOINTLIN_OK.
+ *
+ * # Safety
+ * `contact` must point to a valid jointlin_contact3d and `out` to a writable
+ * jointlin_linearization3d.
+ */
+int32_t jointlin_linearize3d(const struct jointlin_contact3d *contact,
+                             double normal_force,
+                             double amplitude_1,
+                             double amplitude_2,
+                             double omega,
+                             struct jointlin_linearization3d *out);
+
+/**
  * Writes to `*preload` the axial force F (force) of a screw tightened to `torque` T
  * (force x length): F = T / (0.16 P + 0.58 d2 mu_thread + d_km/2 mu_head) (VDI 2230,
  * R13). Lengths in one unit: thread pitch `pitch` P > 0, flank diameter `d2` > 0,
  * effective head bearing diameter `d_km` >= 0; friction coefficients >= 0; T >= 0.
  *
+ * On JOINTLIN_OK the preload is finite and >= 0 for any finite inputs: the lever and the
+ * quotient are formed without intermediate overflow or underflow (P = 5e-324 or
+ * d2 mu_thread = 1e400 keep their value); a preload beyond DBL_MAX is
+ * JOINTLIN_ERR_OVERFLOW, never Inf or NaN.
+ *
  * Errors: JOINTLIN_ERR_NULL (`preload` NULL), JOINTLIN_ERR_NON_FINITE,
- * JOINTLIN_ERR_OUT_OF_RANGE. `*preload` is written only on JOINTLIN_OK.
+ * JOINTLIN_ERR_OUT_OF_RANGE, JOINTLIN_ERR_OVERFLOW. `*preload` is written only on
+ * JOINTLIN_OK.
  *
  * # Safety
  * `preload` must be NULL or point to a writable double.
@@ -887,6 +1066,28 @@ int32_t jointlin_store_point_count(const struct jointlin_store *store,
  * `store` a live handle.
  */
 int32_t jointlin_store_restore(const struct jointlin_store *store);
+
+/**
+ * Sets the store's model fingerprint: `len` bytes (at most 4096, not NUL-terminated;
+ * NULL with `len` 0 clears it) that identify the model the sweep runs, e.g. a hash of
+ * the input deck, the job's contact definitions and frequencies. Call it right after
+ * creating the store, before LOP 0 or LOP 4.
+ *
+ * The restart file (format 2) carries the fingerprint and the store's settings
+ * (initial_amplitude, rtol, atol, scheme, max_passes, sweep_step, kinc_numbering);
+ * LOP 4 and jointlin_store_restore reject a file whose fingerprint or settings differ
+ * with JOINTLIN_ERR_IO, leaving the store unchanged. A file of the older format 1 (no
+ * fingerprints) is read only by a store without a fingerprint.
+ *
+ * Errors: JOINTLIN_ERR_NULL (`store`, or `bytes` with `len` > 0), JOINTLIN_ERR_OUT_OF_RANGE
+ * (`len` > 4096).
+ *
+ * # Safety
+ * `store` a live handle; `bytes` points to `len` readable bytes (or is NULL when `len` is 0).
+ */
+int32_t jointlin_store_set_model(const struct jointlin_store *store,
+                                 const char *bytes,
+                                 size_t len);
 
 /**
  * Creates the store of rank `rank` (0-based) of `ranks` processes: as jointlin_store_new,

@@ -12,7 +12,9 @@
 //! 3. [`linearize`]: amplitude A, frequency ω → k*, d*, η, energy per cycle, peak force.
 //! 4. [`iterate`]: amplitude consistency for one point or a small dense system (4.2.3).
 //! 5. [`store`]: the UEXTERNALDB-side iteration store over frequency increments (4.3.2).
-//! 6. `ffi`: the C ABI (`jointlin_*`), the only unsafe code.
+//! 6. [`point3d`]: a contact point in three directions (unilateral normal law, coupled
+//!    circular slip limit in the tangent plane) and its describing function.
+//! 7. `ffi`: the C ABI (`jointlin_*`), the only unsafe code.
 
 pub mod error;
 pub mod ffi;
@@ -20,6 +22,8 @@ pub mod hysteresis;
 pub mod iterate;
 pub mod law;
 pub mod linearize;
+pub mod point3d;
 pub mod store;
+mod wide;
 
 pub use error::Error;

@@ -455,12 +455,20 @@ fn calls_overlapping_uexternaldb_get_named_codes_and_leave_a_working_store() {
                 }
             });
         }
-        // The main thread drives increments underneath them.
-        for k in 2..200 {
+        // The main thread drives increments underneath them: at least 200, and on until
+        // both kinds of outcome were seen (a loaded machine may schedule the workers late),
+        // at most a million.
+        let mut k = 2;
+        while k < 200
+            || (k < 1_000_000
+                && (ok.load(Ordering::Relaxed) == 0 || other.load(Ordering::Relaxed) == 0))
+        {
             kinc.store(k, Ordering::Relaxed);
             for lop in [1, 2] {
                 assert!(named(uexternaldb(store, lop, 0, 2, k)));
             }
+            std::thread::yield_now();
+            k += 1;
         }
         stop.store(true, Ordering::Relaxed);
     });

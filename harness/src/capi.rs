@@ -34,7 +34,7 @@ use jointlin::ffi::uexternaldb::jointlin_uexternaldb;
 use jointlin::ffi::uinter::{jointlin_uinter, jointlin_uinter_report};
 use thiserror::Error;
 
-use crate::scene::{LawName, RuleName, SchemeName};
+use crate::names::{LawName, RuleName, SchemeName};
 
 pub use jointlin::ffi::linearize::{
     JOINTLIN_REGIME_MICROSLIP, JOINTLIN_REGIME_OPEN, JOINTLIN_REGIME_SLIDING, JOINTLIN_REGIME_STICK,

@@ -2,7 +2,7 @@
 //! Abaqus would (through the C API only, [`capi`]).
 //!
 //! Pipeline of `jointlin run SCENE --out DIR` ([`run`]):
-//! 1. [`scene`]: TOML schema, validation with file:line:key errors, `[effects]` switches.
+//! 1. [`input`]: the input path; [`input::scene`]: TOML schema, validation with file:line:key errors, `[effects]` switches.
 //! 2. [`model`]: scene → mesh and lumped bodies, K, M, material damping, contact points
 //!    (node pairs with frames and tributary areas), preload and excitation, outputs.
 //! 3. [`solve::static_step`]: the preload step, Newton with UINTER (LINPER = 0).
@@ -23,18 +23,19 @@
 // would hide the maths.
 #![allow(clippy::needless_range_loop)]
 
+pub mod backbone;
 pub mod bench;
 pub mod capi;
 pub mod fe;
+pub mod input;
 pub mod loss;
 pub mod mhb;
 pub mod model;
+pub mod names;
 pub mod report;
 pub mod run;
-pub mod scene;
 pub mod solve;
 pub mod time;
 pub mod tradeoff;
+pub mod util;
 pub mod validate;
-
-pub(crate) mod rng;

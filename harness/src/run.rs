@@ -9,8 +9,8 @@ use serde::Serialize;
 use thiserror::Error;
 
 use crate::capi::{self, CallCounts};
+use crate::input::scene::{Direction, Effects, Mode, Scene};
 use crate::model::{build, BuildError, Problem};
-use crate::scene::{Direction, Effects, Mode, Scene};
 use crate::solve::static_step::{self, StaticError, StaticState};
 use crate::solve::sweep::{self, Options, SweepError, SweepResult};
 

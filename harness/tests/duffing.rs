@@ -3,8 +3,8 @@
 //! iterated like a contact point. Checked against the closed-form first-order harmonic
 //! balance of the harness's validate module (the cubic in A², independent of the sweep).
 
+use jointlin_harness::input::scene::{Mode, Scene};
 use jointlin_harness::run::{run, Extras, RunResult};
-use jointlin_harness::scene::{Mode, Scene};
 use jointlin_harness::validate::duffing::Duffing;
 
 fn scene(name: &str, mode: Mode) -> Scene {

@@ -2,8 +2,8 @@
 //! scene (fast and thesis modes). And the CLI writes nothing for a bad scene.
 
 use jointlin_harness::capi::CallCounts;
+use jointlin_harness::input::scene::{Mode, Scene};
 use jointlin_harness::run::{run, Extras, RunResult};
-use jointlin_harness::scene::{Mode, Scene};
 
 fn block() -> Scene {
     let p = format!("{}/../scenes/block-stick.toml", env!("CARGO_MANIFEST_DIR"));

@@ -9,10 +9,10 @@ use std::path::{Path, PathBuf};
 
 use jointlin_harness::bench::stuck_modes;
 use jointlin_harness::capi::{self, Tangential, JOINTLIN_REGIME_OPEN};
+use jointlin_harness::input::scene::{Mode, Scene, SchemeName};
 use jointlin_harness::model::build;
 use jointlin_harness::report::{self, ReportOptions};
 use jointlin_harness::run::{run, Extras, RunResult};
-use jointlin_harness::scene::{Mode, Scene, SchemeName};
 use jointlin_harness::solve::static_step;
 use jointlin_harness::solve::sweep::{Setup, SweepResult};
 
@@ -208,7 +208,7 @@ fn open_joint_at_undamped_eigenfrequencies_is_named_singular() {
         );
     }
     let mut near = s.clone();
-    near.spec.sweep = jointlin_harness::scene::SweepSpec {
+    near.spec.sweep = jointlin_harness::input::scene::SweepSpec {
         f_min: modes[0] * (1.0 - 2e-6),
         f_max: modes[0] * (1.0 - 1e-6),
         count: 2,

@@ -10,8 +10,8 @@
 
 use std::path::Path;
 
+use jointlin_harness::input::scene::{RegionSpec, Scene};
 use jointlin_harness::loss::{self, maps, mesh, Sample};
-use jointlin_harness::scene::{RegionSpec, Scene};
 
 /// Trend amplitude (mm): 3 µm.
 const A: f64 = 0.003;
@@ -25,7 +25,7 @@ fn power(scene: &Scene, torque: f64) -> Sample {
     loss::power_at(scene, torque, A).unwrap().0
 }
 
-fn with(scene: &Scene, edit: impl Fn(&mut jointlin_harness::scene::InterfaceSpec)) -> Scene {
+fn with(scene: &Scene, edit: impl Fn(&mut jointlin_harness::input::scene::InterfaceSpec)) -> Scene {
     let mut s = scene.clone();
     s.spec.interfaces.iter_mut().for_each(edit);
     s

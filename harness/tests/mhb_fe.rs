@@ -5,8 +5,8 @@
 //!   linearization's k* + iωd*, docs/mhb.md);
 //! - H = 1, 3, 7 converge towards each other (the H-to-H differences shrink).
 
+use jointlin_harness::input::scene::{Mode, Scene};
 use jointlin_harness::run::{run, Extras};
-use jointlin_harness::scene::{Mode, Scene};
 use jointlin_harness::solve::sweep::SweepResult;
 
 fn coarse(freqs: &[f64], mode: Mode, harmonics: Option<usize>, tol: f64) -> SweepResult {

@@ -5,8 +5,8 @@
 //! of the harmonic balance passes both folds and marks the branch between them unstable;
 //! RK4 confirms the stable branches and leaves the unstable one.
 
+use jointlin_harness::input::scene::Scene;
 use jointlin_harness::run::{run, Extras};
-use jointlin_harness::scene::Scene;
 use jointlin_harness::solve::sweep::SweepResult;
 use jointlin_harness::validate::softening::{continuation, time_domain, SofteningFriction};
 
@@ -188,7 +188,7 @@ fn thesis_mode_sweeps_jump_within_one_step_of_the_folds() {
         env!("CARGO_MANIFEST_DIR")
     );
     let mut s = Scene::load(std::path::Path::new(&p)).unwrap();
-    s.spec.iteration.mode = jointlin_harness::scene::Mode::Thesis;
+    s.spec.iteration.mode = jointlin_harness::input::scene::Mode::Thesis;
     let step = TWO_PI * (s.spec.sweep.f_max - s.spec.sweep.f_min) / (s.spec.sweep.count - 1) as f64;
     let r = run(&s, Extras::default(), &|_, _, _| {}).unwrap();
     let down = r.down.as_ref().expect("direction = up_down");

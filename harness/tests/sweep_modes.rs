@@ -2,8 +2,8 @@
 //! fast vs thesis mode on a small FE stack, and the call counts of switched-off effects.
 //! Units: N, mm, s, t.
 
+use jointlin_harness::input::scene::{Mode, Scene};
 use jointlin_harness::run::{run, Extras};
-use jointlin_harness::scene::{Mode, Scene};
 use nalgebra::Complex;
 
 fn scene(path: &str) -> Scene {
@@ -41,7 +41,7 @@ fn block_stick_amplitude_matches_the_thesis_in_both_modes() {
 #[test]
 fn block_slip_amplitude_is_a_first_harmonic_balance() {
     use jointlin_harness::capi::{linearize, Tangential};
-    use jointlin_harness::scene::{LawName, RuleName};
+    use jointlin_harness::input::scene::{LawName, RuleName};
     let omega = 2.0 * std::f64::consts::PI * 0.20690142;
     for mode in [Mode::Fast, Mode::Thesis] {
         let mut s = scene("block-slip.toml");
@@ -75,7 +75,7 @@ fn block_slip_amplitude_is_a_first_harmonic_balance() {
 #[test]
 fn macroslip_off_caps_the_linearization_at_the_slip_limit() {
     use jointlin_harness::capi::{linearize, Tangential};
-    use jointlin_harness::scene::{LawName, RuleName};
+    use jointlin_harness::input::scene::{LawName, RuleName};
     let omega = 2.0 * std::f64::consts::PI * 0.20690142;
     let t = Tangential {
         law: LawName::Mindlin,

@@ -2,8 +2,8 @@
 //! bending resonances in the FRF, fast and thesis modes agree, and contact damping
 //! lowers the peak whose mode shape slips more far more than the other (Fig. 4.31).
 
+use jointlin_harness::input::scene::{Mode, Scene};
 use jointlin_harness::run::{run, Extras, RunResult};
-use jointlin_harness::scene::{Mode, Scene};
 use jointlin_harness::solve::sweep::SweepResult;
 
 fn scene() -> Scene {

@@ -59,7 +59,7 @@ pub struct jointlin_contact {
 pub struct jointlin_method {
     /// JOINTLIN_METHOD_GRADED, _SIMPSON or _GAUSS.
     pub kind: i32,
-    /// Gauss points per panel (graded, 1..128), Gauss points (gauss, 1..128) or Simpson
+    /// Gauss points per panel (graded, 1..128), Gauss points (gauss, 2..128) or Simpson
     /// intervals (simpson, even, 2..2^26); 0 = the method's default.
     pub points: i32,
 }
@@ -134,11 +134,7 @@ pub(crate) fn method_from_codes(kind: i32, points: i32) -> Option<Method> {
         },
         _ => return None,
     };
-    let ok = match m {
-        Method::Graded { points } | Method::Gauss { points } => (1..=128).contains(&points),
-        Method::Simpson { intervals } => (2..=1 << 26).contains(&intervals) && intervals % 2 == 0,
-    };
-    ok.then_some(m)
+    m.validate().ok()
 }
 
 impl From<crate::linearize::Linearization> for jointlin_linearization {
@@ -171,11 +167,19 @@ pub(crate) fn regime_code(r: Regime) -> i32 {
 /// energy balance (3.14). An open contact (F_N <= 0) or mu = 0 gives all zeros and
 /// JOINTLIN_REGIME_OPEN with status JOINTLIN_OK.
 ///
+/// Every output is right over the whole double range: the loop is evaluated in the
+/// point's own units (mu F_N = 1, delta* = 1) and scaled back without intermediate
+/// overflow or underflow, so a subnormal delta* (k_t0 = DBL_MAX) or A/delta*
+/// (F_N = 1e308, A = 1e-8), or mu F_N = 1e-165, give the scaled loop; an output below the
+/// smallest double is 0 or subnormal. A = 0 is JOINTLIN_REGIME_STICK with k* = k_t0; any
+/// A > 0 on a Mindlin point is at least JOINTLIN_REGIME_MICROSLIP.
+///
 /// `contact` and `out` must not be NULL; `method` may be NULL (default quadrature).
 /// Errors: JOINTLIN_ERR_NULL, JOINTLIN_ERR_NON_FINITE (any NaN/Inf input),
 /// JOINTLIN_ERR_OUT_OF_RANGE (amplitude < 0, omega <= 0, mu < 0, k_t0 <= 0, unknown codes,
-/// bad point count), JOINTLIN_ERR_OVERFLOW (d* or eta not representable). `*out` is written
-/// only on JOINTLIN_OK.
+/// bad point count: plain Gauss needs >= 2 points), JOINTLIN_ERR_OVERFLOW (an output
+/// beyond DBL_MAX: mu F_N, delta*, A/delta*, the energy per cycle, d* or eta). `*out` is
+/// written only on JOINTLIN_OK.
 ///
 /// # Safety
 /// Non-NULL pointers must point to valid, aligned objects of their types.

@@ -6,8 +6,11 @@
 //! * [`cubic`]: `jointlin_linearize_cubic` (the Duffing cubic spring, one amplitude) and
 //!   `jointlin_cubic_force` (its force and tangent at one elongation);
 //! * [`point`]: `jointlin_point_step`, the time-domain hysteresis point for non-Abaqus hosts;
+//! * [`point3d`]: `jointlin_point3d_step` and `jointlin_linearize3d`, the contact point in
+//!   three directions (unilateral normal law, coupled slip limit) and its describing function;
 //! * [`screw`]: `jointlin_screw_preload`, screw preload from torque (VDI 2230);
 //! * [`store`]: the iteration store object `jointlin_store` (thesis §4.3.2);
+//! * [`store_model`]: the host's model fingerprint, checked in restart files;
 //! * [`store_ranks`]: stores of a job with several processes (MPI ranks): per-rank restart
 //!   files and the end-of-pass agreement on the increments to re-run;
 //! * [`uexternaldb`] and [`uinter`]: Abaqus-convention entry points (model.md §7);
@@ -28,9 +31,11 @@ pub mod cubic;
 pub mod error;
 pub mod linearize;
 pub mod point;
+pub mod point3d;
 pub mod props;
 pub mod screw;
 pub mod store;
+pub mod store_model;
 pub mod store_ranks;
 pub mod uexternaldb;
 pub mod uinter;
@@ -42,7 +47,7 @@ use error::{
 /// Major version of the C ABI: changes break existing callers.
 pub const JOINTLIN_ABI_VERSION_MAJOR: u32 = 0;
 /// Minor version of the C ABI: additions that keep existing callers working.
-pub const JOINTLIN_ABI_VERSION_MINOR: u32 = 3;
+pub const JOINTLIN_ABI_VERSION_MINOR: u32 = 4;
 
 /// The ABI version of the loaded library, (major << 16) | minor. A caller compiled against
 /// this header should check that the major part equals JOINTLIN_ABI_VERSION_MAJOR.

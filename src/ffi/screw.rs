@@ -10,8 +10,14 @@ use crate::law::screw::preload_from_torque;
 /// R13). Lengths in one unit: thread pitch `pitch` P > 0, flank diameter `d2` > 0,
 /// effective head bearing diameter `d_km` >= 0; friction coefficients >= 0; T >= 0.
 ///
+/// On JOINTLIN_OK the preload is finite and >= 0 for any finite inputs: the lever and the
+/// quotient are formed without intermediate overflow or underflow (P = 5e-324 or
+/// d2 mu_thread = 1e400 keep their value); a preload beyond DBL_MAX is
+/// JOINTLIN_ERR_OVERFLOW, never Inf or NaN.
+///
 /// Errors: JOINTLIN_ERR_NULL (`preload` NULL), JOINTLIN_ERR_NON_FINITE,
-/// JOINTLIN_ERR_OUT_OF_RANGE. `*preload` is written only on JOINTLIN_OK.
+/// JOINTLIN_ERR_OUT_OF_RANGE, JOINTLIN_ERR_OVERFLOW. `*preload` is written only on
+/// JOINTLIN_OK.
 ///
 /// # Safety
 /// `preload` must be NULL or point to a writable double.

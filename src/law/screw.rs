@@ -9,9 +9,13 @@
 //! (§5.4.1) replaces its screw by two point forces without stating how it got them.
 
 use crate::error::{finite, Error};
+use crate::wide::Wide;
 
 /// Preload F (force) of a screw tightened to `torque` T (force·length); all lengths in
-/// the same unit. Requires T ≥ 0, P > 0, d₂ > 0, D_Km ≥ 0, μ_G ≥ 0, μ_K ≥ 0.
+/// the same unit. Requires T ≥ 0, P > 0, d₂ > 0, D_Km ≥ 0, μ_G ≥ 0, μ_K ≥ 0. The lever
+/// and the quotient are formed without intermediate overflow or underflow, so any
+/// finite inputs give the correctly rounded F, or [`Error::Overflow`] when F exceeds the
+/// largest double (T = 1, P = 5e-324, no friction: F = 1.25e324).
 pub fn preload_from_torque(
     torque: f64,
     pitch: f64,
@@ -36,9 +40,20 @@ pub fn preload_from_torque(
             "screw: friction coefficients must be >= 0",
         ));
     }
-    // VDI 2230 (R13), Roloff/Matek form.
-    let lever = 0.16 * pitch + 0.58 * d2 * mu_thread + 0.5 * d_km * mu_head;
-    Ok(torque / lever)
+    // VDI 2230 (R13), Roloff/Matek form; the lever is > 0 because P > 0.
+    let w = Wide::new;
+    let lever = Wide::sum_non_negative(&[
+        w(pitch) * 0.16,
+        w(d2) * 0.58 * mu_thread,
+        w(d_km) * 0.5 * mu_head,
+    ]);
+    let preload = (w(torque) / lever).to_f64();
+    if preload.is_infinite() {
+        return Err(Error::Overflow(
+            "screw preload T / (0.16 P + 0.58 d2 mu_G + D_Km/2 mu_K) beyond the largest double",
+        ));
+    }
+    Ok(preload)
 }
 
 #[cfg(test)]

@@ -7,6 +7,7 @@ use super::loop_shape::LoopShape;
 use super::quadrature::{gauss, simpson_or_gauss};
 use crate::hysteresis::Rule;
 use crate::law::Backbone;
+use crate::wide::Wide;
 use std::f64::consts::{FRAC_1_SQRT_2, PI};
 
 /// Longest Gauss panel in the sinh/cosh-stretched variable w: the integrand grows like
@@ -17,6 +18,41 @@ const W_PANEL: f64 = 1.0;
 /// k* = 2S/(πA) (3.8).
 pub fn k_star_from_sum(sum: f64, amplitude: f64) -> f64 {
     2.0 * sum / (PI * amplitude) // (3.8) with b₁ from (3.7)
+}
+
+/// Smallest A/δ* for which [`stiffness_ratio_sliding`] is used: from there on its
+/// integrands' nearest singularity (u = 2A/δ*) lies ≥ 8 times beyond the branch's
+/// non-sliding part, so 16 Gauss points are exact to rounding.
+pub const TANGENT_FORM_FROM: f64 = 8.0;
+
+/// k*/k_T0 of a sliding loop of half-width a = A/δ* ≥ [`TANGENT_FORM_FROM`] (normalized
+/// backbone: μF_N = 1, δ* = 1), from S integrated by parts:
+/// S = A ∫ f_L'(A sin θ) cos²θ dθ, so that with the drop Δ = u δ* from the tip
+/// k*/k_T0 = (2/π) a^{−3/2} ∫ τ(u) √(u (2 − u/a)) du, τ = f_L'/k_T0 ∈ [0, 1] the tangent
+/// along the branch (1 on the elastic line, √(1 − s/δ*) on the Mindlin part (2.48), 0
+/// while sliding). Every term is ≥ 0, so k* ∝ a^{−3/2} keeps its digits where the
+/// pieces of [`in_phase_sum_graded`] (each ∝ a^{−1/2}) cancel (relative error ≈ 1e-16 a).
+pub fn stiffness_ratio_sliding(b: &Backbone, rule: Rule, a: f64) -> Wide {
+    const N: usize = 16;
+    let root = |u: f64| (u * (2.0 - u / a)).sqrt();
+    // Elastic line u ∈ [0, e], u = t²: ∫ 2t √(t² (2 − t²/a)) dt.
+    let elastic = |e: f64| gauss(N, 0.0, e.sqrt(), |t| 2.0 * t * root(t * t));
+    let integral = match (b, rule) {
+        // Spring then slider, both rules: elastic through Δ = 2δ*.
+        (Backbone::Jenkins(_), _) => elastic(2.0),
+        // Elastic through F̂/k_T0 = δ*/1.5 (F̂ = μF_N), then the virgin curve from zero
+        // force: s = u − e ∈ [0, 1], τ = √(1 − s) = w, u = e + 1 − w².
+        (Backbone::Mindlin(_), Rule::Thesis) => {
+            let e = 1.0 / 1.5;
+            elastic(e) + gauss(N, 0.0, 1.0, |w| 2.0 * w * w * root(e + 1.0 - w * w))
+        }
+        // f_L = F̂ − 2g(Δ/2): τ = √(1 − u/2) on [0, 2]; u = 2 sin²ψ.
+        (Backbone::Mindlin(_), Rule::Masing) => gauss(N, 0.0, PI / 2.0, |p| {
+            let (sn, cs) = p.sin_cos();
+            cs * root(2.0 * sn * sn) * 4.0 * sn * cs
+        }),
+    };
+    Wide::new(2.0 * integral / PI) / (Wide::new(a) * a.sqrt())
 }
 
 /// S by plain quadrature in θ of the branch itself (the thesis's way with Simpson).

@@ -163,6 +163,9 @@ struct State {
     stats: Vec<PassStats>,
 }
 
+/// Longest model fingerprint accepted (bytes).
+pub const MAX_MODEL_LEN: usize = 4096;
+
 /// Passes beyond this in a restart file mean the file is not a store's (a real sweep stops
 /// at `max_passes`, a u32 from the host's configuration, long before).
 const MAX_RESTART_PASSES: u32 = 1 << 20;
@@ -177,13 +180,59 @@ impl State {
                 self.records.len()
             ));
         }
-        if self.iteration_passes > MAX_RESTART_PASSES {
-            return Err(format!("{} iteration passes", self.iteration_passes));
+        let passes = self.stats.len();
+        if passes > MAX_RESTART_PASSES as usize || self.iteration_passes as usize > passes {
+            return Err(format!(
+                "{} iteration passes of {passes} passes",
+                self.iteration_passes
+            ));
+        }
+        for (i, st) in self.stats.iter().enumerate() {
+            if st.number as usize != i + 1
+                || st.increments_converged > st.increments_run
+                || st.not_reported > st.evaluations
+            {
+                return Err(format!(
+                    "statistics of pass {} contradict themselves",
+                    i + 1
+                ));
+            }
+        }
+        // Every increment named anywhere is one the sweep ran, each list ascending without
+        // repeats (a file from another model scheduled increments that do not exist).
+        let known = |list: &[i32], what: &str| -> Result<(), String> {
+            let ascending = list.windows(2).all(|w| w[0] < w[1]);
+            match list.iter().find(|k| !self.increments.contains_key(k)) {
+                Some(k) => Err(format!("{what} names increment {k}, never run")),
+                None if !ascending => Err(format!("{what} is not ascending")),
+                None => Ok(()),
+            }
+        };
+        match &self.next {
+            Action::RunPass(l) | Action::RunFinal(l) | Action::Failed(l) => known(l, "next")?,
+            Action::RunSweep | Action::Done => {}
+        }
+        for (id, recs) in self.records.iter().enumerate() {
+            for (k, r) in recs {
+                known(&[*k], "a record")?;
+                let pass_ok = |p: u32| p as usize <= passes;
+                if !pass_ok(r.estimate_pass) || !pass_ok(r.reported_pass) || !pass_ok(r.passes) {
+                    return Err(format!(
+                        "record of point {} at {k} names a pass beyond {passes}",
+                        id + 1
+                    ));
+                }
+            }
         }
         if let Phase::Running(run) = &self.phase {
-            if self.stats.last().map(|s| s.number) != Some(run.number) {
+            if self.stats.last().map(|s| (s.number, s.kind)) != Some((run.number, run.kind)) {
                 return Err(format!("running pass {} has no statistics", run.number));
             }
+            if let Some(list) = &run.schedule {
+                known(list, "the running pass's schedule")?;
+            }
+            let ran: Vec<i32> = run.ran.iter().copied().collect();
+            known(&ran, "the running pass")?;
             if let Some((_, sweep, touched)) = &run.open {
                 for &id in touched {
                     let ok = id >= 1
@@ -223,6 +272,8 @@ struct Registry {
 #[derive(Debug)]
 pub struct Store {
     config: StoreConfig,
+    /// The host's model fingerprint (bytes), written to and checked in the restart file.
+    model: RwLock<Vec<u8>>,
     registry: RwLock<Registry>,
     state: Mutex<State>,
 }
@@ -236,6 +287,7 @@ impl Store {
         config.validate()?;
         Ok(Self {
             config,
+            model: RwLock::new(Vec::new()),
             registry: RwLock::new(Registry::default()),
             state: Mutex::new(State::new()),
         })
@@ -243,6 +295,23 @@ impl Store {
 
     pub fn config(&self) -> &StoreConfig {
         &self.config
+    }
+
+    /// Sets the host's model fingerprint: bytes that identify the model the sweep runs
+    /// (at most [`MAX_MODEL_LEN`]), e.g. a hash of the input deck. The restart file
+    /// carries it, and [`Store::restore`] rejects a file with another one.
+    pub fn set_model(&self, fingerprint: &[u8]) -> Result<(), StoreError> {
+        if fingerprint.len() > MAX_MODEL_LEN {
+            return Err(StoreError::OutOfRange(
+                "model fingerprint longer than 4096 bytes",
+            ));
+        }
+        *self.model.write().map_err(|_| StoreError::Poisoned)? = fingerprint.to_vec();
+        Ok(())
+    }
+
+    fn model(&self) -> Result<Vec<u8>, StoreError> {
+        Ok(self.model.read().map_err(|_| StoreError::Poisoned)?.clone())
     }
 
     fn state(&self) -> Result<MutexGuard<'_, State>, StoreError> {
@@ -451,7 +520,10 @@ impl Store {
             Action::Done => return Err(seq("the iteration is done; no pass to start")),
             Action::Failed(_) => return Err(seq("the iteration failed; no pass to start")),
         };
-        let number = state.stats.len() as u32 + 1;
+        let number = u32::try_from(state.stats.len() + 1)
+            .ok()
+            .filter(|&n| n <= MAX_RESTART_PASSES)
+            .ok_or_else(|| seq("no pass number left"))?;
         state.stats.push(PassStats {
             number,
             kind,
@@ -534,12 +606,12 @@ impl Store {
             let rec = state.records[id as usize - 1]
                 .get_mut(&sweep)
                 .expect("a queried point has a record");
-            stats.evaluations += 1;
-            rec.passes += 1;
+            stats.evaluations = stats.evaluations.saturating_add(1);
+            rec.passes = rec.passes.saturating_add(1);
             if rec.reported_pass != pass {
                 rec.converged = false;
                 rec.reason = Reason::NotReported;
-                stats.not_reported += 1;
+                stats.not_reported = stats.not_reported.saturating_add(1);
             } else {
                 let mut ok = true;
                 for d in 0..rec.dirs {
@@ -556,8 +628,11 @@ impl Store {
             }
             all &= rec.converged;
         }
-        stats.increments_run += 1;
-        stats.increments_converged += u32::from(all);
+        stats.increments_run = stats.increments_run.saturating_add(1);
+        stats.increments_converged = stats
+            .increments_converged
+            .saturating_add(u32::from(all))
+            .min(stats.increments_run);
         state.increments.insert(sweep, all);
         Ok(())
     }
@@ -687,7 +762,12 @@ impl Store {
         };
         let text = std::fs::read_to_string(path)
             .map_err(|e| StoreError::Io(format!("reading {}: {e}", path.display())))?;
-        let (registry, state) = restart::parse(&text)?;
+        let model = self.model()?;
+        let fp = restart::Fingerprint {
+            model: &model,
+            config: &self.config,
+        };
+        let (registry, state) = restart::parse(&text, &fp)?;
         *self.registry.write().map_err(|_| StoreError::Poisoned)? = registry;
         *self.state()? = state;
         Ok(())
@@ -701,7 +781,12 @@ impl Store {
             .keys
             .clone();
         let state = self.state()?.clone();
-        Ok(restart::write(&keys, &state))
+        let model = self.model()?;
+        let fp = restart::Fingerprint {
+            model: &model,
+            config: &self.config,
+        };
+        Ok(restart::write(&keys, &state, &fp))
     }
 }
 

@@ -1,10 +1,61 @@
 //! The restart file: a versioned, whitespace-separated token stream; floats as the hex of
 //! their bits so that a round trip is exact.
+//!
+//! Version 2 carries the host's model fingerprint and the store's settings: a file
+//! written for another model or with other settings is rejected at restore, as is every
+//! file whose values a store could not have written (NaN, ∞ or negative amplitudes,
+//! duplicate points, increments or records, counters beyond [`MAX_RESTART_PASSES`],
+//! schedules naming increments the sweep never ran). Version 1 files (no fingerprints) are
+//! read only by a store without a model fingerprint, with the same checks.
 
 use super::*;
 
 const MAGIC: &str = "jointlin-store";
-const VERSION: &str = "1";
+const VERSION: &str = "2";
+/// The format before the fingerprints.
+const VERSION_1: &str = "1";
+
+/// What a restart file must match: the host's model fingerprint (bytes, possibly empty)
+/// and the store's settings.
+pub(super) struct Fingerprint<'a> {
+    pub model: &'a [u8],
+    pub config: &'a StoreConfig,
+}
+
+/// The settings that change what a restored store does, as tokens (floats as bits).
+fn settings_tokens(c: &StoreConfig) -> Vec<String> {
+    vec![
+        format!("{:016x}", c.initial_amplitude.to_bits()),
+        format!("{:016x}", c.rtol.to_bits()),
+        format!("{:016x}", c.atol.to_bits()),
+        format!("{:?}", c.scheme),
+        c.max_passes.to_string(),
+        c.sweep_step.to_string(),
+        format!("{:?}", c.numbering),
+    ]
+}
+
+fn hex(bytes: &[u8]) -> String {
+    bytes.iter().map(|b| format!("{b:02x}")).collect()
+}
+
+/// Bytes from `x<hex>` (ASCII hex digits only, so any other character is an error, not a
+/// panic on a character boundary).
+fn unhex(token: &str, what: &str) -> Result<Vec<u8>, StoreError> {
+    let digits = token.strip_prefix('x').ok_or_else(|| bad(what))?.as_bytes();
+    if digits.len() % 2 != 0 || !digits.iter().all(u8::is_ascii_hexdigit) {
+        return Err(bad(what));
+    }
+    digits
+        .chunks(2)
+        .map(|p| {
+            std::str::from_utf8(p)
+                .ok()
+                .and_then(|h| u8::from_str_radix(h, 16).ok())
+                .ok_or_else(|| bad(what))
+        })
+        .collect()
+}
 
 fn f(out: &mut String, x: f64) {
     out.push_str(&format!(" {:016x}", x.to_bits()));
@@ -17,8 +68,13 @@ fn ints(out: &mut String, list: &[i32]) {
     }
 }
 
-pub(super) fn write(keys: &[PointKey], s: &State) -> String {
+pub(super) fn write(keys: &[PointKey], s: &State, fp: &Fingerprint) -> String {
     let mut o = format!("{MAGIC} {VERSION}\n");
+    o.push_str(&format!(
+        "model x{}\nsettings {}\n",
+        hex(fp.model),
+        settings_tokens(fp.config).join(" ")
+    ));
     let (code, list): (i32, &[i32]) = match &s.next {
         Action::RunSweep => (0, &[]),
         Action::RunPass(l) => (1, l),
@@ -62,8 +118,7 @@ pub(super) fn write(keys: &[PointKey], s: &State) -> String {
     }
     o.push_str(&format!("\npoints {}\n", keys.len()));
     for k in keys {
-        let hex: String = k.name.iter().map(|b| format!("{b:02x}")).collect();
-        o.push_str(&format!("{} x{hex} {}", k.node, k.coords.len()));
+        o.push_str(&format!("{} x{} {}", k.node, hex(&k.name), k.coords.len()));
         for c in &k.coords {
             o.push_str(&format!(" {c:016x}"));
         }
@@ -123,17 +178,51 @@ impl<'a> Tokens<'a> {
         let x = u64::from_str_radix(self.word(what)?, 16).map_err(|_| bad(what))?;
         Ok(f64::from_bits(x))
     }
+    /// An amplitude: finite and ≥ 0, as the store only ever holds.
+    fn amplitude(&mut self, what: &str) -> Result<f64, StoreError> {
+        let a = self.float(what)?;
+        if a.is_finite() && a >= 0.0 {
+            Ok(a)
+        } else {
+            Err(bad(&format!(
+                "{what} {a:e} (amplitudes are finite and >= 0)"
+            )))
+        }
+    }
     fn list(&mut self, what: &str) -> Result<Vec<i32>, StoreError> {
         let n: usize = self.int(what)?;
         (0..n).map(|_| self.int(what)).collect()
     }
 }
 
-pub(super) fn parse(text: &str) -> Result<(Registry, State), StoreError> {
+pub(super) fn parse(text: &str, fp: &Fingerprint) -> Result<(Registry, State), StoreError> {
     let mut t = Tokens(text.split_whitespace());
     t.tag(MAGIC)?;
-    if t.word("version")? != VERSION {
-        return Err(bad("unsupported version"));
+    match t.word("version")? {
+        VERSION => {
+            t.tag("model")?;
+            if unhex(t.word("model")?, "model fingerprint")? != fp.model {
+                return Err(StoreError::Io(
+                    "restart file written for another model (model fingerprint differs)".into(),
+                ));
+            }
+            t.tag("settings")?;
+            for (i, want) in settings_tokens(fp.config).iter().enumerate() {
+                if t.word("settings")? != want {
+                    return Err(StoreError::Io(format!(
+                        "restart file written with other store settings (setting {} differs)",
+                        i + 1
+                    )));
+                }
+            }
+        }
+        VERSION_1 if fp.model.is_empty() => {}
+        VERSION_1 => {
+            return Err(StoreError::Io(
+                "restart file of version 1 has no model fingerprint to check".into(),
+            ))
+        }
+        _ => return Err(bad("unsupported version")),
     }
     t.tag("next")?;
     let code: i32 = t.int("next action")?;
@@ -188,23 +277,24 @@ pub(super) fn parse(text: &str) -> Result<(Registry, State), StoreError> {
     let mut increments = BTreeMap::new();
     for _ in 0..n {
         let k = t.int("increment")?;
-        increments.insert(k, t.int::<u8>("increment flag")? == 1);
+        let ok = match t.int::<u8>("increment flag")? {
+            0 => false,
+            1 => true,
+            _ => return Err(bad("increment flag")),
+        };
+        if increments.insert(k, ok).is_some() {
+            return Err(bad(&format!("increment {k} listed twice")));
+        }
     }
     t.tag("points")?;
     let n: usize = t.int("points")?;
     let mut reg = Registry::default();
     for i in 0..n {
         let node = t.int("node")?;
-        let hex = t
-            .word("name")?
-            .strip_prefix('x')
-            .ok_or_else(|| bad("name"))?;
-        if hex.len() % 2 != 0 {
+        let name = unhex(t.word("name")?, "name")?;
+        if name.len() > MAX_NAME_LEN {
             return Err(bad("name"));
         }
-        let name = (0..hex.len() / 2)
-            .map(|j| u8::from_str_radix(&hex[2 * j..2 * j + 2], 16).map_err(|_| bad("name")))
-            .collect::<Result<Vec<u8>, _>>()?;
         let m: usize = t.int("coordinate count")?;
         if m > 3 {
             return Err(bad("coordinate count"));
@@ -213,7 +303,9 @@ pub(super) fn parse(text: &str) -> Result<(Registry, State), StoreError> {
             .map(|_| u64::from_str_radix(t.word("coordinate")?, 16).map_err(|_| bad("coordinate")))
             .collect::<Result<Vec<u64>, _>>()?;
         let key = PointKey { name, node, coords };
-        reg.ids.insert(key.clone(), i as i64 + 1);
+        if reg.ids.insert(key.clone(), i as i64 + 1).is_some() {
+            return Err(bad(&format!("point {} listed twice", i + 1)));
+        }
         reg.keys.push(key);
     }
     t.tag("records")?;
@@ -227,10 +319,14 @@ pub(super) fn parse(text: &str) -> Result<(Registry, State), StoreError> {
             dirs: t.int("record")?,
             ..Record::default()
         };
-        r.estimate = [t.float("estimate")?, t.float("estimate")?];
+        r.estimate = [t.amplitude("estimate")?, t.amplitude("estimate")?];
         r.reported_pass = t.int("record")?;
-        r.reported = [t.float("reported")?, t.float("reported")?];
-        r.converged = t.int::<u8>("record")? == 1;
+        r.reported = [t.amplitude("reported")?, t.amplitude("reported")?];
+        r.converged = match t.int::<u8>("record")? {
+            0 => false,
+            1 => true,
+            _ => return Err(bad("converged flag")),
+        };
         r.passes = t.int("record")?;
         r.reason = match t.int::<i32>("reason")? {
             0 => Reason::None,
@@ -241,13 +337,17 @@ pub(super) fn parse(text: &str) -> Result<(Registry, State), StoreError> {
         for d in 0..2 {
             let m: usize = t.int("history")?;
             for _ in 0..m {
-                r.history[d].push((t.float("history")?, t.float("history")?));
+                r.history[d].push((t.amplitude("history")?, t.amplitude("history")?));
             }
         }
         if id == 0 || id > records.len() || r.dirs > 2 {
             return Err(bad("record point"));
         }
-        records[id - 1].insert(k, r);
+        if records[id - 1].insert(k, r).is_some() {
+            return Err(bad(&format!(
+                "record of point {id} at increment {k} listed twice"
+            )));
+        }
     }
     t.tag("end")?;
     let state = State {

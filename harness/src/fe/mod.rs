@@ -6,9 +6,13 @@
 pub mod assembly;
 pub mod contact_pairs;
 pub mod csc;
+pub mod dofs;
 pub mod grading;
 pub mod hex8;
 pub mod mesh;
 pub mod pair_blocks;
 pub mod surface;
 pub mod ties;
+
+#[cfg(test)]
+mod pair_blocks_tests;

@@ -123,10 +123,7 @@ pub fn find_ties(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::fe::assembly::assemble;
-    use crate::fe::hex8::Formulation;
     use crate::fe::mesh::{BoxSpec, Material};
-    use crate::solve::modal::{lowest_modes, ModalOptions};
 
     fn steel() -> Material {
         Material::new(210_000.0, 0.3, 7.85e-9).unwrap()
@@ -140,39 +137,6 @@ mod tests {
             material: 0,
         })
         .unwrap()
-    }
-
-    /// A cantilever 100×4×4 mm cut at x = 40 into two tied boxes has exactly the
-    /// frequencies of the uncut one (same nodes, same elements: node merging is exact,
-    /// so only solver round-off may differ).
-    #[test]
-    fn tied_halves_are_one_body() {
-        let mut one = Model::new(vec![steel()]);
-        let b = bx(&mut one, [0.0; 3], [100.0, 4.0, 4.0], [25, 2, 2]);
-        let clamp = one.bodies[b].face_nodes(Face::XMin);
-        one.fix(&clamp, [true; 3]).unwrap();
-
-        let mut two = Model::new(vec![steel()]);
-        let a = bx(&mut two, [0.0; 3], [40.0, 4.0, 4.0], [10, 2, 2]);
-        let c = bx(&mut two, [40.0, 0.0, 0.0], [60.0, 4.0, 4.0], [15, 2, 2]);
-        let clamp = two.bodies[a].face_nodes(Face::XMin);
-        two.fix(&clamp, [true; 3]).unwrap();
-        let ties = find_ties(&two, a, c, 1e-6).unwrap();
-        assert_eq!(ties.len(), 3 * 3);
-        two.ties = ties;
-
-        let opts = ModalOptions {
-            n_modes: 4,
-            ..Default::default()
-        };
-        let f = |m: &Model| {
-            let s = assemble(m, Formulation::IncompatibleModes, &[]).unwrap();
-            assert_eq!(s.dofs.n_free(), 3 * 26 * 9 - 27);
-            lowest_modes(&s.k, &s.m, &opts).unwrap().frequencies_hz()
-        };
-        for (x, y) in f(&one).iter().zip(f(&two)) {
-            approx::assert_relative_eq!(*x, y, max_relative = 1e-8);
-        }
     }
 
     #[test]

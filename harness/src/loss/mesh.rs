@@ -11,7 +11,7 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::Mutex;
 
 use super::{powers_at, LossError};
-use crate::scene::Scene;
+use crate::input::scene::Scene;
 
 /// Samples per quarter face and direction of the area-sampled variant.
 pub const STUDY_AREA_SAMPLES: usize = 4;

@@ -15,63 +15,13 @@ pub mod mesh;
 pub mod plot;
 pub mod report;
 
-use serde::{Deserialize, Serialize};
 use thiserror::Error;
 
+use crate::input::scene::Scene;
+pub use crate::input::scene::{LossStudySpec, ReferencePoint};
 use crate::model::{build, BuildError, Problem};
-use crate::scene::Scene;
 use crate::solve::static_step::{self, StaticError, StaticState};
 use crate::solve::sweep::{self, Options, PointFreq, SweepError, C64};
-
-/// The `[loss_study]` table of a scene.
-#[derive(Debug, Clone, Deserialize, Serialize, PartialEq)]
-#[serde(deny_unknown_fields)]
-pub struct LossStudySpec {
-    /// Named output whose amplitude is set (e.g. the sonotrode's blade-side end face).
-    pub output: String,
-    /// Target amplitudes of the output (length), ascending.
-    pub amplitudes: Vec<f64>,
-    /// Screw whose torque the study varies (a `[[screws]]` name).
-    pub screw: String,
-    /// Torques (force·length), one curve each.
-    pub torques: Vec<f64>,
-    /// Fraction of the structure in the model (0.5 for a half model): the reported
-    /// power is the model's divided by it.
-    #[serde(default = "one")]
-    pub model_share: f64,
-    /// Name of the reported power unit and its size in scene power units
-    /// (force·length/time): "W" and 1e-3 for N·mm/s.
-    pub power_unit: String,
-    pub power_factor: f64,
-    /// Name of the reported amplitude unit and the scene lengths per reported unit
-    /// ("µm" and 1e-3 for mm).
-    pub amplitude_unit: String,
-    pub amplitude_factor: f64,
-    /// Measured (or published) points to compare with: torque, amplitude (scene units),
-    /// power (reported unit). The first one is the calibration target of
-    /// `jointlin loss --calibrate`.
-    #[serde(default)]
-    pub reference: Vec<ReferencePoint>,
-}
-
-fn one() -> f64 {
-    1.0
-}
-
-/// A published power-loss level.
-#[derive(Debug, Clone, Deserialize, Serialize, PartialEq)]
-#[serde(deny_unknown_fields)]
-pub struct ReferencePoint {
-    pub torque: f64,
-    pub amplitude: f64,
-    pub power: f64,
-    /// Where the number comes from.
-    #[serde(default)]
-    pub note: String,
-    /// The deviation the source reports for its own model there (percent), if any.
-    #[serde(default)]
-    pub source_deviation_percent: Option<f64>,
-}
 
 /// Errors of a loss study.
 #[derive(Debug, Error)]

@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 
 use super::maps::{self, MapKind};
 use super::{plot, LossStudySpec, Sample, StudyResult};
-use crate::scene::Scene;
+use crate::input::scene::Scene;
 
 /// Power (reported unit) of a curve at `amplitude` by linear interpolation between its
 /// samples; `None` outside them.

@@ -33,7 +33,7 @@ use realfft::num_complex::Complex;
 use realfft::{ComplexToReal, RealFftPlanner, RealToComplex};
 
 use crate::capi::{self, CapiError, Tangential, POINT_STATE_LEN};
-use crate::scene::LawName;
+use crate::names::LawName;
 
 /// Loop closure: consecutive periods' forces agree to this fraction of the force scale
 /// (max |F| over the period, at least [`CLOSE_FLOOR`]·μF_N). Jenkins and Masing loops

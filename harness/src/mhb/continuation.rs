@@ -5,7 +5,11 @@
 //! (R(y) = 0, tᵀ(y − y_p) = 0). Step s adapts to the corrector's iterations (halved on
 //! failure, grown by 1.5 after fast ones).
 //!
-//! Turning points (folds): the ω component of the tangent changes sign; the fold
+//! Turning points (folds): the ω component of the tangent changes sign together with
+//! det R_u; a step after which ω turns back while det R_u keeps its sign, or whose
+//! corrected point lies behind the previous one, jumped across the branch (the step
+//! was long for the curvature) and is repeated at half the length. The branch ends where
+//! it leaves the range between ω_start and ω_end (or reaches ω ≤ 0). The fold
 //! frequency is the vertex of the parabola ω(s) through the three points around it.
 //! Stability: det R_u changes sign at a fold (a real Floquet multiplier crosses +1), so a
 //! point whose det sign differs from that of the start (a stable, far-from-resonance
@@ -135,7 +139,6 @@ pub fn trace(hb: &mut Hb, u0: &[f64], opt: Options) -> Result<Branch, MhbError> 
             }
             continue;
         };
-        iterations += its;
         // New tangent at the corrected point.
         let Some(mut tn) = augmented(&ev, &t).lu().solve(&rhs) else {
             return Err(MhbError::Singular {
@@ -143,14 +146,34 @@ pub fn trace(hb: &mut Hb, u0: &[f64], opt: Options) -> Result<Branch, MhbError> 
             });
         };
         tn /= tn.norm();
-        if tn.dot(&t) < 0.0 {
-            tn = -tn;
+        let det = ev.j.clone().lu().determinant().signum();
+        let last_det = pts[pts.len() - 1].sol.det_sign;
+        // A step too long for the curvature jumps to another part of the branch: the
+        // corrected point lies behind the predictor's direction, or ω turns back where
+        // det R_u keeps its sign (no fold). Both are rejected and the step shortened.
+        let backwards = t.dot(&(&yc - &y)) <= 0.0;
+        let false_fold = tn[dim] * t[dim] < 0.0 && det == last_det;
+        if backwards || false_fold {
+            step *= 0.5;
+            if step < opt.step_min {
+                return Err(MhbError::Continuation(format!(
+                    "step below {:.1e} at ω = {:.6e} (the branch turns back without a fold)",
+                    opt.step_min,
+                    y[dim] * ws
+                )));
+            }
+            continue;
         }
+        // Range guard: a branch that turns back past the start (or reaches ω ≤ 0) ends.
+        let w = yc[dim] * ws;
+        if (w - opt.omega_start) * dir < 0.0 || w <= 0.0 {
+            break;
+        }
+        iterations += its;
         s_total += (&yc - &y).norm();
         let u: Vec<f64> = (0..dim).map(|i| yc[i] * us).collect();
-        let det = ev.j.clone().lu().determinant().signum();
         let sol = Solution {
-            omega: yc[dim] * ws,
+            omega: w,
             u,
             iterations: its,
             residual: res,

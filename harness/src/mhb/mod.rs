@@ -16,14 +16,15 @@
 //! through folds. H = 1 is the thesis's first-order harmonic balance (3.5–3.8) applied to
 //! the actual force rather than to the Ersatzfunktion (4.3); [`first_order`] is the
 //! library's linearization (`jointlin_linearize`) iterated to consistency, for comparison.
+//!
+//! Built on this room: the FE sweep's harmonic balance (`solve::sweep::harmonic_fe`), the
+//! RK4 reference of these systems (`time::mhb_reference`) and the cost tables of
+//! `jointlin mhb` (`bench::mhb_chain`, `bench::mhb_fe`).
 
 pub mod aft;
-pub mod bench;
+pub mod consistency;
 pub mod continuation;
-pub mod fe;
-pub mod fe_bench;
 pub mod first_order;
-pub mod reference;
 
 #[cfg(test)]
 mod tests;
@@ -94,6 +95,15 @@ pub enum MhbError {
     Newton {
         omega: f64,
         residual: f64,
+        iterations: usize,
+    },
+    #[error(
+        "first-order amplitudes not consistent at ω = {omega:.6e} (relative mismatch {mismatch:.3e} after {iterations} steps of {method})",
+        method = consistency::METHOD
+    )]
+    Consistency {
+        omega: f64,
+        mismatch: f64,
         iterations: usize,
     },
     #[error("singular Jacobian at ω = {omega:.6e}")]
@@ -284,18 +294,45 @@ impl<'a> Hb<'a> {
     /// of (K − ω²M + iωD) x̂ = f̂, zeroth from K x̄ = f₀): a cold start for Newton, e.g.
     /// after a sweep has passed a fold (the old branch no longer exists).
     pub fn linear_start(&self, omega: f64) -> Vec<f64> {
+        self.linear_response(omega, false)
+    }
+
+    /// The start vector of the linear system with every contact element stuck (its
+    /// stiffness k_T0 between its DOFs, thesis (2.46); cubic springs contribute nothing
+    /// at zero amplitude): the exact solution while every contact sticks (a Jenkins
+    /// element below μF_N), the usual start of a sweep from low forces.
+    pub fn stuck_start(&self, omega: f64) -> Vec<f64> {
+        self.linear_response(omega, true)
+    }
+
+    /// First and zeroth harmonics of the linear system, contact elements removed or
+    /// stuck.
+    fn linear_response(&self, omega: f64, stuck: bool) -> Vec<f64> {
         use nalgebra::Complex;
         let (n, m) = (self.sys.n(), self.tr.ncoef());
         let s = &self.sys;
+        let mut k = s.k.clone();
+        if stuck {
+            for e in &s.elements {
+                // An open (F_N ≤ 0) or frictionless point carries no stuck stiffness.
+                let Law::Point(t) = e.law else { continue };
+                if t.normal <= 0.0 || t.mu <= 0.0 {
+                    continue;
+                }
+                k[(e.i, e.i)] += t.k_t0;
+                if let Some(j) = e.j {
+                    k[(j, j)] += t.k_t0;
+                    k[(e.i, j)] -= t.k_t0;
+                    k[(j, e.i)] -= t.k_t0;
+                }
+            }
+        }
         let dyn_k = DMatrix::from_fn(n, n, |a, b| {
-            Complex::new(
-                s.k[(a, b)] - omega * omega * s.m[(a, b)],
-                omega * s.d[(a, b)],
-            )
+            Complex::new(k[(a, b)] - omega * omega * s.m[(a, b)], omega * s.d[(a, b)])
         });
         let f1 = nalgebra::DVector::from_iterator(n, s.f1.iter().copied());
         let x1 = dyn_k.lu().solve(&f1);
-        let x0 = s.k.clone().lu().solve(&DVector::from_column_slice(&s.f0));
+        let x0 = k.lu().solve(&DVector::from_column_slice(&s.f0));
         let mut u = vec![0.0; self.size()];
         for d in 0..n {
             if let Some(x0) = &x0 {

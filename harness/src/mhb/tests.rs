@@ -3,7 +3,8 @@ use nalgebra::{Complex, DMatrix};
 use super::continuation::{trace, Options};
 use super::*;
 use crate::capi::Tangential;
-use crate::scene::{LawName, RuleName};
+use crate::names::{LawName, RuleName};
+use crate::time::mhb_reference as reference;
 
 fn point(law: LawName, rule: RuleName, mu: f64, normal: f64, k_t0: f64) -> Law {
     Law::Point(Tangential {
@@ -33,7 +34,7 @@ fn duffing() -> System {
     oscillator(1.0, 1.0, 20.0, Complex::new(0.0, -30.0), Law::Cubic(40.0))
 }
 
-use super::bench::jenkins_chain;
+use crate::bench::mhb_chain::jenkins_chain;
 
 /// Start vector at H harmonics from a complex first harmonic per DOF.
 fn start(h: usize, x1: &[Complex<f64>]) -> Vec<f64> {

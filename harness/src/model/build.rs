@@ -14,8 +14,8 @@ use crate::fe::hex8::{self, Formulation};
 use crate::fe::mesh::{BoxSpec, Face, Material, Model};
 use crate::fe::surface::{add_pressure, nodal_areas};
 use crate::fe::ties::find_ties;
-use crate::scene::validate::GROUND;
-use crate::scene::*;
+use crate::input::scene::validate::GROUND;
+use crate::input::scene::*;
 
 /// Relative tolerance for coincident interface nodes (of the smallest element size).
 const PAIR_TOL: f64 = 1e-6;

@@ -1,7 +1,7 @@
 //! The assembled problem of a scene: mesh and lumped bodies, K, M, material damping,
 //! contact points with frames and areas, preload and excitation vectors, outputs.
 //!
-//! Built by [`build`] from a validated [`Scene`](crate::scene::Scene). Units are the scene's. Contact points
+//! Built by [`build`] from a validated [`Scene`](crate::input::scene::Scene). Units are the scene's. Contact points
 //! follow `fe::contact_pairs`: δ = u_upper − u_lower, frame Q = [n t₁ t₂] with n from the
 //! lower body into the upper one; a ground–mass interface has the fixed ground node as
 //! its lower side.
@@ -11,6 +11,13 @@ pub mod subgrid;
 
 pub use build::build;
 
+/// The one [`Problem`] of an input, whatever its format: a scene through [`build`].
+pub fn problem(input: &Input) -> Result<Problem, BuildError> {
+    match input {
+        Input::Scene(scene) => build(scene),
+    }
+}
+
 use nalgebra::{Complex, Matrix3};
 use thiserror::Error;
 
@@ -18,7 +25,8 @@ use crate::fe::assembly::{AssemblyError, System};
 use crate::fe::contact_pairs::PairError;
 use crate::fe::csc::Csc;
 use crate::fe::mesh::{MeshError, Model};
-use crate::scene::{LawName, NormalLawName, RuleName};
+use crate::input::Input;
+use crate::names::{LawName, NormalLawName, RuleName};
 
 /// Errors building a problem from a (valid) scene: mesh-level inconsistencies.
 #[derive(Debug, Error)]

@@ -1,10 +1,10 @@
 //! Scene → problem: counts, load resultants, damping, lumped masses.
 
 use super::*;
-use crate::scene::Scene;
+use crate::input::scene::Scene;
 
 fn good() -> Scene {
-    Scene::parse("good.toml", crate::scene::tests::GOOD).unwrap()
+    Scene::parse("good.toml", crate::input::scene::tests::GOOD).unwrap()
 }
 
 #[test]
@@ -30,7 +30,7 @@ fn two_plates_build() {
 
 #[test]
 fn pressure_resultant_and_rayleigh() {
-    let text = crate::scene::tests::GOOD
+    let text = crate::input::scene::tests::GOOD
         .replace("rho = 7.85e-9", "rho = 7.85e-9\nrayleigh_alpha = 3.0\nrayleigh_beta = 2e-6")
         + "\n[[preload]]\nkind = \"pressure\"\nbody = \"upper\"\nface = \"z_max\"\npressure = 2.0\n";
     let p = build(&Scene::parse("x", &text).unwrap()).unwrap();
@@ -99,4 +99,13 @@ fn lumped_mass_on_ground() {
     assert_eq!(p.preload, vec![0.0, 0.0, -2.0]);
     // δ = u_block − u_ground: the tangent-1 row picks u_x with weight +1.
     assert_eq!(p.contacts[0].rows[1], vec![(0, 1.0)]);
+}
+
+#[test]
+fn an_input_builds_the_same_problem_as_its_scene() {
+    let a = build(&good()).unwrap();
+    let b = problem(&Input::Scene(good())).unwrap();
+    assert_eq!(a.sys.dofs, b.sys.dofs);
+    assert_eq!(a.excitation, b.excitation);
+    assert_eq!(a.contacts.len(), b.contacts.len());
 }

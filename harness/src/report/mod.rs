@@ -8,8 +8,8 @@ use std::path::{Path, PathBuf};
 
 use serde_json::json;
 
+use crate::input::scene::Scene;
 use crate::run::RunResult;
-use crate::scene::Scene;
 
 /// Which plots to draw.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -19,7 +19,7 @@ fn err<E: std::fmt::Display>(e: E) -> String {
 pub fn frf(
     path: &std::path::Path,
     title: &str,
-    units: &crate::scene::Units,
+    units: &crate::input::scene::Units,
     p: &Problem,
     curves: &[(&SweepResult, &str)],
 ) -> Res {
@@ -99,7 +99,7 @@ pub fn frf(
 }
 
 /// "frequency [Hz]" for seconds, else "frequency [1/<time>]".
-fn freq_label(units: &crate::scene::Units) -> String {
+fn freq_label(units: &crate::input::scene::Units) -> String {
     if units.time == "s" {
         "frequency [Hz]".into()
     } else {
@@ -165,7 +165,7 @@ pub fn passes(path: &std::path::Path, r: &SweepResult) -> Res {
 /// amplitude from 1e-3 (blue, deep stick) to 10 (red); sliding cells are outlined black.
 pub fn stick_slip(
     path: &std::path::Path,
-    units: &crate::scene::Units,
+    units: &crate::input::scene::Units,
     p: &Problem,
     r: &SweepResult,
     closed: &[bool],

@@ -2,7 +2,7 @@
 
 use crate::capi::{self, NormalProps, Tangential, NPROPS};
 use crate::model::Interface;
-use crate::scene::NormalLawName;
+use crate::names::NormalLawName;
 
 /// UINTER PROPS of an interface (src/ffi/props.rs layout).
 pub fn interface_props(i: &Interface) -> [f64; NPROPS] {
@@ -65,8 +65,8 @@ pub fn area_average(
 
 #[cfg(test)]
 mod tests {
+    use crate::input::scene::{Mode, Scene};
     use crate::model::build;
-    use crate::scene::{Mode, Scene};
     use crate::solve::static_step;
     use crate::solve::sweep::{self, Options, SweepError};
 
@@ -75,7 +75,7 @@ mod tests {
     /// with `area_samples` must repeat the node-based one.
     #[test]
     fn uniform_pressure_makes_area_samples_the_node_law() {
-        let base = crate::scene::tests::GOOD.to_string()
+        let base = crate::input::scene::tests::GOOD.to_string()
             + "\n[[preload]]\nkind = \"pressure\"\nbody = \"upper\"\nface = \"z_max\"\npressure = 1.0\n\
                [[preload]]\nkind = \"pressure\"\nbody = \"lower\"\nface = \"z_min\"\npressure = 1.0\n";
         let sampled = base.replace(

@@ -60,7 +60,7 @@ pub fn lu_solve_in_place(a: &mut [C64], n: usize, b: &mut [C64]) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::rng::Rng;
+    use crate::util::rng::Rng;
     use nalgebra::{DMatrix, DVector};
 
     #[test]

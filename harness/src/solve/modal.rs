@@ -25,8 +25,8 @@ use thiserror::Error;
 
 use crate::fe::assembly::same_pattern;
 use crate::fe::csc::Csc;
-use crate::rng::Rng;
 use crate::solve::umfpack::{Symbolic, UmfpackError};
+use crate::util::rng::Rng;
 
 /// Errors of the eigensolver.
 #[derive(Debug, Error, Clone, PartialEq)]
@@ -420,5 +420,47 @@ mod tests {
             assert!(l.abs() < 1e-8 * l7, "{l} vs {l7}");
         }
         assert!(l7 > 1e6);
+    }
+
+    /// A cantilever 100×4×4 mm cut at x = 40 into two tied boxes has exactly the
+    /// frequencies of the uncut one (same nodes, same elements: node merging is exact,
+    /// so only solver round-off may differ).
+    #[test]
+    fn tied_halves_are_one_body() {
+        let bx = |m: &mut Model, origin: [f64; 3], size: [f64; 3], divisions: [usize; 3]| {
+            m.add_box(BoxSpec {
+                origin,
+                size,
+                divisions,
+                material: 0,
+            })
+            .unwrap()
+        };
+        let mut one = Model::new(vec![steel()]);
+        let b = bx(&mut one, [0.0; 3], [100.0, 4.0, 4.0], [25, 2, 2]);
+        let clamp = one.bodies[b].face_nodes(Face::XMin);
+        one.fix(&clamp, [true; 3]).unwrap();
+
+        let mut two = Model::new(vec![steel()]);
+        let a = bx(&mut two, [0.0; 3], [40.0, 4.0, 4.0], [10, 2, 2]);
+        let c = bx(&mut two, [40.0, 0.0, 0.0], [60.0, 4.0, 4.0], [15, 2, 2]);
+        let clamp = two.bodies[a].face_nodes(Face::XMin);
+        two.fix(&clamp, [true; 3]).unwrap();
+        let ties = crate::fe::ties::find_ties(&two, a, c, 1e-6).unwrap();
+        assert_eq!(ties.len(), 3 * 3);
+        two.ties = ties;
+
+        let opts = ModalOptions {
+            n_modes: 4,
+            ..Default::default()
+        };
+        let f = |m: &Model| {
+            let s = assemble(m, Formulation::IncompatibleModes, &[]).unwrap();
+            assert_eq!(s.dofs.n_free(), 3 * 26 * 9 - 27);
+            lowest_modes(&s.k, &s.m, &opts).unwrap().frequencies_hz()
+        };
+        for (x, y) in f(&one).iter().zip(f(&two)) {
+            approx::assert_relative_eq!(*x, y, max_relative = 1e-8);
+        }
     }
 }

@@ -18,8 +18,8 @@ use super::rk4::{max_frequency, stable_steps_per_cycle, SceneRk4};
 use super::settings::AUTO_RK4_MAX_DOFS;
 use super::{Forcing, Integrator, Start, State, Stepper, TimeError, TimeSettings, C64};
 use crate::fe::csc::Csc;
+use crate::input::scene::Scene;
 use crate::model::{build, Problem};
-use crate::scene::Scene;
 use crate::solve::static_step::{self, StaticState};
 use crate::solve::umfpack::{to_complex, Symbolic};
 

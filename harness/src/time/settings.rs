@@ -12,49 +12,12 @@
 //! max_cycles = 2000
 //! ```
 
-use serde::{Deserialize, Serialize};
+use serde::Serialize;
 
-/// Which integrator.
-#[derive(Debug, Clone, Copy, Deserialize, Serialize, PartialEq, Eq, Default)]
-#[serde(rename_all = "snake_case")]
-pub enum Integrator {
-    /// RK4 for up to [`AUTO_RK4_MAX_DOFS`] free DOFs, else Newmark.
-    #[default]
-    Auto,
-    Rk4,
-    Newmark,
-}
+pub use crate::input::scene::{Integrator, Start, TimeDomainSpec};
 
 /// Largest model (free DOFs) for which `auto` picks RK4.
 pub const AUTO_RK4_MAX_DOFS: usize = 12;
-
-/// Initial state.
-#[derive(Debug, Clone, Copy, Deserialize, Serialize, PartialEq, Eq, Default)]
-#[serde(rename_all = "snake_case")]
-pub enum Start {
-    /// The static preload state at rest; the excitation is ramped in.
-    #[default]
-    Rest,
-    /// The steady state of the linear model with every closed point stuck (k_T0),
-    /// excitation at full amplitude from t = 0 (shortens the settling of lightly damped
-    /// FE models).
-    Linear,
-}
-
-/// The scene's `[time_domain]` table (all keys optional).
-#[derive(Debug, Clone, Copy, Deserialize, Serialize, PartialEq, Default)]
-#[serde(deny_unknown_fields)]
-pub struct TimeDomainSpec {
-    #[serde(default)]
-    pub integrator: Integrator,
-    pub steps_per_cycle: Option<usize>,
-    pub ramp_cycles: Option<f64>,
-    #[serde(default)]
-    pub start: Start,
-    pub tolerance: Option<f64>,
-    pub min_cycles: Option<usize>,
-    pub max_cycles: Option<usize>,
-}
 
 /// Resolved settings.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]

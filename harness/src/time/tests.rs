@@ -7,8 +7,8 @@ use super::rk4::{rk4_step, SceneRk4};
 use super::scene_run::{initial_state, simulate};
 use super::*;
 use crate::capi;
+use crate::input::scene::{LawName, RuleName, Scene};
 use crate::model::build;
-use crate::scene::{LawName, RuleName, Scene};
 use crate::solve::static_step;
 use crate::solve::umfpack::{to_complex, Symbolic};
 

@@ -30,9 +30,9 @@ use std::time::Instant;
 use serde::Serialize;
 
 use crate::capi::{set_quadrature, Quadrature};
+use crate::input::scene::{Mode, Scene};
 use crate::mhb::default_samples;
 use crate::run::{run, Extras};
-use crate::scene::{Mode, Scene};
 use crate::time::scene_run::{integrator_for, run_scene, FreqResult};
 use crate::time::{Integrator, Start, TimeSettings};
 

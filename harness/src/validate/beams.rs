@@ -5,9 +5,9 @@
 use std::path::Path;
 
 use super::{Report, Row};
+use crate::input::scene::Scene;
 use crate::model::build;
 use crate::run::{run, Extras};
-use crate::scene::Scene;
 use crate::solve::static_step;
 use crate::time::scene_run::sweep as time_sweep;
 use crate::time::{Integrator, Start, TimeSettings};
@@ -31,10 +31,10 @@ pub fn set_freqs(s: &mut Scene, freqs: &[f64]) {
     s.spec.sweep.f_min = f0;
     s.spec.sweep.f_max = f0;
     s.spec.sweep.count = 1;
-    s.spec.sweep.spacing = crate::scene::Spacing::Linear;
+    s.spec.sweep.spacing = crate::input::scene::Spacing::Linear;
     s.spec.sweep.refine = freqs[1..]
         .iter()
-        .map(|&f| crate::scene::BandSpec {
+        .map(|&f| crate::input::scene::BandSpec {
             f_min: f,
             f_max: f,
             count: 2,

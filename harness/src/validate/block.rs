@@ -3,8 +3,8 @@
 use std::path::Path;
 
 use super::{Report, Row};
+use crate::input::scene::Scene;
 use crate::run::{run, Extras};
-use crate::scene::Scene;
 use crate::time::scene_run::{run_scene, FreqResult};
 use crate::time::{Integrator, TimeSettings};
 

@@ -16,8 +16,9 @@ use nalgebra::{Complex, DMatrix};
 use super::{Report, Row};
 use crate::capi::{self, Tangential};
 use crate::mhb::continuation::{trace, Branch, Options};
-use crate::mhb::{default_samples, first_order, reference, Element, Hb, Law, MhbError, System};
-use crate::scene::{LawName, RuleName};
+use crate::mhb::{default_samples, first_order, Element, Hb, Law, MhbError, System};
+use crate::names::{LawName, RuleName};
+use crate::time::mhb_reference as reference;
 
 /// Parameters (SI: kg, N/m, N/m³, N·s/m, N); [`Self::scene`] are those of the scene.
 #[derive(Debug, Clone, Copy)]

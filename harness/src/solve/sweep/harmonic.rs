@@ -1,5 +1,5 @@
 //! Harmonic-balance mode of the sweep (`[iteration] mode = "harmonic_balance"`): per
-//! frequency the per-harmonic condensation and Newton of [`crate::mhb::fe`], started from
+//! frequency the per-harmonic condensation and Newton of [`super::harmonic_fe`], started from
 //! the previous frequency's solution (from the stuck linear response at the first one and
 //! after a failure; a frequency that does not converge keeps its last iterate, finite,
 //! and is flagged in `converged` like the other modes do). Outputs: first harmonic as in the other modes, all harmonics in
@@ -8,9 +8,9 @@
 
 use std::time::Instant;
 
+use super::harmonic_fe::FeBalance;
 use super::{Options, PassRecord, PointFreq, Setup, SweepError, SweepResult, C64};
 use crate::capi;
-use crate::mhb::fe::FeBalance;
 use crate::mhb::{default_samples, NewtonOptions};
 use crate::solve::contact::tangential;
 

@@ -172,7 +172,7 @@ impl<T: ComplexField<RealField = f64> + Copy> Gmres<T> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::rng::Rng;
+    use crate::util::rng::Rng;
     use nalgebra::{DMatrix, DVector};
 
     /// FGMRES(20) on the dense A from u = 0, preconditioned by the dense LU of

@@ -15,6 +15,7 @@ pub mod anderson;
 pub mod bracket;
 pub mod fast;
 pub mod harmonic;
+pub mod harmonic_fe;
 pub mod krylov;
 pub mod posteriori;
 pub mod receptance;
@@ -31,8 +32,8 @@ use thiserror::Error;
 use crate::capi::CapiError;
 use crate::fe::csc::Csc;
 use crate::fe::pair_blocks::to_global;
+use crate::input::scene::{Effects, IterationSpec};
 use crate::model::Problem;
-use crate::scene::{Effects, IterationSpec};
 use crate::solve::contact::normal_stiffness;
 use crate::solve::static_step::StaticState;
 use crate::solve::umfpack::{Numeric, Symbolic, UmfpackError};
@@ -412,19 +413,23 @@ pub fn run(
     } else {
         freqs.to_vec()
     };
-    if opts.iteration.mode != crate::scene::Mode::Fast && problem.has_area_samples() {
+    if opts.iteration.mode != crate::input::scene::Mode::Fast && problem.has_area_samples() {
         return Err(SweepError::AreaSamplesNeedFastMode);
     }
-    let zero_load =
-        opts.iteration.mode != crate::scene::Mode::HarmonicBalance && scale::is_zero_load(&setup);
+    let zero_load = opts.iteration.mode != crate::input::scene::Mode::HarmonicBalance
+        && scale::is_zero_load(&setup);
     let mut r = match opts.iteration.mode {
         _ if zero_load => scale::zero_load(&mut setup, &order, opts)?,
-        crate::scene::Mode::Fast => fast::sweep(&mut setup, &order, opts, progress)?,
-        crate::scene::Mode::Thesis => thesis::sweep(&mut setup, stat, &order, opts, progress)?,
-        crate::scene::Mode::HarmonicBalance if !problem.cubic_springs.is_empty() => {
+        crate::input::scene::Mode::Fast => fast::sweep(&mut setup, &order, opts, progress)?,
+        crate::input::scene::Mode::Thesis => {
+            thesis::sweep(&mut setup, stat, &order, opts, progress)?
+        }
+        crate::input::scene::Mode::HarmonicBalance if !problem.cubic_springs.is_empty() => {
             return Err(SweepError::CubicInHarmonicBalance)
         }
-        crate::scene::Mode::HarmonicBalance => harmonic::sweep(&mut setup, &order, opts, progress)?,
+        crate::input::scene::Mode::HarmonicBalance => {
+            harmonic::sweep(&mut setup, &order, opts, progress)?
+        }
     };
     if opts.descending {
         r.reverse_frequencies();

@@ -180,8 +180,8 @@ pub fn check(setup: &Setup, omega: f64, claim: &Claim, x: &[C64], rtol: f64, ato
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::input::scene::Scene;
     use crate::model::build;
-    use crate::scene::Scene;
     use crate::solve::static_step;
 
     #[test]

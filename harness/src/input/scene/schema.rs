@@ -9,6 +9,10 @@ use std::collections::BTreeMap;
 
 use serde::{Deserialize, Serialize};
 
+pub use crate::names::{LawName, NormalLawName, RuleName, SchemeName};
+
+use super::studies::{LossStudySpec, TimeDomainSpec};
+
 /// The whole scene file.
 #[derive(Debug, Clone, Deserialize, Serialize, PartialEq)]
 #[serde(deny_unknown_fields)]
@@ -46,10 +50,10 @@ pub struct SceneFile {
     /// Joint power loss against the amplitude of an output at resonance
     /// (`jointlin loss`); optional.
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub loss_study: Option<crate::loss::LossStudySpec>,
+    pub loss_study: Option<LossStudySpec>,
     /// Settings of the time-domain reference (`jointlin run --time-domain`); optional.
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub time_domain: Option<crate::time::TimeDomainSpec>,
+    pub time_domain: Option<TimeDomainSpec>,
 }
 
 /// The scene's unit system, stated (names only; the numbers must be consistent with
@@ -162,38 +166,6 @@ impl BoxGrading {
             },
         })
     }
-}
-
-/// Tangential contact law.
-#[derive(Debug, Clone, Copy, Deserialize, Serialize, PartialEq, Eq)]
-#[serde(rename_all = "snake_case")]
-pub enum LawName {
-    /// Hertz–Mindlin microslip (2.49) then Coulomb sliding.
-    Mindlin,
-    /// Linear spring k_T0 in series with a Coulomb slider.
-    Jenkins,
-}
-
-/// Unloading rule of the hysteresis loop.
-#[derive(Debug, Clone, Copy, Deserialize, Serialize, PartialEq, Eq, Default)]
-#[serde(rename_all = "snake_case")]
-pub enum RuleName {
-    /// The thesis's rule: elastic unloading with k_T0, then Mindlin loading (model.md §4).
-    #[default]
-    Thesis,
-    /// Masing (Mindlin–Deresiewicz).
-    Masing,
-}
-
-/// Normal contact law of an interface (stress form: pressure vs overclosure).
-#[derive(Debug, Clone, Copy, Deserialize, Serialize, PartialEq, Eq)]
-#[serde(rename_all = "snake_case")]
-pub enum NormalLawName {
-    /// p = k_N·h for overclosure h > 0: `normal_stiffness_per_area` (force/length³).
-    Linear,
-    /// Hertz (2.34) per point: `hertz_radius` r* (length) and `hertz_e_star` E*
-    /// (force/length², (2.31)), spread over the point's tributary area.
-    Hertz,
 }
 
 /// A contact interface between two bodies: the z-max face of the first touches the
@@ -468,20 +440,6 @@ pub enum Mode {
     /// Multi-harmonic balance (`harmonics`, `samples`): the contact loops marched in time
     /// through the C API, the linear part condensed onto the contacts per harmonic.
     HarmonicBalance,
-}
-
-/// Amplitude update rule of the thesis mode (the library's, through its iteration
-/// store). The fast mode iterates all points at once with Anderson acceleration.
-#[derive(Debug, Clone, Copy, Deserialize, Serialize, PartialEq, Eq, Default)]
-#[serde(rename_all = "snake_case")]
-pub enum SchemeName {
-    /// a ← a*.
-    Direct,
-    /// a ← (a + a*)/2 (Fig. 4.14).
-    Relaxation,
-    /// Secant on ln a with bracketing (library default).
-    #[default]
-    Secant,
 }
 
 /// Amplitude-consistency iteration.

@@ -6,12 +6,14 @@
 
 pub mod error;
 pub mod schema;
+pub mod studies;
 pub mod validate;
 
 use std::path::Path;
 
 pub use error::SceneError;
 pub use schema::*;
+pub use studies::*;
 
 /// A validated scene and where it came from.
 #[derive(Debug, Clone, PartialEq)]

@@ -7,9 +7,9 @@ use std::time::Instant;
 
 use nalgebra::{Complex, DMatrix};
 
-use super::{default_samples, first_order, Element, Hb, Law, NewtonOptions, System};
 use crate::capi::{self, Tangential};
-use crate::scene::{LawName, RuleName};
+use crate::mhb::{default_samples, first_order, Element, Hb, Law, NewtonOptions, System};
+use crate::names::{LawName, RuleName};
 
 /// The validation chain: ground –k– m₁ –k– m₂ –k– m₃ (k = 1, m = 1), D = 0.01 K, Jenkins
 /// elements (μF_N = 0.1, k_T0 = 2) from m₁ to ground and between m₃ and m₂, force

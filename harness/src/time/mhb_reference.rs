@@ -1,4 +1,4 @@
-//! Time-domain reference for the lumped systems of [`super`]: the harness's RK4
+//! Time-domain reference for the lumped systems of [`crate::mhb`]: the harness's RK4
 //! ([`crate::time::rk4::rk4_step`], thesis (D.2)) on the first-order form, every stage
 //! asking the library's point (`jointlin_point_step`) for the force at the stage's slip
 //! from the committed state, the state committed once per accepted step (as
@@ -9,7 +9,7 @@ use crate::capi::{self, POINT_STATE_LEN};
 use crate::time::periodic::{change, Cycle, SteadyTest};
 use crate::time::rk4::rk4_step;
 
-use super::{Law, MhbError, System};
+use crate::mhb::{AftError, Law, MhbError, System};
 
 /// Steady periodic response measured over the last cycle.
 #[derive(Debug, Clone)]
@@ -63,7 +63,7 @@ pub fn steady<const S: usize>(
                     Law::Cubic(k3) => k3 * d * d * d,
                     Law::Point(tg) => {
                         capi::point_step(&tg, st, d, &mut scratch)
-                            .map_err(super::AftError::from)?
+                            .map_err(AftError::from)?
                             .force
                     }
                 })
@@ -113,8 +113,7 @@ pub fn steady<const S: usize>(
                 if let Law::Point(tg) = e.law {
                     let d = x[e.i] - e.j.map_or(0.0, |j| x[j]);
                     let mut next = [0.0; POINT_STATE_LEN];
-                    let s =
-                        capi::point_step(&tg, st, d, &mut next).map_err(super::AftError::from)?;
+                    let s = capi::point_step(&tg, st, d, &mut next).map_err(AftError::from)?;
                     *st = next;
                     dissipated += s.dissipated;
                 }

@@ -10,7 +10,7 @@
 //! reference; the sweep's one symbolic analysis) gives the receptances G_h = B S_h⁻¹ Bᵀ and
 //! O_h = C S_h⁻¹ Bᵀ ([`Receptance`], m solves). With r the relative tangential
 //! displacements of the m contact directions (two per closed point) as Fourier
-//! coefficients ([`super::aft`] layout, direction-major) and ĝ_j = A_j (F̂_j(r_j) − k_T0 r_j)
+//! coefficients ([`crate::mhb::aft`] layout, direction-major) and ĝ_j = A_j (F̂_j(r_j) − k_T0 r_j)
 //! the contact force beyond the reference spring (F̂ the stress coefficients of the
 //! library's point marched over r_j, A_j the tributary area), the balance is
 //!
@@ -30,15 +30,15 @@ use std::time::Instant;
 
 use nalgebra::DMatrix;
 
-use super::aft::{self, Law, Transforms};
-use super::{MhbError, NewtonOptions};
-use crate::bench::cpu_seconds;
 use crate::capi::Tangential;
+use crate::mhb::aft::{self, Law, Transforms};
+use crate::mhb::{MhbError, NewtonOptions};
 use crate::solve::contact::tangential;
 use crate::solve::sweep::krylov::Gmres;
 use crate::solve::sweep::receptance::Receptance;
 use crate::solve::sweep::{Setup, C64, SINGULAR_RCOND};
 use crate::solve::umfpack::UmfpackError;
+use crate::util::rusage::cpu_seconds;
 
 /// FGMRES restart length and most iterations per Newton step; the tolerance relative to
 /// ‖R‖ (the step's own error is then far below the Newton tolerance).

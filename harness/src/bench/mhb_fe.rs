@@ -10,11 +10,11 @@
 
 use std::fmt::Write as _;
 
-use super::default_samples;
-use crate::bench::cpu_seconds;
 use crate::capi;
+use crate::input::scene::{Mode, Scene, Spacing};
+use crate::mhb::default_samples;
 use crate::run::{run, Extras};
-use crate::scene::{Mode, Scene, Spacing};
+use crate::util::rusage::cpu_seconds;
 
 /// One row of the table.
 #[derive(Debug, Clone)]

@@ -1,4 +1,5 @@
-//! `jointlin bench` and `jointlin modes`.
+//! `jointlin bench` and `jointlin modes`; the harmonic-balance cost tables of `jointlin mhb`
+//! are [`mhb_chain`] (the 3-DOF Jenkins chain) and [`mhb_fe`] (FE scenes).
 //!
 //! The benchmark builds three-beam stacks (steel 60×10×(2, 1, 2) mm, clamped at x = 0,
 //! pressed together, tip force 0.05 N in z: the three-beams scene's data) meshed for about the requested DOF count, sweeps the
@@ -7,15 +8,19 @@
 //! reports the time ratios and the peak resident memory (getrusage ru_maxrss, which only
 //! grows: the value after each row is the peak so far).
 
+pub mod mhb_chain;
+pub mod mhb_fe;
+
 use std::io::Write;
 use std::time::Instant;
 
 use crate::fe::csc::Csc;
+use crate::input::scene::{Mode, Scene};
 use crate::model::build;
-use crate::scene::{Mode, Scene};
 use crate::solve::modal::{lowest_modes, ModalOptions};
 use crate::solve::static_step;
 use crate::solve::sweep::{self, Options, Setup};
+use crate::util::rusage::peak_rss_bytes;
 
 /// Eigenfrequencies (1/time) of the model with every closed joint stuck (k_T0 tangential,
 /// static normal stiffness), after the static step.
@@ -40,49 +45,6 @@ pub fn stuck_modes(scene: &Scene, count: usize) -> Result<Vec<f64>, String> {
     )
     .map_err(|e| e.to_string())?;
     Ok(modes.frequencies_hz())
-}
-
-/// Peak resident set size of this process so far (bytes), from getrusage.
-pub fn peak_rss_bytes() -> u64 {
-    // SAFETY: getrusage writes into a zeroed rusage we own.
-    let mut ru: libc_rusage::Rusage = unsafe { std::mem::zeroed() };
-    let ok = unsafe { libc_rusage::getrusage(0, &mut ru) } == 0;
-    if ok {
-        ru.ru_maxrss as u64 * 1024 // Linux: kilobytes
-    } else {
-        0
-    }
-}
-
-/// CPU time (user + system) of this process so far (seconds), from getrusage: the cost
-/// of single-threaded work on a machine shared with other jobs, where wall time is not.
-pub fn cpu_seconds() -> f64 {
-    // SAFETY: getrusage writes into a zeroed rusage we own.
-    let mut ru: libc_rusage::Rusage = unsafe { std::mem::zeroed() };
-    if unsafe { libc_rusage::getrusage(0, &mut ru) } != 0 {
-        return 0.0;
-    }
-    let t = |v: &libc_rusage::Timeval| v.tv_sec as f64 + 1e-6 * v.tv_usec as f64;
-    t(&ru.ru_utime) + t(&ru.ru_stime)
-}
-
-/// Minimal getrusage binding (Linux x86_64/aarch64 layout), to avoid a libc dependency.
-mod libc_rusage {
-    #[repr(C)]
-    pub struct Timeval {
-        pub tv_sec: i64,
-        pub tv_usec: i64,
-    }
-    #[repr(C)]
-    pub struct Rusage {
-        pub ru_utime: Timeval,
-        pub ru_stime: Timeval,
-        pub ru_maxrss: i64,
-        pub rest: [i64; 13],
-    }
-    extern "C" {
-        pub fn getrusage(who: i32, usage: *mut Rusage) -> i32;
-    }
 }
 
 /// A three-beam scene with in-plane divisions (nx, ny) and nz per 1 mm of thickness.

@@ -1,0 +1,185 @@
+//! Complex modes of a damped linear system: λ²Mφ + λDφ + Kφ = 0 (docs/model.md §3: the
+//! first-order method's linear system with k*, d* in K and D). Eigenvalues from the
+//! real Schur form of the first-order companion matrix [0, I; −M⁻¹K, −M⁻¹D]; each shape
+//! is the right singular vector of the smallest singular value of λ²M + λD + K.
+//! Oscillatory modes only (Im λ > 0), mass-normalized φᴴMφ = 1, phase such that the
+//! largest component is real and positive.
+
+use nalgebra::{Complex, DMatrix, DVector};
+
+pub type C64 = Complex<f64>;
+
+/// One complex mode: λ = −ζω₀ + iω₀√(1 − ζ²) with ω₀ = |λ| (rad/time).
+#[derive(Debug, Clone)]
+pub struct Mode {
+    pub lambda: C64,
+    pub shape: Vec<C64>,
+}
+
+impl Mode {
+    /// Undamped natural frequency |λ| (rad/time).
+    pub fn omega(&self) -> f64 {
+        self.lambda.norm()
+    }
+
+    /// Damping ratio −Re λ / |λ|.
+    pub fn damping_ratio(&self) -> f64 {
+        -self.lambda.re / self.lambda.norm()
+    }
+}
+
+/// Why no modes.
+#[derive(Debug, Clone, thiserror::Error, PartialEq)]
+pub enum ModeError {
+    #[error("the mass matrix is singular (every DOF needs a mass)")]
+    SingularMass,
+    #[error("the matrices are not finite")]
+    NotFinite,
+}
+
+/// The oscillatory modes of (M, D, K), sorted by |λ|.
+pub fn complex_modes(
+    m: &DMatrix<f64>,
+    d: &DMatrix<f64>,
+    k: &DMatrix<f64>,
+) -> Result<Vec<Mode>, ModeError> {
+    let n = m.nrows();
+    if !(m.iter().chain(d.iter()).chain(k.iter())).all(|v| v.is_finite()) {
+        return Err(ModeError::NotFinite);
+    }
+    let minv = m.clone().try_inverse().ok_or(ModeError::SingularMass)?;
+    let mut a = DMatrix::<f64>::zeros(2 * n, 2 * n);
+    for i in 0..n {
+        a[(i, n + i)] = 1.0;
+    }
+    a.view_mut((n, 0), (n, n)).copy_from(&(-&minv * k));
+    a.view_mut((n, n), (n, n)).copy_from(&(-&minv * d));
+    let eig = a.complex_eigenvalues();
+    let mut modes: Vec<Mode> = eig
+        .iter()
+        .filter(|l| l.im > 1e-12 * l.norm())
+        .map(|&lambda| Mode {
+            lambda,
+            shape: shape(m, d, k, lambda),
+        })
+        .collect();
+    modes.sort_by(|a, b| a.omega().total_cmp(&b.omega()));
+    Ok(modes)
+}
+
+/// Null vector of λ²M + λD + K (smallest singular value), mass-normalized.
+fn shape(m: &DMatrix<f64>, d: &DMatrix<f64>, k: &DMatrix<f64>, lambda: C64) -> Vec<C64> {
+    let n = m.nrows();
+    let q = DMatrix::<C64>::from_fn(n, n, |i, j| {
+        lambda * lambda * m[(i, j)] + lambda * d[(i, j)] + k[(i, j)]
+    });
+    let svd = q.svd(false, true);
+    let vt = svd.v_t.expect("requested V^H");
+    let (imin, _) =
+        svd.singular_values
+            .iter()
+            .enumerate()
+            .fold(
+                (0, f64::INFINITY),
+                |(bi, bv), (i, &v)| {
+                    if v < bv {
+                        (i, v)
+                    } else {
+                        (bi, bv)
+                    }
+                },
+            );
+    let phi: Vec<C64> = (0..n).map(|j| vt[(imin, j)].conj()).collect();
+    normalize(m, &phi)
+}
+
+/// φ scaled to φᴴMφ = 1 with its largest component real and positive.
+pub fn normalize(m: &DMatrix<f64>, phi: &[C64]) -> Vec<C64> {
+    let p = DVector::from_column_slice(phi);
+    let mm = m.map(|v| C64::new(v, 0.0));
+    let norm2 = (p.adjoint() * &mm * &p)[(0, 0)].re.max(f64::MIN_POSITIVE);
+    let big = phi.iter().copied().fold(
+        C64::new(0.0, 0.0),
+        |b, v| if v.norm() > b.norm() { v } else { b },
+    );
+    let rot = if big.norm() > 0.0 {
+        big.conj() / big.norm()
+    } else {
+        C64::new(1.0, 0.0)
+    };
+    phi.iter().map(|v| v * rot / norm2.sqrt()).collect()
+}
+
+/// Modal assurance criterion |aᴴMb|² / (aᴴMa · bᴴMb) ∈ [0, 1].
+pub fn mac(m: &DMatrix<f64>, a: &[C64], b: &[C64]) -> f64 {
+    let dot = |x: &[C64], y: &[C64]| -> C64 {
+        let mut s = C64::new(0.0, 0.0);
+        for i in 0..x.len() {
+            for j in 0..y.len() {
+                s += x[i].conj() * m[(i, j)] * y[j];
+            }
+        }
+        s
+    };
+    let ab = dot(a, b).norm_sqr();
+    let den = dot(a, a).re * dot(b, b).re;
+    if den > 0.0 {
+        ab / den
+    } else {
+        0.0
+    }
+}
+
+/// Index of the mode most like `reference` (largest MAC; ties to the nearer |λ| to
+/// `omega_ref`).
+pub fn pick(m: &DMatrix<f64>, modes: &[Mode], reference: &[C64], omega_ref: f64) -> Option<usize> {
+    modes
+        .iter()
+        .enumerate()
+        .map(|(i, md)| {
+            let score = mac(m, reference, &md.shape);
+            let dist = (md.omega() / omega_ref - 1.0).abs();
+            (i, score, dist)
+        })
+        .max_by(|a, b| {
+            // MAC values within 1e-6 count as equal; then the nearer frequency wins.
+            if (a.1 - b.1).abs() > 1e-6 {
+                a.1.total_cmp(&b.1)
+            } else {
+                b.2.total_cmp(&a.2)
+            }
+        })
+        .map(|(i, _, _)| i)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn two_dof_modes_match_the_closed_form() {
+        // M = I, K = [2 −1; −1 2], D = 0.1 K: ω² = 1, 3 with ζ = 0.05 ω (proportional).
+        let m = DMatrix::identity(2, 2);
+        let k = DMatrix::from_row_slice(2, 2, &[2.0, -1.0, -1.0, 2.0]);
+        let d = &k * 0.1;
+        let modes = complex_modes(&m, &d, &k).unwrap();
+        assert_eq!(modes.len(), 2);
+        for (md, w2) in modes.iter().zip([1.0f64, 3.0]) {
+            let w = w2.sqrt();
+            assert!((md.omega() / w - 1.0).abs() < 1e-12, "{}", md.omega());
+            assert!((md.damping_ratio() / (0.05 * w) - 1.0).abs() < 1e-10);
+            // Residual of the eigenproblem.
+            let l = md.lambda;
+            for i in 0..2 {
+                let r: C64 = (0..2)
+                    .map(|j| (l * l * m[(i, j)] + l * d[(i, j)] + k[(i, j)]) * md.shape[j])
+                    .sum();
+                assert!(r.norm() < 1e-12);
+            }
+        }
+        assert!((mac(&m, &modes[0].shape, &modes[1].shape)).abs() < 1e-20);
+        assert_eq!(pick(&m, &modes, &modes[1].shape, 1.0), Some(1));
+        let bad = complex_modes(&DMatrix::zeros(2, 2), &d, &k).unwrap_err();
+        assert_eq!(bad, ModeError::SingularMass);
+    }
+}

@@ -1,0 +1,134 @@
+//! `jointlin loss SCENE --out DIR`: joint power loss against amplitude at resonance, per
+//! screw torque; `--calibrate` and `--mesh-study` instead.
+
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+use jointlin_harness::input::scene::Scene;
+use jointlin_harness::loss::{self, mesh};
+
+use super::{load_scene, report_written, with_progress};
+
+// The command's help is the doc comment of `Command::Loss`.
+#[derive(clap::Args)]
+pub struct Args {
+    scene: PathBuf,
+    /// Output directory (created if missing).
+    #[arg(long)]
+    out: PathBuf,
+    /// Instead: find the factor on every interface's k_T0 that matches the first
+    /// reference point, print it, and write nothing.
+    #[arg(long)]
+    calibrate: bool,
+    /// Instead: a mesh study at the first reference point's torque (its amplitude
+    /// and a quarter of it) with every box's divisions × each factor, area-sampled
+    /// and node-based; writes mesh_study.md and mesh_study.csv.
+    #[arg(long, value_delimiter = ',', num_args = 1..)]
+    mesh_study: Vec<usize>,
+    /// With --mesh-study: multiply only these divisions, AXES[:PREFIX,…] (e.g. `z`,
+    /// `x:jaw_,blade_in`: x of the boxes whose names start so); repeat for several,
+    /// each compared with the scene itself. Default: every axis of every box.
+    #[arg(long)]
+    refine: Vec<String>,
+    /// With --mesh-study: only the area-sampled law (half the time; the node-based
+    /// columns are left out).
+    #[arg(long)]
+    sampled_only: bool,
+    /// No progress bar.
+    #[arg(long)]
+    quiet: bool,
+}
+
+pub fn main(a: Args) -> ExitCode {
+    let s = match load_scene(&a.scene) {
+        Ok(s) => s,
+        Err(code) => return code,
+    };
+    let Some(st) = s.spec.loss_study.clone() else {
+        eprintln!("error: {}: no [loss_study] table", s.file);
+        return ExitCode::from(2);
+    };
+    if a.calibrate {
+        return match loss::calibrate_k_t0(&s, &|l| eprintln!("{l}")) {
+            Ok((factor, p)) => {
+                for i in &s.spec.interfaces {
+                    println!(
+                        "{}: k_t0_per_area = {:.6e} (× {factor:.5}); P = {p:.4} {}",
+                        i.name,
+                        i.k_t0_per_area * factor,
+                        st.power_unit
+                    );
+                }
+                ExitCode::SUCCESS
+            }
+            Err(e) => {
+                eprintln!("error: {e}");
+                ExitCode::from(1)
+            }
+        };
+    }
+    if !a.mesh_study.is_empty() {
+        return mesh_study(
+            &s,
+            &a.out,
+            &a.mesh_study,
+            &a.refine,
+            !a.sampled_only,
+            a.quiet,
+        );
+    }
+    let t = std::time::Instant::now();
+    let r = match with_progress(a.quiet, st.torques.len(), |p| loss::run_study(&s, p)) {
+        Ok(r) => r,
+        Err(code) => return code,
+    };
+    print!("{}", loss::report::markdown(&s, &st, &r));
+    eprintln!("{:.1} s", t.elapsed().as_secs_f64());
+    report_written(loss::report::write(&a.out, &s, &r))
+}
+
+/// `jointlin loss --mesh-study`.
+fn mesh_study(
+    s: &Scene,
+    out: &Path,
+    factors: &[usize],
+    refine: &[String],
+    node_based: bool,
+    quiet: bool,
+) -> ExitCode {
+    if factors.contains(&0) {
+        eprintln!("error: --mesh-study factors must be >= 1");
+        return ExitCode::from(2);
+    }
+    let refinements = if refine.is_empty() {
+        vec![mesh::Refinement::everything()]
+    } else {
+        match refine.iter().map(|r| mesh::Refinement::parse(r)).collect() {
+            Ok(r) => r,
+            Err(e) => {
+                eprintln!("error: --refine {e}");
+                return ExitCode::from(2);
+            }
+        }
+    };
+    let t = std::time::Instant::now();
+    let steps = mesh::laws(node_based).len() * mesh::plan(factors, refinements.len()).len();
+    let rows = match with_progress(quiet, steps, |p| {
+        mesh::study(s, factors, &refinements, node_based, p)
+    }) {
+        Ok(r) => r,
+        Err(code) => return code,
+    };
+    let md = mesh::markdown(s, &rows);
+    print!("{md}");
+    eprintln!("{:.1} s", t.elapsed().as_secs_f64());
+    let write = || -> Result<Vec<PathBuf>, String> {
+        let io = |e: std::io::Error| format!("{}: {e}", out.display());
+        std::fs::create_dir_all(out).map_err(io)?;
+        let (a, b) = (out.join("mesh_study.md"), out.join("mesh_study.csv"));
+        std::fs::write(&a, md).map_err(io)?;
+        std::fs::write(&b, mesh::csv(&rows)).map_err(io)?;
+        Ok(vec![a, b])
+    };
+    report_written(write())
+}

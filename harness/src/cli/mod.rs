@@ -1,0 +1,193 @@
+//! The commands of `jointlin`, one file each: the clap arguments, the plumbing from the
+//! input to the study, the run log on stderr and the exit code (0 done, 1 the run
+//! failed, 2 the input or the arguments are wrong).
+
+mod bench;
+mod check;
+mod loss;
+mod mhb;
+mod modes;
+mod run;
+mod tradeoff;
+mod validate;
+
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+use clap::{Parser, Subcommand};
+
+use jointlin_harness::input::{self, scene::Scene, Input};
+use jointlin_harness::util::progress::progress_bar;
+
+#[derive(Parser)]
+#[command(
+    name = "jointlin",
+    version,
+    about = "Frequency-domain joint contact studies: scenes → static preload → steady-state sweeps with linearized contact (k*, d*) through the jointlin C API"
+)]
+pub struct Cli {
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+#[derive(Subcommand)]
+pub enum Command {
+    /// Run a scene: static preload step, steady-state sweep, reports.
+    ///
+    /// Steps: (1) the static preload step solves K u + f_c(u) = f_pre by Newton with the
+    /// library's normal law (UINTER, LINPER = 0); open points stay open. (2) The
+    /// steady-state step solves (K + K_c(k*) + iω(D + D_c(d*)) − ω²M) û = f̂ per frequency,
+    /// k* and d* per point and tangential direction from the library for the point's
+    /// amplitude, iterated to consistency: mode `fast` (default; one factorization per
+    /// frequency, condensation onto the contact DOFs) or `thesis` (the UEXTERNALDB
+    /// multi-pass scheme of thesis §4.3.2 through the library's store). Or, with
+    /// [iteration] mode = "harmonic_balance", harmonics = H (samples = N optional), the
+    /// multi-harmonic balance: the library's time-domain point marched over each contact
+    /// direction's periodic slip (AFT, N samples per period), the linear part condensed
+    /// onto the contact directions per harmonic 0..H, Newton per frequency; the normal
+    /// load is held at its static value. The scene's [effects] table switches physics
+    /// and outputs on and off; the run log lists the active effects and what each cost.
+    /// Grounded springs with a `cubic` term α (the Duffing oscillator) get
+    /// k* = k + ¾αA² from the library for their amplitude A and are iterated to
+    /// consistency like contact points (modes fast and thesis; not harmonic_balance).
+    ///
+    /// Sweep direction ([sweep] direction): "up" (default) runs the frequencies
+    /// ascending, "down" descending, "up_down" both; each frequency starts from the
+    /// previous one's converged state, so a multi-valued response (Duffing) stays on its
+    /// branch and jumps where the branch ends (a fold). Every CSV lists the frequencies
+    /// ascending whatever the order they were run in.
+    ///
+    /// Files written to DIR (only after a valid scene and a successful run; a bad scene
+    /// names file:line:column and key, and nothing is written):
+    ///   results.csv   freq_hz, then per named output <name>_amp and <name>_phase_deg,
+    ///                 then dissipated_power (power lost in the joints, force·length/time)
+    ///                 and status (converged, not_converged, or singular: no response
+    ///                 there, empty fields; also singular_frequencies in run.json);
+    ///                 harmonic balance: first harmonic
+    ///   results_down.csv  the same columns for the descending sweep (direction = "up_down";
+    ///                 results.csv then holds the ascending one)
+    ///   harmonics.csv harmonic balance only: freq_hz, then per output and h = 0..H
+    ///                 <name>_h<h>_amp (h = 0: mean deviation from the static state)
+    ///   results_without_contact_damping.csv  the same with d* = 0 (fast mode; written
+    ///                 with the plots when the scene has contact damping)
+    ///   points.csv    per contact point and frequency: position, pressure, amplitude,
+    ///                 k*, d* (per area), energy per cycle, A/δ* (effects.point_energy_output);
+    ///                 harmonic balance: first-harmonic amplitude, k* + iωd* = F̂₁/δ̂₁ of
+    ///                 the closed loop, its energy per cycle
+    ///   stick_slip.csv/.svg  points per regime over frequency (effects.stick_slip_map)
+    ///   run.json      scene echo, effects with costs, passes, iterations, timings, C-API calls
+    ///   frf.svg       FRF of the outputs with and without contact damping (and the
+    ///                 sweep down for "up_down")
+    ///   passes.svg    frequencies per pass (thesis mode: Fig. 4.33)
+    #[command(verbatim_doc_comment)]
+    Run(run::Args),
+    /// Frequency domain vs the time-domain reference: block stick and slip, the Duffing
+    /// sweep up and down, coarse three beams. Writes validation.csv and validation.md.
+    Validate(validate::Args),
+    /// One scene at a ladder of fidelities (linear stick, Simpson point counts, iteration
+    /// tolerances, harmonic balance with H = 1, 3, 7, 15, time-domain steps and settling
+    /// lengths): error against the most
+    /// accurate time-domain run vs wall time. Writes tradeoff.csv, tradeoff.md and the
+    /// Pareto plot tradeoff.svg; prints the frequency- vs time-domain speed ratio.
+    Tradeoff(tradeoff::Args),
+    /// Joint power loss against the amplitude of an output at resonance, one curve per
+    /// screw torque (the scene's [loss_study] table; thesis Fig. 5.41–5.45): per torque
+    /// the static step, the resonance (the scene's sweep, then a golden-section search),
+    /// then the excitation scaled until the output reaches each amplitude. Writes
+    /// loss.csv, loss.md (with the comparison against the reference points), loss.svg,
+    /// and at the scene's own torque and the largest amplitude the contact maps
+    /// contact_ratio.svg, contact_energy.svg and contact_<interface>.vtu (ParaView).
+    #[command(verbatim_doc_comment)]
+    Loss(loss::Args),
+    /// Validate a scene and print a summary (nothing is run or written).
+    Check(check::Args),
+    /// Eigenfrequencies of the scene's model with every closed joint stuck (k_T0) after
+    /// the static step: where to put the sweep.
+    Modes(modes::Args),
+    /// Cost of the nonlinear sweep relative to the linear sweep (same model and
+    /// frequencies) for fast and thesis modes at about 1k, 10k and 100k DOF, with peak
+    /// memory (getrusage maxrss). Prints a Markdown table.
+    Bench(bench::Args),
+    /// Multi-harmonic balance (AFT through jointlin_point_step): cost vs H of a
+    /// frequency sweep of the 3-DOF Jenkins chain, or with --scene of FE scenes (time per
+    /// frequency split into mesh and contact parts), beside the first-order
+    /// linearization. Prints a Markdown table per system.
+    Mhb(mhb::Args),
+}
+
+/// Runs the command.
+pub fn dispatch(command: Command) -> ExitCode {
+    match command {
+        Command::Run(a) => run::main(a),
+        Command::Validate(a) => validate::main(a),
+        Command::Tradeoff(a) => tradeoff::main(a),
+        Command::Loss(a) => loss::main(a),
+        Command::Check(a) => check::main(a),
+        Command::Modes(a) => modes::main(a),
+        Command::Bench(a) => bench::main(a),
+        Command::Mhb(a) => mhb::main(a),
+    }
+}
+
+/// Reads an input through the one input path ([`input::load`]) as a scene; a bad one is
+/// printed (a scene's error names file:line:column and key) and becomes exit code 2.
+fn load_scene(path: &Path) -> Result<Scene, ExitCode> {
+    match input::load(path) {
+        Ok(Input::Scene(s)) => Ok(s),
+        Err(e) => {
+            eprintln!("error: {e}");
+            Err(ExitCode::from(2))
+        }
+    }
+}
+
+/// Runs `work` under a progress bar of `steps` steps (each message it reports is one
+/// step); an error is printed and becomes exit code 1.
+fn with_progress<T, E: std::fmt::Display>(
+    quiet: bool,
+    steps: usize,
+    work: impl FnOnce(&(dyn Fn(&str) + Sync)) -> Result<T, E>,
+) -> Result<T, ExitCode> {
+    let pb = progress_bar(quiet);
+    pb.set_length(steps as u64);
+    let r = work(&|l| {
+        pb.set_message(l.to_string());
+        pb.inc(1);
+    });
+    pb.finish_and_clear();
+    r.map_err(|e| {
+        eprintln!("error: {e}");
+        ExitCode::from(1)
+    })
+}
+
+/// Lists the files a report command wrote, or its write error; the exit code follows.
+fn report_written<E: std::fmt::Display>(written: Result<Vec<PathBuf>, E>) -> ExitCode {
+    match written {
+        Ok(files) => {
+            for f in files {
+                eprintln!("wrote {}", f.display());
+            }
+            ExitCode::SUCCESS
+        }
+        Err(e) => {
+            eprintln!("error writing reports: {e}");
+            ExitCode::from(1)
+        }
+    }
+}
+
+/// Restores the default action of SIGPIPE (Rust ignores it, so `println!` to a closed
+/// pipe panics): `jointlin modes X | head -1` then ends quietly like other Unix tools.
+#[cfg(unix)]
+pub fn default_sigpipe() {
+    extern "C" {
+        fn signal(signum: i32, handler: usize) -> usize;
+    }
+    const SIGPIPE: i32 = 13; // Linux, all architectures this builds on
+    const SIG_DFL: usize = 0;
+    // SAFETY: signal(2) with a valid signal number and SIG_DFL, before any thread starts.
+    unsafe {
+        signal(SIGPIPE, SIG_DFL);
+    }
+}

@@ -1,0 +1,222 @@
+//! `jointlin run SCENE --out DIR`: the static step, the steady-state sweep and the
+//! reports; with `--time-domain` the time-domain reference instead.
+
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+use clap::ValueEnum;
+
+use jointlin_harness::input::scene::{validate, Mode, Scene};
+use jointlin_harness::report::{self, ReportOptions};
+use jointlin_harness::run::{run, Extras};
+use jointlin_harness::util::progress::progress_bar;
+
+use super::{load_scene, report_written};
+
+#[derive(Clone, Copy, ValueEnum)]
+pub enum ModeArg {
+    Fast,
+    Thesis,
+    HarmonicBalance,
+}
+
+// The command's help is the doc comment of `Command::Run`.
+#[derive(clap::Args)]
+pub struct Args {
+    /// Scene file (TOML, see scenes/).
+    scene: PathBuf,
+    /// Output directory (created if missing).
+    #[arg(long)]
+    out: PathBuf,
+    /// Override the scene's iteration mode (harmonic-balance needs --harmonics unless
+    /// the scene sets harmonics).
+    #[arg(long, value_enum)]
+    mode: Option<ModeArg>,
+    /// Override the scene's [iteration] harmonics (harmonic balance).
+    #[arg(long)]
+    harmonics: Option<usize>,
+    /// Override the scene's [iteration] samples per period (harmonic balance).
+    #[arg(long)]
+    samples: Option<usize>,
+    /// Skip the SVG plots (and the reference sweep without contact damping they need).
+    #[arg(long)]
+    no_plots: bool,
+    /// No progress bar.
+    #[arg(long)]
+    quiet: bool,
+    /// Run the time-domain reference instead (UINTER LINPER = 0 with the library's
+    /// hysteresis; RK4 or Newmark, the scene's [time_domain] table): per frequency until
+    /// periodic; writes results_time.csv, points_time.csv, run_time.json.
+    #[arg(long)]
+    time_domain: bool,
+}
+
+pub fn main(a: Args) -> ExitCode {
+    let mut s = match load_scene(&a.scene) {
+        Ok(s) => s,
+        Err(code) => return code,
+    };
+    if let Some(m) = a.mode {
+        s.spec.iteration.mode = match m {
+            ModeArg::Fast => Mode::Fast,
+            ModeArg::Thesis => Mode::Thesis,
+            ModeArg::HarmonicBalance => Mode::HarmonicBalance,
+        };
+    }
+    let it = &mut s.spec.iteration;
+    it.harmonics = a.harmonics.or(it.harmonics);
+    it.samples = a.samples.or(it.samples);
+    // The overrides are checked by the scene's own rules.
+    if let Some((key, msg)) = validate::validate(&s.spec).into_iter().next() {
+        eprintln!(
+            "error: {}: with the command-line overrides, `{key}`: {msg}",
+            s.file
+        );
+        return ExitCode::from(2);
+    }
+    // No earlier run's marker survives this one; an interrupt says so.
+    if let Err(e) = report::atomic::begin(&a.out) {
+        eprintln!("error: {}: {e}", a.out.display());
+        return ExitCode::from(1);
+    }
+    if a.time_domain {
+        return time_domain_run(&s, &a.out, a.quiet);
+    }
+    let pb = progress_bar(a.quiet);
+    let r = run(
+        &s,
+        Extras {
+            reference_without_damping: !a.no_plots,
+            condense_max: None,
+        },
+        &|label, done, total| {
+            pb.set_length(total as u64);
+            pb.set_position(done as u64);
+            pb.set_message(label.to_string());
+        },
+    );
+    pb.finish_and_clear();
+    let r = match r {
+        Ok(r) => r,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return ExitCode::from(1);
+        }
+    };
+    eprintln!(
+        "{}: {} free DOFs, {} contact points ({} closed), mode {:?}",
+        s.file,
+        r.problem.sys.dofs.n_free(),
+        r.problem.contacts.len(),
+        r.stat.closed.iter().filter(|&&c| c).count(),
+        s.spec.iteration.mode
+    );
+    eprintln!("effects:");
+    for e in &r.effects {
+        eprintln!(
+            "  {:28} {:3}  {:8.3} s  {}",
+            e.name,
+            if e.active { "on" } else { "off" },
+            e.seconds,
+            if e.active { e.work.as_str() } else { "" }
+        );
+    }
+    for (label, sweep) in
+        std::iter::once(("", &r.main)).chain(r.down.as_ref().map(|d| ("sweep down: ", d)))
+    {
+        for p in &sweep.passes {
+            eprintln!(
+                "{label}pass {} ({}): {} frequencies, {} converged",
+                p.pass,
+                p.kind,
+                p.frequencies.len(),
+                p.converged
+            );
+        }
+    }
+    let unconverged = std::iter::once(&r.main)
+        .chain(&r.down)
+        .map(|sweep| sweep.converged.iter().filter(|&&c| !c).count())
+        .sum::<usize>();
+    eprintln!(
+        "timings: build {:.3} s, static {:.3} s, sweep {:.3} s, reference {:.3} s; {} factorizations",
+        r.seconds[0], r.seconds[1], r.seconds[2], r.seconds[3], r.main.factorizations
+    );
+    match report::write_all(&a.out, &s, &r, ReportOptions { plots: !a.no_plots }) {
+        Ok(files) => {
+            for f in files {
+                eprintln!("wrote {}", f.display());
+            }
+        }
+        Err(e) => {
+            eprintln!("error writing reports: {e}");
+            return ExitCode::from(1);
+        }
+    }
+    for (i, f) in r.main.freqs.iter().enumerate() {
+        if let Some(e) = r.main.failure(i) {
+            eprintln!("warning: {f:e} Hz failed (status failed in results.csv): {e}");
+        }
+    }
+    let failed = r.main.failed.iter().filter(|e| e.is_some()).count();
+    let singular = r.main.singular.iter().filter(|&&c| c).count();
+    if singular > 0 {
+        eprintln!(
+            "warning: {singular} frequencies have a singular dynamic stiffness (an undamped resonance?): no response there (status singular in results.csv, singular_frequencies in run.json)"
+        );
+    }
+    if unconverged > singular + failed {
+        eprintln!(
+            "warning: {} frequencies did not converge (see run.json)",
+            unconverged - singular - failed
+        );
+    }
+    ExitCode::SUCCESS
+}
+
+/// `jointlin run --time-domain`.
+fn time_domain_run(s: &Scene, out: &Path, quiet: bool) -> ExitCode {
+    use jointlin_harness::time::{scene_run, TimeSettings};
+    let settings = match TimeSettings::from_spec(s.spec.time_domain.as_ref()) {
+        Ok(t) => t,
+        Err(e) => {
+            eprintln!("error: {}: {e}", s.file);
+            return ExitCode::from(2);
+        }
+    };
+    let pb = progress_bar(quiet);
+    let r = scene_run::run_scene(s, &settings, &|done, total| {
+        pb.set_length(total as u64);
+        pb.set_position(done as u64);
+        pb.set_message("time domain");
+    });
+    pb.finish_and_clear();
+    let r = match r {
+        Ok(r) => r,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return ExitCode::from(1);
+        }
+    };
+    eprintln!(
+        "{}: time domain, {} free DOFs, {} contact points, {:.3} s",
+        s.file,
+        r.problem.sys.dofs.n_free(),
+        r.problem.contacts.len(),
+        r.seconds
+    );
+    for x in &r.results {
+        eprintln!(
+            "  {:.6e}: {} {} steps/period, {} cycles ({}), amplitude {:.6e}, energy/cycle {:.6e}, {:.2} s",
+            x.freq,
+            x.integrator,
+            x.steps_per_cycle,
+            x.cycles,
+            if x.steady { "periodic" } else { "not periodic" },
+            x.last.outputs.first().map_or(0.0, |o| o.amplitude),
+            x.last.energy,
+            x.seconds
+        );
+    }
+    report_written(scene_run::write(out, s, &r))
+}

@@ -1,0 +1,135 @@
+//! The one input path: a file is recognized ([`format_of`]), read by its format's reader
+//! ([`load`]) into an [`Input`], and built into the one `model::Problem` (mesh, K, M,
+//! contact points, loads, outputs) that the solvers and studies take.
+//!
+//! Readers, one directory each:
+//! - [`scene`]: the project's TOML scenes (`*.toml`), validated with file:line:key errors.
+//! - Abaqus input decks (`*.inp`, or a file whose first keyword line starts with `*`):
+//!   recognized, not read yet ([`InputError::NotYetSupported`]).
+
+pub mod scene;
+
+use std::path::Path;
+
+use thiserror::Error;
+
+use scene::{Scene, SceneError};
+
+/// The formats an input file can be in.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Format {
+    /// A TOML scene (see scenes/).
+    Scene,
+    /// An Abaqus input deck (keyword lines start with `*`).
+    AbaqusDeck,
+}
+
+impl std::fmt::Display for Format {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            Format::Scene => "TOML scene",
+            Format::AbaqusDeck => "Abaqus input deck",
+        })
+    }
+}
+
+/// A read and validated input.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Input {
+    Scene(Scene),
+}
+
+/// Errors of [`load`].
+#[derive(Debug, Error)]
+pub enum InputError {
+    /// A scene that cannot be read or is invalid (file:line:column and key).
+    #[error(transparent)]
+    Scene(#[from] SceneError),
+    /// A format that is recognized but has no reader yet.
+    #[error("{file}: reading {format}s is not supported yet")]
+    NotYetSupported { file: String, format: Format },
+}
+
+/// The format of `path`: by extension (`.toml` a scene; `.inp` an Abaqus deck), else by
+/// the first line that is neither blank nor a comment (`#` in TOML, `**` in a deck):
+/// one starting with `*` is a deck keyword. A file that cannot be read counts as a
+/// scene, so its reader names the error.
+pub fn format_of(path: &Path) -> Format {
+    match path.extension().and_then(|e| e.to_str()) {
+        Some(e) if e.eq_ignore_ascii_case("toml") => return Format::Scene,
+        Some(e) if e.eq_ignore_ascii_case("inp") => return Format::AbaqusDeck,
+        _ => {}
+    }
+    let Ok(text) = std::fs::read_to_string(path) else {
+        return Format::Scene;
+    };
+    format_of_text(&text)
+}
+
+/// The format of a file's text, by its first line that is neither blank nor a comment.
+pub fn format_of_text(text: &str) -> Format {
+    let first = text
+        .lines()
+        .map(str::trim)
+        .find(|l| !l.is_empty() && !l.starts_with('#') && !l.starts_with("**"));
+    match first {
+        Some(l) if l.starts_with('*') => Format::AbaqusDeck,
+        _ => Format::Scene,
+    }
+}
+
+/// Reads and validates the input file `path` in its format ([`format_of`]).
+pub fn load(path: &Path) -> Result<Input, InputError> {
+    match format_of(path) {
+        Format::Scene => Ok(Input::Scene(Scene::load(path)?)),
+        format => Err(InputError::NotYetSupported {
+            file: path.display().to_string(),
+            format,
+        }),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn formats_by_extension_and_first_keyword_line() {
+        assert_eq!(format_of(Path::new("a/b.toml")), Format::Scene);
+        assert_eq!(format_of(Path::new("a/b.INP")), Format::AbaqusDeck);
+        assert_eq!(
+            format_of_text("** a deck\n\n*Heading\njob\n"),
+            Format::AbaqusDeck
+        );
+        assert_eq!(
+            format_of_text("# a scene\n[units]\nlength = \"mm\"\n"),
+            Format::Scene
+        );
+        assert_eq!(format_of_text(""), Format::Scene);
+    }
+
+    #[test]
+    fn a_deck_is_a_named_error_and_a_missing_file_the_scene_reader_s() {
+        let dir = std::env::temp_dir().join(format!("jointlin-input-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let deck = dir.join("job.dat");
+        std::fs::write(&deck, "*Heading\n*Node\n1, 0., 0., 0.\n").unwrap();
+        let e = load(&deck).unwrap_err();
+        assert!(matches!(
+            e,
+            InputError::NotYetSupported {
+                format: Format::AbaqusDeck,
+                ..
+            }
+        ));
+        assert!(
+            e.to_string()
+                .ends_with("job.dat: reading Abaqus input decks is not supported yet"),
+            "{e}"
+        );
+        std::fs::remove_dir_all(&dir).unwrap();
+        let missing = load(Path::new("no/such/scene")).unwrap_err();
+        assert!(matches!(missing, InputError::Scene(_)));
+        assert!(missing.to_string().contains("cannot read"), "{missing}");
+    }
+}

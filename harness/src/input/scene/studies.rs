@@ -1,0 +1,94 @@
+//! The study tables of a scene: `[loss_study]` (read by the loss study) and
+//! `[time_domain]` (the time-domain reference's settings, resolved by
+//! `time::TimeSettings`). They are part of the input, so they live with it.
+
+use serde::{Deserialize, Serialize};
+
+/// The `[loss_study]` table of a scene.
+#[derive(Debug, Clone, Deserialize, Serialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct LossStudySpec {
+    /// Named output whose amplitude is set (e.g. the sonotrode's blade-side end face).
+    pub output: String,
+    /// Target amplitudes of the output (length), ascending.
+    pub amplitudes: Vec<f64>,
+    /// Screw whose torque the study varies (a `[[screws]]` name).
+    pub screw: String,
+    /// Torques (force·length), one curve each.
+    pub torques: Vec<f64>,
+    /// Fraction of the structure in the model (0.5 for a half model): the reported
+    /// power is the model's divided by it.
+    #[serde(default = "one")]
+    pub model_share: f64,
+    /// Name of the reported power unit and its size in scene power units
+    /// (force·length/time): "W" and 1e-3 for N·mm/s.
+    pub power_unit: String,
+    pub power_factor: f64,
+    /// Name of the reported amplitude unit and the scene lengths per reported unit
+    /// ("µm" and 1e-3 for mm).
+    pub amplitude_unit: String,
+    pub amplitude_factor: f64,
+    /// Measured (or published) points to compare with: torque, amplitude (scene units),
+    /// power (reported unit). The first one is the calibration target of
+    /// `jointlin loss --calibrate`.
+    #[serde(default)]
+    pub reference: Vec<ReferencePoint>,
+}
+
+fn one() -> f64 {
+    1.0
+}
+
+/// A published power-loss level.
+#[derive(Debug, Clone, Deserialize, Serialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct ReferencePoint {
+    pub torque: f64,
+    pub amplitude: f64,
+    pub power: f64,
+    /// Where the number comes from.
+    #[serde(default)]
+    pub note: String,
+    /// The deviation the source reports for its own model there (percent), if any.
+    #[serde(default)]
+    pub source_deviation_percent: Option<f64>,
+}
+
+/// Which integrator.
+#[derive(Debug, Clone, Copy, Deserialize, Serialize, PartialEq, Eq, Default)]
+#[serde(rename_all = "snake_case")]
+pub enum Integrator {
+    /// RK4 for up to `time::settings::AUTO_RK4_MAX_DOFS` (12) free DOFs, else Newmark.
+    #[default]
+    Auto,
+    Rk4,
+    Newmark,
+}
+
+/// Initial state.
+#[derive(Debug, Clone, Copy, Deserialize, Serialize, PartialEq, Eq, Default)]
+#[serde(rename_all = "snake_case")]
+pub enum Start {
+    /// The static preload state at rest; the excitation is ramped in.
+    #[default]
+    Rest,
+    /// The steady state of the linear model with every closed point stuck (k_T0),
+    /// excitation at full amplitude from t = 0 (shortens the settling of lightly damped
+    /// FE models).
+    Linear,
+}
+
+/// The scene's `[time_domain]` table (all keys optional).
+#[derive(Debug, Clone, Copy, Deserialize, Serialize, PartialEq, Default)]
+#[serde(deny_unknown_fields)]
+pub struct TimeDomainSpec {
+    #[serde(default)]
+    pub integrator: Integrator,
+    pub steps_per_cycle: Option<usize>,
+    pub ramp_cycles: Option<f64>,
+    #[serde(default)]
+    pub start: Start,
+    pub tolerance: Option<f64>,
+    pub min_cycles: Option<usize>,
+    pub max_cycles: Option<usize>,
+}

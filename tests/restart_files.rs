@@ -1,0 +1,273 @@
+//! Restart files a store did not write for this model and these settings: each is
+//! JOINTLIN_ERR_IO at restore (LOP 4 or jointlin_store_restore), never a panic, and the
+//! store keeps its state. Each case is a file that was once accepted or panicked
+//! (docs/robustness.md, "Restart files").
+
+mod ffi_common;
+
+use ffi_common::*;
+use jointlin::ffi::error::*;
+use jointlin::ffi::store::*;
+use jointlin::ffi::store_model::jointlin_store_set_model;
+use std::path::{Path, PathBuf};
+
+fn fresh_dir(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!(
+        "jointlin-restart-files-{}-{name}",
+        std::process::id()
+    ));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+/// A store saving to `path`, with relative tolerance `rtol` and model fingerprint `model`.
+fn store_at(path: &Path, rtol: f64, model: &[u8]) -> *mut jointlin_store {
+    let bytes = path.as_os_str().as_encoded_bytes();
+    let mut cfg = unsafe { std::mem::zeroed::<jointlin_store_config>() };
+    assert_eq!(unsafe { jointlin_store_config_default(&mut cfg) }, 0);
+    cfg.initial_amplitude = 1e-4;
+    cfg.rtol = rtol;
+    cfg.restart_path = bytes.as_ptr().cast();
+    cfg.restart_path_len = bytes.len();
+    let mut store = std::ptr::null_mut();
+    assert_eq!(unsafe { jointlin_store_new(&cfg, &mut store) }, 0);
+    let status = unsafe { jointlin_store_set_model(store, model.as_ptr().cast(), model.len()) };
+    assert_eq!(status, JOINTLIN_OK);
+    store
+}
+
+/// Pass 1 over increments 1 and 2 with one point, restart data written at each LOP 2;
+/// returns the file's text.
+fn real_file(store: *const jointlin_store, path: &Path) -> String {
+    assert_eq!(uexternaldb(store, 0, 0, 1, 0), 0);
+    let mut id = 0i64;
+    let name = b"BOLT-1";
+    let coords = [1.0, 2.0, 0.5];
+    let status = unsafe {
+        jointlin_store_register_point(
+            store,
+            name.as_ptr().cast(),
+            6,
+            7,
+            coords.as_ptr(),
+            3,
+            &mut id,
+        )
+    };
+    assert_eq!(status, 0);
+    for kinc in [1, 2] {
+        assert_eq!(uexternaldb(store, 1, 0, 1, kinc), 0);
+        let mut amp = [0.0; 2];
+        assert_eq!(
+            unsafe { jointlin_store_estimate(store, id, kinc, amp.as_mut_ptr()) },
+            0
+        );
+        let back = [2e-4 * kinc as f64, 1e-4];
+        assert_eq!(
+            unsafe { jointlin_store_report(store, id, kinc, back.as_ptr()) },
+            0
+        );
+        assert_eq!(uexternaldb(store, 2, 1, 1, kinc), 0);
+    }
+    std::fs::read_to_string(path).unwrap()
+}
+
+fn status_of(store: *const jointlin_store) -> (i32, jointlin_point_status, (i32, i32)) {
+    let mut st = jointlin_point_status::default();
+    let code = unsafe { jointlin_store_point_status(store, 1, 2, &mut st) };
+    let mut action = (0, 0);
+    assert_eq!(
+        unsafe { jointlin_store_next_action(store, &mut action.0, &mut action.1) },
+        JOINTLIN_OK
+    );
+    (code, st, action)
+}
+
+/// Writes `text` to the restart path and restores: JOINTLIN_ERR_IO, state unchanged.
+fn rejected(store: *const jointlin_store, path: &Path, text: &str) {
+    assert!(
+        text.starts_with("jointlin-store"),
+        "not a restart file: {text}"
+    );
+    let before = status_of(store);
+    std::fs::write(path, text).unwrap();
+    let status = unsafe { jointlin_store_restore(store) };
+    assert_eq!(status, JOINTLIN_ERR_IO, "accepted:\n{text}");
+    assert_eq!(uexternaldb(store, 4, 0, 1, 0), JOINTLIN_ERR_IO);
+    assert_eq!(status_of(store), before, "changed by:\n{text}");
+}
+
+/// The `records` line of the point at increment `kinc` split into tokens.
+fn record_line(text: &str, kinc: i32) -> (String, Vec<String>) {
+    let line = text
+        .lines()
+        .find(|l| l.starts_with(&format!("1 {kinc} ")))
+        .unwrap()
+        .to_string();
+    let tokens = line.split(' ').map(String::from).collect();
+    (line, tokens)
+}
+
+#[test]
+fn a_multi_byte_point_name_is_an_io_error_not_a_panic() {
+    let dir = fresh_dir("utf8");
+    let path = dir.join("store.restart");
+    let store = store_at(&path, 1e-3, b"model A");
+    let good = real_file(store, &path);
+    // "x424f4c542d31" is BOLT-1: a two-byte character in the hex string panicked on a
+    // character boundary (ERR_PANIC, a panic message on the host's stderr).
+    for name in ["x42é4f4c542d", "xé", "x4é", "x424f4c542d3é"] {
+        rejected(store, &path, &good.replace("x424f4c542d31", name));
+    }
+    unsafe { jointlin_store_free(store) };
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn nan_infinite_and_negative_amplitudes_are_rejected() {
+    let dir = fresh_dir("values");
+    let path = dir.join("store.restart");
+    let store = store_at(&path, 1e-3, b"model A");
+    let good = real_file(store, &path);
+    let (line, tokens) = record_line(&good, 2);
+    // Tokens: id, kinc, estimate pass, dirs, estimate ×2, reported pass, reported ×2, …,
+    // then the history pairs.
+    let bad_values = [f64::NAN, f64::INFINITY, f64::NEG_INFINITY, -1e-4, -f64::MAX];
+    for slot in [4usize, 5, 7, 8, tokens.len() - 1] {
+        for v in bad_values {
+            let mut t = tokens.clone();
+            t[slot] = format!("{:016x}", v.to_bits());
+            rejected(store, &path, &good.replace(&line, &t.join(" ")));
+        }
+    }
+    // The good file restores, and the estimate is the stored one.
+    std::fs::write(&path, &good).unwrap();
+    assert_eq!(unsafe { jointlin_store_restore(store) }, JOINTLIN_OK);
+    unsafe { jointlin_store_free(store) };
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn a_file_of_another_model_or_other_settings_is_rejected() {
+    let dir = fresh_dir("model");
+    let path = dir.join("store.restart");
+    let writer = store_at(&path, 1e-3, b"model A");
+    let good = real_file(writer, &path);
+    // Another model (its file would schedule increments this sweep does not have).
+    let other = store_at(&path, 1e-3, b"model B");
+    rejected(other, &path, &good);
+    // The same model with another tolerance.
+    let loose = store_at(&path, 1e-2, b"model A");
+    rejected(loose, &path, &good);
+    // A store without a fingerprint does not take a fingerprinted file.
+    let none = store_at(&path, 1e-3, b"");
+    rejected(none, &path, &good);
+    // The same model and settings restore.
+    let same = store_at(&path, 1e-3, b"model A");
+    std::fs::write(&path, &good).unwrap();
+    assert_eq!(uexternaldb(same, 4, 0, 1, 0), JOINTLIN_OK);
+    // Format 1 (no fingerprints): only a store without a model fingerprint reads it.
+    let v1: String = good
+        .replacen("jointlin-store 2", "jointlin-store 1", 1)
+        .lines()
+        .filter(|l| !l.starts_with("model ") && !l.starts_with("settings "))
+        .map(|l| format!("{l}\n"))
+        .collect();
+    rejected(other, &path, &v1);
+    std::fs::write(&path, &v1).unwrap();
+    assert_eq!(unsafe { jointlin_store_restore(none) }, JOINTLIN_OK);
+    for s in [writer, other, loose, none, same] {
+        unsafe { jointlin_store_free(s) };
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn duplicate_keys_and_unknown_increments_are_rejected() {
+    let dir = fresh_dir("duplicates");
+    let path = dir.join("store.restart");
+    let store = store_at(&path, 1e-3, b"model A");
+    let good = real_file(store, &path);
+    let point = good
+        .lines()
+        .find(|l| l.starts_with("7 x"))
+        .unwrap()
+        .to_string();
+    // The same point twice.
+    rejected(
+        store,
+        &path,
+        &good
+            .replace("points 1\n", "points 2\n")
+            .replace(&format!("{point}\n"), &format!("{point}\n{point}\n")),
+    );
+    // The same record twice.
+    let (line, _) = record_line(&good, 1);
+    rejected(
+        store,
+        &path,
+        &good
+            .replace("records 2\n", "records 3\n")
+            .replace(&format!("{line}\n"), &format!("{line}\n{line}\n")),
+    );
+    // The same increment twice.
+    rejected(
+        store,
+        &path,
+        &good.replace("increments 2 1 ", "increments 3 1 1 1 "),
+    );
+    // A schedule naming an increment the sweep never ran, or not ascending.
+    for next in ["next 1 1 9", "next 1 2 2 1", "next 2 2 1 1"] {
+        rejected(store, &path, &good.replacen("next 0 0", next, 1));
+    }
+    unsafe { jointlin_store_free(store) };
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn counters_near_u32_max_are_rejected_not_wrapped() {
+    let dir = fresh_dir("counters");
+    let path = dir.join("store.restart");
+    let store = store_at(&path, 1e-3, b"model A");
+    let good = real_file(store, &path);
+    let (line, tokens) = record_line(&good, 2);
+    // Record passes, estimate pass and reported pass beyond the passes run (u32::MAX
+    // wrapped to 0 at the next LOP 2).
+    for slot in [2usize, 6, 10] {
+        for v in ["4294967295", "4294967294", "2"] {
+            let mut t = tokens.clone();
+            t[slot] = v.to_string();
+            rejected(store, &path, &good.replace(&line, &t.join(" ")));
+        }
+    }
+    // Iteration passes beyond the passes started; pass statistics that contradict
+    // themselves.
+    let stats = "\n1 0 2 0 2 0\n";
+    assert!(
+        good.contains(stats) && good.contains("counters 0 0"),
+        "{good}"
+    );
+    rejected(
+        store,
+        &path,
+        &good.replace("counters 0 0", "counters 4294967295 0"),
+    );
+    rejected(
+        store,
+        &path,
+        &good.replace(stats, "\n1 0 2 4294967295 2 0\n"),
+    );
+    rejected(
+        store,
+        &path,
+        &good.replace(stats, "\n1 0 2 0 2 4294967295\n"),
+    );
+    rejected(store, &path, &good.replace(stats, "\n7 0 2 0 2 0\n"));
+    // The good file restores and the sweep goes on.
+    std::fs::write(&path, &good).unwrap();
+    assert_eq!(uexternaldb(store, 4, 0, 1, 0), JOINTLIN_OK);
+    assert_eq!(uexternaldb(store, 3, 0, 1, 0), JOINTLIN_OK);
+    unsafe { jointlin_store_free(store) };
+    std::fs::remove_dir_all(&dir).unwrap();
+}
