@@ -74,6 +74,11 @@ pub fn main(a: Args) -> ExitCode {
         );
         return ExitCode::from(2);
     }
+    // No earlier run's marker survives this one; an interrupt says so.
+    if let Err(e) = report::atomic::begin(&a.out) {
+        eprintln!("error: {}: {e}", a.out.display());
+        return ExitCode::from(1);
+    }
     if a.time_domain {
         return time_domain_run(&s, &a.out, a.quiet);
     }
@@ -148,16 +153,22 @@ pub fn main(a: Args) -> ExitCode {
             return ExitCode::from(1);
         }
     }
+    for (i, f) in r.main.freqs.iter().enumerate() {
+        if let Some(e) = r.main.failure(i) {
+            eprintln!("warning: {f:e} Hz failed (status failed in results.csv): {e}");
+        }
+    }
+    let failed = r.main.failed.iter().filter(|e| e.is_some()).count();
     let singular = r.main.singular.iter().filter(|&&c| c).count();
     if singular > 0 {
         eprintln!(
             "warning: {singular} frequencies have a singular dynamic stiffness (an undamped resonance?): no response there (status singular in results.csv, singular_frequencies in run.json)"
         );
     }
-    if unconverged > singular {
+    if unconverged > singular + failed {
         eprintln!(
             "warning: {} frequencies did not converge (see run.json)",
-            unconverged - singular
+            unconverged - singular - failed
         );
     }
     ExitCode::SUCCESS

@@ -3,8 +3,10 @@
 //! results.csv: `freq_hz`, then per named output `<name>_amp` (length) and
 //! `<name>_phase_deg` (degrees, of u = Re(û e^{iωt})), then `dissipated_power` (power
 //! dissipated in the joints, force·length/time: mW for N, mm, s) and `status`
-//! (`converged`, `not_converged`, or `singular`: the dynamic stiffness was singular
-//! there, see [`crate::solve::sweep::SINGULAR_RCOND`], and the other fields are empty).
+//! (`converged`, `not_converged`, `singular`: the dynamic stiffness was singular
+//! there, see [`crate::solve::sweep::SINGULAR_RCOND`], or `failed`: a library call or a
+//! solve failed at that frequency, its message in run.json `failed_frequencies`; the
+//! other fields of a singular or failed row are empty).
 
 use std::fmt::Write as _;
 
@@ -23,10 +25,14 @@ pub fn results(p: &Problem, r: &SweepResult) -> String {
     s.push_str(",dissipated_power,status\n");
     for (i, f) in r.freqs.iter().enumerate() {
         let _ = write!(s, "{f:.10e}");
-        if r.is_singular(i) {
+        if r.is_singular(i) || r.failure(i).is_some() {
             // No response computed: empty fields, never inf or NaN.
             s.push_str(&",".repeat(2 * r.outputs[i].len() + 1));
-            s.push_str(",singular\n");
+            s.push_str(if r.is_singular(i) {
+                ",singular\n"
+            } else {
+                ",failed\n"
+            });
             continue;
         }
         for v in &r.outputs[i] {

@@ -1,5 +1,6 @@
 //! Reports of a run: CSV tables, run.json and SVG plots. Reports read results only.
 
+pub mod atomic;
 pub mod backbone;
 pub mod csv;
 pub mod svg;
@@ -17,9 +18,9 @@ pub struct ReportOptions {
     pub plots: bool,
 }
 
-fn write(dir: &Path, name: &str, text: &str, out: &mut Vec<PathBuf>) -> std::io::Result<()> {
+fn write(dir: &Path, name: &str, text: &str, out: &mut Vec<PathBuf>) -> Result<(), String> {
     let p = dir.join(name);
-    std::fs::write(&p, text)?;
+    atomic::write_text(&p, text)?;
     out.push(p);
     Ok(())
 }
@@ -54,6 +55,8 @@ pub fn run_json(scene: &Scene, r: &RunResult) -> serde_json::Value {
         "converged": m.converged,
         "all_converged": m.converged.iter().all(|&c| c),
         "singular_frequencies": m.freqs.iter().enumerate().filter(|(i, _)| m.is_singular(*i)).map(|(_, f)| *f).collect::<Vec<f64>>(),
+        "failed_frequencies": m.freqs.iter().enumerate().filter_map(|(i, f)| m.failure(i).map(|e| json!({"freq_hz": f, "error": e}))).collect::<Vec<_>>(),
+        "a_posteriori_checks": m.checks,
         "singular_rcond_threshold": crate::solve::sweep::SINGULAR_RCOND,
         "factorizations": m.factorizations,
         "gmres_solves": m.gmres_solves,
@@ -77,7 +80,9 @@ pub fn run_json(scene: &Scene, r: &RunResult) -> serde_json::Value {
     })
 }
 
-/// Writes every report into `dir` (created if missing); returns the files written.
+/// Writes every report into `dir` (created if missing); returns the files written. Each
+/// file appears under its name only when complete ([`atomic`]); run.json, last, marks
+/// the set complete, and an earlier run's is removed first.
 pub fn write_all(
     dir: &Path,
     scene: &Scene,
@@ -85,27 +90,25 @@ pub fn write_all(
     opts: ReportOptions,
 ) -> Result<Vec<PathBuf>, String> {
     let mut out = Vec::new();
-    let io = |e: std::io::Error| format!("{}: {e}", dir.display());
-    std::fs::create_dir_all(dir).map_err(io)?;
+    atomic::prepare(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
     let eff = scene.spec.effects;
     write(
         dir,
         "results.csv",
         &csv::results(&r.problem, &r.main),
         &mut out,
-    )
-    .map_err(io)?;
+    )?;
     if let Some(down) = &r.down {
         let text = csv::results(&r.problem, down);
-        write(dir, "results_down.csv", &text, &mut out).map_err(io)?;
+        write(dir, "results_down.csv", &text, &mut out)?;
     }
     if !r.main.harmonics.is_empty() {
         let text = csv::harmonics(&r.problem, &r.main);
-        write(dir, "harmonics.csv", &text, &mut out).map_err(io)?;
+        write(dir, "harmonics.csv", &text, &mut out)?;
     }
     if let Some(reference) = &r.reference {
         let text = csv::results(&r.problem, reference);
-        write(dir, "results_without_contact_damping.csv", &text, &mut out).map_err(io)?;
+        write(dir, "results_without_contact_damping.csv", &text, &mut out)?;
     }
     if eff.point_energy_output {
         let text = csv::points(
@@ -115,7 +118,7 @@ pub fn write_all(
             &r.stat.pressure,
             eff.stick_slip_map,
         );
-        write(dir, "points.csv", &text, &mut out).map_err(io)?;
+        write(dir, "points.csv", &text, &mut out)?;
     }
     if eff.stick_slip_map {
         write(
@@ -123,18 +126,14 @@ pub fn write_all(
             "stick_slip.csv",
             &csv::stick_slip(&r.main, &r.stat.closed),
             &mut out,
-        )
-        .map_err(io)?;
+        )?;
     }
-    let json = serde_json::to_string_pretty(&run_json(scene, r)).map_err(|e| e.to_string())?;
-    write(dir, "run.json", &json, &mut out).map_err(io)?;
     if opts.plots {
         let title = if scene.spec.title.is_empty() {
             "FRF"
         } else {
             &scene.spec.title
         };
-        let p = dir.join("frf.svg");
         let main_label = match (&r.down, &r.reference) {
             (Some(_), _) => "sweep up",
             (None, Some(_)) => "with contact damping",
@@ -143,16 +142,24 @@ pub fn write_all(
         let mut curves = vec![(&r.main, main_label)];
         curves.extend(r.down.as_ref().map(|d| (d, "sweep down")));
         curves.extend(r.reference.as_ref().map(|d| (d, "without contact damping")));
-        svg::frf(&p, title, &scene.spec.units, &r.problem, &curves)?;
+        let p = dir.join("frf.svg");
+        atomic::with_temp(&p, |t| {
+            svg::frf(t, title, &scene.spec.units, &r.problem, &curves)
+        })?;
         out.push(p);
         let p = dir.join("passes.svg");
-        svg::passes(&p, &r.main)?;
+        atomic::with_temp(&p, |t| svg::passes(t, &r.main))?;
         out.push(p);
         if eff.stick_slip_map {
             let p = dir.join("stick_slip.svg");
-            svg::stick_slip(&p, &scene.spec.units, &r.problem, &r.main, &r.stat.closed)?;
+            atomic::with_temp(&p, |t| {
+                svg::stick_slip(t, &scene.spec.units, &r.problem, &r.main, &r.stat.closed)
+            })?;
             out.push(p);
         }
     }
+    // Last: the marker of a complete run.
+    let json = serde_json::to_string_pretty(&run_json(scene, r)).map_err(|e| e.to_string())?;
+    write(dir, atomic::MARKER, &json, &mut out)?;
     Ok(out)
 }

@@ -70,13 +70,13 @@ pub fn frf(
             // One colour per output and curve; the first curve drawn thicker.
             let color = Palette99::pick(k + 4 * c).to_rgba();
             let width = if c == 0 { 2 } else { 1 };
-            // Singular frequencies have no response: left out of the curve.
+            // Singular and failed frequencies have no response: left out of the curve.
             let pts: Vec<(f64, f64)> = r
                 .freqs
                 .iter()
                 .zip(&r.outputs)
                 .enumerate()
-                .filter(|(i, _)| !r.is_singular(*i))
+                .filter(|(i, _)| !r.is_singular(*i) && r.failure(*i).is_none())
                 .map(|(_, (f, v))| (*f, v[k].norm().max(ymin)))
                 .collect();
             chart

@@ -17,7 +17,9 @@ pub mod fast;
 pub mod harmonic;
 pub mod harmonic_fe;
 pub mod krylov;
+pub mod posteriori;
 pub mod receptance;
+pub mod scale;
 pub mod thesis;
 
 use std::collections::BTreeMap;
@@ -38,25 +40,27 @@ use crate::solve::umfpack::{Numeric, Symbolic, UmfpackError};
 
 pub type C64 = Complex<f64>;
 
-/// Absolute amplitude tolerance, relative to the initial amplitude estimate: both modes
-/// accept |a − a*| ≤ rtol·max(a, a*) + atol. Without it a direction that is never
-/// excited (a* = 0) could never converge in relative terms.
+/// Absolute amplitude tolerance relative to the problem's own amplitude scale (never to
+/// the user's start estimate `initial_amplitude`): both modes accept
+/// |a − a*| ≤ rtol·max(a, a*) + atol with atol = ATOL_REL × scale. Fast mode's scale is
+/// the largest amplitude of the frequency's current iterate (a and a* of every contact
+/// direction), thesis mode's the stuck linear response's ([`scale::stuck_scale`], one
+/// number for the store). Without atol a direction that is never excited (a* = 0) could
+/// never converge in relative terms. A scale tied to `initial_amplitude` (1e-6 of it)
+/// accepted any amplitude below it: the block of scenes/block-stick.toml with
+/// k_T0 = 1e12 N/mm³ converged at 1.40e-11 mm instead of 5.49e-13 mm.
 pub const ATOL_REL: f64 = 1e-6;
 
 /// A frequency whose dynamic stiffness factorizes with UMFPACK's reciprocal condition
 /// estimate min|Uᵢᵢ|/max|Uᵢᵢ| below this (or with UMFPACK status 1, an exactly zero
 /// pivot) is reported singular: no response is computed there, the sweep goes on.
+/// The same threshold applies to the bound of one solve ([`Setup::rcond_bound`]).
 /// Measured on scenes/hard: healthy matrices 1.5e-9 (joint stiffness ratio
 /// k_T0·L/(E·A) = 1e6) to 3e-3; the undamped open joint of open-resonance.toml 6.9e-17
 /// exactly at its eigenfrequency, 9.2e-16 1e-10 below it (the response there has at
 /// most one correct digit), 1.0e-11 1e-6 below. The threshold keeps five decades from the
 /// stiffest healthy case.
 pub const SINGULAR_RCOND: f64 = 1e-14;
-
-/// atol (length) for an iteration spec.
-pub fn atol(it: &IterationSpec) -> f64 {
-    ATOL_REL * it.initial_amplitude
-}
 
 /// Errors of a sweep.
 #[derive(Debug, Error)]
@@ -158,6 +162,14 @@ pub struct SweepResult {
     /// and power there are zeros standing for "no response computed" (the reports write
     /// empty fields and status `singular`), and the frequency counts as not converged.
     pub singular: Vec<bool>,
+    /// Per frequency: why it failed (a library call or a solve returned an error there);
+    /// outputs and power are zeros standing for "no response computed" (status `failed`,
+    /// empty fields), and the frequency counts as not converged. Empty: none failed.
+    pub failed: Vec<Option<String>>,
+    /// Per frequency (fast and thesis modes): the independent check of the converged
+    /// solution ([`posteriori`]; `None` where not converged or not checked); a frequency
+    /// that fails it is not converged.
+    pub checks: Vec<Option<posteriori::Verdict>>,
     pub passes: Vec<PassRecord>,
     pub factorizations: usize,
     /// Fast mode with FGMRES: preconditioner applications (solves) in all.
@@ -179,6 +191,42 @@ impl SweepResult {
         self.iterations.reverse();
         self.converged.reverse();
         self.singular.reverse();
+        self.failed.reverse();
+        self.checks.reverse();
+    }
+
+    /// The next frequency is singular: a row of zeros, not converged.
+    pub(crate) fn push_singular(&mut self, nout: usize, points: Option<usize>) {
+        self.outputs.push(vec![C64::new(0.0, 0.0); nout]);
+        self.power.push(0.0);
+        if let Some(n) = points {
+            self.points.push(vec![PointFreq::default(); n]);
+        }
+        self.iterations.push(0);
+        self.converged.push(false);
+        self.singular.push(true);
+        self.failed.push(None);
+        self.checks.push(None);
+    }
+
+    /// Why frequency `i` failed, if it did.
+    pub fn failure(&self, i: usize) -> Option<&str> {
+        self.failed.get(i).and_then(|m| m.as_deref())
+    }
+
+    /// The next frequency failed with `e`: a row of zeros (`points` contact points when
+    /// per-point results are kept), not converged.
+    pub(crate) fn push_failed(&mut self, e: &SweepError, nout: usize, points: Option<usize>) {
+        self.outputs.push(vec![C64::new(0.0, 0.0); nout]);
+        self.power.push(0.0);
+        if let Some(n) = points {
+            self.points.push(vec![PointFreq::default(); n]);
+        }
+        self.iterations.push(0);
+        self.converged.push(false);
+        self.singular.push(false);
+        self.failed.push(Some(e.to_string()));
+        self.checks.push(None);
     }
 
     /// Whether frequency `i` was singular (no response computed there).
@@ -313,6 +361,30 @@ impl<'a> Setup<'a> {
         }
     }
 
+    /// An upper bound of the reciprocal 2-norm condition number of `self.s` from one
+    /// solve x = S⁻¹ f: ‖S⁻¹‖₂ ≥ ‖x‖₂/‖f‖₂ and ‖S‖₂ ≥ c, the largest column 2-norm, so
+    /// rcond₂ ≤ ‖f‖₂/(c‖x‖₂). Below [`SINGULAR_RCOND`] the matrix is singular by the
+    /// same rule as UMFPACK's pivot estimate, which misses a near-zero eigenvalue that no
+    /// single pivot shows: the undamped stuck joint of three-beams-coarse at its
+    /// `jointlin modes` frequency 1174.498 Hz had a pivot ratio above 1e-14 and a
+    /// response of 1.38e6 mm (bound 1e-15 from that solve).
+    pub fn rcond_bound(&self, f: &[C64], x: &[C64]) -> f64 {
+        let p = &self.s.pattern;
+        let c = (0..p.n)
+            .map(|j| {
+                let k = p.col_ptr[j] as usize..p.col_ptr[j + 1] as usize;
+                self.s.values[k].iter().map(|v| v.norm_sqr()).sum::<f64>()
+            })
+            .fold(0.0f64, f64::max)
+            .sqrt();
+        let norm = |v: &[C64]| v.iter().map(|z| z.norm_sqr()).sum::<f64>().sqrt();
+        let (nf, nx) = (norm(f), norm(x));
+        if nx == 0.0 {
+            return 1.0;
+        }
+        nf / (c * nx)
+    }
+
     /// Tangential relative displacement amplitudes (complex) of active point j.
     pub fn tangential(&self, j: usize, u: &[C64]) -> [C64; 2] {
         let c = &self.problem.contacts[self.active[j]];
@@ -344,7 +416,10 @@ pub fn run(
     if opts.iteration.mode != crate::input::scene::Mode::Fast && problem.has_area_samples() {
         return Err(SweepError::AreaSamplesNeedFastMode);
     }
+    let zero_load = opts.iteration.mode != crate::input::scene::Mode::HarmonicBalance
+        && scale::is_zero_load(&setup);
     let mut r = match opts.iteration.mode {
+        _ if zero_load => scale::zero_load(&mut setup, &order, opts)?,
         crate::input::scene::Mode::Fast => fast::sweep(&mut setup, &order, opts, progress)?,
         crate::input::scene::Mode::Thesis => {
             thesis::sweep(&mut setup, stat, &order, opts, progress)?

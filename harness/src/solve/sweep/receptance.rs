@@ -25,7 +25,8 @@ pub struct Receptance {
     pub r0: Vec<C64>,
     pub y0: Vec<C64>,
     b: Vec<C64>,
-    x: Vec<C64>,
+    /// S⁻¹ f̂ after [`Receptance::load`] (then scratch of [`Receptance::condense`]).
+    pub x: Vec<C64>,
 }
 
 impl Receptance {

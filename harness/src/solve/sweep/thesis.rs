@@ -16,6 +16,7 @@
 
 use std::time::Instant;
 
+use super::posteriori::{self, Claim};
 use super::{Options, PassRecord, PointFreq, Setup, SweepError, SweepResult, C64};
 use crate::capi::{self, Action, Store, NSTATV};
 use crate::solve::contact::{interface_props, tangential};
@@ -45,8 +46,11 @@ pub fn sweep(
         iterations: vec![0; nf],
         converged: vec![na == 0 && springs.is_empty(); nf],
         singular: vec![false; nf],
+        checks: vec![None; nf],
         ..Default::default()
     };
+    // Per frequency: the last solve passed the a-posteriori check (posteriori.rs).
+    let mut checked = vec![true; nf];
     if opts.point_results {
         res.points = vec![vec![PointFreq::default(); p.contacts.len()]; nf];
     }
@@ -104,11 +108,16 @@ pub fn sweep(
         return Ok(res);
     }
 
+    // atol from the stuck response's scale (one factorization per frequency), not from
+    // the start estimate.
+    let t = Instant::now();
+    let atol = super::ATOL_REL * super::scale::stuck_scale(setup, freqs)?;
+    res.time("amplitude scale (stuck response)", t);
     let t = Instant::now();
     let store = Store::new(
         it.initial_amplitude,
         it.tolerance,
-        super::atol(&it),
+        atol,
         it.scheme,
         it.max_passes,
         SWEEP_STEP,
@@ -174,6 +183,25 @@ pub fn sweep(
             res.singular[fi] = !solve_one(setup, omega, &kappa, &ks, &mut x, &mut res, f)?;
             if res.singular[fi] && opts.point_results {
                 res.points[fi].fill(PointFreq::default());
+            }
+            if !res.singular[fi] {
+                let t = Instant::now();
+                let amplitudes: Vec<[f64; 2]> = outs.iter().map(|o| o.report.amplitude).collect();
+                let caps: Vec<f64> = if eff.macroslip {
+                    vec![f64::INFINITY; na]
+                } else {
+                    slip_limit.clone()
+                };
+                let claim = Claim {
+                    kappa: &kappa,
+                    amplitudes: &amplitudes,
+                    caps: &caps,
+                    spring_k: &ks,
+                };
+                let v = posteriori::check(setup, omega, &claim, &x, it.tolerance, atol);
+                res.checks[fi] = Some(v);
+                checked[fi] = v.passes(it.tolerance);
+                res.time("a-posteriori check", t);
             }
             let t = Instant::now();
             let mut power = 0.0;
@@ -261,8 +289,13 @@ pub fn sweep(
     }
     // A final pass that found an increment out of tolerance turns into a re-run; what
     // the store left unconverged was marked above. A singular frequency has no response.
-    for (c, &s) in res.converged.iter_mut().zip(&res.singular) {
-        *c &= !s;
+    for ((c, &s), &ok) in res.converged.iter_mut().zip(&res.singular).zip(&checked) {
+        *c &= !s && ok;
+    }
+    for (b, &c) in res.checks.iter_mut().zip(&res.converged) {
+        if !c {
+            *b = None;
+        }
     }
     Ok(res)
 }
@@ -291,5 +324,10 @@ fn solve_one(
     num.solve_into(&setup.problem.excitation, x)
         .map_err(|source| SweepError::Umfpack { freq: f, source })?;
     res.time("solves", t);
+    // Singular by the bound of this solve too (an undamped resonance no pivot shows).
+    if setup.rcond_bound(&setup.problem.excitation, x) < super::SINGULAR_RCOND {
+        x.iter_mut().for_each(|v| *v = C64::new(0.0, 0.0));
+        return Ok(false);
+    }
     Ok(true)
 }

@@ -1,0 +1,242 @@
+//! A-posteriori check of a converged frequency, by a path independent of the solve: the
+//! residual of the linearized equations (docs/model.md §5)
+//!
+//!   r = (K + K_c(k*) − ω²M + iω(D + D_c(d*))) x − f̂
+//!
+//! formed from the unfactored parts (Setup::base, M, D, and each active point's springs
+//! through its contact rows Bⱼ, not the assembled pair blocks), every sum compensated
+//! (Ogita–Rump–Oishi Dot2: TwoProduct by FMA, TwoSum), so the near-cancellation of
+//! K − ω²M at a resonance costs no digits. The frequency passes when
+//! - ‖r‖₂ ≤ [`RESIDUAL_REL`]·rtol·‖f̂‖₂ or the normwise backward error
+//!   η = ‖r‖₂/(‖S‖‖x‖₂ + ‖f̂‖₂) ≤ [`ROUNDOFF`]·ε (the contact iteration's FGMRES stops
+//!   at ‖r‖ ≤ 1e-4·rtol·‖f̂‖ or η ≤ 8ε), and
+//! - every amplitude the linearization used agrees with |Bⱼx| by the convergence test
+//!   (twice its tolerance).
+
+use super::{Setup, C64};
+
+/// ‖r‖/‖f̂‖ must stay below this multiple of rtol: the equations hold to a tenth of the
+/// tolerance asked of the amplitudes (FGMRES stops at 1e-4·rtol, `fast::GMRES_REL`; the
+/// condensed path's x = S₀⁻¹(f̂ − BᵀΔr) left 6e-9 at rtol 1e-6 on the block of
+/// block-stick.toml with k_T0 = 1e12 N/mm³, where it equals thesis mode's to 1.2e-8) ...
+pub const RESIDUAL_REL: f64 = 0.1;
+/// ... or η below this multiple of ε: round-off of the product S x (a direct solve with
+/// the factorization leaves η ≤ 2ε, FGMRES stops at 8ε, `krylov::ROUNDOFF`), reached
+/// near a resonance where ‖S‖‖x‖ ≫ ‖f̂‖.
+pub const ROUNDOFF: f64 = 100.0;
+
+/// Compensated sum of products.
+#[derive(Debug, Clone, Copy, Default)]
+struct Dot2 {
+    s: f64,
+    c: f64,
+}
+
+impl Dot2 {
+    fn add_prod(&mut self, a: f64, b: f64) {
+        let p = a * b;
+        let ep = a.mul_add(b, -p);
+        let s = self.s + p;
+        let z = s - self.s;
+        let es = (self.s - (s - z)) + (p - z);
+        self.s = s;
+        self.c += ep + es;
+    }
+
+    fn value(self) -> f64 {
+        self.s + self.c
+    }
+}
+
+/// Complex accumulator of Dot2 parts.
+#[derive(Debug, Clone, Copy, Default)]
+struct CDot2 {
+    re: Dot2,
+    im: Dot2,
+}
+
+impl CDot2 {
+    /// += a·z.
+    fn add(&mut self, a: C64, z: C64) {
+        self.re.add_prod(a.re, z.re);
+        self.re.add_prod(-a.im, z.im);
+        self.im.add_prod(a.re, z.im);
+        self.im.add_prod(a.im, z.re);
+    }
+
+    fn value(self) -> C64 {
+        C64::new(self.re.value(), self.im.value())
+    }
+}
+
+/// Outcome of the check at one frequency.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct Verdict {
+    /// Normwise backward error η of x.
+    pub backward_error: f64,
+    /// ‖r‖₂/‖f̂‖₂.
+    pub relative_residual: f64,
+    /// Largest |a − |Bⱼx|| over the allowed (twice the convergence tolerance); ≤ 1 passes.
+    pub consistency: f64,
+}
+
+impl Verdict {
+    pub fn passes(&self, rtol: f64) -> bool {
+        let solved = self.relative_residual <= RESIDUAL_REL * rtol
+            || self.backward_error <= ROUNDOFF * f64::EPSILON;
+        solved && self.consistency <= 1.0
+    }
+}
+
+/// What the converged state claims at one frequency, per active point: κ (per area) and
+/// the two tangential amplitudes it was linearized for, with the cap applied to |Bⱼx|
+/// before comparing (δ* when macroslip is off and the host caps what it reports,
+/// otherwise ∞); k* per cubic spring.
+pub struct Claim<'a> {
+    pub kappa: &'a [[C64; 2]],
+    pub amplitudes: &'a [[f64; 2]],
+    pub caps: &'a [f64],
+    pub spring_k: &'a [f64],
+}
+
+/// Checks x at ω against `claim`; `rtol`, `atol` of the convergence test.
+pub fn check(setup: &Setup, omega: f64, claim: &Claim, x: &[C64], rtol: f64, atol: f64) -> Verdict {
+    let Claim {
+        kappa,
+        amplitudes,
+        caps,
+        spring_k,
+    } = *claim;
+    let p = setup.problem;
+    let pt = &p.sys.pattern;
+    let n = pt.n;
+    let w2 = omega * omega;
+    let mut y = vec![CDot2::default(); n];
+    let (mut cols, mut rows) = (vec![0.0f64; n], vec![0.0f64; n]);
+    let m = &p.sys.m.values;
+    for j in 0..n {
+        for k in pt.col_ptr[j] as usize..pt.col_ptr[j + 1] as usize {
+            let i = pt.row_idx[k] as usize;
+            let d = setup.damping.map_or(0.0, |d| d.values[k]);
+            y[i].add(C64::new(setup.base[k], 0.0), x[j]);
+            y[i].add(C64::new(-w2 * m[k], 0.0), x[j]);
+            y[i].add(C64::new(0.0, omega * d), x[j]);
+            let v = C64::new(setup.base[k] - w2 * m[k], omega * d).norm();
+            cols[j] += v;
+            rows[i] += v;
+        }
+    }
+    let max = |s: &[f64]| s.iter().fold(0.0f64, |a, &b| a.max(b));
+    let mut s_norm = (max(&cols) * max(&rows)).sqrt();
+    // Bⱼᵀ (κ·area) Bⱼ x per active point and direction, and (k* − k) rᵀ r x per cubic
+    // spring (its linear k is in base).
+    let mut springs = |row: &[(usize, f64)], coef: C64| -> C64 {
+        let mut bx = CDot2::default();
+        for &(i, w) in row {
+            bx.add(C64::new(w, 0.0), x[i]);
+        }
+        let bx = bx.value();
+        for &(i, w) in row {
+            y[i].add(coef * w, bx);
+        }
+        s_norm += coef.norm() * row.iter().map(|&(_, w)| w * w).sum::<f64>();
+        bx
+    };
+    let mut consistency = 0.0f64;
+    for (j, &i) in setup.active.iter().enumerate() {
+        let c = &p.contacts[i];
+        for d in 0..2 {
+            let bx = springs(&c.rows[1 + d], kappa[j][d] * c.area);
+            let (a, b) = (amplitudes[j][d], bx.norm().min(caps[j]));
+            let allowed = 2.0 * (rtol * a.max(b) + atol);
+            consistency = consistency.max(if allowed > 0.0 {
+                (a - b).abs() / allowed
+            } else if a == b {
+                0.0
+            } else {
+                f64::INFINITY
+            });
+        }
+    }
+    for (sp, &k) in p.cubic_springs.iter().zip(spring_k) {
+        springs(&sp.row, C64::new(k - sp.stiffness, 0.0));
+    }
+    let norm = |v: &mut dyn Iterator<Item = C64>| v.map(|z| z.norm_sqr()).sum::<f64>().sqrt();
+    let f = &p.excitation;
+    let r = norm(&mut y.iter().zip(f).map(|(yi, fi)| {
+        let mut acc = *yi;
+        acc.add(C64::new(-1.0, 0.0), *fi);
+        acc.value()
+    }));
+    let scale = s_norm * norm(&mut x.iter().copied()) + norm(&mut f.iter().copied());
+    let nf = norm(&mut f.iter().copied());
+    Verdict {
+        backward_error: if scale > 0.0 { r / scale } else { 0.0 },
+        relative_residual: if nf > 0.0 { r / nf } else { r },
+        consistency,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::input::scene::Scene;
+    use crate::model::build;
+    use crate::solve::static_step;
+
+    #[test]
+    fn a_planted_wrong_solution_is_caught() {
+        let path = format!(
+            "{}/../scenes/three-beams-coarse.toml",
+            env!("CARGO_MANIFEST_DIR")
+        );
+        let scene = Scene::load(std::path::Path::new(&path)).unwrap();
+        let p = build(&scene).unwrap();
+        let stat = static_step::solve(&p, true).unwrap();
+        let mut setup = Setup::new(&p, &stat, &scene.spec.effects).unwrap();
+        // Stuck joints (κ = k_T0) near the first resonance (1174.5 Hz), where K − ω²M
+        // nearly cancels.
+        let f = 1170.0;
+        let omega = 2.0 * std::f64::consts::PI * f;
+        let kt = p.interfaces[0].k_t0_per_area;
+        let kappa = vec![[C64::new(kt, 0.0); 2]; setup.active.len()];
+        setup.fill(omega, &kappa, &[]);
+        let num = setup.factor(f).unwrap().unwrap();
+        let mut x = vec![C64::new(0.0, 0.0); p.sys.dofs.n_free()];
+        num.solve_into(&p.excitation, &mut x).unwrap();
+        let amps: Vec<[f64; 2]> = (0..setup.active.len())
+            .map(|j| setup.tangential(j, &x).map(|v| v.norm()))
+            .collect();
+        let rtol = 1e-3;
+        let caps = vec![f64::INFINITY; amps.len()];
+        let claim = |kappa, amplitudes| Claim {
+            kappa,
+            amplitudes,
+            caps: &caps,
+            spring_k: &[],
+        };
+        let ok = check(&setup, omega, &claim(&kappa, &amps), &x, rtol, 0.0);
+        assert!(ok.passes(rtol), "{ok:?}");
+        assert!(ok.backward_error < 1e-13, "{ok:?}");
+        eprintln!("right: {ok:?}");
+
+        // x off by 1e-4 relative, alternating in sign from DOF to DOF.
+        let wrong: Vec<C64> = x
+            .iter()
+            .enumerate()
+            .map(|(i, v)| v * (1.0 + 1e-4 * if i % 2 == 0 { 1.0 } else { -1.0 }))
+            .collect();
+        let v = check(&setup, omega, &claim(&kappa, &amps), &wrong, rtol, 0.0);
+        eprintln!("x off: {v:?}");
+        assert!(!v.passes(rtol), "{v:?}");
+        // The right x claimed for k* 10 % off at every point.
+        let soft: Vec<[C64; 2]> = kappa.iter().map(|k| k.map(|v| v * 0.9)).collect();
+        let v = check(&setup, omega, &claim(&soft, &amps), &x, rtol, 0.0);
+        eprintln!("k* off: {v:?}");
+        assert!(!v.passes(rtol), "{v:?}");
+        // The right x and k*, linearized for amplitudes 1 % off.
+        let off: Vec<[f64; 2]> = amps.iter().map(|a| a.map(|v| v * 1.01)).collect();
+        let v = check(&setup, omega, &claim(&kappa, &off), &x, rtol, 0.0);
+        assert!(!v.passes(rtol) && v.backward_error < 1e-13, "{v:?}");
+    }
+}
