@@ -1,7 +1,9 @@
 //! Reports of a run: CSV tables, run.json and SVG plots. Reports read results only.
 
 pub mod csv;
+pub mod modes;
 pub mod svg;
+pub mod vtu;
 
 use std::path::{Path, PathBuf};
 
