@@ -45,7 +45,7 @@ pub fn main(a: Args) -> ExitCode {
     let top = f.last().copied().unwrap_or(0.0);
     match (modes.limit, modes.band.complete) {
         (Some(limit), true) => eprintln!(
-            "{} modes: every one below {} {fu} (1.5 × the sweep's highest frequency), at least 6",
+            "{} mode(s): every one below {} {fu} (1.5 × the sweep's highest frequency), at least 6 (or every DOF)",
             f.len(),
             sig(limit)
         ),
@@ -55,7 +55,7 @@ pub fn main(a: Args) -> ExitCode {
             sig(top),
             sig(limit)
         ),
-        (None, _) => eprintln!("{} modes, as asked", f.len()),
+        (None, _) => eprintln!("{} mode(s), as asked (or every DOF)", f.len()),
     }
     if !modes.band.modes.converged {
         let worst = modes

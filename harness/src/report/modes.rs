@@ -8,7 +8,7 @@ use crate::fe::mesh::Model;
 use crate::input::scene::Units;
 use crate::report::vtu::{unstructured_grid, CellType, PointField};
 use crate::solve::modal_stuck::StuckModes;
-use crate::solve::mode_labels::{Character, ModeGeometry};
+use crate::solve::mode_labels::{Character, Kind, ModeGeometry};
 
 /// Significant digits of printed numbers: 31718.04 Hz, 1.234568e-6 t.
 const DIGITS: usize = 7;
@@ -79,7 +79,7 @@ impl<'a> ModeTable<'a> {
             "| mode | frequency ({fu}) | label | dominant | longitudinal % | bending % | torsion % | section % | m_eff,x ({mu}) | m_eff,y ({mu}) | m_eff,z ({mu}) |\n|---:|---:|---|:---:|---:|---:|---:|---:|---:|---:|---:|\n"
         );
         for (i, (f, c)) in self.frequencies().iter().zip(&self.characters).enumerate() {
-            let pct = c.kind_share.map(|v| format!("{:.1}", 100.0 * v));
+            let pct = shares(c).map(|v| v.map_or("–".into(), |v| format!("{:.1}", 100.0 * v)));
             let _ = writeln!(
                 s,
                 "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |",
@@ -99,8 +99,9 @@ impl<'a> ModeTable<'a> {
         s
     }
 
-    /// modes.csv: mode, frequency, label, dominant, the four kind shares (fractions),
-    /// effective masses and inertias per direction, the eigen-residual.
+    /// modes.csv: mode, frequency (shortest round-trip form), label, dominant, the four
+    /// kind shares (fractions; empty for lumped masses), effective masses and inertias
+    /// per direction, the eigen-residual; 7 significant digits.
     pub fn csv(&self) -> String {
         let (fcol, _) = frequency_unit(self.units);
         let (m, l) = (&self.units.mass, &self.units.length);
@@ -114,18 +115,14 @@ impl<'a> ModeTable<'a> {
         s.push_str(",relative_residual\n");
         let modes = &self.modes.band.modes;
         for (i, (f, c)) in self.frequencies().iter().zip(&self.characters).enumerate() {
-            let _ = write!(
-                s,
-                "{},{},{},{}",
-                i + 1,
-                sig(*f),
-                c.label(),
-                c.dominant_name()
-            );
+            // Frequency in the shortest round-trip form: a sweep can hold it exactly.
+            let _ = write!(s, "{},{f},{},{}", i + 1, c.label(), c.dominant_name());
+            for v in shares(c) {
+                let _ = write!(s, ",{}", v.map_or(String::new(), sig));
+            }
             let values = c
-                .kind_share
+                .effective_mass
                 .iter()
-                .chain(&c.effective_mass)
                 .chain(&c.effective_inertia)
                 .chain(std::iter::once(&modes.residuals[i]));
             for v in values {
@@ -170,6 +167,13 @@ impl<'a> ModeTable<'a> {
             .collect();
         unstructured_grid(&model.nodes, &cells(model), &fields)
     }
+}
+
+/// The kind shares of `c`, None (printed "–", empty in CSV) for a model with one
+/// cross-section (lumped masses: no axis).
+fn shares(c: &Character) -> [Option<f64>; 4] {
+    c.kind_share
+        .map(|v| (c.kind != Kind::Translation).then_some(v))
 }
 
 /// A full displacement vector scaled to a largest nodal magnitude of 1, its largest

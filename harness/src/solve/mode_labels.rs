@@ -51,7 +51,8 @@ pub struct Character {
     pub effective_mass: [f64; 3],
     /// Effective inertia per rotation axis x, y, z through the mass centre (mass·length²).
     pub effective_inertia: [f64; 3],
-    /// Lumped kinetic-energy shares: longitudinal, bending, torsion, section (sum 1).
+    /// Lumped kinetic-energy shares: longitudinal, bending, torsion, section (sum 1;
+    /// all 0 for [`Kind::Translation`]: no axis).
     pub kind_share: [f64; 4],
     pub kind: Kind,
     /// The body's axis (0 x, 1 y, 2 z): the direction of the model's largest extent.
@@ -235,16 +236,17 @@ impl ModeGeometry {
         let direction_share = clip(direction_share, [1.0; 3]);
         let (kind_share, across) = self.kind_shares(phi);
         let kind_share = clip(kind_share, [1.0; 4]);
-        let kind = if self.sections.len() < 2 {
-            Kind::Translation
+        let (kind, kind_share) = if self.sections.len() < 2 {
+            (Kind::Translation, [0.0; 4])
         } else {
             let k = (0..4).fold(0, |b, c| if kind_share[c] > kind_share[b] { c } else { b });
-            [
+            let kinds = [
                 Kind::Longitudinal,
                 Kind::Bending { across },
                 Kind::Torsion,
                 Kind::Section,
-            ][k]
+            ];
+            (kinds[k], kind_share)
         };
         Character {
             direction_share,
