@@ -15,37 +15,18 @@ pub mod mhb_fe;
 use std::io::Write;
 use std::time::Instant;
 
-use crate::fe::csc::Csc;
 use crate::input::scene::{Mode, Scene};
 use crate::model::build;
-use crate::solve::modal::{lowest_modes, ModalOptions};
+use crate::solve::modal_stuck::{self, ModeCount};
 use crate::solve::static_step;
-use crate::solve::sweep::{self, Options, Setup};
+use crate::solve::sweep::{self, Options};
 use crate::util::rusage::peak_rss_bytes;
 
 /// Eigenfrequencies (1/time) of the model with every closed joint stuck (k_T0 tangential,
 /// static normal stiffness), after the static step.
 pub fn stuck_modes(scene: &Scene, count: usize) -> Result<Vec<f64>, String> {
-    let p = build(scene).map_err(|e| e.to_string())?;
-    let stat = static_step::solve(&p, scene.spec.effects.normal_contact_nonlinearity)
-        .map_err(|e| e.to_string())?;
-    let mut eff = scene.spec.effects;
-    eff.tangential_microslip = false;
-    let setup = Setup::new(&p, &stat, &eff).map_err(|e| e.to_string())?;
-    let k = Csc {
-        pattern: p.sys.pattern.clone(),
-        values: setup.base.clone(),
-    };
-    let modes = lowest_modes(
-        &k,
-        &p.sys.m,
-        &ModalOptions {
-            n_modes: count.min(p.sys.dofs.n_free()),
-            ..Default::default()
-        },
-    )
-    .map_err(|e| e.to_string())?;
-    Ok(modes.frequencies_hz())
+    let s = modal_stuck::stuck_modes(scene, ModeCount::Exactly(count))?;
+    Ok(s.band.modes.frequencies_hz())
 }
 
 /// A three-beam scene with in-plane divisions (nx, ny) and nz per 1 mm of thickness.

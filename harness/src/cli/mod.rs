@@ -103,8 +103,26 @@ pub enum Command {
     /// Validate a scene or an Abaqus-format deck (.inp) and print a summary (nothing is
     /// run or written).
     Check(check::Args),
-    /// Eigenfrequencies of the scene's model with every closed joint stuck (k_T0) after
-    /// the static step: where to put the sweep.
+    /// Modes of the scene's model with every closed joint stuck (k_T0) after the static
+    /// step: where to put the sweep.
+    ///
+    /// By default every mode below 1.5 × the sweep's highest frequency (at least 6, at
+    /// most 200; --count N for exactly N). Prints a Markdown table in the scene's units
+    /// (frequency in Hz when [units] time = "s", else 1/time): per mode its label, the
+    /// dominant direction (largest kinetic-energy share), the kinetic-energy shares of
+    /// the cross-sections' motion across the body's axis (its longest extent):
+    /// longitudinal, bending, torsion and section (the sections deform: plate modes),
+    /// and the effective masses per direction. Labels: longitudinal_x, bending_xz (axis
+    /// x, moving along z), torsion_x, section, translation_z (lumped masses).
+    ///
+    /// Files written to DIR with --out DIR:
+    ///   modes.csv   mode, frequency_Hz (or frequency_per_<time>), label, dominant,
+    ///               share_longitudinal, share_bending, share_torsion, share_section,
+    ///               effective_mass_<x|y|z>_<mass>, effective_inertia_<x|y|z>_<mass>_<length>2
+    ///               (about the mass centre), relative_residual of K φ = λ M φ
+    ///   modes.vtu   the mesh with a point vector per mode, mode_<i>_<f>_<Hz|per_time>,
+    ///               scaled to a largest nodal displacement of 1 (ParaView: Warp By Vector)
+    #[command(verbatim_doc_comment)]
     Modes(modes::Args),
     /// Cost of the nonlinear sweep relative to the linear sweep (same model and
     /// frequencies) for fast and thesis modes at about 1k, 10k and 100k DOF, with peak

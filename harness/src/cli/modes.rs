@@ -1,9 +1,11 @@
-//! `jointlin modes SCENE`: eigenfrequencies with every closed joint stuck.
+//! `jointlin modes SCENE`: the modes with every closed joint stuck, labelled, in the
+//! scene's units; with `--out`, modes.csv and modes.vtu.
 
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use jointlin_harness::bench::stuck_modes;
+use jointlin_harness::report::modes::{frequency_unit, sig, ModeTable};
+use jointlin_harness::solve::modal_stuck::{stuck_modes, ModeCount};
 
 use super::load_scene;
 
@@ -11,27 +13,73 @@ use super::load_scene;
 #[derive(clap::Args)]
 pub struct Args {
     scene: PathBuf,
-    /// Number of modes.
-    #[arg(long, default_value_t = 6)]
-    count: usize,
+    /// Number of modes (default: every mode below 1.5 × the sweep's highest frequency,
+    /// at least 6, at most 200).
+    #[arg(long)]
+    count: Option<usize>,
+    /// Directory for modes.csv and modes.vtu (created if missing).
+    #[arg(long)]
+    out: Option<PathBuf>,
 }
 
 pub fn main(a: Args) -> ExitCode {
+    if a.count == Some(0) {
+        eprintln!("error: --count must be at least 1");
+        return ExitCode::from(2);
+    }
     let s = match load_scene(&a.scene) {
         Ok(s) => s,
         Err(code) => return code,
     };
-    match stuck_modes(&s, a.count) {
-        Ok(f) => {
-            for (i, v) in f.iter().enumerate() {
-                // Shortest round-trip form: the value can go into a scene's sweep.
-                println!("mode {}: {v} (1/time)", i + 1);
-            }
-            ExitCode::SUCCESS
-        }
+    let count = a.count.map_or(ModeCount::DEFAULT, ModeCount::Exactly);
+    let modes = match stuck_modes(&s, count) {
+        Ok(m) => m,
         Err(e) => {
             eprintln!("error: {e}");
-            ExitCode::from(1)
+            return ExitCode::from(1);
         }
+    };
+    let units = &s.spec.units;
+    let (_, fu) = frequency_unit(units);
+    let f = modes.band.modes.frequencies_hz();
+    let top = f.last().copied().unwrap_or(0.0);
+    match (modes.limit, modes.band.complete) {
+        (Some(limit), true) => eprintln!(
+            "{} mode(s): every one below {} {fu} (1.5 × the sweep's highest frequency), at least 6 (or every DOF)",
+            f.len(),
+            sig(limit)
+        ),
+        (Some(limit), false) => eprintln!(
+            "warning: the {} lowest modes end at {} {fu}, below the limit {} {fu}: pass --count for more",
+            f.len(),
+            sig(top),
+            sig(limit)
+        ),
+        (None, _) => eprintln!("{} mode(s), as asked (or every DOF)", f.len()),
     }
+    if !modes.band.modes.converged {
+        let worst = modes
+            .band
+            .modes
+            .residuals
+            .iter()
+            .copied()
+            .fold(0.0, f64::max);
+        eprintln!(
+            "warning: the eigen-iteration stopped at a round-off floor: largest relative residual {worst:.1e} (modes.csv lists each)"
+        );
+    }
+    let table = ModeTable::new(&modes, units);
+    print!("{}", table.markdown());
+    if let Some(dir) = &a.out {
+        let written = std::fs::create_dir_all(dir)
+            .and_then(|_| std::fs::write(dir.join("modes.csv"), table.csv()))
+            .and_then(|_| std::fs::write(dir.join("modes.vtu"), table.vtu()));
+        if let Err(e) = written {
+            eprintln!("error: cannot write to {}: {e}", dir.display());
+            return ExitCode::from(1);
+        }
+        eprintln!("wrote {0}/modes.csv and {0}/modes.vtu", dir.display());
+    }
+    ExitCode::SUCCESS
 }

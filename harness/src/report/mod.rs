@@ -3,7 +3,9 @@
 pub mod atomic;
 pub mod backbone;
 pub mod csv;
+pub mod modes;
 pub mod svg;
+pub mod vtu;
 
 use std::path::{Path, PathBuf};
 

@@ -1,0 +1,255 @@
+//! The outputs of `jointlin modes`: the table on stdout, modes.csv and modes.vtu, every
+//! header in the scene's units (frequency in Hz when `[units].time` = "s", else per the
+//! time unit; effective masses in the mass unit, effective inertias in mass·length²).
+
+use std::fmt::Write;
+
+use crate::fe::mesh::Model;
+use crate::input::scene::Units;
+use crate::report::vtu::{unstructured_grid, CellType, PointField};
+use crate::solve::modal_stuck::StuckModes;
+use crate::solve::mode_labels::{Character, Kind, ModeGeometry};
+
+/// Significant digits of printed numbers: 31718.04 Hz, 1.234568e-6 t.
+const DIGITS: usize = 7;
+
+/// `v` with `DIGITS` significant digits: fixed-point from 1e-3 to 1e7, else scientific.
+pub fn sig(v: f64) -> String {
+    if !v.is_finite() || v == 0.0 {
+        return format!("{v}");
+    }
+    let mag = v.abs().log10().floor() as i32;
+    if (-3..7).contains(&mag) {
+        let decimals = (DIGITS as i32 - 1 - mag).max(0) as usize;
+        format!("{v:.decimals$}")
+    } else {
+        format!("{v:.*e}", DIGITS - 1)
+    }
+}
+
+/// Frequency unit names of `units`: (column name, unit text), e.g.
+/// ("frequency_Hz", "Hz") for seconds, ("frequency_per_ms", "1/ms") otherwise.
+pub fn frequency_unit(units: &Units) -> (String, String) {
+    if units.time == "s" {
+        ("frequency_Hz".into(), "Hz".into())
+    } else {
+        (
+            format!("frequency_per_{}", units.time),
+            format!("1/{}", units.time),
+        )
+    }
+}
+
+/// The modes with their characters.
+pub struct ModeTable<'a> {
+    pub modes: &'a StuckModes,
+    pub units: &'a Units,
+    pub characters: Vec<Character>,
+}
+
+impl<'a> ModeTable<'a> {
+    /// Labels every mode of `modes`.
+    pub fn new(modes: &'a StuckModes, units: &'a Units) -> Self {
+        let p = &modes.problem;
+        let geo = ModeGeometry::new(&p.model.nodes, &p.sys.dofs, &p.sys.m);
+        let characters = modes
+            .band
+            .modes
+            .shapes
+            .iter()
+            .map(|phi| geo.character(&p.sys.m, phi))
+            .collect();
+        ModeTable {
+            modes,
+            units,
+            characters,
+        }
+    }
+
+    fn frequencies(&self) -> Vec<f64> {
+        self.modes.band.modes.frequencies_hz()
+    }
+
+    /// Markdown table: mode, frequency, label, dominant direction, kind shares (%),
+    /// effective masses.
+    pub fn markdown(&self) -> String {
+        let (_, fu) = frequency_unit(self.units);
+        let mu = &self.units.mass;
+        let mut s = format!(
+            "| mode | frequency ({fu}) | label | dominant | longitudinal % | bending % | torsion % | section % | m_eff,x ({mu}) | m_eff,y ({mu}) | m_eff,z ({mu}) |\n|---:|---:|---|:---:|---:|---:|---:|---:|---:|---:|---:|\n"
+        );
+        for (i, (f, c)) in self.frequencies().iter().zip(&self.characters).enumerate() {
+            let pct = shares(c).map(|v| v.map_or("–".into(), |v| format!("{:.1}", 100.0 * v)));
+            let _ = writeln!(
+                s,
+                "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |",
+                i + 1,
+                sig(*f),
+                c.label(),
+                c.dominant_name(),
+                pct[0],
+                pct[1],
+                pct[2],
+                pct[3],
+                sig(c.effective_mass[0]),
+                sig(c.effective_mass[1]),
+                sig(c.effective_mass[2]),
+            );
+        }
+        s
+    }
+
+    /// modes.csv: mode, frequency (shortest round-trip form), label, dominant, the four
+    /// kind shares (fractions; empty for lumped masses), effective masses and inertias
+    /// per direction, the eigen-residual; 7 significant digits.
+    pub fn csv(&self) -> String {
+        let (fcol, _) = frequency_unit(self.units);
+        let (m, l) = (&self.units.mass, &self.units.length);
+        let mut s = format!("mode,{fcol},label,dominant,share_longitudinal,share_bending,share_torsion,share_section");
+        for d in ['x', 'y', 'z'] {
+            let _ = write!(s, ",effective_mass_{d}_{m}");
+        }
+        for d in ['x', 'y', 'z'] {
+            let _ = write!(s, ",effective_inertia_{d}_{m}_{l}2");
+        }
+        s.push_str(",relative_residual\n");
+        let modes = &self.modes.band.modes;
+        for (i, (f, c)) in self.frequencies().iter().zip(&self.characters).enumerate() {
+            // Frequency in the shortest round-trip form: a sweep can hold it exactly.
+            let _ = write!(s, "{},{f},{},{}", i + 1, c.label(), c.dominant_name());
+            for v in shares(c) {
+                let _ = write!(s, ",{}", v.map_or(String::new(), sig));
+            }
+            let values = c
+                .effective_mass
+                .iter()
+                .chain(&c.effective_inertia)
+                .chain(std::iter::once(&modes.residuals[i]));
+            for v in values {
+                let _ = write!(s, ",{}", sig(*v));
+            }
+            s.push('\n');
+        }
+        s
+    }
+
+    /// modes.vtu: the mesh (hexahedra, and a vertex per node outside every element:
+    /// lumped masses) with one point vector per mode, `mode_<i>_<f>_<unit>`, scaled to a
+    /// largest nodal displacement of 1 (a shape: the modes have no amplitude), its
+    /// largest component positive.
+    pub fn vtu(&self) -> String {
+        let p = &self.modes.problem;
+        let model = &p.model;
+        let (fcol, _) = frequency_unit(self.units);
+        let unit = fcol.trim_start_matches("frequency_");
+        let shapes: Vec<Vec<f64>> = self
+            .modes
+            .band
+            .modes
+            .shapes
+            .iter()
+            .map(|phi| nodal_shape(&p.sys.dofs.expand(phi)))
+            .collect();
+        let names: Vec<String> = self
+            .frequencies()
+            .iter()
+            .enumerate()
+            .map(|(i, f)| format!("mode_{}_{}_{unit}", i + 1, sig(*f)))
+            .collect();
+        let fields: Vec<PointField> = names
+            .iter()
+            .zip(&shapes)
+            .map(|(name, values)| PointField {
+                name,
+                components: 3,
+                values,
+            })
+            .collect();
+        unstructured_grid(&model.nodes, &cells(model), &fields)
+    }
+}
+
+/// The kind shares of `c`, None (printed "–", empty in CSV) for a model with one
+/// cross-section (lumped masses: no axis).
+fn shares(c: &Character) -> [Option<f64>; 4] {
+    c.kind_share
+        .map(|v| (c.kind != Kind::Translation).then_some(v))
+}
+
+/// A full displacement vector scaled to a largest nodal magnitude of 1, its largest
+/// component positive (all zero stays zero).
+fn nodal_shape(full: &[f64]) -> Vec<f64> {
+    let largest = full
+        .chunks(3)
+        .map(|u| (u[0] * u[0] + u[1] * u[1] + u[2] * u[2]).sqrt())
+        .fold(0.0, f64::max);
+    let peak = full
+        .iter()
+        .fold(0.0, |a: f64, &v| if v.abs() > a.abs() { v } else { a });
+    if largest == 0.0 || !largest.is_finite() {
+        return vec![0.0; full.len()];
+    }
+    let scale = peak.signum() / largest;
+    full.iter().map(|v| v * scale).collect()
+}
+
+/// The model's hexahedra, and a vertex per node outside every element.
+fn cells(model: &Model) -> Vec<(CellType, Vec<usize>)> {
+    let mut used = vec![false; model.nodes.len()];
+    let mut cells: Vec<(CellType, Vec<usize>)> = model
+        .elements
+        .iter()
+        .map(|e| {
+            for &n in &e.nodes {
+                used[n] = true;
+            }
+            (CellType::Hexahedron, e.nodes.to_vec())
+        })
+        .collect();
+    cells.extend(
+        (0..model.nodes.len())
+            .filter(|&n| !used[n])
+            .map(|n| (CellType::Vertex, vec![n])),
+    );
+    cells
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn seven_significant_digits() {
+        assert_eq!(sig(31718.038906265498), "31718.04");
+        assert_eq!(sig(0.20690142), "0.2069014");
+        assert_eq!(sig(1234567.89), "1234568");
+        assert_eq!(sig(1.2345678e-6), "1.234568e-6");
+        assert_eq!(sig(-5.0), "-5.000000");
+        assert_eq!(sig(0.0), "0");
+        assert_eq!(sig(2.5e9), "2.500000e9");
+    }
+
+    #[test]
+    fn frequency_unit_follows_the_time_unit() {
+        let u = |t: &str| Units {
+            length: "mm".into(),
+            force: "N".into(),
+            time: t.into(),
+            mass: "t".into(),
+        };
+        assert_eq!(frequency_unit(&u("s")).0, "frequency_Hz");
+        assert_eq!(
+            frequency_unit(&u("ms")),
+            ("frequency_per_ms".into(), "1/ms".into())
+        );
+    }
+
+    #[test]
+    fn shapes_scale_to_unit_peak_with_positive_largest_component() {
+        let s = nodal_shape(&[0.0, 3.0, -4.0, 1.0, 0.0, 0.0]);
+        for (a, b) in s.iter().zip([0.0, -0.6, 0.8, -0.2, 0.0, 0.0]) {
+            approx::assert_abs_diff_eq!(*a, b, epsilon = 1e-15);
+        }
+        assert_eq!(nodal_shape(&[0.0; 3]), vec![0.0; 3]);
+    }
+}

@@ -1,0 +1,318 @@
+//! The character of a mode shape φ (free DOFs, from K φ = λ M φ):
+//!
+//! - **direction shares**: the kinetic energy φᵀMφ split by displacement direction,
+//!   eᵈ = Σ_{f along d} φ_f (Mφ)_f / φᵀMφ (M couples no directions, so each is ≥ 0);
+//!   the largest names the dominant direction;
+//! - **effective masses** (mass): m_d = (φᵀ M r_d)² / φᵀMφ with r_d the unit rigid
+//!   translation along d on the free DOFs, and **effective inertias** (mass·length²) the
+//!   same with r the unit rigid rotation about axis d through the mass centre; over all
+//!   modes the m_d add up to the free mass (the participation of base excitation);
+//! - **kind shares**: the body's axis a is the direction of the model's largest extent;
+//!   the nodes fall into cross-sections (planes across a, one per axial node coordinate:
+//!   box meshes). Per section a rigid motion is fitted to the nodal displacements
+//!   (weights: lumped masses, the row sums of M) and the lumped kinetic energy
+//!   Σ wᵢ |uᵢ|² splits exactly (the parts are orthogonal in the weighted norm, with
+//!   coordinates s taken from the section's mass centre) into
+//!   longitudinal (the mean axial displacement), bending (the mean transverse
+//!   displacement and the section's tilt, u_a linear in s), torsion (the section's
+//!   rotation about a) and section (what is left: the section deforms — plate,
+//!   breathing modes). The largest share names the kind; a bending mode's plane holds
+//!   the axis and the transverse direction with the larger mean-displacement energy.
+
+use nalgebra::{Matrix2, Vector2, Vector3};
+
+use crate::fe::csc::Csc;
+use crate::fe::dofs::DofMap;
+
+/// What a mode does, by the largest kinetic-energy share of its cross-sections.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Kind {
+    /// Sections move along the axis.
+    Longitudinal,
+    /// Sections move across the axis (and tilt), in the plane of the axis and the
+    /// given transverse direction (0 x, 1 y, 2 z).
+    Bending { across: usize },
+    /// Sections rotate about the axis.
+    Torsion,
+    /// Sections deform (plate, breathing modes).
+    Section,
+    /// The model has one cross-section (lumped masses): no axis to speak of.
+    Translation,
+}
+
+/// The character of one mode (see the module doc).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Character {
+    /// Kinetic-energy share per direction x, y, z (sums to 1).
+    pub direction_share: [f64; 3],
+    /// Index (0 x, 1 y, 2 z) of the largest direction share.
+    pub dominant: usize,
+    /// Effective mass per translation direction x, y, z (mass).
+    pub effective_mass: [f64; 3],
+    /// Effective inertia per rotation axis x, y, z through the mass centre (mass·length²).
+    pub effective_inertia: [f64; 3],
+    /// Lumped kinetic-energy shares: longitudinal, bending, torsion, section (sum 1;
+    /// all 0 for [`Kind::Translation`]: no axis).
+    pub kind_share: [f64; 4],
+    pub kind: Kind,
+    /// The body's axis (0 x, 1 y, 2 z): the direction of the model's largest extent.
+    pub axis: usize,
+}
+
+const AXES: [char; 3] = ['x', 'y', 'z'];
+
+impl Character {
+    /// Short label for tables and CSV (no spaces or commas): `longitudinal_x`,
+    /// `bending_xz` (axis x, moving along z), `torsion_x`, `section`, `translation_y`.
+    pub fn label(&self) -> String {
+        let a = AXES[self.axis];
+        match self.kind {
+            Kind::Longitudinal => format!("longitudinal_{a}"),
+            Kind::Bending { across } => format!("bending_{a}{}", AXES[across]),
+            Kind::Torsion => format!("torsion_{a}"),
+            Kind::Section => "section".to_string(),
+            Kind::Translation => format!("translation_{}", AXES[self.dominant]),
+        }
+    }
+
+    /// The dominant direction's name: `x`, `y` or `z`.
+    pub fn dominant_name(&self) -> char {
+        AXES[self.dominant]
+    }
+}
+
+/// The model's geometry as the labels need it: free DOFs grouped by node.
+pub struct ModeGeometry {
+    /// Per representative node (the lowest of a tied group, with a free DOF): its
+    /// position and its free DOF per component (None: fixed).
+    nodes: Vec<([f64; 3], [Option<usize>; 3])>,
+    /// Per free DOF: its component (0 x, 1 y, 2 z) and the position of its node.
+    dof_comp: Vec<usize>,
+    dof_pos: Vec<[f64; 3]>,
+    /// Lumped mass per node: the mean of its free DOFs' row sums of M.
+    node_mass: Vec<f64>,
+    /// Sections: node indices (into `nodes`) per axial plane, and the axis.
+    sections: Vec<Vec<usize>>,
+    axis: usize,
+    /// Mass centre (length).
+    centre: [f64; 3],
+    /// Free mass per translation direction and free inertia per rotation axis: rᵀMr of
+    /// the unit rigid motions, the scales below which a value is round-off.
+    rigid: [[f64; 3]; 2],
+}
+
+/// Relative round-off level of a share or an effective mass.
+const NOISE: f64 = 1e-12;
+
+/// `v` with entries below `NOISE` × their scale set to 0 (round-off, e.g. 1e-35 t).
+fn clip<const N: usize>(v: [f64; N], scale: [f64; N]) -> [f64; N] {
+    std::array::from_fn(|i| {
+        if v[i].abs() < NOISE * scale[i] {
+            0.0
+        } else {
+            v[i]
+        }
+    })
+}
+
+impl ModeGeometry {
+    /// `positions` per node (length), `dofs` the free-DOF map, `m` the mass matrix on
+    /// the free DOFs.
+    pub fn new(positions: &[[f64; 3]], dofs: &DofMap, m: &Csc<f64>) -> Self {
+        let n_free = dofs.n_free();
+        let lumped = m.mul_vec(&vec![1.0; n_free]);
+        let dof_comp: Vec<usize> = (0..n_free).map(|f| dofs.full(f) % 3).collect();
+        let dof_pos: Vec<[f64; 3]> = (0..n_free).map(|f| positions[dofs.full(f) / 3]).collect();
+        let mut nodes = Vec::new();
+        let mut node_mass = Vec::new();
+        for (n, &x) in positions.iter().enumerate() {
+            let free: [Option<usize>; 3] = std::array::from_fn(|c| {
+                dofs.free(3 * n + c).filter(|&f| dofs.full(f) == 3 * n + c)
+            });
+            let own: Vec<f64> = free.iter().flatten().map(|&f| lumped[f]).collect();
+            if !own.is_empty() {
+                nodes.push((x, free));
+                node_mass.push(own.iter().sum::<f64>() / own.len() as f64);
+            }
+        }
+        let total: f64 = node_mass.iter().sum();
+        let centre: [f64; 3] = std::array::from_fn(|c| {
+            if total > 0.0 {
+                nodes
+                    .iter()
+                    .zip(&node_mass)
+                    .map(|((x, _), w)| w * x[c])
+                    .sum::<f64>()
+                    / total
+            } else {
+                0.0
+            }
+        });
+        let extent = |c: usize| {
+            let (lo, hi) = nodes
+                .iter()
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), (x, _)| {
+                    (l.min(x[c]), h.max(x[c]))
+                });
+            (hi - lo).max(0.0)
+        };
+        let ext = [extent(0), extent(1), extent(2)];
+        let axis = (0..3).fold(0, |b, c| if ext[c] > ext[b] { c } else { b });
+        let mut order: Vec<usize> = (0..nodes.len()).collect();
+        order.sort_by(|&i, &j| nodes[i].0[axis].total_cmp(&nodes[j].0[axis]));
+        let tol = 1e-9 * ext[axis].max(f64::MIN_POSITIVE);
+        let mut sections: Vec<Vec<usize>> = Vec::new();
+        let mut last = f64::NEG_INFINITY;
+        for i in order {
+            let s = nodes[i].0[axis];
+            match sections.last_mut() {
+                Some(sec) if s - last <= tol => sec.push(i),
+                _ => sections.push(vec![i]),
+            }
+            last = s;
+        }
+        let mut geo = ModeGeometry {
+            nodes,
+            dof_comp,
+            dof_pos,
+            node_mass,
+            sections,
+            axis,
+            centre,
+            rigid: [[0.0; 3]; 2],
+        };
+        for d in 0..3 {
+            for (kind, r) in [geo.translation(d), geo.rotation(d)].iter().enumerate() {
+                let mr = m.mul_vec(r);
+                geo.rigid[kind][d] = r.iter().zip(&mr).map(|(a, b)| a * b).sum();
+            }
+        }
+        geo
+    }
+
+    /// Unit rigid translation along `d` on the free DOFs.
+    fn translation(&self, d: usize) -> Vec<f64> {
+        self.dof_comp
+            .iter()
+            .map(|&c| if c == d { 1.0 } else { 0.0 })
+            .collect()
+    }
+
+    /// Unit rigid rotation about axis `d` through the mass centre on the free DOFs:
+    /// e_d × (x − centre).
+    fn rotation(&self, d: usize) -> Vec<f64> {
+        self.dof_pos
+            .iter()
+            .zip(&self.dof_comp)
+            .map(|(x, &c)| {
+                let r = Vector3::from(std::array::from_fn(|i| x[i] - self.centre[i]));
+                Vector3::ith(d, 1.0).cross(&r)[c]
+            })
+            .collect()
+    }
+
+    /// The character of mode shape `phi` (free DOFs; any scaling), `m` the mass matrix
+    /// given to [`ModeGeometry::new`].
+    pub fn character(&self, m: &Csc<f64>, phi: &[f64]) -> Character {
+        let mphi = m.mul_vec(phi);
+        let norm: f64 = phi.iter().zip(&mphi).map(|(a, b)| a * b).sum();
+        let norm = norm.max(f64::MIN_POSITIVE);
+        let mut direction_share = [0.0; 3];
+        for (f, (&p, &mp)) in phi.iter().zip(&mphi).enumerate() {
+            direction_share[self.dof_comp[f]] += p * mp / norm;
+        }
+        let dot = |r: Vec<f64>| r.iter().zip(&mphi).map(|(a, b)| a * b).sum::<f64>();
+        let gamma_t: [f64; 3] = std::array::from_fn(|d| dot(self.translation(d)));
+        let gamma_r: [f64; 3] = std::array::from_fn(|d| dot(self.rotation(d)));
+        let dominant = (0..3).fold(0, |b, c| {
+            if direction_share[c] > direction_share[b] {
+                c
+            } else {
+                b
+            }
+        });
+        let effective_mass = clip(gamma_t.map(|g| g * g / norm), self.rigid[0]);
+        let effective_inertia = clip(gamma_r.map(|g| g * g / norm), self.rigid[1]);
+        let direction_share = clip(direction_share, [1.0; 3]);
+        let (kind_share, across) = self.kind_shares(phi);
+        let kind_share = clip(kind_share, [1.0; 4]);
+        let (kind, kind_share) = if self.sections.len() < 2 {
+            (Kind::Translation, [0.0; 4])
+        } else {
+            let k = (0..4).fold(0, |b, c| if kind_share[c] > kind_share[b] { c } else { b });
+            let kinds = [
+                Kind::Longitudinal,
+                Kind::Bending { across },
+                Kind::Torsion,
+                Kind::Section,
+            ];
+            (kinds[k], kind_share)
+        };
+        Character {
+            direction_share,
+            dominant,
+            effective_mass,
+            effective_inertia,
+            kind_share,
+            kind,
+            axis: self.axis,
+        }
+    }
+
+    /// Lumped kinetic-energy shares (longitudinal, bending, torsion, section) and the
+    /// transverse direction of the larger mean-displacement energy.
+    fn kind_shares(&self, phi: &[f64]) -> ([f64; 4], usize) {
+        let a = self.axis;
+        let (t1, t2) = ((a + 1) % 3, (a + 2) % 3);
+        let u = |i: usize, c: usize| self.nodes[i].1[c].map_or(0.0, |f| phi[f]);
+        let (mut long, mut bend, mut tors, mut total) = (0.0, 0.0, 0.0, 0.0);
+        let mut across = [0.0; 3];
+        for sec in &self.sections {
+            let w: f64 = sec.iter().map(|&i| self.node_mass[i]).sum();
+            if w <= 0.0 {
+                continue;
+            }
+            let mean = |g: &dyn Fn(usize) -> f64| {
+                sec.iter().map(|&i| self.node_mass[i] * g(i)).sum::<f64>() / w
+            };
+            let c1 = mean(&|i| self.nodes[i].0[t1]);
+            let c2 = mean(&|i| self.nodes[i].0[t2]);
+            let s = |i: usize| Vector2::new(self.nodes[i].0[t1] - c1, self.nodes[i].0[t2] - c2);
+            let (ua, u1, u2) = (mean(&|i| u(i, a)), mean(&|i| u(i, t1)), mean(&|i| u(i, t2)));
+            long += w * ua * ua;
+            across[t1] += w * u1 * u1;
+            across[t2] += w * u2 * u2;
+            // Tilt: u_a − mean = β·s, weighted least squares G β = Σ w s u_a.
+            total += sec
+                .iter()
+                .map(|&i| self.node_mass[i] * (0..3).map(|c| u(i, c).powi(2)).sum::<f64>())
+                .sum::<f64>();
+            let mut g = Matrix2::zeros();
+            let mut rhs = Vector2::zeros();
+            let (mut j, mut twist) = (0.0, 0.0);
+            for &i in sec {
+                let (wi, si) = (self.node_mass[i], s(i));
+                g += wi * si * si.transpose();
+                rhs += wi * si * u(i, a);
+                j += wi * si.norm_squared();
+                twist += wi * (si.x * u(i, t2) - si.y * u(i, t1));
+            }
+            let tilt = g
+                .pseudo_inverse(1e-12 * g.norm().max(f64::MIN_POSITIVE))
+                .map_or(0.0, |gi| rhs.dot(&(gi * rhs)));
+            bend += w * (u1 * u1 + u2 * u2) + tilt;
+            if j > 0.0 {
+                tors += twist * twist / j;
+            }
+        }
+        let total = total.max(f64::MIN_POSITIVE);
+        let (long, bend, tors) = (long / total, bend / total, tors / total);
+        let section = (1.0 - long - bend - tors).max(0.0);
+        let across = if across[t1] >= across[t2] { t1 } else { t2 };
+        ([long, bend, tors, section], across)
+    }
+}
+
+#[cfg(test)]
+#[path = "mode_labels_tests.rs"]
+mod tests;
