@@ -109,7 +109,7 @@ fn a_stiff_stuck_block_converges_to_its_own_scale() {
             let r = &o.results[0];
             // From 1 mm (deep sliding), fast mode's condensation about that far state
             // loses digits (relative residual 1.7e-4): the a-posteriori check labels it
-            // not converged. Never a wrong converged; the starts converge.
+            // not converged. Never a wrong converged; the other starts converge.
             if mode == "fast" && start == "1.0" && r["status"] == "not_converged" {
                 continue;
             }
