@@ -75,7 +75,7 @@ pub fn main(a: Args) -> ExitCode {
         return ExitCode::from(2);
     }
     // No earlier run's marker survives this one; an interrupt says so.
-    if let Err(e) = report::atomic::begin(&a.out) {
+    if let Err(e) = jointlin_harness::util::atomic::begin(&a.out) {
         eprintln!("error: {}: {e}", a.out.display());
         return ExitCode::from(1);
     }

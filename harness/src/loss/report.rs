@@ -125,7 +125,7 @@ pub fn write(dir: &Path, scene: &Scene, r: &StudyResult) -> Result<Vec<PathBuf>,
     let mut out = Vec::new();
     let mut put = |name: &str, text: String| -> Result<(), String> {
         let p = dir.join(name);
-        crate::report::atomic::write_text(&p, &text)?;
+        crate::util::atomic::write_text(&p, &text)?;
         out.push(p);
         Ok(())
     };
@@ -138,7 +138,7 @@ pub fn write(dir: &Path, scene: &Scene, r: &StudyResult) -> Result<Vec<PathBuf>,
         let vals = maps::values(&op.problem, &op.stat.pressure, &sample.points);
         for (k, i) in op.problem.interfaces.iter().enumerate() {
             let p = dir.join(format!("contact_{}.vtu", i.name));
-            crate::report::atomic::write_text(&p, &maps::vtu(&op.problem, k, &vals))?;
+            crate::util::atomic::write_text(&p, &maps::vtu(&op.problem, k, &vals))?;
             out.push(p);
         }
         let what = format!(

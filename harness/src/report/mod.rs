@@ -1,6 +1,5 @@
 //! Reports of a run: CSV tables, run.json and SVG plots. Reports read results only.
 
-pub mod atomic;
 pub mod backbone;
 pub mod csv;
 pub mod modes;
@@ -13,6 +12,7 @@ use serde_json::json;
 
 use crate::input::scene::Scene;
 use crate::run::RunResult;
+use crate::util::atomic;
 
 /// Which plots to draw.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -383,7 +383,7 @@ pub fn write(dir: &Path, scene: &Scene, run: &TimeRun) -> std::io::Result<Vec<Pa
     let mut files = Vec::new();
     let mut put = |name: &str, text: String| -> std::io::Result<()> {
         let f = dir.join(name);
-        crate::report::atomic::write_text(&f, &text).map_err(std::io::Error::other)?;
+        crate::util::atomic::write_text(&f, &text).map_err(std::io::Error::other)?;
         files.push(f);
         Ok(())
     };

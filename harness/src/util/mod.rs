@@ -1,6 +1,7 @@
 //! Utilities every room may use: process timers and memory ([`rusage`]), the progress
-//! bar of the commands ([`progress`]) and the seeded test generator (`rng`).
+//! bar of the commands ([`progress`]), atomic output files ([`atomic`]) and the seeded test generator (`rng`).
 
+pub mod atomic;
 pub mod progress;
 pub mod rusage;
 
