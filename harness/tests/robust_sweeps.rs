@@ -303,16 +303,24 @@ fn an_undamped_stuck_resonance_is_singular() {
     let scene = d.join("scene.toml");
     std::fs::write(&scene, scene_text("three-beams-coarse.toml", &undamped)).unwrap();
     let out = Command::new(env!("CARGO_BIN_EXE_jointlin"))
-        .args(["modes", "--count", "3"])
+        .args(["modes", "--count", "3", "--out"])
+        .arg(&d)
         .arg(&scene)
         .output()
         .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    // modes.csv: mode, frequency_Hz (full precision, so a sweep can hit it exactly), …
+    let csv = std::fs::read_to_string(d.join("modes.csv")).unwrap();
     std::fs::remove_dir_all(&d).unwrap();
-    // "mode 1: 1174.4981218347955 (1/time)"
-    let modes: Vec<String> = String::from_utf8(out.stdout)
-        .unwrap()
+    assert!(csv.starts_with("mode,frequency_Hz,"), "{csv}");
+    let modes: Vec<String> = csv
         .lines()
-        .map(|l| l.split_whitespace().nth(2).unwrap().to_string())
+        .skip(1)
+        .map(|l| l.split(',').nth(1).unwrap().to_string())
         .collect();
     assert_eq!(modes.len(), 3);
     let (f1, f3) = (&modes[0], &modes[2]);

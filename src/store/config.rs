@@ -108,14 +108,18 @@ impl StoreConfig {
     /// amplitude is exactly 0 did not move (no load, or a node at rest by symmetry) and
     /// gets 0 in every scheme, so zero load gives zero and converges (|0 − 0| ≤ tolerance);
     /// otherwise amplitudes fed to the log-space rule (ln 0 = −∞) are floored at
-    /// [`RELATIVE_FLOOR`] times the largest amplitude of these pairs (or at atol when that
+    /// [`RELATIVE_FLOOR`] times the largest computed amplitude of these pairs (or at atol when that
     /// is larger), not at a fraction of the user's initial guess.
     pub(super) fn next_from(&self, pairs: &[(f64, f64)]) -> f64 {
         let (_, last) = pairs[pairs.len() - 1];
         if last == 0.0 {
             return 0.0;
         }
-        let scale = pairs.iter().fold(0.0f64, |m, &(a, b)| m.max(a).max(b));
+        // The scale of what the analysis computed, not of the estimates: a first estimate
+        // (the user's guess) far above the point's real amplitude must not floor it.
+        let scale = pairs
+            .iter()
+            .fold(0.0f64, |m, &(_, computed)| m.max(computed));
         let floor = self.atol.max(RELATIVE_FLOOR * scale);
         let h: Vec<(f64, f64)> = pairs
             .iter()
