@@ -377,8 +377,9 @@ pub fn sweep(
                 for j in 0..m {
                     a_star[j] = r[j].norm();
                 }
-                // The iterate's own scale (ATOL_REL), not the start estimate's.
-                let atol = super::ATOL_REL * a.iter().chain(&a_star).fold(0.0f64, |x, &y| x.max(y));
+                // The iterate's own scale (ATOL_REL, or the tolerance when that is tighter), not the start estimate's.
+                let atol = super::ATOL_REL.min(it.tolerance)
+                    * a.iter().chain(&a_star).fold(0.0f64, |x, &y| x.max(y));
                 let floor = ZERO_AMP_REL
                     * a.iter()
                         .chain(&a_star)
@@ -488,7 +489,7 @@ pub fn sweep(
                 &claim,
                 x,
                 it.tolerance,
-                super::ATOL_REL * scale,
+                super::ATOL_REL.min(it.tolerance) * scale,
             );
             check = Some(v);
             converged = v.passes(it.tolerance);
