@@ -3,7 +3,7 @@
 # Sourced by scripts/main-job.sh and scripts/test.sh.
 set -euo pipefail
 JOINTLIN_DEBS=(gcc make gfortran pkg-config libsuitesparse-dev libopenblas0-pthread valgrind
-  openmpi-bin libopenmpi-dev calculix-ccx gmsh)
+  openmpi-bin libopenmpi-dev calculix-ccx gmsh python3)
 missing=()
 for pkg in "${JOINTLIN_DEBS[@]}"; do
   dpkg-query -W -f='${Status}' "$pkg" 2>/dev/null | grep -q "install ok installed" || missing+=("$pkg")
