@@ -6,6 +6,7 @@
 
 use crate::capi::{self, POINT_STATE_LEN};
 use crate::mhb::{AftError, Law, MhbError, System};
+use crate::time::mhb_reference::{element_forces, element_slip};
 use crate::time::rk4::rk4_step;
 
 /// Samples of one DOF of a free decay.
@@ -36,26 +37,8 @@ pub fn free_decay<const S: usize>(
     let mut y = [0.0; S];
     y[..n].copy_from_slice(x0);
     y[n..].copy_from_slice(v0);
-    let slip = |y: &[f64; S], i: usize, j: Option<usize>| y[i] - j.map_or(0.0, |j| y[j]);
     // Element forces from the committed states (the trial does not change them).
-    let forces = |y: &[f64; S], states: &[[f64; POINT_STATE_LEN]]| -> Result<Vec<f64>, MhbError> {
-        let mut scratch = [0.0; POINT_STATE_LEN];
-        sys.elements
-            .iter()
-            .zip(states)
-            .map(|(e, st)| {
-                let d = slip(y, e.i, e.j);
-                Ok(match e.law {
-                    Law::Cubic(k3) => k3 * d * d * d,
-                    Law::Point(tg) => {
-                        capi::point_step(&tg, st, d, &mut scratch)
-                            .map_err(AftError::from)?
-                            .force
-                    }
-                })
-            })
-            .collect()
-    };
+    let forces = |y: &[f64; S], states: &[[f64; POINT_STATE_LEN]]| element_forces(sys, y, states);
     let mut out = Decay {
         t: vec![0.0],
         x: vec![y[dof]],
@@ -94,7 +77,8 @@ pub fn free_decay<const S: usize>(
         for (e, st) in sys.elements.iter().zip(states.iter_mut()) {
             if let Law::Point(tg) = e.law {
                 let mut next = [0.0; POINT_STATE_LEN];
-                capi::point_step(&tg, st, slip(&y, e.i, e.j), &mut next).map_err(AftError::from)?;
+                capi::point_step(&tg, st, element_slip(&y, e.i, e.j), &mut next)
+                    .map_err(AftError::from)?;
                 *st = next;
             }
         }

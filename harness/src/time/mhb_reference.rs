@@ -52,24 +52,7 @@ pub fn steady<const S: usize>(
     let mut prev = None;
     let mut t = 0.0;
     // Element forces at x from the committed states (trial: states not changed).
-    let forces = |x: &[f64; S], states: &[[f64; POINT_STATE_LEN]]| -> Result<Vec<f64>, MhbError> {
-        let mut scratch = [0.0; POINT_STATE_LEN];
-        sys.elements
-            .iter()
-            .zip(states)
-            .map(|(e, st)| {
-                let d = x[e.i] - e.j.map_or(0.0, |j| x[j]);
-                Ok(match e.law {
-                    Law::Cubic(k3) => k3 * d * d * d,
-                    Law::Point(tg) => {
-                        capi::point_step(&tg, st, d, &mut scratch)
-                            .map_err(AftError::from)?
-                            .force
-                    }
-                })
-            })
-            .collect()
-    };
+    let forces = |x: &[f64; S], states: &[[f64; POINT_STATE_LEN]]| element_forces(sys, x, states);
     for cycle in 1..=max_cycles {
         let mut cyc = Cycle::new(omega, steps, n, vec![dissipated]);
         for _ in 0..steps {
@@ -137,4 +120,35 @@ pub fn steady<const S: usize>(
     Err(MhbError::Continuation(format!(
         "time integration not periodic to {tol:.1e} within {max_cycles} cycles"
     )))
+}
+
+/// Relative displacement of element (i, j) in the state y (j = None: to ground).
+pub fn element_slip(y: &[f64], i: usize, j: Option<usize>) -> f64 {
+    y[i] - j.map_or(0.0, |j| y[j])
+}
+
+/// The elements' forces at displacements y from their committed states (a trial step:
+/// the states are not changed): k₃d³ for a cubic spring, the library's point through
+/// `jointlin_point_step` for a contact.
+pub fn element_forces(
+    sys: &System,
+    y: &[f64],
+    states: &[[f64; POINT_STATE_LEN]],
+) -> Result<Vec<f64>, MhbError> {
+    let mut scratch = [0.0; POINT_STATE_LEN];
+    sys.elements
+        .iter()
+        .zip(states)
+        .map(|(e, st)| {
+            let d = element_slip(y, e.i, e.j);
+            Ok(match e.law {
+                Law::Cubic(k3) => k3 * d * d * d,
+                Law::Point(tg) => {
+                    capi::point_step(&tg, st, d, &mut scratch)
+                        .map_err(AftError::from)?
+                        .force
+                }
+            })
+        })
+        .collect()
 }
