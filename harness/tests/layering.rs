@@ -29,10 +29,11 @@ fn room(file: &str) -> Option<String> {
     (!matches!(name, "lib" | "main" | "cli")).then(|| name.to_string())
 }
 
-/// A file that holds only test code (`mod tests;` and its kin).
+/// A file that holds only test code: `tests.rs`, `*_tests.rs`, or any file under a
+/// `tests/` directory (a `#[cfg(test)] mod tests;` split into files).
 fn is_test_file(file: &str) -> bool {
     let name = file.rsplit('/').next().unwrap_or(file);
-    name == "tests.rs" || name.ends_with("_tests.rs")
+    name == "tests.rs" || name.ends_with("_tests.rs") || file.split('/').any(|d| d == "tests")
 }
 
 /// The lines of `text` outside `#[cfg(test)]` items and `//` comments, numbered from 1.
@@ -242,6 +243,8 @@ fn comments_and_test_code_are_not_imports() {
             "//! see [`crate::a`]\n#[cfg(test)]\nmod tests {\n    use crate::a::Y;\n}\n",
         ),
         ("b/tests.rs", "use crate::a::Z;\n"),
+        ("b/tests/mod.rs", "use crate::a::V;\n"),
+        ("b/tests/case.rs", "use crate::a::U;\n"),
         (
             "b/more.rs",
             "#[cfg(test)]\nuse crate::a::W;\npub fn f() {}\n",
