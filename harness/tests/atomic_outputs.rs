@@ -163,3 +163,36 @@ fn an_interrupted_run_leaves_nothing_that_looks_complete() {
     assert!(interrupted >= 1);
     std::fs::remove_dir_all(&d).unwrap();
 }
+
+/// SIGINT as run.json appears (block-stick): the marker means the run is complete, so the
+/// run ends with 0 and every file whole; if the signal still found the process, it said
+/// the run was complete (an interrupt during the marker's rename waits for it).
+#[test]
+fn an_interrupt_after_the_marker_keeps_the_complete_run() {
+    let d = scratch("marker");
+    let s = scene("block-stick.toml");
+    for k in 0..5 {
+        let out = d.join(format!("out{k}"));
+        let child = jointlin(&s, &out)
+            .stderr(Stdio::piped())
+            .stdout(Stdio::null())
+            .spawn()
+            .unwrap();
+        let t = Instant::now();
+        while !out.join("run.json").exists() && t.elapsed() < Duration::from_secs(60) {
+            std::thread::sleep(Duration::from_micros(50));
+        }
+        let _ = Command::new("kill")
+            .args(["-INT", &child.id().to_string()])
+            .status();
+        let o = child.wait_with_output().unwrap();
+        let stderr = String::from_utf8_lossy(&o.stderr);
+        assert!(out.join("run.json").exists(), "run {k}: {stderr}");
+        assert!(o.status.success(), "run {k}: {stderr}");
+        if stderr.contains("interrupted") {
+            assert!(stderr.contains("was complete"), "run {k}: {stderr}");
+        }
+        assert_whole(&out, &format!("run {k}"));
+    }
+    std::fs::remove_dir_all(&d).unwrap();
+}

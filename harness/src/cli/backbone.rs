@@ -10,6 +10,7 @@ use jointlin_harness::backbone::{epmc, first_order, log_space, BackbonePoint, C6
 use jointlin_harness::mhb::default_samples;
 use jointlin_harness::model::lumped::{self, Lumped};
 use jointlin_harness::report::backbone::{self as report, Row};
+use jointlin_harness::util::atomic;
 
 use super::{load_scene, report_written};
 
@@ -86,6 +87,11 @@ pub fn main(a: Args) -> ExitCode {
             }
         }
     };
+    // No earlier run's marker survives this one; an interrupt says so.
+    if let Err(e) = atomic::begin(&a.out) {
+        eprintln!("error: {}: {e}", a.out.display());
+        return ExitCode::from(1);
+    }
     // EPMC keeps the points converged before a failure: they are written, the failure
     // is printed and the exit code is 1.
     let (method, result) = match a.harmonics {
@@ -158,18 +164,17 @@ fn write(
     rows: &[Row],
 ) -> Result<Vec<PathBuf>, String> {
     let units = &scene.spec.units;
-    std::fs::create_dir_all(&a.out).map_err(|e| format!("{}: {e}", a.out.display()))?;
     let names: Vec<String> = l.outputs.iter().map(|o| o.0.clone()).collect();
     let csv = a.out.join("backbone.csv");
     let text = report::csv(units, &names, &l.elements, rows);
-    std::fs::write(&csv, text).map_err(|e| format!("{}: {e}", csv.display()))?;
+    atomic::write_text(&csv, &text)?;
     let svg = a.out.join("backbone.svg");
     let x_label = match names.first() {
         Some(n) => format!("{n} amplitude [{}]", units.length),
         None => format!("modal amplitude [{}·{}^½]", units.length, units.mass),
     };
     let title = format!("{}: mode {}, {method}", scene.spec.title, a.mode);
-    report::svg(&svg, &title, units, &x_label, rows)?;
+    atomic::with_temp(&svg, |t| report::svg(t, &title, units, &x_label, rows))?;
     let json_rows: Vec<_> = rows
         .iter()
         .map(|r| {
@@ -193,8 +198,7 @@ fn write(
         "frequency_unit": report::frequency_unit(units),
         "rows": json_rows,
     });
-    let run_path = a.out.join("run.json");
     let text = serde_json::to_string_pretty(&run).map_err(|e| e.to_string())?;
-    std::fs::write(&run_path, text).map_err(|e| format!("{}: {e}", run_path.display()))?;
+    let run_path = atomic::write_marker(&a.out, &text)?;
     Ok(vec![csv, svg, run_path])
 }

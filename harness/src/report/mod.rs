@@ -162,6 +162,6 @@ pub fn write_all(
     }
     // Last: the marker of a complete run.
     let json = serde_json::to_string_pretty(&run_json(scene, r)).map_err(|e| e.to_string())?;
-    write(dir, atomic::MARKER, &json, &mut out)?;
+    out.push(atomic::write_marker(dir, &json)?);
     Ok(out)
 }

@@ -3,12 +3,16 @@
 //! so a reader never sees a truncated file under a final name. `run.json` is written
 //! last: it marks a complete run. [`begin`] removes an earlier run's marker before
 //! anything is computed, so an interrupted or failed run leaves no marker behind, and
-//! makes SIGINT/SIGTERM say so on stderr before the process ends (exit 130/143).
+//! makes SIGINT/SIGTERM say so on stderr before the process ends (exit 130/143). A
+//! signal that arrives while the marker is being renamed into place waits for the rename
+//! (the run then ends normally: its outputs are complete); one that arrives after it says
+//! the run is complete and exits 0.
 
 use std::ffi::OsString;
 use std::fs::File;
 use std::io::{self, Write};
 use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicI32, AtomicU8, Ordering};
 use std::sync::OnceLock;
 
 /// The file written last; its presence marks a complete set of outputs.
@@ -19,6 +23,17 @@ pub const PARTIAL_SUFFIX: &str = ".partial";
 
 /// Message printed when SIGINT/SIGTERM ends the process (set once by [`begin`]).
 static NOTICE: OnceLock<Vec<u8>> = OnceLock::new();
+/// Message printed when a signal arrives after the marker is in place.
+static COMPLETE_NOTICE: OnceLock<Vec<u8>> = OnceLock::new();
+
+/// Where the marker is: not written ([`MARKER_ABSENT`]), being renamed into place, or in
+/// place. Read by the signal handler (lock-free atomics are async-signal-safe).
+static MARKER_STATE: AtomicU8 = AtomicU8::new(MARKER_ABSENT);
+const MARKER_ABSENT: u8 = 0;
+const MARKER_COMMITTING: u8 = 1;
+const MARKER_IN_PLACE: u8 = 2;
+/// A signal that arrived while the marker was being renamed (0: none).
+static PENDING_SIGNAL: AtomicI32 = AtomicI32::new(0);
 
 /// Prepares `dir` for a run's outputs: creates it, removes an earlier run's marker and
 /// leftover `.partial` files, and installs the interrupt notice. Call before the run.
@@ -31,9 +46,38 @@ pub fn begin(dir: &Path) -> io::Result<()> {
         )
         .into_bytes(),
     );
+    let _ = COMPLETE_NOTICE.set(
+        format!(
+            "\njointlin: interrupted after the run was complete; {} holds it ({MARKER} written)\n",
+            dir.display()
+        )
+        .into_bytes(),
+    );
+    MARKER_STATE.store(MARKER_ABSENT, Ordering::SeqCst);
     #[cfg(unix)]
     install_notice();
     Ok(())
+}
+
+/// Writes the marker `dir/`[`MARKER`] atomically ([`write_text`]), the last file of a
+/// complete run. An interrupt during the rename is held until it is done; if the rename
+/// failed, the held interrupt then ends the process as any other (exit 128 + signal).
+pub fn write_marker(dir: &Path, text: &str) -> Result<PathBuf, String> {
+    let path = dir.join(MARKER);
+    MARKER_STATE.store(MARKER_COMMITTING, Ordering::SeqCst);
+    let done = write_text(&path, text);
+    let state = if done.is_ok() {
+        MARKER_IN_PLACE
+    } else {
+        MARKER_ABSENT
+    };
+    MARKER_STATE.store(state, Ordering::SeqCst);
+    let held = PENDING_SIGNAL.swap(0, Ordering::SeqCst);
+    if held != 0 {
+        #[cfg(unix)]
+        on_signal(held);
+    }
+    done.map(|()| path)
 }
 
 /// Creates `dir` and removes an earlier run's marker and leftover `.partial` files.
@@ -113,14 +157,23 @@ extern "C" fn on_signal(signum: i32) {
         fn write(fd: i32, buf: *const u8, n: usize) -> isize;
         fn _exit(code: i32) -> !;
     }
-    if let Some(msg) = NOTICE.get() {
+    let (notice, code) = match MARKER_STATE.load(Ordering::SeqCst) {
+        MARKER_COMMITTING => {
+            // The rename finishes first; write_marker acts on the signal after it.
+            PENDING_SIGNAL.store(signum, Ordering::SeqCst);
+            return;
+        }
+        MARKER_IN_PLACE => (&COMPLETE_NOTICE, 0),
+        _ => (&NOTICE, 128 + signum),
+    };
+    if let Some(msg) = notice.get() {
         // SAFETY: a valid buffer of msg.len() bytes; fd 2 is stderr.
         unsafe {
             write(2, msg.as_ptr(), msg.len());
         }
     }
     // SAFETY: _exit ends the process without running handlers (async-signal-safe).
-    unsafe { _exit(128 + signum) }
+    unsafe { _exit(code) }
 }
 
 #[cfg(test)]
