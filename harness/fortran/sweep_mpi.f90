@@ -60,6 +60,10 @@ program sweep_mpi
        statev(nstatv, first:last), sfd(first:last), pnewdt(first:last), &
        rdisp(ndir, first:last), drdisp(ndir, first:last), props(nprops, first:last), &
        coords(mcrd, first:last), lopenclose(first:last))
+  ! UINTER reads STRESS (the stress at the start of the increment): never uninitialized
+  ! memory, which a restart job's heap may fill with a non-finite pattern.
+  stress = 0; ddsddr = 0; dviscous = 0; dstructural = 0; statev = 0; sfd = 0; pnewdt = 1
+  rdisp = 0; drdisp = 0
   do j = first, last
      props(:, j) = [0d0, 0d0, 0.3d0, 1282.7d0, 0d0, kn, 0d0, 0d0, 0d0, 0d0, 0d0, 0d0]
      coords(:, j) = [real(j - 1, c_double), 0d0, 0d0]
@@ -121,6 +125,7 @@ contains
   subroutine preload()
     do j = first, last
        statev(:, j) = 0
+       stress(:, j) = 0
        rdisp(:, j) = [2d-4 * (1 + 0.1d0 * (j - 1)), 0d0]
        drdisp(:, j) = rdisp(:, j)
        lopenclose(j) = -1
