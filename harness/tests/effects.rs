@@ -170,7 +170,7 @@ fn cli_run_writes_the_documented_files() {
     let mut lines = results.lines();
     assert_eq!(
         lines.next().unwrap(),
-        "freq_hz,block_x_amp,block_x_phase_deg,dissipated_power,status"
+        "frequency_Hz,block_x_amp_mm,block_x_phase_deg,dissipated_power_N_mm_per_s,status"
     );
     let row: Vec<f64> = lines
         .next()
@@ -186,7 +186,9 @@ fn cli_run_writes_the_documented_files() {
         (row[1] / 4.267e-4 - 1.0).abs() < 0.01 && row[3] > 0.0 && row[2] < 0.0 && row[2] > -180.0
     );
     let points = std::fs::read_to_string(dir.join("points.csv")).unwrap();
-    assert!(points.starts_with("freq_hz,point,interface,x,y,z,closed,pressure,amp_t1"));
+    assert!(points.starts_with(
+        "frequency_Hz,point,interface,x_mm,y_mm,z_mm,closed,pressure_N_per_mm2,amp_t1_mm"
+    ));
     assert_eq!(points.lines().count(), 2);
     let json: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(dir.join("run.json")).unwrap()).unwrap();
@@ -270,7 +272,7 @@ fn cli_harmonic_balance_override_writes_harmonics_and_is_validated() {
     );
     let h = std::fs::read_to_string(dir.join("harmonics.csv")).unwrap();
     assert!(
-        h.starts_with("freq_hz,block_x_h0_amp,block_x_h1_amp,block_x_h2_amp,block_x_h3_amp\n"),
+        h.starts_with("frequency_Hz,block_x_h0_amp_mm,block_x_h1_amp_mm,block_x_h2_amp_mm,block_x_h3_amp_mm\n"),
         "{h}"
     );
     let h1: f64 = h

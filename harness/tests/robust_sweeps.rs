@@ -114,7 +114,7 @@ fn a_stiff_stuck_block_converges_to_its_own_scale() {
                 continue;
             }
             assert_eq!(r["status"], "converged", "{mode} {start}");
-            let a = num(r, "block_x_amp");
+            let a = num(r, "block_x_amp_mm");
             // The reference 5.4891990e-13 mm: fast and thesis from 1e-13 mm agree to 1e-8;
             // the scene's rtol 1e-6 on a ↔ a* leaves ≈ 1e-6/(1 − g') on a itself.
             assert!(
@@ -157,8 +157,8 @@ fn a_tiny_load_on_three_beams_gives_the_right_power() {
         o.results
             .iter()
             .map(|r| {
-                assert_eq!(r["status"], "converged", "{}", r["freq_hz"]);
-                num(r, "dissipated_power")
+                assert_eq!(r["status"], "converged", "{}", r["frequency_Hz"]);
+                num(r, "dissipated_power_N_mm_per_s")
             })
             .fold(0.0f64, f64::max)
     };
@@ -187,7 +187,7 @@ fn a_huge_frequency_dissipates_nothing() {
         let r = &o.results[0];
         assert_eq!(r["status"], "converged", "{mode}");
         // F̂/(mω²) = 0.5/(0.002·(2π·1e100)²).
-        let a = num(r, "block_x_amp");
+        let a = num(r, "block_x_amp_mm");
         assert!(
             rel(
                 a,
@@ -195,9 +195,9 @@ fn a_huge_frequency_dissipates_nothing() {
             ) < 1e-9
         );
         assert!(
-            num(r, "dissipated_power") < 1e-300,
+            num(r, "dissipated_power_N_mm_per_s") < 1e-300,
             "{mode}: {}",
-            r["dissipated_power"]
+            r["dissipated_power_N_mm_per_s"]
         );
         // A/δ* ≈ 1e-196: microslip by the law (stick only at A = 0), never sliding.
         assert_ne!(o.points[0]["regime_t1"], "sliding", "{mode}");
@@ -217,15 +217,15 @@ fn zero_load_gives_exactly_zero() {
         assert!(o.ok, "{mode}: {}", o.stderr);
         let r = &o.results[0];
         assert_eq!(r["status"], "converged", "{mode}");
-        assert_eq!(num(r, "block_x_amp"), 0.0, "{mode}");
-        assert_eq!(num(r, "dissipated_power"), 0.0, "{mode}");
+        assert_eq!(num(r, "block_x_amp_mm"), 0.0, "{mode}");
+        assert_eq!(num(r, "dissipated_power_N_mm_per_s"), 0.0, "{mode}");
         let p = &o.points[0];
         for d in ["t1", "t2"] {
             assert_eq!(p[&format!("regime_{d}")], "stick", "{mode}");
-            assert_eq!(num(p, &format!("amp_{d}")), 0.0);
-            assert_eq!(num(p, &format!("k_star_{d}")), 1282.7, "{mode}");
+            assert_eq!(num(p, &format!("amp_{d}_mm")), 0.0);
+            assert_eq!(num(p, &format!("k_star_{d}_N_per_mm3")), 1282.7, "{mode}");
         }
-        assert_eq!(num(p, "energy_per_cycle"), 0.0);
+        assert_eq!(num(p, "energy_per_cycle_N_mm"), 0.0);
     }
 }
 
@@ -255,8 +255,12 @@ fn a_hard_frequency_fails_alone_and_the_sweep_goes_on() {
             assert!(o.ok, "{far} {mode}: {}", o.stderr);
             assert_eq!(o.results.len(), 3);
             for r in &o.results {
-                assert_eq!(r["status"], "converged", "{far} {mode} {}", r["freq_hz"]);
-                assert!(num(r, "top_tip_amp") > 0.0);
+                assert_eq!(
+                    r["status"], "converged",
+                    "{far} {mode} {}",
+                    r["frequency_Hz"]
+                );
+                assert!(num(r, "top_tip_amp_mm") > 0.0);
             }
         }
     }
@@ -278,7 +282,7 @@ fn a_hard_frequency_fails_alone_and_the_sweep_goes_on() {
     assert!(o.ok, "{}", o.stderr);
     let status: Vec<&str> = o.results.iter().map(|r| r["status"].as_str()).collect();
     assert_eq!(status, ["failed", "converged", "converged"]);
-    assert_eq!(o.results[0]["top_tip_amp"], "");
+    assert_eq!(o.results[0]["top_tip_amp_mm"], "");
     assert!(
         o.stderr.contains("Hz failed") && o.stderr.contains("not representable"),
         "{}",
@@ -351,6 +355,6 @@ fn an_undamped_stuck_resonance_is_singular() {
             "{mode} at {f1}, {f3}"
         );
         // 1000 Hz, below the first mode: the stuck beams' 5.7e-4 mm.
-        assert!(rel(num(&o.results[0], "top_tip_amp"), 5.7142e-4) < 1e-4);
+        assert!(rel(num(&o.results[0], "top_tip_amp_mm"), 5.7142e-4) < 1e-4);
     }
 }

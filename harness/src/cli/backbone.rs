@@ -7,6 +7,7 @@ use std::process::ExitCode;
 use serde_json::json;
 
 use jointlin_harness::backbone::{epmc, first_order, log_space, BackbonePoint, C64};
+use jointlin_harness::input::scene::units::frequency_unit;
 use jointlin_harness::mhb::default_samples;
 use jointlin_harness::model::lumped::{self, Lumped};
 use jointlin_harness::report::backbone::{self as report, Row};
@@ -195,7 +196,7 @@ fn write(
         "mode": a.mode,
         "method": method,
         "dofs": l.dofs,
-        "frequency_unit": report::frequency_unit(units),
+        "frequency_unit": frequency_unit(units).1,
         "rows": json_rows,
     });
     let text = serde_json::to_string_pretty(&run).map_err(|e| e.to_string())?;

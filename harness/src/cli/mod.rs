@@ -60,15 +60,17 @@ pub enum Command {
     ///
     /// Files written to DIR (only after a valid scene and a successful run; a bad scene
     /// names file:line:column and key, and nothing is written):
-    ///   results.csv   freq_hz, then per named output <name>_amp and <name>_phase_deg,
-    ///                 then dissipated_power (power lost in the joints, force·length/time)
-    ///                 and status (converged, not_converged, or singular: no response
+    /// Every column name carries the scene's [units] (below for N, mm, s; another time
+    /// unit gives frequency_per_<time>):
+    ///   results.csv   frequency_Hz, then per named output <name>_amp_mm and
+    ///                 <name>_phase_deg, then dissipated_power_N_mm_per_s (power lost in
+    ///                 the joints) and status (converged, not_converged, or singular: no response
     ///                 there, empty fields; also singular_frequencies in run.json);
     ///                 harmonic balance: first harmonic
     ///   results_down.csv  the same columns for the descending sweep (direction = "up_down";
     ///                 results.csv then holds the ascending one)
-    ///   harmonics.csv harmonic balance only: freq_hz, then per output and h = 0..H
-    ///                 <name>_h<h>_amp (h = 0: mean deviation from the static state)
+    ///   harmonics.csv harmonic balance only: frequency_Hz, then per output and h = 0..H
+    ///                 <name>_h<h>_amp_mm (h = 0: mean deviation from the static state)
     ///   results_without_contact_damping.csv  the same with d* = 0 (fast mode; written
     ///                 with the plots when the scene has contact damping)
     ///   points.csv    per contact point and frequency: position, pressure, amplitude,

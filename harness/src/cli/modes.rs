@@ -4,7 +4,8 @@
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use jointlin_harness::report::modes::{frequency_unit, sig, ModeTable};
+use jointlin_harness::input::scene::units::frequency_unit;
+use jointlin_harness::report::modes::{sig, ModeTable};
 use jointlin_harness::solve::modal_stuck::{stuck_modes, ModeCount};
 
 use super::load_scene;

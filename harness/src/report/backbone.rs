@@ -8,6 +8,7 @@ use plotters::prelude::*;
 
 use crate::backbone::BackbonePoint;
 use crate::input::scene::schema::Units;
+use crate::input::scene::units::{frequency_column, frequency_unit};
 
 /// One row of the report: the point and its outputs' first-harmonic amplitudes.
 #[derive(Debug, Clone)]
@@ -22,22 +23,10 @@ pub fn frequency(omega: f64) -> f64 {
     omega / (2.0 * std::f64::consts::PI)
 }
 
-/// "Hz" for seconds, else "per_<time>".
-pub fn frequency_unit(units: &Units) -> String {
-    if units.time == "s" {
-        "Hz".into()
-    } else {
-        format!("per_{}", units.time)
-    }
-}
-
 /// backbone.csv: `modal_amplitude` (length·mass^½), `frequency_<unit>`, `damping_ratio`,
 /// `<output>_amp_<length>`, `<element>_energy_<force>_<length>` (per cycle).
 pub fn csv(units: &Units, outputs: &[String], elements: &[String], rows: &[Row]) -> String {
-    let mut s = format!(
-        "modal_amplitude,frequency_{},damping_ratio",
-        frequency_unit(units)
-    );
+    let mut s = format!("modal_amplitude,{},damping_ratio", frequency_column(units));
     for o in outputs {
         let _ = write!(s, ",{o}_amp_{}", units.length);
     }
@@ -110,7 +99,7 @@ pub fn svg(
     root.fill(&WHITE).map_err(err)?;
     let root = root.titled(title, ("sans-serif", 20)).map_err(err)?;
     let panels = root.split_evenly((2, 1));
-    let unit = frequency_unit(units).replace("per_", "1/");
+    let unit = frequency_unit(units).1;
     let (fl, fh) = pad(f0, f1);
     let (zl, zh) = pad(z0.min(0.0), z1);
     let series = [

@@ -1,8 +1,10 @@
 //! results.csv, harmonics.csv, points.csv and stick_slip.csv.
 //!
-//! results.csv: `freq_hz`, then per named output `<name>_amp` (length) and
-//! `<name>_phase_deg` (degrees, of u = Re(û e^{iωt})), then `dissipated_power` (power
-//! dissipated in the joints, force·length/time: mW for N, mm, s) and `status`
+//! Every column carries the scene's units ([`ColumnUnits`]); below for N, mm, s.
+//!
+//! results.csv: `frequency_Hz` (`frequency_per_<time>` for other time units), then per
+//! named output `<name>_amp_mm` and `<name>_phase_deg` (degrees, of u = Re(û e^{iωt})),
+//! then `dissipated_power_N_mm_per_s` (power dissipated in the joints: mW) and `status`
 //! (`converged`, `not_converged`, `singular`: the dynamic stiffness was singular
 //! there, see [`crate::solve::sweep::SINGULAR_RCOND`], or `failed`: a library call or a
 //! solve failed at that frequency, its message in run.json `failed_frequencies`; the
@@ -13,16 +15,19 @@ use std::fmt::Write as _;
 use crate::capi::{
     JOINTLIN_REGIME_MICROSLIP, JOINTLIN_REGIME_OPEN, JOINTLIN_REGIME_SLIDING, JOINTLIN_REGIME_STICK,
 };
+use crate::input::scene::units::{frequency_column, ColumnUnits};
+use crate::input::scene::Units;
 use crate::model::Problem;
 use crate::solve::sweep::SweepResult;
 
 /// results.csv text.
-pub fn results(p: &Problem, r: &SweepResult) -> String {
-    let mut s = String::from("freq_hz");
+pub fn results(p: &Problem, r: &SweepResult, units: &Units) -> String {
+    let u = ColumnUnits::new(units);
+    let mut s = frequency_column(units);
     for o in &p.outputs {
-        let _ = write!(s, ",{0}_amp,{0}_phase_deg", o.name);
+        let _ = write!(s, ",{0}_amp_{1},{0}_phase_deg", o.name, u.length);
     }
-    s.push_str(",dissipated_power,status\n");
+    let _ = writeln!(s, ",dissipated_power_{},status", u.power);
     for (i, f) in r.freqs.iter().enumerate() {
         let _ = write!(s, "{f:.10e}");
         if r.is_singular(i) || r.failure(i).is_some() {
@@ -48,10 +53,10 @@ pub fn results(p: &Problem, r: &SweepResult) -> String {
     s
 }
 
-/// harmonics.csv text (harmonic balance): `freq_hz`, then per output and harmonic
-/// h = 0..H `<name>_h<h>_amp` (length; h = 0 the mean deviation from the static state).
-pub fn harmonics(p: &Problem, r: &SweepResult) -> String {
-    let mut s = String::from("freq_hz");
+/// harmonics.csv text (harmonic balance): the frequency, then per output and harmonic
+/// h = 0..H `<name>_h<h>_amp_<length>` (h = 0 the mean deviation from the static state).
+pub fn harmonics(p: &Problem, r: &SweepResult, units: &Units) -> String {
+    let mut s = frequency_column(units);
     let nh = r
         .harmonics
         .first()
@@ -59,7 +64,7 @@ pub fn harmonics(p: &Problem, r: &SweepResult) -> String {
         .map_or(0, Vec::len);
     for o in &p.outputs {
         for h in 0..nh {
-            let _ = write!(s, ",{}_h{h}_amp", o.name);
+            let _ = write!(s, ",{}_h{h}_amp_{}", o.name, units.length);
         }
     }
     s.push('\n');
@@ -91,19 +96,26 @@ pub fn regime_name(code: i32) -> &'static str {
 }
 
 /// points.csv text: per contact point and frequency. Open points have all zeros.
-/// Columns: freq_hz, point, interface, x, y, z, closed, pressure, amp_t1, amp_t2,
-/// k_star_t1, k_star_t2 (per area), d_star_t1, d_star_t2 (per area), energy_per_cycle
-/// (force·length), ratio_t1, ratio_t2 (A/δ*), and with the stick/slip map regime_t1,
-/// regime_t2.
+/// Columns (N, mm, s): frequency_Hz, point, interface, x_mm, y_mm, z_mm, closed,
+/// pressure_N_per_mm2, amp_t1_mm, amp_t2_mm, k_star_t1_N_per_mm3, k_star_t2_N_per_mm3
+/// (per area), d_star_t1_N_s_per_mm3, d_star_t2_N_s_per_mm3 (per area),
+/// energy_per_cycle_N_mm, ratio_t1, ratio_t2 (A/δ*), and with the stick/slip map
+/// regime_t1, regime_t2.
 pub fn points(
     p: &Problem,
     r: &SweepResult,
     closed: &[bool],
     pressure: &[f64],
     regimes: bool,
+    units: &Units,
 ) -> String {
-    let mut s = String::from(
-        "freq_hz,point,interface,x,y,z,closed,pressure,amp_t1,amp_t2,k_star_t1,k_star_t2,d_star_t1,d_star_t2,energy_per_cycle,ratio_t1,ratio_t2",
+    let u = ColumnUnits::new(units);
+    let (l, k, d) = (&u.length, &u.stiffness_per_area, &u.damping_per_area);
+    let mut s = format!(
+        "{},point,interface,x_{l},y_{l},z_{l},closed,pressure_{},amp_t1_{l},amp_t2_{l},k_star_t1_{k},k_star_t2_{k},d_star_t1_{d},d_star_t2_{d},energy_per_cycle_{},ratio_t1,ratio_t2",
+        frequency_column(units),
+        u.pressure,
+        u.energy,
     );
     s.push_str(if regimes {
         ",regime_t1,regime_t2\n"
@@ -166,10 +178,11 @@ pub fn regime_counts(r: &SweepResult, closed: &[bool]) -> Vec<[usize; 4]> {
         .collect()
 }
 
-/// stick_slip.csv: freq_hz, open, stick, microslip, sliding (point counts, worst
+/// stick_slip.csv: the frequency, open, stick, microslip, sliding (point counts, worst
 /// direction), then max and median A/δ* over the closed points.
-pub fn stick_slip(r: &SweepResult, closed: &[bool]) -> String {
-    let mut s = String::from("freq_hz,open,stick,microslip,sliding,max_ratio,median_ratio\n");
+pub fn stick_slip(r: &SweepResult, closed: &[bool], units: &Units) -> String {
+    let mut s = frequency_column(units);
+    s.push_str(",open,stick,microslip,sliding,max_ratio,median_ratio\n");
     for ((f, c), pts) in r.freqs.iter().zip(regime_counts(r, closed)).zip(&r.points) {
         let mut ratios: Vec<f64> = pts
             .iter()

@@ -57,7 +57,7 @@ pub fn run_json(scene: &Scene, r: &RunResult) -> serde_json::Value {
         "converged": m.converged,
         "all_converged": m.converged.iter().all(|&c| c),
         "singular_frequencies": m.freqs.iter().enumerate().filter(|(i, _)| m.is_singular(*i)).map(|(_, f)| *f).collect::<Vec<f64>>(),
-        "failed_frequencies": m.freqs.iter().enumerate().filter_map(|(i, f)| m.failure(i).map(|e| json!({"freq_hz": f, "error": e}))).collect::<Vec<_>>(),
+        "failed_frequencies": m.freqs.iter().enumerate().filter_map(|(i, f)| m.failure(i).map(|e| json!({"frequency": f, "error": e}))).collect::<Vec<_>>(),
         "a_posteriori_checks": m.checks,
         "singular_rcond_threshold": crate::solve::sweep::SINGULAR_RCOND,
         "factorizations": m.factorizations,
@@ -94,22 +94,23 @@ pub fn write_all(
     let mut out = Vec::new();
     atomic::prepare(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
     let eff = scene.spec.effects;
+    let units = &scene.spec.units;
     write(
         dir,
         "results.csv",
-        &csv::results(&r.problem, &r.main),
+        &csv::results(&r.problem, &r.main, units),
         &mut out,
     )?;
     if let Some(down) = &r.down {
-        let text = csv::results(&r.problem, down);
+        let text = csv::results(&r.problem, down, units);
         write(dir, "results_down.csv", &text, &mut out)?;
     }
     if !r.main.harmonics.is_empty() {
-        let text = csv::harmonics(&r.problem, &r.main);
+        let text = csv::harmonics(&r.problem, &r.main, units);
         write(dir, "harmonics.csv", &text, &mut out)?;
     }
     if let Some(reference) = &r.reference {
-        let text = csv::results(&r.problem, reference);
+        let text = csv::results(&r.problem, reference, units);
         write(dir, "results_without_contact_damping.csv", &text, &mut out)?;
     }
     if eff.point_energy_output {
@@ -119,6 +120,7 @@ pub fn write_all(
             &r.stat.closed,
             &r.stat.pressure,
             eff.stick_slip_map,
+            units,
         );
         write(dir, "points.csv", &text, &mut out)?;
     }
@@ -126,7 +128,7 @@ pub fn write_all(
         write(
             dir,
             "stick_slip.csv",
-            &csv::stick_slip(&r.main, &r.stat.closed),
+            &csv::stick_slip(&r.main, &r.stat.closed, units),
             &mut out,
         )?;
     }

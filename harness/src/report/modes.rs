@@ -5,6 +5,7 @@
 use std::fmt::Write;
 
 use crate::fe::mesh::Model;
+use crate::input::scene::units::frequency_unit;
 use crate::input::scene::Units;
 use crate::report::vtu::{unstructured_grid, CellType, PointField};
 use crate::solve::modal_stuck::StuckModes;
@@ -24,19 +25,6 @@ pub fn sig(v: f64) -> String {
         format!("{v:.decimals$}")
     } else {
         format!("{v:.*e}", DIGITS - 1)
-    }
-}
-
-/// Frequency unit names of `units`: (column name, unit text), e.g.
-/// ("frequency_Hz", "Hz") for seconds, ("frequency_per_ms", "1/ms") otherwise.
-pub fn frequency_unit(units: &Units) -> (String, String) {
-    if units.time == "s" {
-        ("frequency_Hz".into(), "Hz".into())
-    } else {
-        (
-            format!("frequency_per_{}", units.time),
-            format!("1/{}", units.time),
-        )
     }
 }
 
@@ -227,21 +215,6 @@ mod tests {
         assert_eq!(sig(-5.0), "-5.000000");
         assert_eq!(sig(0.0), "0");
         assert_eq!(sig(2.5e9), "2.500000e9");
-    }
-
-    #[test]
-    fn frequency_unit_follows_the_time_unit() {
-        let u = |t: &str| Units {
-            length: "mm".into(),
-            force: "N".into(),
-            time: t.into(),
-            mass: "t".into(),
-        };
-        assert_eq!(frequency_unit(&u("s")).0, "frequency_Hz");
-        assert_eq!(
-            frequency_unit(&u("ms")),
-            ("frequency_per_ms".into(), "1/ms".into())
-        );
     }
 
     #[test]

@@ -18,7 +18,8 @@ use super::rk4::{max_frequency, stable_steps_per_cycle, SceneRk4};
 use super::settings::AUTO_RK4_MAX_DOFS;
 use super::{Forcing, Integrator, Start, State, Stepper, TimeError, TimeSettings, C64};
 use crate::fe::csc::Csc;
-use crate::input::scene::Scene;
+use crate::input::scene::units::{frequency_column, ColumnUnits};
+use crate::input::scene::{Scene, Units};
 use crate::model::{build, Problem};
 use crate::solve::static_step::{self, StaticState};
 use crate::solve::umfpack::{to_complex, Symbolic};
@@ -312,20 +313,28 @@ pub fn sweep(
     Ok(results)
 }
 
-/// results_time.csv: freq_hz; per output <name>_amp, <name>_phase_deg (first harmonic,
-/// u ≈ x̄ + Re(û e^{iωt})), <name>_half_range ((max − min)/2), <name>_max, <name>_min;
-/// dissipated_power (Σ energy per cycle × f); energy_per_cycle; energy_trapezoid (check);
-/// integrator, steps_per_cycle, cycles, steady, distance, seconds.
-pub fn results_csv(p: &Problem, r: &[FreqResult]) -> String {
-    let mut s = String::from("freq_hz");
+/// results_time.csv (units as in results.csv, e.g. N, mm, s): frequency_Hz; per output
+/// <name>_amp_mm, <name>_phase_deg (first harmonic, u ≈ x̄ + Re(û e^{iωt})),
+/// <name>_half_range_mm ((max − min)/2), <name>_max_mm, <name>_min_mm;
+/// dissipated_power_N_mm_per_s (Σ energy per cycle × f); energy_per_cycle_N_mm;
+/// energy_trapezoid_N_mm (check); integrator, steps_per_cycle, cycles, steady, distance
+/// (relative), seconds (wall clock).
+pub fn results_csv(p: &Problem, r: &[FreqResult], units: &Units) -> String {
+    let u = ColumnUnits::new(units);
+    let mut s = frequency_column(units);
     for o in &p.outputs {
         let _ = write!(
             s,
-            ",{0}_amp,{0}_phase_deg,{0}_half_range,{0}_max,{0}_min",
-            o.name
+            ",{0}_amp_{1},{0}_phase_deg,{0}_half_range_{1},{0}_max_{1},{0}_min_{1}",
+            o.name, u.length
         );
     }
-    s.push_str(",dissipated_power,energy_per_cycle,energy_trapezoid,integrator,steps_per_cycle,cycles,steady,distance,seconds\n");
+    let _ = writeln!(
+        s,
+        ",dissipated_power_{},energy_per_cycle_{e},energy_trapezoid_{e},integrator,steps_per_cycle,cycles,steady,distance,seconds",
+        u.power,
+        e = u.energy
+    );
     for x in r {
         let _ = write!(s, "{:.10e}", x.freq);
         for o in &x.last.outputs {
@@ -356,9 +365,16 @@ pub fn results_csv(p: &Problem, r: &[FreqResult]) -> String {
     s
 }
 
-/// points_time.csv: freq_hz, point, interface, x, y, z, energy_per_cycle (force·length).
-pub fn points_csv(p: &Problem, r: &[FreqResult]) -> String {
-    let mut s = String::from("freq_hz,point,interface,x,y,z,energy_per_cycle\n");
+/// points_time.csv (e.g. N, mm, s): frequency_Hz, point, interface, x_mm, y_mm, z_mm,
+/// energy_per_cycle_N_mm.
+pub fn points_csv(p: &Problem, r: &[FreqResult], units: &Units) -> String {
+    let u = ColumnUnits::new(units);
+    let l = &u.length;
+    let mut s = format!(
+        "{},point,interface,x_{l},y_{l},z_{l},energy_per_cycle_{}\n",
+        frequency_column(units),
+        u.energy
+    );
     for x in r {
         for (i, (c, e)) in p.contacts.iter().zip(&x.last.point_energy).enumerate() {
             let _ = writeln!(
@@ -387,8 +403,15 @@ pub fn write(dir: &Path, scene: &Scene, run: &TimeRun) -> std::io::Result<Vec<Pa
         files.push(f);
         Ok(())
     };
-    put("results_time.csv", results_csv(&run.problem, &run.results))?;
-    put("points_time.csv", points_csv(&run.problem, &run.results))?;
+    let units = &scene.spec.units;
+    put(
+        "results_time.csv",
+        results_csv(&run.problem, &run.results, units),
+    )?;
+    put(
+        "points_time.csv",
+        points_csv(&run.problem, &run.results, units),
+    )?;
     let json = serde_json::json!({
         "scene": scene.file,
         "title": scene.spec.title,

@@ -195,7 +195,7 @@ mod tests {
         // The writer fails after half its data (an injected full disk).
         let r = with_temp(&p, |tmp| {
             let mut f = File::create(tmp).unwrap();
-            f.write_all(b"freq_hz,point\n1.0,").unwrap();
+            f.write_all(b"frequency_Hz,point\n1.0,").unwrap();
             Err("No space left on device".to_string())
         });
         assert!(r.unwrap_err().contains("points.csv: No space left"));

@@ -7,6 +7,7 @@
 pub mod error;
 pub mod schema;
 pub mod studies;
+pub mod units;
 pub mod validate;
 
 use std::path::Path;

@@ -1,0 +1,92 @@
+//! Unit names of the scene's `[units]` for column headers, table headings and axis
+//! labels. Column names append the unit with `_` (products) and `_per_` (quotients),
+//! e.g. `dissipated_power_N_mm_per_s`; labels write it as text, e.g. `N·mm/s`.
+
+use crate::input::scene::schema::Units;
+
+/// The frequency unit: (column name, text), ("frequency_Hz", "Hz") for seconds, else
+/// ("frequency_per_<time>", "1/<time>").
+pub fn frequency_unit(units: &Units) -> (String, String) {
+    if units.time == "s" {
+        ("frequency_Hz".into(), "Hz".into())
+    } else {
+        (
+            format!("frequency_per_{}", units.time),
+            format!("1/{}", units.time),
+        )
+    }
+}
+
+/// The frequency column's name (`frequency_Hz` or `frequency_per_<time>`).
+pub fn frequency_column(units: &Units) -> String {
+    frequency_unit(units).0
+}
+
+/// Column suffixes of the derived quantities of a run's tables.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct ColumnUnits {
+    /// Length, e.g. `mm`.
+    pub length: String,
+    /// Pressure force/length², e.g. `N_per_mm2`.
+    pub pressure: String,
+    /// Energy force·length, e.g. `N_mm`.
+    pub energy: String,
+    /// Power force·length/time, e.g. `N_mm_per_s`.
+    pub power: String,
+    /// Stiffness per area force/length³, e.g. `N_per_mm3`.
+    pub stiffness_per_area: String,
+    /// Damping per area force·time/length³, e.g. `N_s_per_mm3`.
+    pub damping_per_area: String,
+}
+
+impl ColumnUnits {
+    /// The suffixes of `units`.
+    pub fn new(units: &Units) -> Self {
+        let (l, f, t) = (&units.length, &units.force, &units.time);
+        ColumnUnits {
+            length: l.clone(),
+            pressure: format!("{f}_per_{l}2"),
+            energy: format!("{f}_{l}"),
+            power: format!("{f}_{l}_per_{t}"),
+            stiffness_per_area: format!("{f}_per_{l}3"),
+            damping_per_area: format!("{f}_{t}_per_{l}3"),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn units(length: &str, force: &str, time: &str) -> Units {
+        Units {
+            length: length.into(),
+            force: force.into(),
+            time: time.into(),
+            mass: "t".into(),
+        }
+    }
+
+    #[test]
+    fn frequency_follows_the_time_unit() {
+        assert_eq!(
+            frequency_unit(&units("mm", "N", "s")),
+            ("frequency_Hz".into(), "Hz".into())
+        );
+        assert_eq!(
+            frequency_unit(&units("mm", "N", "ms")),
+            ("frequency_per_ms".into(), "1/ms".into())
+        );
+    }
+
+    #[test]
+    fn derived_columns_follow_every_unit() {
+        let c = ColumnUnits::new(&units("m", "kN", "ms"));
+        assert_eq!(c.length, "m");
+        assert_eq!(c.pressure, "kN_per_m2");
+        assert_eq!(c.energy, "kN_m");
+        assert_eq!(c.power, "kN_m_per_ms");
+        assert_eq!(c.stiffness_per_area, "kN_per_m3");
+        assert_eq!(c.damping_per_area, "kN_ms_per_m3");
+    }
+}
