@@ -108,6 +108,8 @@ EndFor
 Transfinite Curve{ circles() } = 17;
 
 Mesh.CharacteristicLengthMax = 6;
+// Finer on the bolt: its head and nut faces are the ties' master faces.
+MeshSize{ PointsOf{ Volume{bolt()}; } } = 3;
 Mesh.ElementOrder = 2;
 // Mid-edge nodes on the straight edges: curved C3D10 on the holes can have a negative
 // Jacobian at quadrature points (the reader rejects inverted elements).
