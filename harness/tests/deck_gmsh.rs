@@ -1,13 +1,25 @@
-//! The reader takes Gmsh's Abaqus export: examples/deck/bolted-lap.inp includes the
-//! shipped bolted-lap-mesh.inp (C3D10, element sets LOWER and UPPER), and a mesh
-//! Gmsh writes now from bolted-lap.geo reads too. The Gmsh part is skipped where gmsh
-//! is missing, except under CI=true (scripts/deps.sh installs it).
+//! The bolted lap joint from Gmsh (examples/deck/): bolted-lap.inp includes
+//! bolted-lap-mesh.inp, the mesh of bolted-lap.geo with its physical surfaces made
+//! element-face surfaces (input::deck::gmsh). The deck reads; its plate-plate contact pair
+//! pairs every node of the slave face (their number counted on the mesh, and equal to
+//! Gmsh's node set of that physical surface); the head and nut ties pair every ring node;
+//! the preload pressure on the bearing ring is the library's M8 preload at 20 N·m. A mesh
+//! Gmsh writes now from the .geo converts and pairs the same way. CalculiX's *FREQUENCY
+//! on the tied variant (every interface *TIE; ccx has no USER interaction) gives finite
+//! modes, the first inside the deck's sweep. The Gmsh and CalculiX parts are skipped
+//! where the program is missing, except under CI=true (scripts/deps.sh installs both).
 
+use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
+use jointlin_harness::capi::screw_preload;
+use jointlin_harness::fe::elements::face::MeshFace;
 use jointlin_harness::fe::elements::ElementKind;
-use jointlin_harness::input::deck;
+use jointlin_harness::input::deck::gmsh::deck_mesh_from_gmsh;
+use jointlin_harness::input::deck::summary::summary;
+use jointlin_harness::input::deck::{self, Deck, NodeTarget, Procedure, SurfaceKind};
+use jointlin_harness::validate::ccx::{ccx_missing, run_frequencies};
 
 fn example(name: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -15,34 +27,149 @@ fn example(name: &str) -> PathBuf {
         .join(name)
 }
 
-fn check_lap(d: &deck::Deck) {
-    let counts = d.element_counts();
+fn temp_dir(what: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("jointlin-{what}-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// The faces of element surface `name`.
+fn faces(d: &Deck, name: &str) -> Vec<MeshFace> {
+    let SurfaceKind::Element(list) = &d.surfaces[name].kind else {
+        panic!("{name} is not an element surface");
+    };
+    list.iter()
+        .map(|&(id, s)| {
+            let ei = d.element_index[&id];
+            let e = &d.elements[ei];
+            let conn: Vec<usize> = e.nodes.iter().map(|n| d.node_index[n]).collect();
+            MeshFace::new(e.kind, ei, &conn, s).unwrap()
+        })
+        .collect()
+}
+
+/// The distinct nodes of element surface `name`.
+fn surface_nodes(d: &Deck, name: &str) -> BTreeSet<usize> {
+    faces(d, name).into_iter().flat_map(|f| f.nodes).collect()
+}
+
+/// Area of element surface `name` (mm²).
+fn surface_area(d: &Deck, name: &str) -> f64 {
+    let x: Vec<[f64; 3]> = d.nodes.iter().map(|n| n.x).collect();
+    faces(d, name).iter().map(|f| f.area(&x)).sum()
+}
+
+/// The number in the summary line that starts with `head` and ends with `tail`.
+fn count(summary: &str, head: &str, tail: &str) -> usize {
+    let line = summary
+        .lines()
+        .find(|l| l.trim_start().starts_with(head))
+        .unwrap_or_else(|| panic!("no line {head:?} in\n{summary}"));
+    line.rsplit_once(": ")
+        .and_then(|(_, n)| n.strip_suffix(tail))
+        .and_then(|n| n.parse().ok())
+        .unwrap_or_else(|| panic!("{line:?}"))
+}
+
+/// The mesh and the pairing `jointlin check` prints: every slave node of the contact
+/// pair and of both ties is paired, none left over.
+fn check_lap(d: &Deck, file: &str) {
     assert_eq!(
-        counts.keys().copied().collect::<Vec<_>>(),
+        d.element_counts().keys().copied().collect::<Vec<_>>(),
         vec![ElementKind::C3D10]
     );
-    assert!(counts[&ElementKind::C3D10] > 100);
-    let (lower, upper) = (&d.element_sets["LOWER"], &d.element_sets["UPPER"]);
-    assert_eq!(lower.len() + upper.len(), d.elements.len());
-    assert_eq!(d.sections.len(), 2);
+    let parts: usize = ["LOWER", "UPPER", "BOLT"]
+        .iter()
+        .map(|s| d.element_sets[*s].len())
+        .sum();
+    assert_eq!(parts, d.elements.len());
+    assert_eq!(d.sections.len(), 3);
+    let s = summary(d, file).unwrap();
+    eprintln!("{s}");
+    assert!(!s.contains("warning"), "{s}");
+    let slave = surface_nodes(d, "LAP_UPPER").len();
+    assert_eq!(slave, d.node_sets["LAP_UPPER"].len());
+    assert!(slave > 100, "{slave}");
+    let points = count(
+        &s,
+        "contact pair LAP_UPPER / LAP_LOWER (LAP)",
+        " contact points",
+    );
+    assert_eq!(points, slave);
+    for (tie, ring) in [("HEAD", "RING_UPPER"), ("NUT", "RING_LOWER")] {
+        let tied = count(&s, &format!("tie {tie} "), " tied nodes");
+        assert_eq!(tied, surface_nodes(d, ring).len(), "{tie}");
+        assert_eq!(tied, d.node_sets[ring].len(), "{tie}");
+    }
 }
 
 #[test]
-fn shipped_gmsh_deck_reads() {
+fn shipped_deck_pairs_every_slave_node() {
     let (d, warnings) = deck::read(&example("bolted-lap.inp")).unwrap();
     assert!(warnings.is_empty(), "{warnings:?}");
-    check_lap(&d);
-    assert_eq!(d.steps.len(), 1);
+    check_lap(&d, "bolted-lap.inp");
+    let lap = &d.interactions["LAP"];
+    assert!(lap.user);
+    assert_eq!(lap.properties.len(), 12);
+    // Mindlin, thesis rule, mu = 0.15, linear normal law (fortran-shim/README.md).
+    assert_eq!(lap.properties[..3], [0.0, 0.0, 0.15]);
+    assert_eq!(lap.properties[4], 0.0);
+    let steps: Vec<(bool, &str)> = d
+        .steps
+        .iter()
+        .map(|s| {
+            let what = match s.procedure {
+                Procedure::Static => "static",
+                Procedure::Frequency { .. } => "frequency",
+                Procedure::SteadyState { .. } => "steady state",
+            };
+            (s.perturbation, what)
+        })
+        .collect();
+    assert_eq!(
+        steps,
+        [
+            (false, "static"),
+            (true, "frequency"),
+            (true, "steady state")
+        ]
+    );
+    let sweep = &d.steps[2];
+    assert_eq!(sweep.cloads.len(), 1);
+    assert_eq!(sweep.cloads[0].target, NodeTarget::Set("TIP".into()));
+    assert_eq!(sweep.outputs[0].node_set, "TIP");
+    // TIP is one node on the free end face (the largest x of the model).
+    let tip = &d.node_sets["TIP"];
+    assert_eq!(tip.len(), 1);
+    let x_max = d.nodes.iter().map(|n| n.x[0]).fold(f64::MIN, f64::max);
+    assert_eq!(d.node(tip[0]).unwrap()[0], x_max);
 }
 
 #[test]
-fn fresh_gmsh_export_reads() {
-    let dir = std::env::temp_dir().join(format!("jointlin-gmsh-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let mesh = dir.join("bolted-lap-mesh.inp");
+fn preload_pressure_is_the_m8_preload_at_20_newton_metres() {
+    let (d, _) = deck::read(&example("bolted-lap.inp")).unwrap();
+    // M8: P = 1.25 mm, d2 = 7.188 mm, mu_G = mu_K = 0.12, D_Km = (11.6 + 9)/2 mm.
+    let f = screw_preload(20_000.0, 1.25, 7.188, 0.12, 0.12, 10.3).unwrap();
+    let loads = &d.steps[0].dsloads;
+    assert_eq!(loads.len(), 2);
+    for l in loads {
+        let force = l.pressure * surface_area(&d, &l.surface);
+        // The pressure is set for the rings' faceted area (16-gon edges): to its 5 digits.
+        assert!(
+            (force / f - 1.0).abs() < 1e-4,
+            "{}: {force} N vs {f} N",
+            l.surface
+        );
+    }
+}
+
+#[test]
+fn fresh_gmsh_mesh_converts_and_pairs() {
+    let dir = temp_dir("gmsh");
+    let export = dir.join("bolted-lap-gmsh.inp");
     let run = Command::new("gmsh")
         .args(["-3", "-format", "inp", "-o"])
-        .arg(&mesh)
+        .arg(&export)
         .arg(example("bolted-lap.geo"))
         .output();
     match run {
@@ -53,8 +180,75 @@ fn fresh_gmsh_export_reads() {
         }
         Ok(o) => assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr)),
     }
+    let mesh = deck_mesh_from_gmsh(&export).unwrap();
+    std::fs::write(dir.join("bolted-lap-mesh.inp"), mesh).unwrap();
     std::fs::copy(example("bolted-lap.inp"), dir.join("bolted-lap.inp")).unwrap();
-    let (d, _) = deck::read(&dir.join("bolted-lap.inp")).unwrap();
-    check_lap(&d);
+    let (d, warnings) = deck::read(&dir.join("bolted-lap.inp")).unwrap();
+    assert!(warnings.is_empty(), "{warnings:?}");
+    check_lap(&d, "fresh bolted-lap.inp");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// The deck with every interface tied, for CalculiX: the USER interaction dropped, the
+/// contact pair a *TIE, the steps replaced by one *FREQUENCY step of `modes` modes.
+fn tied_variant(deck: &str, modes: usize) -> String {
+    let mut out = String::new();
+    let mut interaction = false;
+    for line in deck.lines() {
+        let upper = line.trim_start().to_ascii_uppercase();
+        if upper.starts_with('*') && !upper.starts_with("**") {
+            if upper.starts_with("*STEP") {
+                break;
+            }
+            interaction = upper.starts_with("*SURFACE INTERACTION");
+        }
+        if interaction {
+            continue;
+        }
+        if upper.starts_with("*CONTACT PAIR") {
+            out.push_str("*TIE, NAME=LAP\n");
+        } else {
+            out.push_str(line);
+            out.push('\n');
+        }
+    }
+    out.push_str(&format!("*STEP\n*FREQUENCY\n{modes}\n*END STEP\n"));
+    out
+}
+
+#[test]
+fn calculix_modes_of_the_tied_variant_are_finite_and_the_sweep_covers_the_first() {
+    if let Some(why) = ccx_missing() {
+        assert!(std::env::var_os("CI").is_none(), "ccx missing in CI: {why}");
+        eprintln!("ccx test skipped: {why}");
+        return;
+    }
+    let text = std::fs::read_to_string(example("bolted-lap.inp")).unwrap();
+    let dir = temp_dir("lap-ccx");
+    std::fs::copy(
+        example("bolted-lap-mesh.inp"),
+        dir.join("bolted-lap-mesh.inp"),
+    )
+    .unwrap();
+    let variant = tied_variant(&text, 6);
+    // Our reader takes the variant too: the contact pair became the third tie.
+    std::fs::write(dir.join("check.inp"), &variant).unwrap();
+    let (d, _) = deck::read(&dir.join("check.inp")).unwrap();
+    assert_eq!((d.ties.len(), d.contact_pairs.len()), (3, 0));
+    let f = run_frequencies(&variant, &dir, "tied").unwrap();
+    eprintln!("tied bolted lap, ccx modes (Hz): {f:.1?}");
+    assert_eq!(f.len(), 6);
+    assert!(f.iter().all(|v| v.is_finite() && *v > 0.0), "{f:?}");
+    assert!(f.windows(2).all(|w| w[0] <= w[1]), "{f:?}");
+    let (shipped, _) = deck::read(&example("bolted-lap.inp")).unwrap();
+    let Procedure::SteadyState { f_low, f_high, .. } = shipped.steps[2].procedure else {
+        panic!("step 3 is not the sweep");
+    };
+    assert!(
+        f_low < f[0] && f[0] < f_high,
+        "{f_low}…{f_high} vs {}",
+        f[0]
+    );
+    assert!(f[1] > f_high, "{f:?}");
     let _ = std::fs::remove_dir_all(&dir);
 }
