@@ -14,11 +14,16 @@ declare -A commands=(
   [tradeoff_block]="cargo run --release -q -p jointlin-harness --bin jointlin -- tradeoff scenes/block-stick.toml --out out/tradeoff-block"
   [backbone_plot]="cargo run --release -q -p jointlin-harness --bin jointlin -- backbone scenes/jenkins-chain.toml --out harness/assets/backbone-chain 2>&1"
   [backbone_cost]="cargo run --release -q -p jointlin-harness --bin jointlin -- mhb --backbones"
+  [three_beams_frf]="cargo run --release -q -p jointlin-harness --bin jointlin -- run scenes/three-beams.toml --out out/three-beams --quiet"
+  [duffing_frf]="cargo run --release -q -p jointlin-harness --bin jointlin -- run scenes/duffing.toml --out out/duffing --quiet"
 )
-# Plots a block's command writes that the documents show: "from to" pairs.
+# Plots a block's command writes that the documents show: "from to" pairs. A name with a
+# plot and no block in the documents (e.g. three_beams_frf) only makes its plot.
 declare -A plots=(
   [tradeoff_beams]="out/tradeoff-beams/tradeoff.svg docs/accuracy-three-beams.svg"
   [tradeoff_block]="out/tradeoff-block/tradeoff.svg docs/accuracy-block.svg"
+  [three_beams_frf]="out/three-beams/frf.svg harness/assets/three-beams-frf.svg"
+  [duffing_frf]="out/duffing/frf.svg harness/assets/duffing-frf.svg"
 )
 # Blocks whose command prints Markdown (the others are shown as terminal output).
 markdown=" accuracy_table knife knife_mesh tradeoff_beams tradeoff_block backbone_cost "
@@ -31,7 +36,14 @@ for name in "${names[@]}"; do
   for f in "${files[@]}"; do
     if grep -q "<!-- BEGIN $name -->" "$f"; then targets+=("$f"); fi
   done
-  [ ${#targets[@]} -gt 0 ] || continue
+  if [ ${#targets[@]} -eq 0 ]; then
+    [ -n "${plots[$name]:-}" ] || continue
+    echo "== $name (plot only): ${commands[$name]}"
+    eval "${commands[$name]}" > /dev/null
+    read -r from to <<< "${plots[$name]}"
+    cp "$from" "$to"
+    continue
+  fi
   echo "== $name: ${commands[$name]}"
   out=$(mktemp)
   if [[ "$markdown" == *" $name "* ]]; then

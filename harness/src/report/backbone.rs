@@ -117,7 +117,7 @@ pub fn svg(
             .configure_mesh()
             .x_desc(x_label)
             .y_desc(label)
-            .x_label_formatter(&|v: &f64| format!("{v:.0e}"))
+            .x_label_formatter(&|v: &f64| crate::util::ticks::log_tick(*v))
             .draw()
             .map_err(err)?;
         let line: Vec<(f64, f64)> = pts

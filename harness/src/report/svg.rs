@@ -6,6 +6,7 @@ use plotters::prelude::*;
 
 use crate::model::Problem;
 use crate::solve::sweep::SweepResult;
+use crate::util::ticks::{at_least_a_decade, log_tick};
 
 type Res = Result<(), String>;
 
@@ -14,8 +15,10 @@ fn err<E: std::fmt::Display>(e: E) -> String {
 }
 
 /// FRF amplitude of every output (log scale) for each (sweep, label) in `curves`: the first
-/// bold (e.g. with contact damping, or sweep up), the others thinner in other colours (e.g.
-/// the sweep down, the sweep without contact damping).
+/// bold (e.g. with contact damping, or sweep up), the others thinner and dashed in other
+/// colours (e.g. the sweep down, the sweep without contact damping), so a curve that
+/// coincides with the first stays visible. Curves of at most [`MARKED_POINTS`]
+/// frequencies (a one-frequency scene) are drawn as markers.
 pub fn frf(
     path: &std::path::Path,
     title: &str,
@@ -45,6 +48,8 @@ pub fn frf(
         ymin = 1e-12;
         ymax = 1.0;
     }
+    // At least a decade, so the log axis has labelled ticks.
+    let (ymin, ymax) = at_least_a_decade(ymin * 0.8, ymax * 1.25);
     let (x0, x1) = if f1 > f0 {
         (f0, f1)
     } else {
@@ -55,13 +60,13 @@ pub fn frf(
         .margin(15)
         .x_label_area_size(45)
         .y_label_area_size(70)
-        .build_cartesian_2d(x0..x1, (ymin * 0.8..ymax * 1.25).log_scale())
+        .build_cartesian_2d(x0..x1, (ymin..ymax).log_scale())
         .map_err(err)?;
     chart
         .configure_mesh()
         .x_desc(freq_label(units))
         .y_desc(format!("amplitude [{}]", units.length))
-        .y_label_formatter(&|v: &f64| format!("{v:.0e}"))
+        .y_label_formatter(&|v: &f64| log_tick(*v))
         .x_label_formatter(&|v: &f64| format!("{}", (v * 1e3).round() / 1e3))
         .draw()
         .map_err(err)?;
@@ -79,13 +84,33 @@ pub fn frf(
                 .filter(|(i, _)| !r.is_singular(*i) && r.failure(*i).is_none())
                 .map(|(_, (f, v))| (*f, v[k].norm().max(ymin)))
                 .collect();
-            chart
-                .draw_series(LineSeries::new(pts, color.stroke_width(width)))
+            let style = color.stroke_width(width);
+            let drawn = if pts.len() <= MARKED_POINTS {
+                // A few frequencies: markers, each with its value (the first curve's).
+                let size = 6 - 2 * c.min(1) as i32;
+                if c == 0 {
+                    let font = ("sans-serif", 13).into_font().color(&color);
+                    chart
+                        .draw_series(pts.iter().map(|&(f, a)| {
+                            EmptyElement::at((f, a))
+                                + Text::new(
+                                    format!("{a:.4e} {}", units.length),
+                                    (10, -18),
+                                    font.clone(),
+                                )
+                        }))
+                        .map_err(err)?;
+                }
+                chart.draw_series(pts.into_iter().map(|q| Circle::new(q, size, style)))
+            } else if c == 0 {
+                chart.draw_series(LineSeries::new(pts, style))
+            } else {
+                chart.draw_series(DashedLineSeries::new(pts, 6, 4, style))
+            };
+            drawn
                 .map_err(err)?
                 .label(format!("{} {label}", o.name).trim_end().to_string())
-                .legend(move |(x, y)| {
-                    PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(width))
-                });
+                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], style));
         }
     }
     chart
@@ -97,6 +122,9 @@ pub fn frf(
         .map_err(err)?;
     root.present().map_err(err)
 }
+
+/// Curves of at most this many frequencies are drawn as markers, not lines.
+const MARKED_POINTS: usize = 3;
 
 /// "frequency [Hz]" for seconds, else "frequency [1/<time>]".
 fn freq_label(units: &crate::input::scene::Units) -> String {
@@ -170,8 +198,10 @@ pub fn stick_slip(
     r: &SweepResult,
     closed: &[bool],
 ) -> Res {
-    let root = SVGBackend::new(path, (900, 520)).into_drawing_area();
+    let root = SVGBackend::new(path, (1000, 520)).into_drawing_area();
     root.fill(&WHITE).map_err(err)?;
+    let (map, legend) = root.split_horizontally(880);
+    ratio_legend(&legend)?;
     let mut rows: Vec<usize> = (0..p.contacts.len()).filter(|&i| closed[i]).collect();
     rows.sort_by(|&a, &b| {
         let (ca, cb) = (&p.contacts[a], &p.contacts[b]);
@@ -180,9 +210,9 @@ pub fn stick_slip(
             .unwrap_or(std::cmp::Ordering::Equal)
     });
     let nf = r.freqs.len().max(1);
-    let mut chart = ChartBuilder::on(&root)
+    let mut chart = ChartBuilder::on(&map)
         .caption(
-            "stick/slip map: log10(A/δ*) per contact point (rows) and frequency (columns)",
+            "stick/slip map: A/δ* per contact point (rows) and frequency (columns)",
             ("sans-serif", 16),
         )
         .margin(15)
@@ -196,20 +226,19 @@ pub fn stick_slip(
         .disable_mesh()
         .x_desc(freq_label(units))
         .y_desc("contact point (by interface, x)")
+        .y_label_formatter(&|v: &f64| {
+            if v.fract() == 0.0 {
+                format!("{}", *v as usize)
+            } else {
+                String::new()
+            }
+        })
         .x_label_formatter(&|v: &f64| {
             let i = (*v as usize).min(freqs.len().saturating_sub(1));
             freqs.get(i).map_or(String::new(), |f| format!("{f:.0}"))
         })
         .draw()
         .map_err(err)?;
-    let color = |ratio: f64| {
-        let t = ((ratio.max(1e-12).log10() + 3.0) / 4.0).clamp(0.0, 1.0);
-        RGBColor(
-            (255.0 * t) as u8,
-            (80.0 * (1.0 - (2.0 * t - 1.0).abs())) as u8,
-            (255.0 * (1.0 - t)) as u8,
-        )
-    };
     for (fi, pts) in r.points.iter().enumerate() {
         chart
             .draw_series(rows.iter().enumerate().map(|(ri, &i)| {
@@ -217,7 +246,7 @@ pub fn stick_slip(
                 let ratio = q.ratio[0].max(q.ratio[1]);
                 Rectangle::new(
                     [(fi as f64, ri as f64), (fi as f64 + 1.0, ri as f64 + 1.0)],
-                    color(ratio).filled(),
+                    ratio_color(ratio).filled(),
                 )
             }))
             .map_err(err)?;
@@ -240,4 +269,66 @@ pub fn stick_slip(
             .map_err(err)?;
     }
     root.present().map_err(err)
+}
+
+/// Lowest and highest log10(A/δ*) of the stick/slip colour scale (clamped beyond).
+const RATIO_SCALE: (f64, f64) = (-3.0, 1.0);
+
+/// Colour of A/δ* on the stick/slip map: blue (≤ 1e-3, stuck) through purple to red
+/// (≥ 10, beyond the slip limit A = δ*).
+fn ratio_color(ratio: f64) -> RGBColor {
+    let (lo, hi) = RATIO_SCALE;
+    let t = ((ratio.max(1e-300).log10() - lo) / (hi - lo)).clamp(0.0, 1.0);
+    RGBColor(
+        (255.0 * t) as u8,
+        (80.0 * (1.0 - (2.0 * t - 1.0).abs())) as u8,
+        (255.0 * (1.0 - t)) as u8,
+    )
+}
+
+/// The stick/slip map's colour bar (A/δ* on the log scale of [`ratio_color`]) and the
+/// sliding frame's key.
+fn ratio_legend<DB: DrawingBackend>(area: &DrawingArea<DB, plotters::coord::Shift>) -> Res {
+    let (lo, hi) = RATIO_SCALE;
+    let (x, top, bottom, width) = (20, 70, 400, 22);
+    let font = ("sans-serif", 13).into_font();
+    area.draw(&Text::new("A/δ*", (x, top - 25), font.clone()))
+        .map_err(err)?;
+    let steps = 80;
+    for k in 0..steps {
+        let y0 = bottom - (bottom - top) * (k + 1) / steps;
+        let y1 = bottom - (bottom - top) * k / steps;
+        let e = lo + (hi - lo) * (k as f64 + 0.5) / steps as f64;
+        area.draw(&Rectangle::new(
+            [(x, y0), (x + width, y1)],
+            ratio_color(10f64.powf(e)).filled(),
+        ))
+        .map_err(err)?;
+    }
+    area.draw(&Rectangle::new([(x, top), (x + width, bottom)], BLACK))
+        .map_err(err)?;
+    for e in lo as i32..=hi as i32 {
+        let y = bottom - ((e as f64 - lo) / (hi - lo) * (bottom - top) as f64) as i32;
+        let label = match e as f64 {
+            v if v == lo => format!("≤ {}", log_tick(10f64.powi(e))),
+            v if v == hi => format!("≥ {}", log_tick(10f64.powi(e))),
+            _ => log_tick(10f64.powi(e)),
+        };
+        area.draw(&PathElement::new(
+            vec![(x + width, y), (x + width + 5, y)],
+            BLACK,
+        ))
+        .map_err(err)?;
+        area.draw(&Text::new(label, (x + width + 8, y - 6), font.clone()))
+            .map_err(err)?;
+    }
+    let y = bottom + 30;
+    area.draw(&Rectangle::new(
+        [(x, y), (x + width, y + 14)],
+        BLACK.stroke_width(1),
+    ))
+    .map_err(err)?;
+    area.draw(&Text::new("sliding", (x + width + 8, y), font))
+        .map_err(err)?;
+    Ok(())
 }

@@ -63,8 +63,8 @@ pub fn pareto(path: &std::path::Path, t: &Tradeoff) -> Result<(), String> {
             .configure_mesh()
             .x_desc("wall time [s]")
             .y_desc("relative error vs reference")
-            .y_label_formatter(&|v| format!("{v:.0e}"))
-            .x_label_formatter(&|v| format!("{v:.0e}"))
+            .y_label_formatter(&|v| crate::util::ticks::log_tick(*v))
+            .x_label_formatter(&|v| crate::util::ticks::log_tick(*v))
             .draw()
             .map_err(err)?;
         for (i, (fam, name)) in FAMILIES.iter().enumerate() {

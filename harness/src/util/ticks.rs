@@ -1,0 +1,67 @@
+//! Axis ticks of the plots: labels of log-axis ticks and log ranges wide enough to
+//! carry labelled ticks.
+
+/// `[lo, hi]` widened about its geometric middle to span at least a decade.
+pub fn at_least_a_decade(lo: f64, hi: f64) -> (f64, f64) {
+    if hi >= 10.0 * lo {
+        return (lo, hi);
+    }
+    let mid = (lo * hi).sqrt();
+    (mid / 10f64.sqrt(), mid * 10f64.sqrt())
+}
+
+/// Label of a log-axis tick at `v`: only 1, 2 and 5 times a power of ten are labelled
+/// (plain digits from 0.001 to 9999, else `2e-5`); the other ticks get no label, so no
+/// label is printed twice and none crowds its neighbour.
+pub fn log_tick(v: f64) -> String {
+    if !(v > 0.0 && v.is_finite()) {
+        return String::new();
+    }
+    let e = v.log10().floor();
+    let m = v / 10f64.powf(e);
+    let (m, e) = match m.round() {
+        r if (m - r).abs() > 1e-6 * m => return String::new(),
+        10.0 => (1.0, e + 1.0),
+        r => (r, e),
+    };
+    if ![1.0, 2.0, 5.0].contains(&m) {
+        return String::new();
+    }
+    let e = e as i32;
+    if (-3..=3).contains(&e) {
+        let decimals = (-e).max(0) as usize;
+        format!("{:.decimals$}", m * 10f64.powi(e))
+    } else {
+        format!("{m}e{e}")
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn only_one_two_five_are_labelled_and_each_once() {
+        assert_eq!(log_tick(1.0), "1");
+        assert_eq!(log_tick(0.999_999_999_999), "1");
+        assert_eq!(log_tick(2e-3), "0.002");
+        assert_eq!(log_tick(5000.0), "5000");
+        assert_eq!(log_tick(2e-5), "2e-5");
+        assert_eq!(log_tick(1e12), "1e12");
+        for v in [0.9, 3.0, 7e-4, 1.5, 0.0, -1.0, f64::NAN, f64::INFINITY] {
+            assert_eq!(log_tick(v), "", "{v}");
+        }
+        // A decade's ticks 1..9 × 10^k label 1, 2, 5 once each.
+        let labels: Vec<String> = (1..=9).map(|m| log_tick(m as f64 * 1e-1)).collect();
+        let shown: Vec<&String> = labels.iter().filter(|l| !l.is_empty()).collect();
+        assert_eq!(shown, ["0.1", "0.2", "0.5"]);
+    }
+
+    #[test]
+    fn a_narrow_range_is_widened_to_a_decade() {
+        let (lo, hi) = at_least_a_decade(4.0, 5.0);
+        assert!((hi / lo - 10.0).abs() < 1e-12);
+        assert!((lo * hi - 20.0).abs() < 1e-12);
+        assert_eq!(at_least_a_decade(1.0, 100.0), (1.0, 100.0));
+    }
+}
