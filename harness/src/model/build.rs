@@ -7,10 +7,9 @@ use nalgebra::{Complex, Matrix3, Vector3};
 
 use super::subgrid::{coupling_pairs, face_samples, AreaSample};
 use super::{BuildError, ContactPoint, CubicSpring, Interface, Output, Problem, Screw};
-use crate::fe::assembly::{assemble, System};
+use crate::fe::assembly::{assemble, element_free_dofs, element_matrices, System};
 use crate::fe::contact_pairs::{contact_quads, find_pairs_where};
 use crate::fe::csc::Csc;
-use crate::fe::hex8::{self, Formulation};
 use crate::fe::mesh::{BoxSpec, Face, Material, Model};
 use crate::fe::surface::{add_pressure, nodal_areas};
 use crate::fe::ties::find_ties;
@@ -218,7 +217,7 @@ pub fn build(scene: &Scene) -> Result<Problem, BuildError> {
     }
     pairs.extend(coupling_pairs(&raw_points, &samples));
 
-    let mut sys = assemble(&model, Formulation::IncompatibleModes, &pairs)?;
+    let mut sys = assemble(&model, &pairs)?;
 
     // Lumped masses and springs (blocks on the ground pair: the ground is fixed, so
     // only the mass node's 3×3 block remains).
@@ -440,14 +439,8 @@ fn material_damping(
         if alpha == 0.0 && beta == 0.0 {
             continue;
         }
-        let x = model.element_coords(e);
-        let mat = &model.materials[el.material];
-        let wrap = |source| crate::fe::assembly::AssemblyError::Element { element: e, source };
-        let ke = hex8::stiffness(&x, mat, Formulation::IncompatibleModes).map_err(wrap)?;
-        let me = hex8::mass(&x, mat.density).map_err(wrap)?;
-        let free: Vec<(usize, usize)> = (0..24)
-            .filter_map(|l| sys.dofs.free(3 * el.nodes[l / 3] + l % 3).map(|f| (l, f)))
-            .collect();
+        let (ke, me) = element_matrices(model, e)?;
+        let free = element_free_dofs(model, &sys.dofs, e);
         for &(lc, c) in &free {
             for &(lr, r) in &free {
                 let slot = sys.pattern.find(r, c).expect("element entry in pattern");
