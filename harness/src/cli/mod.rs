@@ -17,7 +17,7 @@ use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
 
-use jointlin_harness::input::{self, scene::Scene, Input};
+use jointlin_harness::input::{self, scene::Scene};
 use jointlin_harness::util::progress::progress_bar;
 
 #[derive(Parser)]
@@ -156,11 +156,12 @@ pub fn dispatch(command: Command) -> ExitCode {
     }
 }
 
-/// Reads an input through the one input path ([`input::load`]) as a scene; a bad one is
-/// printed (a scene's error names file:line:column and key) and becomes exit code 2.
+/// Reads an input through the one input path ([`input::load`]) as a scene (a deck as the
+/// scene of its run); a bad one is printed (a scene's error names file:line:column and
+/// key, a deck's file:line and keyword) and becomes exit code 2.
 fn load_scene(path: &Path) -> Result<Scene, ExitCode> {
     match input::load(path) {
-        Ok(Input::Scene(s)) => Ok(s),
+        Ok(i) => Ok(i.into_scene()),
         Err(e) => {
             eprintln!("error: {e}");
             Err(ExitCode::from(2))

@@ -69,8 +69,18 @@ fn nearest(model: &Model, body: BodyRef, p: Option<[f64; 3]>) -> usize {
     }
 }
 
-/// Builds the problem of a validated scene.
+/// Builds the problem of a validated scene (from its deck when it has one, see
+/// [`super::deck`]).
 pub fn build(scene: &Scene) -> Result<Problem, BuildError> {
+    if let Some(job) = &scene.deck {
+        return super::deck::build(scene, job);
+    }
+    if let Some(m) = &scene.spec.model {
+        return Err(BuildError::Other(format!(
+            "{}: `model = \"{m}\"`: the deck is read by `input::load`, not by `Scene::load`",
+            scene.file
+        )));
+    }
     let s = &scene.spec;
     if !s.joints.is_empty() || s.springs.iter().any(|sp| sp.between.is_some()) {
         return Err(BuildError::Other(
@@ -262,7 +272,16 @@ pub fn build(scene: &Scene) -> Result<Problem, BuildError> {
         }
     }
     let damping = if s.effects.material_damping {
-        let mut d = material_damping(&model, &sys, &s.materials, &names)?;
+        let coef: Vec<(f64, f64)> = names
+            .iter()
+            .map(|n| {
+                (
+                    s.materials[*n].rayleigh_alpha,
+                    s.materials[*n].rayleigh_beta,
+                )
+            })
+            .collect();
+        let mut d = material_damping(&model, &sys, &coef)?;
         if any_dash {
             let dd = d.get_or_insert_with(|| Csc::zeros(sys.pattern.clone()));
             for (a, b) in dd.values.iter_mut().zip(&dash.values) {
@@ -410,6 +429,7 @@ pub fn build(scene: &Scene) -> Result<Problem, BuildError> {
         excitation,
         outputs,
         screws,
+        warnings: Vec::new(),
     })
 }
 
@@ -418,18 +438,13 @@ fn frame_z() -> Matrix3<f64> {
     Matrix3::new(0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 1.0, 0.0, 0.0)
 }
 
-/// D = Σₑ (αₑ Mₑ + βₑ Kₑ) with each element's material's Rayleigh coefficients; `None`
-/// when every α and β is zero.
-fn material_damping(
+/// D = Σₑ (αₑ Mₑ + βₑ Kₑ) with each element's material's Rayleigh coefficients
+/// `coef[material]` = (α 1/time, β time); `None` when every α and β is zero.
+pub(super) fn material_damping(
     model: &Model,
     sys: &System,
-    specs: &BTreeMap<String, MaterialSpec>,
-    names: &[&String],
+    coef: &[(f64, f64)],
 ) -> Result<Option<Csc<f64>>, BuildError> {
-    let coef: Vec<(f64, f64)> = names
-        .iter()
-        .map(|n| (specs[*n].rayleigh_alpha, specs[*n].rayleigh_beta))
-        .collect();
     if coef.iter().all(|&(a, b)| a == 0.0 && b == 0.0) {
         return Ok(None);
     }

@@ -10,6 +10,7 @@
 
 pub mod check;
 pub mod error;
+pub mod job;
 pub mod lexer;
 pub mod model;
 pub mod parse;
