@@ -14,6 +14,7 @@ declare -A commands=(
   [tradeoff_block]="cargo run --release -q -p jointlin-harness --bin jointlin -- tradeoff scenes/block-stick.toml --out out/tradeoff-block"
   [backbone_plot]="cargo run --release -q -p jointlin-harness --bin jointlin -- backbone scenes/jenkins-chain.toml --out harness/assets/backbone-chain 2>&1"
   [backbone_cost]="cargo run --release -q -p jointlin-harness --bin jointlin -- mhb --backbones"
+  [deck_stack]="cargo run --release -q -p jointlin-harness --example deck_stack"
 )
 # Plots a block's command writes that the documents show: "from to" pairs.
 declare -A plots=(
@@ -21,7 +22,7 @@ declare -A plots=(
   [tradeoff_block]="out/tradeoff-block/tradeoff.svg docs/accuracy-block.svg"
 )
 # Blocks whose command prints Markdown (the others are shown as terminal output).
-markdown=" accuracy_table knife knife_mesh tradeoff_beams tradeoff_block backbone_cost "
+markdown=" accuracy_table knife knife_mesh tradeoff_beams tradeoff_block backbone_cost deck_stack "
 files=(README.md docs/accuracy.md)
 names=("$@")
 [ ${#names[@]} -gt 0 ] || names=("${!commands[@]}")
