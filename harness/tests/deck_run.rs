@@ -162,16 +162,15 @@ fn decks_a_run_cannot_honour_are_named_errors_with_their_line() {
             "*CONTACT PAIR" => "*CONTACT PAIR",
             k => k,
         };
-        let line = match keyword {
-            "*FREQUENCY" => line_of(&text, card),
-            _ => line_of(&text, card),
-        };
+        let line = line_of(&text, card);
         let want = format!("{name}:{line}: {keyword}: ");
         assert!(
             log.contains(&want) && log.contains(msg),
             "{name}: want `{want}…{msg}` in\n{log}"
         );
         assert!(!d.join("out").join("results.csv").exists());
+        let (code, log) = jointlin(&["modes", path.to_str().unwrap()]);
+        assert!(code == 2 && log.contains(&want), "{name}: modes: {log}");
     }
     // A scene with `model` may not have its own bodies.
     std::fs::write(d.join("stack.inp"), &base).unwrap();

@@ -6,6 +6,7 @@
 
 use super::error::{DeckError, DeckErrorKind as K, DeckWarning};
 use super::model::{Deck, FrequencyScale, NodeTarget, Procedure, Step};
+use super::props::{user_law, UserLaw};
 use crate::input::scene::{OutputSpec, Spacing, SweepSpec, Units};
 
 /// The comment line that states a deck's units (decks carry none):
@@ -28,6 +29,8 @@ pub struct DeckJob {
     pub frequency: Option<usize>,
     /// Index of the `*STEADY STATE DYNAMICS` step, if any.
     pub dynamics: Option<usize>,
+    /// The contact law of each contact pair (in `deck.contact_pairs` order).
+    pub laws: Vec<UserLaw>,
 }
 
 impl DeckJob {
@@ -110,6 +113,21 @@ impl DeckJob {
                 }
             }
         }
+        let laws = deck
+            .contact_pairs
+            .iter()
+            .map(|c| user_law(c, &deck.interactions[&c.interaction]))
+            .collect::<Result<Vec<_>, _>>()?;
+        for s in &deck.sections {
+            let m = &deck.materials[&s.material];
+            if m.density.is_none() {
+                return Err(m.origin.error(
+                    K::BadValue,
+                    "*MATERIAL",
+                    format!("material {} has no *DENSITY: a run needs the mass", m.name),
+                ));
+            }
+        }
         Ok(DeckJob {
             file,
             deck,
@@ -118,6 +136,7 @@ impl DeckJob {
             preload,
             frequency,
             dynamics,
+            laws,
         })
     }
 
@@ -163,8 +182,13 @@ impl DeckJob {
         for st in &self.deck.steps {
             for o in &st.outputs {
                 for id in &self.deck.node_sets[&o.node_set] {
+                    // CSV column names: instance sets' dots become dashes.
+                    let set = o.node_set.replace(
+                        |ch: char| !(ch.is_ascii_alphanumeric() || ch == '_' || ch == '-'),
+                        "-",
+                    );
                     for c in 0..3 {
-                        let name = format!("{}_{id}_u{}", o.node_set, c + 1);
+                        let name = format!("{set}_{id}_u{}", c + 1);
                         if out.iter().any(|x| x.name == name) {
                             continue;
                         }

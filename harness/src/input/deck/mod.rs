@@ -14,6 +14,7 @@ pub mod job;
 pub mod lexer;
 pub mod model;
 pub mod parse;
+pub mod props;
 pub mod sets;
 pub mod summary;
 

@@ -27,13 +27,7 @@ pub fn mesh(job: &DeckJob) -> Result<DeckMesh, DeckError> {
         let i = *index.entry(m.name.as_str()).or_insert(next);
         if i == next {
             let (e, nu) = m.elastic.expect("checked by the reader");
-            let Some(rho) = m.density else {
-                return Err(m.origin.error(
-                    K::BadValue,
-                    "*MATERIAL",
-                    format!("material {} has no *DENSITY: a run needs the mass", m.name),
-                ));
-            };
+            let rho = m.density.expect("checked by DeckJob");
             let mat = Material::new(e, nu, rho)
                 .map_err(|x| m.origin.error(K::BadValue, "*MATERIAL", x.to_string()))?;
             materials.push(mat);

@@ -3,21 +3,21 @@
 //! pairs (one contact point per paired slave node, `fe::pairing`), the static step's
 //! loads as preload, the steady-state step's loads as the harmonic excitation, and the
 //! scene's outputs on the deck's sets. The scene (a deck run's, or one with `model`)
-//! gives the effects and the iteration.
+//! gives the effects and the iteration. The contact laws come from the USER property
+//! table (`input::deck::props`).
 //!
 //! A contact point's relative displacement is the slave node's minus the master face's
 //! interpolated one, δ = u_s − Σᵢ Nᵢ u_mᵢ, in the frame of the master's outward normal
 //! (model.md §3: n from the lower body, here the master, into the upper one, the
 //! slave); its area is the slave node's tributary area.
 
-mod interface;
 mod loads;
 mod mesh;
 
 use nalgebra::{Complex, Matrix3};
 
 use super::build::material_damping;
-use super::{BuildError, ContactPoint, Output, Problem};
+use super::{BuildError, ContactPoint, Interface, Output, Problem};
 use crate::fe::assembly::assemble_couplings;
 use crate::fe::pair_blocks::Coupling;
 use crate::fe::pairing::{PairedNode, Pairing};
@@ -87,9 +87,19 @@ pub fn build(scene: &Scene, job: &DeckJob) -> Result<Problem, BuildError> {
     // Contact pairs: interfaces and their points.
     let mut interfaces = Vec::new();
     let mut raw = Vec::new(); // (paired node, interface)
-    for c in &deck.contact_pairs {
-        let inter = &deck.interactions[&c.interaction];
-        interfaces.push(interface::interface(c, inter)?);
+    for (c, l) in deck.contact_pairs.iter().zip(&job.laws) {
+        interfaces.push(Interface {
+            name: format!("{}/{}", c.slave, c.master),
+            law: l.law,
+            rule: l.rule,
+            mu: l.mu,
+            k_t0_per_area: l.k_t0_per_area,
+            normal_law: l.normal_law,
+            normal_stiffness_per_area: l.normal_stiffness_per_area,
+            hertz_radius: l.hertz_radius,
+            hertz_e_star: l.hertz_e_star,
+            initial_gap: 0.0,
+        });
         let p = pair_surfaces(deck, &c.slave, &c.master, tol, &c.origin, "*CONTACT PAIR")?;
         let at = format!(
             "{}:{}: *CONTACT PAIR {}/{}",
