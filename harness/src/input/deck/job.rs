@@ -305,3 +305,28 @@ pub fn stated_units(file: &str, text: &str) -> Result<Option<Units>, DeckError> 
     }
     Ok(None)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn units_from_the_comment_line_or_none() {
+        let text = "*HEADING\nx\n** jointlin units: length=mm force=N time=s mass=t\n*NODE\n";
+        let u = stated_units("a.inp", text).unwrap().unwrap();
+        assert_eq!([u.length, u.force, u.time, u.mass], ["mm", "N", "s", "t"]);
+        assert_eq!(stated_units("a.inp", "*HEADING\n** other\n").unwrap(), None);
+        let e =
+            stated_units("a.inp", "*HEADING\n** jointlin units: length=mm force=N\n").unwrap_err();
+        assert_eq!(
+            (e.line, e.message.as_str()),
+            (2, "units need length, force, time and mass")
+        );
+        let e = stated_units("a.inp", "** jointlin units: size=mm\n").unwrap_err();
+        assert!(
+            e.to_string()
+                .starts_with("a.inp:1: **: unknown unit `size`"),
+            "{e}"
+        );
+    }
+}

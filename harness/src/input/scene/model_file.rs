@@ -162,3 +162,37 @@ pub fn deck_scene(job: DeckJob, text: String) -> Scene {
         deck: Some(Arc::new(job)),
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::super::tests::GOOD;
+    use super::*;
+
+    const UNITS: &str = "[units]\nlength = \"mm\"\nforce = \"N\"\ntime = \"s\"\nmass = \"t\"\n";
+
+    #[test]
+    fn a_scene_without_sweep_names_it_missing() {
+        let text = GOOD.replace("[sweep]\nf_min = 100.0\nf_max = 200.0\ncount = 3\n", "");
+        assert_ne!(text, GOOD);
+        let e = Scene::parse("s.toml", &text).unwrap_err();
+        assert_eq!(e.key, "sweep", "{e}");
+        assert!(e.message.starts_with("missing: required"), "{e}");
+    }
+
+    #[test]
+    fn a_model_scene_needs_no_bodies_and_takes_none() {
+        let ok = format!("model = \"stack.inp\"\n{UNITS}[effects]\nmaterial_damping = false\n");
+        let s = Scene::parse("s.toml", &ok).unwrap();
+        assert_eq!(s.spec.model.as_deref(), Some("stack.inp"));
+        assert!(
+            s.deck.is_none(),
+            "input::load attaches the deck, not Scene::parse"
+        );
+        let bad = format!("{ok}[materials.steel]\nE = 1.0\nnu = 0.3\nrho = 1.0\n");
+        let e = Scene::parse("s.toml", &bad).unwrap_err();
+        assert_eq!(e.key, "materials", "{e}");
+        assert!(e.message.contains("not allowed with `model`"), "{e}");
+        let e = Scene::parse("s.toml", &format!("model = \" \"\n{UNITS}")).unwrap_err();
+        assert_eq!(e.key, "model", "{e}");
+    }
+}
