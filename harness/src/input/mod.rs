@@ -50,13 +50,6 @@ pub enum Input {
 
 impl Input {
     /// The scene every study takes.
-    pub fn scene(&self) -> &Scene {
-        match self {
-            Input::Scene(s) | Input::Deck(s) => s,
-        }
-    }
-
-    /// The scene every study takes, by value.
     pub fn into_scene(self) -> Scene {
         match self {
             Input::Scene(s) | Input::Deck(s) => s,
