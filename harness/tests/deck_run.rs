@@ -109,6 +109,30 @@ fn a_deck_run_and_a_scene_with_model_give_the_same_results() {
     for (a, b) in rows.iter().flatten().zip(rows2.iter().flatten()) {
         assert!((a - b).abs() <= 1e-9 * a.abs().max(1e-300), "{a} vs {b}");
     }
+    // The scene's own output on a deck set: the top layer's elements (set L3), the node
+    // nearest its tip corner, which is TIP's node: the same numbers as TIP's z column.
+    let scene3 = d.join("own-output.toml");
+    std::fs::write(
+        &scene3,
+        "model = \"stack.inp\"\n[units]\nlength = \"mm\"\nforce = \"N\"\ntime = \"s\"\nmass = \"t\"\n[[outputs]]\nname = \"tip_z\"\nbody = \"L3\"\nat = [100.0, 0.0, 6.0]\ndirection = [0.0, 0.0, 1.0]\n",
+    )
+    .unwrap();
+    let out3 = d.join("own-out");
+    let (code, log) = jointlin(&[
+        "run",
+        scene3.to_str().unwrap(),
+        "--out",
+        out3.to_str().unwrap(),
+        "--quiet",
+        "--no-plots",
+    ]);
+    assert_eq!(code, 0, "{log}");
+    let (header3, rows3, _) = results(&out3.join("results.csv"));
+    assert_eq!(header3[1], "tip_z_amp");
+    let z = header.iter().position(|h| h.ends_with("_u3_amp")).unwrap();
+    for (a, b) in rows.iter().zip(&rows3) {
+        assert!((a[z] - b[1]).abs() <= 1e-9 * a[z].abs(), "{a:?} vs {b:?}");
+    }
     // The modes of the same deck: its *FREQUENCY step asks for 2.
     let (code, log) = jointlin(&["modes", deck.to_str().unwrap()]);
     assert_eq!(code, 0, "{log}");
