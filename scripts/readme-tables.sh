@@ -16,6 +16,7 @@ declare -A commands=(
   [backbone_cost]="cargo run --release -q -p jointlin-harness --bin jointlin -- mhb --backbones"
   [three_beams_frf]="cargo run --release -q -p jointlin-harness --bin jointlin -- run scenes/three-beams.toml --out out/three-beams --quiet"
   [duffing_frf]="cargo run --release -q -p jointlin-harness --bin jointlin -- run scenes/duffing.toml --out out/duffing --quiet"
+  [deck_stack]="cargo run --release -q -p jointlin-harness --example deck_stack"
 )
 # Plots a block's command writes that the documents show: "from to" pairs. A name with a
 # plot and no block in the documents (e.g. three_beams_frf) only makes its plot.
@@ -26,7 +27,7 @@ declare -A plots=(
   [duffing_frf]="out/duffing/frf.svg harness/assets/duffing-frf.svg"
 )
 # Blocks whose command prints Markdown (the others are shown as terminal output).
-markdown=" accuracy_table knife knife_mesh tradeoff_beams tradeoff_block backbone_cost "
+markdown=" accuracy_table knife knife_mesh tradeoff_beams tradeoff_block backbone_cost deck_stack "
 files=(README.md docs/accuracy.md)
 names=("$@")
 [ ${#names[@]} -gt 0 ] || names=("${!commands[@]}")

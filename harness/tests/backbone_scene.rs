@@ -6,7 +6,7 @@ use std::path::Path;
 
 use jointlin_harness::backbone::{first_order, log_space};
 use jointlin_harness::bench::mhb_chain::jenkins_chain;
-use jointlin_harness::input::{self, Input};
+use jointlin_harness::input;
 use jointlin_harness::model::lumped;
 
 fn scene_path() -> std::path::PathBuf {
@@ -15,7 +15,7 @@ fn scene_path() -> std::path::PathBuf {
 
 #[test]
 fn jenkins_chain_scene_is_the_hand_built_chain() {
-    let Input::Scene(scene) = input::load(&scene_path()).unwrap();
+    let scene = input::load(&scene_path()).unwrap().into_scene();
     let l = lumped::build(&scene).unwrap();
     let hand = jenkins_chain(0.0);
     // y and z of every mass carry nothing and are left out.

@@ -5,7 +5,6 @@
 
 use jointlin_harness::fe::assembly::assemble;
 use jointlin_harness::fe::contact_pairs::find_pairs;
-use jointlin_harness::fe::hex8::Formulation;
 use jointlin_harness::fe::mesh::{BoxSpec, Face, Layer, Material, Model};
 use jointlin_harness::fe::pair_blocks::diagonal_to_global;
 use jointlin_harness::solve::modal::{lowest_modes, ModalOptions};
@@ -54,7 +53,7 @@ fn penalty(ratio: f64, area: f64) -> f64 {
 #[test]
 fn tied_layers_have_the_frequencies_of_one_body() {
     let mono = cantilever(false);
-    let sys = assemble(&mono, Formulation::IncompatibleModes, &[]).unwrap();
+    let sys = assemble(&mono, &[]).unwrap();
     let opts = ModalOptions {
         n_modes: 3,
         ..Default::default()
@@ -67,7 +66,7 @@ fn tied_layers_have_the_frequencies_of_one_body() {
     let pairs = find_pairs(&split, 0, 1, 1e-6).unwrap();
     // Clamped interface nodes are fixed on both sides; their blocks drop out.
     let nodes: Vec<[usize; 2]> = pairs.iter().map(|p| p.nodes).collect();
-    let sys2 = assemble(&split, Formulation::IncompatibleModes, &nodes).unwrap();
+    let sys2 = assemble(&split, &nodes).unwrap();
     let mut diffs = Vec::new();
     for ratio in [1e2, 1e3] {
         let mut k = sys2.k.clone();
@@ -123,8 +122,8 @@ fn harmonic_response_tied_equals_mono_with_symbolic_reuse() {
 
     let pairs = find_pairs(&split, 0, 1, 1e-6).unwrap();
     let nodes: Vec<[usize; 2]> = pairs.iter().map(|p| p.nodes).collect();
-    let s_mono = assemble(&mono, Formulation::IncompatibleModes, &[]).unwrap();
-    let s_split = assemble(&split, Formulation::IncompatibleModes, &nodes).unwrap();
+    let s_mono = assemble(&mono, &[]).unwrap();
+    let s_split = assemble(&split, &nodes).unwrap();
     let (alpha, beta) = (10.0, 1e-6);
     let d_mono = s_mono.rayleigh(alpha, beta);
     let d_split = s_split.rayleigh(alpha, beta);

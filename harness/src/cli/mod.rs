@@ -17,7 +17,7 @@ use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
 
-use jointlin_harness::input::{self, scene::Scene, Input};
+use jointlin_harness::input::{self, scene::Scene};
 use jointlin_harness::util::progress::progress_bar;
 
 #[derive(Parser)]
@@ -33,7 +33,8 @@ pub struct Cli {
 
 #[derive(Subcommand)]
 pub enum Command {
-    /// Run a scene: static preload step, steady-state sweep, reports.
+    /// Run a scene or an Abaqus-format deck (.inp; README, "Bring your own model"):
+    /// static preload step, steady-state sweep, reports.
     ///
     /// Steps: (1) the static preload step solves K u + f_c(u) = f_pre by Newton with the
     /// library's normal law (UINTER, LINPER = 0); open points stay open. (2) The
@@ -105,11 +106,11 @@ pub enum Command {
     /// Validate a scene or an Abaqus-format deck (.inp) and print a summary (nothing is
     /// run or written).
     Check(check::Args),
-    /// Modes of the scene's model with every closed joint stuck (k_T0) after the static
-    /// step: where to put the sweep.
+    /// Modes of the scene's (or deck's) model with every closed joint stuck (k_T0) after
+    /// the static step: where to put the sweep.
     ///
     /// By default every mode below 1.5 × the sweep's highest frequency (at least 6, at
-    /// most 200; --count N for exactly N). Prints a Markdown table in the scene's units
+    /// most 200; --count N for exactly N; a deck's *FREQUENCY step gives N). Prints a Markdown table in the scene's units
     /// (frequency in Hz when [units] time = "s", else 1/time): per mode its label, the
     /// dominant direction (largest kinetic-energy share), the kinetic-energy shares of
     /// the cross-sections' motion across the body's axis (its longest extent):
@@ -158,11 +159,12 @@ pub fn dispatch(command: Command) -> ExitCode {
     }
 }
 
-/// Reads an input through the one input path ([`input::load`]) as a scene; a bad one is
-/// printed (a scene's error names file:line:column and key) and becomes exit code 2.
+/// Reads an input through the one input path ([`input::load`]) as a scene (a deck as the
+/// scene of its run); a bad one is printed (a scene's error names file:line:column and
+/// key, a deck's file:line and keyword) and becomes exit code 2.
 fn load_scene(path: &Path) -> Result<Scene, ExitCode> {
     match input::load(path) {
-        Ok(Input::Scene(s)) => Ok(s),
+        Ok(i) => Ok(i.into_scene()),
         Err(e) => {
             eprintln!("error: {e}");
             Err(ExitCode::from(2))

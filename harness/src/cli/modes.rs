@@ -13,6 +13,7 @@ use super::load_scene;
 // The command's help is the doc comment of `Command::Modes`.
 #[derive(clap::Args)]
 pub struct Args {
+    /// Scene file (TOML) or Abaqus-format deck (.inp).
     scene: PathBuf,
     /// Number of modes (default: every mode below 1.5 × the sweep's highest frequency,
     /// at least 6, at most 200).
@@ -32,7 +33,12 @@ pub fn main(a: Args) -> ExitCode {
         Ok(s) => s,
         Err(code) => return code,
     };
-    let count = a.count.map_or(ModeCount::DEFAULT, ModeCount::Exactly);
+    // A deck's *FREQUENCY step says how many modes, unless --count does.
+    let deck_modes = s.deck.as_ref().and_then(|d| d.frequency_modes());
+    let count = a
+        .count
+        .or(deck_modes)
+        .map_or(ModeCount::DEFAULT, ModeCount::Exactly);
     let modes = match stuck_modes(&s, count) {
         Ok(m) => m,
         Err(e) => {
@@ -40,6 +46,9 @@ pub fn main(a: Args) -> ExitCode {
             return ExitCode::from(1);
         }
     };
+    for w in &modes.problem.warnings {
+        eprintln!("warning: {w}");
+    }
     let units = &s.spec.units;
     let (_, fu) = frequency_unit(units);
     let f = modes.band.modes.frequencies_hz();

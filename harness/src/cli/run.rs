@@ -7,8 +7,9 @@ use std::process::ExitCode;
 use clap::ValueEnum;
 
 use jointlin_harness::input::scene::{validate, Mode, Scene};
+use jointlin_harness::model::BuildError;
 use jointlin_harness::report::{self, ReportOptions};
-use jointlin_harness::run::{run, Extras};
+use jointlin_harness::run::{run, Extras, RunError};
 use jointlin_harness::util::progress::progress_bar;
 
 use super::{load_scene, report_written};
@@ -23,7 +24,7 @@ pub enum ModeArg {
 // The command's help is the doc comment of `Command::Run`.
 #[derive(clap::Args)]
 pub struct Args {
-    /// Scene file (TOML, see scenes/).
+    /// Scene file (TOML, see scenes/) or Abaqus-format deck (.inp).
     scene: PathBuf,
     /// Output directory (created if missing).
     #[arg(long)]
@@ -74,6 +75,13 @@ pub fn main(a: Args) -> ExitCode {
         );
         return ExitCode::from(2);
     }
+    if s.deck.is_some() && s.frequencies().is_empty() {
+        eprintln!(
+            "error: {}: a run needs a *STEADY STATE DYNAMICS, DIRECT step in the deck (the sweep)",
+            s.file
+        );
+        return ExitCode::from(2);
+    }
     // No earlier run's marker survives this one; an interrupt says so.
     if let Err(e) = jointlin_harness::util::atomic::begin(&a.out) {
         eprintln!("error: {}: {e}", a.out.display());
@@ -100,9 +108,14 @@ pub fn main(a: Args) -> ExitCode {
         Ok(r) => r,
         Err(e) => {
             eprintln!("error: {e}");
-            return ExitCode::from(1);
+            // A deck the build cannot honour is an input error.
+            let input = matches!(e, RunError::Build(BuildError::Deck(_)));
+            return ExitCode::from(if input { 2 } else { 1 });
         }
     };
+    for w in &r.problem.warnings {
+        eprintln!("warning: {w}");
+    }
     eprintln!(
         "{}: {} free DOFs, {} contact points ({} closed), mode {:?}",
         s.file,

@@ -6,14 +6,14 @@
 
 use std::sync::Arc;
 
-use nalgebra::Complex;
+use nalgebra::{Complex, DMatrix};
 use thiserror::Error;
 
 use crate::fe::csc::{Csc, CscPattern};
 pub use crate::fe::dofs::DofMap;
-use crate::fe::hex8::{self, ElementError, Formulation};
+use crate::fe::elements::ElementError;
 use crate::fe::mesh::Model;
-use crate::fe::pair_blocks::PairBlocks;
+use crate::fe::pair_blocks::{pair_coupling, Coupling, PairBlocks};
 
 /// Errors of assembly.
 #[derive(Debug, Error, PartialEq)]
@@ -49,19 +49,47 @@ pub struct System {
     pub pairs: PairBlocks,
 }
 
-/// Assembles K and M of all elements, eliminating `model.fixed` DOFs, with pattern room
-/// for a 6×6 block between each node pair of `pairs` (`[a, b]`, see [`PairBlocks`]).
-pub fn assemble(
+/// Element `e`'s stiffness K (force/length) and consistent mass M (mass), 3n × 3n in
+/// its node order, by the routines of its kind (`fe::elements`).
+pub fn element_matrices(
     model: &Model,
-    form: Formulation,
-    pairs: &[[usize; 2]],
-) -> Result<System, AssemblyError> {
+    e: usize,
+) -> Result<(DMatrix<f64>, DMatrix<f64>), AssemblyError> {
+    let el = &model.elements[e];
+    let x = model.element_coords(e);
+    let mat = &model.materials[el.material];
+    let wrap = |source| AssemblyError::Element { element: e, source };
+    let routines = el.kind.element();
+    let ke = routines.stiffness(&x, mat).map_err(wrap)?;
+    let me = routines.mass(&x, mat.density).map_err(wrap)?;
+    Ok((ke, me))
+}
+
+/// (local DOF, free DOF) of element `e`'s unconstrained DOFs.
+pub fn element_free_dofs(model: &Model, dofs: &DofMap, e: usize) -> Vec<(usize, usize)> {
+    let nodes = &model.elements[e].nodes;
+    (0..3 * nodes.len())
+        .filter_map(|l| dofs.free(3 * nodes[l / 3] + l % 3).map(|f| (l, f)))
+        .collect()
+}
+
+/// Assembles K and M of all elements (each by its kind's routines), eliminating
+/// `model.fixed` DOFs, with pattern room for a 6×6 block between each node pair of
+/// `pairs` (`[a, b]`, see [`PairBlocks`]).
+pub fn assemble(model: &Model, pairs: &[[usize; 2]]) -> Result<System, AssemblyError> {
+    let couplings: Vec<Coupling> = pairs.iter().map(|&p| pair_coupling(p)).collect();
+    assemble_couplings(model, &couplings)
+}
+
+/// [`assemble`] with room for the blocks of general couplings (a slave node and the
+/// nodes of its master face, see [`Coupling`]).
+pub fn assemble_couplings(model: &Model, pairs: &[Coupling]) -> Result<System, AssemblyError> {
     let dofs = DofMap::new(&model.fixed, &model.ties);
     if dofs.n_free() == 0 {
         return Err(AssemblyError::NoFreeDofs);
     }
     for (index, p) in pairs.iter().enumerate() {
-        for &node in p {
+        for &(node, _) in p {
             if node >= model.nodes.len() {
                 return Err(AssemblyError::UnknownPairNode {
                     index,
@@ -71,13 +99,7 @@ pub fn assemble(
             }
         }
     }
-    let elem_free = |e: usize| -> Vec<(usize, usize)> {
-        // (local DOF, free DOF) of the element's unconstrained DOFs.
-        let nodes = &model.elements[e].nodes;
-        (0..24)
-            .filter_map(|l| dofs.free(3 * nodes[l / 3] + l % 3).map(|f| (l, f)))
-            .collect()
-    };
+    let elem_free = |e: usize| element_free_dofs(model, &dofs, e);
     let mut entries = Vec::new();
     for e in 0..model.elements.len() {
         let fr = elem_free(e);
@@ -91,12 +113,8 @@ pub fn assemble(
     let pattern = Arc::new(CscPattern::from_entries(dofs.n_free(), entries));
     let mut k = Csc::<f64>::zeros(pattern.clone());
     let mut m = Csc::<f64>::zeros(pattern.clone());
-    for (e, el) in model.elements.iter().enumerate() {
-        let x = model.element_coords(e);
-        let mat = &model.materials[el.material];
-        let wrap = |source| AssemblyError::Element { element: e, source };
-        let ke = hex8::stiffness(&x, mat, form).map_err(wrap)?;
-        let me = hex8::mass(&x, mat.density).map_err(wrap)?;
+    for e in 0..model.elements.len() {
+        let (ke, me) = element_matrices(model, e)?;
         let fr = elem_free(e);
         for &(lc, c) in &fr {
             for &(lr, r) in &fr {
@@ -204,7 +222,7 @@ mod tests {
     #[test]
     fn total_mass_and_rigid_modes_of_free_body() {
         let model = free_box();
-        let sys = assemble(&model, Formulation::IncompatibleModes, &[]).unwrap();
+        let sys = assemble(&model, &[]).unwrap();
         let n = sys.dofs.n_free();
         assert_eq!(n, model.n_dofs());
         let mut ux = vec![0.0; n];
@@ -240,7 +258,7 @@ mod tests {
         model
             .fix(&[body.node(5, 0, 0)], [false, false, true])
             .unwrap();
-        let sys = assemble(&model, Formulation::IncompatibleModes, &[]).unwrap();
+        let sys = assemble(&model, &[]).unwrap();
         assert_eq!(sys.dofs.n_free(), model.n_dofs() - 3 * 6 - 1);
         let full: Vec<f64> = (0..model.n_dofs()).map(|d| d as f64 + 1.0).collect();
         let back = sys.dofs.expand(&sys.dofs.restrict(&full));
@@ -251,10 +269,7 @@ mod tests {
         // The reduced K equals the full K with fixed rows/columns deleted.
         let mut free_model = model.clone();
         free_model.fixed.iter_mut().for_each(|f| *f = false);
-        let kfull = assemble(&free_model, Formulation::IncompatibleModes, &[])
-            .unwrap()
-            .k
-            .to_dense();
+        let kfull = assemble(&free_model, &[]).unwrap().k.to_dense();
         let kred = sys.k.to_dense();
         for a in 0..sys.dofs.n_free() {
             for b in 0..sys.dofs.n_free() {
@@ -290,7 +305,7 @@ mod tests {
     #[test]
     fn dynamic_stiffness_and_rayleigh() {
         let model = free_box();
-        let sys = assemble(&model, Formulation::IncompatibleModes, &[]).unwrap();
+        let sys = assemble(&model, &[]).unwrap();
         let d = sys.rayleigh(2.0, 1e-5);
         let mut s = sys.complex_zeros();
         let ptr = s.values.as_ptr();
@@ -346,7 +361,7 @@ mod tests {
                 .add_nodal_load(node, [0.0, 0.0, -p * a / 16.0])
                 .unwrap();
         }
-        let sys = assemble(&model, Formulation::IncompatibleModes, &[]).unwrap();
+        let sys = assemble(&model, &[]).unwrap();
         let f = DVector::from_vec(sys.load_vector(&model));
         let u = sys.k.to_dense().cholesky().unwrap().solve(&f);
         let u = sys.dofs.expand(u.as_slice());
@@ -393,7 +408,7 @@ mod tests {
         for (node, a) in crate::fe::surface::nodal_areas(&model, &quads) {
             model.add_nodal_load(node, [sigma * a, 0.0, 0.0]).unwrap();
         }
-        let sys = assemble(&model, Formulation::IncompatibleModes, &[]).unwrap();
+        let sys = assemble(&model, &[]).unwrap();
         let f = DVector::from_vec(sys.load_vector(&model));
         let u = sys.k.to_dense().cholesky().unwrap().solve(&f);
         let u = sys.dofs.expand(u.as_slice());

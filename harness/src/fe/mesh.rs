@@ -1,5 +1,6 @@
 //! Structured 8-node hexahedral meshes of axis-aligned boxes, bodies stacked in z,
-//! and the [`Model`] that holds nodes, elements, materials, fixed DOFs and nodal loads.
+//! and the [`Model`] that holds nodes, elements (any kind of `fe::elements`: the boxes'
+//! hexahedra, or a deck's elements), materials, fixed DOFs and nodal loads.
 //!
 //! Numbering inside a body with divisions (nx, ny, nz): grid node (i, j, k) is
 //! `first_node + i + (nx+1)·(j + (ny+1)·k)`, element (i, j, k) is
@@ -12,6 +13,7 @@
 
 use thiserror::Error;
 
+use crate::fe::elements::ElementKind;
 use crate::fe::grading::Grading;
 
 /// Errors in building a mesh or model.
@@ -240,10 +242,14 @@ impl Body {
     }
 }
 
-/// A hex8 element: 8 global node ids (C3D8 order) and a material index.
-#[derive(Debug, Clone, Copy, PartialEq)]
+/// A solid element: its formulation, global node ids in the Abaqus order of its kind
+/// (C3D8 order for the boxes' hexahedra) and a material index.
+#[derive(Debug, Clone, PartialEq)]
 pub struct Element {
-    pub nodes: [usize; 8],
+    /// Which element routines assemble it (`fe::elements`); the boxes' hexahedra are
+    /// C3D8I, the incompatible-modes element of [`crate::fe::hex8`].
+    pub kind: ElementKind,
+    pub nodes: Vec<usize>,
     pub material: usize,
 }
 
@@ -341,7 +347,8 @@ impl Model {
                 for i in 0..nx {
                     let n = |di: usize, dj: usize, dk: usize| body.node(i + di, j + dj, k + dk);
                     self.elements.push(Element {
-                        nodes: [
+                        kind: ElementKind::C3D8I,
+                        nodes: vec![
                             n(0, 0, 0),
                             n(1, 0, 0),
                             n(1, 1, 0),
@@ -427,9 +434,13 @@ impl Model {
         Ok(())
     }
 
-    /// The 8 corner coordinates of element `e`.
-    pub fn element_coords(&self, e: usize) -> [[f64; 3]; 8] {
-        self.elements[e].nodes.map(|n| self.nodes[n])
+    /// The node coordinates of element `e`, in its node order.
+    pub fn element_coords(&self, e: usize) -> Vec<[f64; 3]> {
+        self.elements[e]
+            .nodes
+            .iter()
+            .map(|&n| self.nodes[n])
+            .collect()
     }
 }
 

@@ -1,4 +1,5 @@
-//! 3×3 spring/damper blocks between node pairs: how contact points enter the system.
+//! 3×3 spring/damper blocks between node pairs (or a slave node and the interpolated
+//! master face, see [`Coupling`]): how contact points and ties enter the system.
 //!
 //! For a pair `[a, b]` with relative displacement δ = u_b − u_a (global axes) and a
 //! 3×3 block K (global axes, e.g. complex k + iωd), the spring pulls b back with −Kδ
@@ -10,89 +11,107 @@
 //! per frequency is index arithmetic on `values` with no allocation. Entries whose
 //! DOF is fixed are dropped (the fixed node does not move).
 
-use std::ops::{AddAssign, Neg};
+use std::ops::{AddAssign, Mul, Neg};
 
 use nalgebra::{Matrix3, Scalar};
 
 use crate::fe::csc::CscPattern;
 use crate::fe::dofs::DofMap;
 
-/// Value slots of the 6×6 blocks of a list of node pairs on one pattern.
-#[derive(Debug, Clone, PartialEq)]
-pub struct PairBlocks {
-    pairs: Vec<[usize; 2]>,
-    /// slots[p][r][c]: value index of entry (DOF r, DOF c) of pair p's 6×6 block, DOF
-    /// order (a.x, a.y, a.z, b.x, b.y, b.z); `None` where a DOF is fixed.
-    slots: Vec<[[Option<usize>; 6]; 6]>,
+/// The nodes of one block and their weights: the block's relative displacement is
+/// δ = Σᵢ wᵢ u_{nodeᵢ} (global axes). A node pair `[a, b]` is `[(a, −1), (b, +1)]`; a
+/// slave node paired with a master face is `(slave, +1)` and `(masterᵢ, −Nᵢ)` with the
+/// face's shape functions at the projection (`fe::pairing`).
+pub type Coupling = Vec<(usize, f64)>;
+
+/// The coupling of node pair `[a, b]`: δ = u_b − u_a.
+pub fn pair_coupling([a, b]: [usize; 2]) -> Coupling {
+    vec![(a, -1.0), (b, 1.0)]
 }
 
-fn pair_free(pair: [usize; 2], dofs: &DofMap) -> [Option<usize>; 6] {
-    std::array::from_fn(|i| dofs.free(3 * pair[i / 3] + i % 3))
+/// Value slots of the blocks of a list of couplings on one pattern.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PairBlocks {
+    couplings: Vec<Coupling>,
+    /// slots[p][r·3n + c]: value index of entry (DOF r, DOF c) of coupling p's 3n × 3n
+    /// block, DOF order (node₀.x, node₀.y, node₀.z, node₁.x, …); `None` where a DOF is
+    /// fixed.
+    slots: Vec<Vec<Option<usize>>>,
+}
+
+fn coupling_free(c: &[(usize, f64)], dofs: &DofMap) -> Vec<Option<usize>> {
+    (0..3 * c.len())
+        .map(|i| dofs.free(3 * c[i / 3].0 + i % 3))
+        .collect()
 }
 
 impl PairBlocks {
-    /// The (row, col) free-DOF entries the pattern needs for these pairs.
+    /// The (row, col) free-DOF entries the pattern needs for these couplings.
     pub fn pattern_entries<'a>(
-        pairs: &'a [[usize; 2]],
+        couplings: &'a [Coupling],
         dofs: &'a DofMap,
     ) -> impl Iterator<Item = (usize, usize)> + 'a {
-        pairs.iter().flat_map(move |&p| {
-            let f = pair_free(p, dofs);
-            (0..36).filter_map(move |k| Some((f[k / 6]?, f[k % 6]?)))
+        couplings.iter().flat_map(move |c| {
+            let f = coupling_free(c, dofs);
+            let n = f.len();
+            (0..n * n).filter_map(move |k| Some((f[k / n]?, f[k % n]?)))
         })
     }
 
     /// Finds the value slots. `pattern` must contain [`Self::pattern_entries`] (as the
     /// pattern built by `assembly::assemble` does); panics otherwise (programming error).
-    pub fn new(pairs: &[[usize; 2]], dofs: &DofMap, pattern: &CscPattern) -> Self {
-        let slots = pairs
+    pub fn new(couplings: &[Coupling], dofs: &DofMap, pattern: &CscPattern) -> Self {
+        let slots = couplings
             .iter()
-            .map(|&p| {
-                let f = pair_free(p, dofs);
-                std::array::from_fn(|r| {
-                    std::array::from_fn(|c| {
-                        let (fr, fc) = (f[r]?, f[c]?);
+            .map(|c| {
+                let f = coupling_free(c, dofs);
+                let n = f.len();
+                (0..n * n)
+                    .map(|k| {
+                        let (fr, fc) = (f[k / n]?, f[k % n]?);
                         Some(
                             pattern
                                 .find(fr, fc)
                                 .expect("pair block entry missing from pattern"),
                         )
                     })
-                })
+                    .collect()
             })
             .collect();
         PairBlocks {
-            pairs: pairs.to_vec(),
+            couplings: couplings.to_vec(),
             slots,
         }
     }
 
-    /// Number of pairs.
+    /// Number of couplings.
     pub fn len(&self) -> usize {
-        self.pairs.len()
+        self.couplings.len()
     }
 
     pub fn is_empty(&self) -> bool {
-        self.pairs.is_empty()
+        self.couplings.is_empty()
     }
 
-    /// The node pair `[a, b]` of pair `p`.
-    pub fn pair(&self, p: usize) -> [usize; 2] {
-        self.pairs[p]
+    /// The nodes and weights of coupling `p`.
+    pub fn coupling(&self, p: usize) -> &[(usize, f64)] {
+        &self.couplings[p]
     }
 
-    /// Adds pair `p`'s block [[K, −K], [−K, K]] (K in global axes) to `values`
-    /// (the values of a matrix on the pattern given to [`Self::new`]).
+    /// Adds coupling `p`'s block (wᵢwⱼK between nodes i and j; [[K, −K], [−K, K]] for a
+    /// node pair; K in global axes) to `values` (the values of a matrix on the pattern
+    /// given to [`Self::new`]).
     pub fn add<T>(&self, values: &mut [T], p: usize, k: &Matrix3<T>)
     where
-        T: Scalar + Copy + AddAssign + Neg<Output = T>,
+        T: Scalar + Copy + AddAssign + Neg<Output = T> + Mul<f64, Output = T>,
     {
         let s = &self.slots[p];
-        for r in 0..6 {
-            for c in 0..6 {
-                if let Some(slot) = s[r][c] {
-                    let v = k[(r % 3, c % 3)];
-                    values[slot] += if (r < 3) == (c < 3) { v } else { -v };
+        let w = &self.couplings[p];
+        let n = 3 * w.len();
+        for r in 0..n {
+            for c in 0..n {
+                if let Some(slot) = s[r * n + c] {
+                    values[slot] += k[(r % 3, c % 3)] * (w[r / 3].1 * w[c / 3].1);
                 }
             }
         }

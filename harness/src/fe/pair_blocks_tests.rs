@@ -2,7 +2,6 @@
 //! pair nodes dropped.
 
 use crate::fe::assembly::assemble;
-use crate::fe::hex8::Formulation;
 use crate::fe::mesh::{BoxSpec, Face, Layer, Material, Model};
 use crate::fe::pair_blocks::*;
 use nalgebra::{Complex, Matrix3, Vector3};
@@ -33,7 +32,7 @@ fn pair_block_gives_spring_forces_in_local_frame() {
     let lo = model.bodies[ids[0]].face_nodes(Face::ZMax);
     let hi = model.bodies[ids[1]].face_nodes(Face::ZMin);
     let pairs: Vec<[usize; 2]> = lo.iter().zip(&hi).map(|(&a, &b)| [a, b]).collect();
-    let sys = assemble(&model, Formulation::IncompatibleModes, &pairs).unwrap();
+    let sys = assemble(&model, &pairs).unwrap();
     // A rotated frame: n tilted, t1, t2 orthonormal.
     let n = Vector3::new(0.2, -0.1, 1.0).normalize();
     let t1 = n.cross(&Vector3::x()).normalize();
@@ -52,7 +51,9 @@ fn pair_block_gives_spring_forces_in_local_frame() {
     // Only the pair block is nonzero: S u = spring forces for u_b − u_a = δ.
     let delta_loc = Vector3::new(0.3, -0.2, 0.7);
     let delta = q * delta_loc;
-    let [a, b] = sys.pairs.pair(1);
+    let [(a, _), (b, _)] = sys.pairs.coupling(1) else {
+        panic!("a node pair")
+    };
     let mut u = vec![Complex::new(0.0, 0.0); sys.dofs.n_free()];
     for c in 0..3 {
         u[sys.dofs.free(3 * a + c).unwrap()] = Complex::new(0.1, 0.0);
@@ -92,7 +93,7 @@ fn fixed_pair_node_is_dropped() {
         })
         .unwrap();
     model.fix(&[0], [true; 3]).unwrap();
-    let sys = assemble(&model, Formulation::IncompatibleModes, &[[0, 6]]).unwrap();
+    let sys = assemble(&model, &[[0, 6]]).unwrap();
     let mut s = sys.complex_zeros();
     let k = Matrix3::from_diagonal_element(Complex::new(7.0, 0.0));
     sys.pairs.add(&mut s.values, 0, &k);

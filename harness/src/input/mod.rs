@@ -5,9 +5,9 @@
 //! Readers, one directory each:
 //! - [`scene`]: the project's TOML scenes (`*.toml`), validated with file:line:key errors.
 //! - Abaqus input decks (`*.inp`, or a file whose first keyword line starts with `*`):
-//!   recognized; [`deck`] reads them into a plain `Deck` (nodes, elements, sets, surfaces,
-//!   materials, contact pairs, steps), not yet built into a `Problem`
-//!   ([`InputError::NotYetSupported`]).
+//!   [`deck`] reads them into a plain `Deck` (nodes, elements, sets, surfaces,
+//!   materials, contact pairs, steps) and checks what a run takes from them
+//!   ([`deck::job::DeckJob`]); a scene may take its model from one (`model = "x.inp"`).
 
 pub mod deck;
 pub mod scene;
@@ -16,6 +16,8 @@ use std::path::Path;
 
 use thiserror::Error;
 
+use deck::job::DeckJob;
+use deck::DeckError;
 use scene::{Scene, SceneError};
 
 /// The formats an input file can be in.
@@ -39,7 +41,20 @@ impl std::fmt::Display for Format {
 /// A read and validated input.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Input {
+    /// A scene (with its deck attached when it says `model = "x.inp"`).
     Scene(Scene),
+    /// A deck run: the deck with the scene a run of it takes (default `[effects]` and
+    /// `[iteration]`, the deck's sweep and node outputs).
+    Deck(Scene),
+}
+
+impl Input {
+    /// The scene every study takes.
+    pub fn into_scene(self) -> Scene {
+        match self {
+            Input::Scene(s) | Input::Deck(s) => s,
+        }
+    }
 }
 
 /// Errors of [`load`].
@@ -48,9 +63,9 @@ pub enum InputError {
     /// A scene that cannot be read or is invalid (file:line:column and key).
     #[error(transparent)]
     Scene(#[from] SceneError),
-    /// A format that is recognized but has no reader yet.
-    #[error("{file}: reading {format}s is not supported yet")]
-    NotYetSupported { file: String, format: Format },
+    /// A deck that cannot be read or run (`file:line: *KEYWORD: message`).
+    #[error(transparent)]
+    Deck(#[from] DeckError),
 }
 
 /// The format of `path`: by extension (`.toml` a scene; `.inp` an Abaqus deck), else by
@@ -84,11 +99,16 @@ pub fn format_of_text(text: &str) -> Format {
 /// Reads and validates the input file `path` in its format ([`format_of`]).
 pub fn load(path: &Path) -> Result<Input, InputError> {
     match format_of(path) {
-        Format::Scene => Ok(Input::Scene(Scene::load(path)?)),
-        format => Err(InputError::NotYetSupported {
-            file: path.display().to_string(),
-            format,
-        }),
+        Format::Scene => {
+            let mut s = Scene::load(path)?;
+            scene::model_file::attach(&mut s, path)?;
+            Ok(Input::Scene(s))
+        }
+        Format::AbaqusDeck => {
+            let job = DeckJob::load(path)?;
+            let text = std::fs::read_to_string(path).unwrap_or_default();
+            Ok(Input::Deck(scene::model_file::deck_scene(job, text)))
+        }
     }
 }
 
@@ -112,22 +132,21 @@ mod tests {
     }
 
     #[test]
-    fn a_deck_is_a_named_error_and_a_missing_file_the_scene_reader_s() {
+    fn a_bad_deck_is_a_deck_error_and_a_missing_file_the_scene_reader_s() {
         let dir = std::env::temp_dir().join(format!("jointlin-input-{}", std::process::id()));
         std::fs::create_dir_all(&dir).unwrap();
         let deck = dir.join("job.dat");
-        std::fs::write(&deck, "*Heading\n*Node\n1, 0., 0., 0.\n").unwrap();
+        std::fs::write(
+            &deck,
+            "*Heading\n*Node\n1, 0., 0., 0.\n*Boundary\n1, 1, 1, 0.5\n",
+        )
+        .unwrap();
         let e = load(&deck).unwrap_err();
-        assert!(matches!(
-            e,
-            InputError::NotYetSupported {
-                format: Format::AbaqusDeck,
-                ..
-            }
-        ));
+        assert!(matches!(e, InputError::Deck(_)), "{e}");
         assert!(
-            e.to_string()
-                .ends_with("job.dat: reading Abaqus input decks is not supported yet"),
+            e.to_string().ends_with(
+                "job.dat:4: *BOUNDARY: prescribed displacement 0.5 on DOFs 1–1: a run holds boundary DOFs at zero only"
+            ),
             "{e}"
         );
         std::fs::remove_dir_all(&dir).unwrap();

@@ -7,10 +7,9 @@ use nalgebra::{Complex, Matrix3, Vector3};
 
 use super::subgrid::{coupling_pairs, face_samples, AreaSample};
 use super::{BuildError, ContactPoint, CubicSpring, Interface, Output, Problem, Screw};
-use crate::fe::assembly::{assemble, System};
+use crate::fe::assembly::{assemble, element_free_dofs, element_matrices, System};
 use crate::fe::contact_pairs::{contact_quads, find_pairs_where};
 use crate::fe::csc::Csc;
-use crate::fe::hex8::{self, Formulation};
 use crate::fe::mesh::{BoxSpec, Face, Material, Model};
 use crate::fe::surface::{add_pressure, nodal_areas};
 use crate::fe::ties::find_ties;
@@ -70,8 +69,18 @@ fn nearest(model: &Model, body: BodyRef, p: Option<[f64; 3]>) -> usize {
     }
 }
 
-/// Builds the problem of a validated scene.
+/// Builds the problem of a validated scene (from its deck when it has one, see
+/// [`super::deck`]).
 pub fn build(scene: &Scene) -> Result<Problem, BuildError> {
+    if let Some(job) = &scene.deck {
+        return super::deck::build(scene, job);
+    }
+    if let Some(m) = &scene.spec.model {
+        return Err(BuildError::Other(format!(
+            "{}: `model = \"{m}\"`: the deck is read by `input::load`, not by `Scene::load`",
+            scene.file
+        )));
+    }
     let s = &scene.spec;
     if !s.joints.is_empty() || s.springs.iter().any(|sp| sp.between.is_some()) {
         return Err(BuildError::Other(
@@ -218,7 +227,7 @@ pub fn build(scene: &Scene) -> Result<Problem, BuildError> {
     }
     pairs.extend(coupling_pairs(&raw_points, &samples));
 
-    let mut sys = assemble(&model, Formulation::IncompatibleModes, &pairs)?;
+    let mut sys = assemble(&model, &pairs)?;
 
     // Lumped masses and springs (blocks on the ground pair: the ground is fixed, so
     // only the mass node's 3×3 block remains).
@@ -263,7 +272,16 @@ pub fn build(scene: &Scene) -> Result<Problem, BuildError> {
         }
     }
     let damping = if s.effects.material_damping {
-        let mut d = material_damping(&model, &sys, &s.materials, &names)?;
+        let coef: Vec<(f64, f64)> = names
+            .iter()
+            .map(|n| {
+                (
+                    s.materials[*n].rayleigh_alpha,
+                    s.materials[*n].rayleigh_beta,
+                )
+            })
+            .collect();
+        let mut d = material_damping(&model, &sys, &coef)?;
         if any_dash {
             let dd = d.get_or_insert_with(|| Csc::zeros(sys.pattern.clone()));
             for (a, b) in dd.values.iter_mut().zip(&dash.values) {
@@ -411,6 +429,7 @@ pub fn build(scene: &Scene) -> Result<Problem, BuildError> {
         excitation,
         outputs,
         screws,
+        warnings: Vec::new(),
     })
 }
 
@@ -419,18 +438,13 @@ fn frame_z() -> Matrix3<f64> {
     Matrix3::new(0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 1.0, 0.0, 0.0)
 }
 
-/// D = Σₑ (αₑ Mₑ + βₑ Kₑ) with each element's material's Rayleigh coefficients; `None`
-/// when every α and β is zero.
-fn material_damping(
+/// D = Σₑ (αₑ Mₑ + βₑ Kₑ) with each element's material's Rayleigh coefficients
+/// `coef[material]` = (α 1/time, β time); `None` when every α and β is zero.
+pub(super) fn material_damping(
     model: &Model,
     sys: &System,
-    specs: &BTreeMap<String, MaterialSpec>,
-    names: &[&String],
+    coef: &[(f64, f64)],
 ) -> Result<Option<Csc<f64>>, BuildError> {
-    let coef: Vec<(f64, f64)> = names
-        .iter()
-        .map(|n| (specs[*n].rayleigh_alpha, specs[*n].rayleigh_beta))
-        .collect();
     if coef.iter().all(|&(a, b)| a == 0.0 && b == 0.0) {
         return Ok(None);
     }
@@ -440,14 +454,8 @@ fn material_damping(
         if alpha == 0.0 && beta == 0.0 {
             continue;
         }
-        let x = model.element_coords(e);
-        let mat = &model.materials[el.material];
-        let wrap = |source| crate::fe::assembly::AssemblyError::Element { element: e, source };
-        let ke = hex8::stiffness(&x, mat, Formulation::IncompatibleModes).map_err(wrap)?;
-        let me = hex8::mass(&x, mat.density).map_err(wrap)?;
-        let free: Vec<(usize, usize)> = (0..24)
-            .filter_map(|l| sys.dofs.free(3 * el.nodes[l / 3] + l % 3).map(|f| (l, f)))
-            .collect();
+        let (ke, me) = element_matrices(model, e)?;
+        let free = element_free_dofs(model, &sys.dofs, e);
         for &(lc, c) in &free {
             for &(lr, r) in &free {
                 let slot = sys.pattern.find(r, c).expect("element entry in pattern");

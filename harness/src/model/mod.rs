@@ -7,15 +7,17 @@
 //! its lower side.
 
 mod build;
+pub mod deck;
 pub mod lumped;
 pub mod subgrid;
 
 pub use build::build;
 
-/// The one [`Problem`] of an input, whatever its format: a scene through [`build`].
+/// The one [`Problem`] of an input, whatever its format: a scene through [`build`], a
+/// deck (or a scene with `model`) through [`deck::build`].
 pub fn problem(input: &Input) -> Result<Problem, BuildError> {
     match input {
-        Input::Scene(scene) => build(scene),
+        Input::Scene(scene) | Input::Deck(scene) => build(scene),
     }
 }
 
@@ -55,6 +57,8 @@ pub enum BuildError {
         #[source]
         source: crate::capi::CapiError,
     },
+    #[error(transparent)]
+    Deck(#[from] crate::input::deck::DeckError),
     #[error("{0}")]
     Other(String),
 }
@@ -181,6 +185,9 @@ pub struct Problem {
     pub excitation: Vec<Complex<f64>>,
     pub outputs: Vec<Output>,
     pub screws: Vec<Screw>,
+    /// What the build could not honour exactly and says so (a deck's slave nodes that
+    /// project onto no master face, contact gaps taken as closed), for the run log.
+    pub warnings: Vec<String>,
 }
 
 impl Problem {

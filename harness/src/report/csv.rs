@@ -56,6 +56,7 @@ pub fn results(p: &Problem, r: &SweepResult, units: &Units) -> String {
 /// harmonics.csv text (harmonic balance): the frequency, then per output and harmonic
 /// h = 0..H `<name>_h<h>_amp_<length>` (h = 0 the mean deviation from the static state).
 pub fn harmonics(p: &Problem, r: &SweepResult, units: &Units) -> String {
+    let length = ColumnUnits::new(units).length;
     let mut s = frequency_column(units);
     let nh = r
         .harmonics
@@ -64,7 +65,7 @@ pub fn harmonics(p: &Problem, r: &SweepResult, units: &Units) -> String {
         .map_or(0, Vec::len);
     for o in &p.outputs {
         for h in 0..nh {
-            let _ = write!(s, ",{}_h{h}_amp_{}", o.name, units.length);
+            let _ = write!(s, ",{}_h{h}_amp_{length}", o.name);
         }
     }
     s.push('\n');

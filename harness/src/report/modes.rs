@@ -4,6 +4,7 @@
 
 use std::fmt::Write;
 
+use crate::fe::elements::ElementKind;
 use crate::fe::mesh::Model;
 use crate::input::scene::units::frequency_unit;
 use crate::input::scene::Units;
@@ -181,7 +182,18 @@ fn nodal_shape(full: &[f64]) -> Vec<f64> {
     full.iter().map(|v| v * scale).collect()
 }
 
-/// The model's hexahedra, and a vertex per node outside every element.
+/// The VTK cell of an element type: the Abaqus node orders of C3D4, C3D10, C3D8 and
+/// C3D20 are VTK's (corners, then the edges' mid-nodes in the same edge order).
+fn cell_type(kind: ElementKind) -> CellType {
+    match kind {
+        ElementKind::C3D4 => CellType::Tetra,
+        ElementKind::C3D10 => CellType::QuadraticTetra,
+        ElementKind::C3D8 | ElementKind::C3D8I => CellType::Hexahedron,
+        ElementKind::C3D20 | ElementKind::C3D20R => CellType::QuadraticHexahedron,
+    }
+}
+
+/// The model's elements, and a vertex per node outside every element.
 fn cells(model: &Model) -> Vec<(CellType, Vec<usize>)> {
     let mut used = vec![false; model.nodes.len()];
     let mut cells: Vec<(CellType, Vec<usize>)> = model
@@ -191,7 +203,7 @@ fn cells(model: &Model) -> Vec<(CellType, Vec<usize>)> {
             for &n in &e.nodes {
                 used[n] = true;
             }
-            (CellType::Hexahedron, e.nodes.to_vec())
+            (cell_type(e.kind), e.nodes.clone())
         })
         .collect();
     cells.extend(

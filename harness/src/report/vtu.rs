@@ -10,15 +10,24 @@ use std::fmt::Write;
 pub enum CellType {
     /// One node (VTK_VERTEX = 1): a lumped mass.
     Vertex,
+    /// Four nodes in C3D4 order, which is VTK's (VTK_TETRA = 10).
+    Tetra,
     /// Eight nodes in C3D8 order, which is VTK's (VTK_HEXAHEDRON = 12).
     Hexahedron,
+    /// Ten nodes in C3D10 order, which is VTK's (VTK_QUADRATIC_TETRA = 24).
+    QuadraticTetra,
+    /// Twenty nodes in C3D20 order, which is VTK's (VTK_QUADRATIC_HEXAHEDRON = 25).
+    QuadraticHexahedron,
 }
 
 impl CellType {
     fn code(self) -> u8 {
         match self {
             CellType::Vertex => 1,
+            CellType::Tetra => 10,
             CellType::Hexahedron => 12,
+            CellType::QuadraticTetra => 24,
+            CellType::QuadraticHexahedron => 25,
         }
     }
 }

@@ -251,7 +251,7 @@ mod tests {
     use super::*;
     use crate::fe::assembly::assemble;
     use crate::fe::csc::CscPattern;
-    use crate::fe::hex8::Formulation;
+    use crate::fe::elements::ElementKind;
     use crate::fe::mesh::{BoxSpec, Face, Material, Model};
     use nalgebra::DVector;
     use std::sync::Arc;
@@ -261,7 +261,7 @@ mod tests {
         Material::new(210_000.0, 0.3, 7.85e-9).unwrap()
     }
 
-    fn cantilever(form: Formulation, nx: usize) -> (f64, f64, Modes) {
+    fn cantilever(kind: ElementKind, nx: usize) -> (f64, f64, Modes) {
         let (l, b) = (100.0, 4.0);
         let mut model = Model::new(vec![steel()]);
         model
@@ -274,7 +274,10 @@ mod tests {
             .unwrap();
         let clamp = model.bodies[0].face_nodes(Face::XMin);
         model.fix(&clamp, [true; 3]).unwrap();
-        let sys = assemble(&model, form, &[]).unwrap();
+        for e in &mut model.elements {
+            e.kind = kind;
+        }
+        let sys = assemble(&model, &[]).unwrap();
         let modes = lowest_modes(
             &sys.k,
             &sys.m,
@@ -300,7 +303,7 @@ mod tests {
         // bubbles), clamped face x = 0. Measured: f₁ = 335.72 Hz vs 334.21 Hz (EB),
         // +0.45 % (clamped Poisson contraction and discretisation stiffen, shear
         // flexibility softens); limit 1 % as asked of the element.
-        let (f1, f_eb, modes) = cantilever(Formulation::IncompatibleModes, 25);
+        let (f1, f_eb, modes) = cantilever(ElementKind::C3D8I, 25);
         let err = (f1 - f_eb) / f_eb;
         eprintln!(
             "cantilever f1 = {f1:.3} Hz, Euler-Bernoulli {f_eb:.3} Hz, error {:+.3} %",
@@ -323,7 +326,7 @@ mod tests {
     fn full_integration_locks_in_bending() {
         // Same beam, plain trilinear hex8: shear locking makes it far too stiff.
         // Measured: f₁ = 400.1 Hz, +19.7 % (vs +0.45 % with incompatible modes).
-        let (f1, f_eb, _) = cantilever(Formulation::FullIntegration, 25);
+        let (f1, f_eb, _) = cantilever(ElementKind::C3D8, 25);
         let err = (f1 - f_eb) / f_eb;
         eprintln!(
             "full integration f1 = {f1:.3} Hz, error {:+.1} %",
@@ -403,7 +406,7 @@ mod tests {
                 material: 0,
             })
             .unwrap();
-        let sys = assemble(&model, Formulation::IncompatibleModes, &[]).unwrap();
+        let sys = assemble(&model, &[]).unwrap();
         let modes = lowest_modes(
             &sys.k,
             &sys.m,
@@ -455,7 +458,7 @@ mod tests {
             ..Default::default()
         };
         let f = |m: &Model| {
-            let s = assemble(m, Formulation::IncompatibleModes, &[]).unwrap();
+            let s = assemble(m, &[]).unwrap();
             assert_eq!(s.dofs.n_free(), 3 * 26 * 9 - 27);
             lowest_modes(&s.k, &s.m, &opts).unwrap().frequencies_hz()
         };

@@ -4,7 +4,6 @@
 
 use super::{Kind, ModeGeometry};
 use crate::fe::assembly::assemble;
-use crate::fe::hex8::Formulation;
 use crate::fe::mesh::{BoxSpec, Face, Material, Model};
 use crate::solve::modal::ModalOptions;
 use crate::solve::modal_band::modes_below;
@@ -32,7 +31,7 @@ fn cantilever() -> Model {
 #[test]
 fn cantilever_modes_are_labelled_as_beam_theory_orders_them() {
     let model = cantilever();
-    let sys = assemble(&model, Formulation::IncompatibleModes, &[]).unwrap();
+    let sys = assemble(&model, &[]).unwrap();
     // First longitudinal mode of a clamped-free rod: f = √(E/ρ) / 4L ≈ 12.93 kHz.
     let f_long = (E / RHO).sqrt() / (4.0 * L);
     let band = modes_below(
@@ -129,7 +128,7 @@ fn a_lone_mass_is_a_translation() {
     let all: Vec<usize> = (0..8).collect();
     model.fix(&all, [true; 3]).unwrap();
     model.fixed[3 * 6 + 2] = false;
-    let sys = assemble(&model, Formulation::IncompatibleModes, &[]).unwrap();
+    let sys = assemble(&model, &[]).unwrap();
     let geo = ModeGeometry::new(&model.nodes, &sys.dofs, &sys.m);
     let c = geo.character(&sys.m, &[1.0]);
     assert_eq!(c.kind, Kind::Translation);

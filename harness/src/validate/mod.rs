@@ -20,8 +20,10 @@
 pub mod beams;
 pub mod block;
 pub mod ccx;
+pub mod deck_ccx;
 pub mod duffing;
 pub mod softening;
+pub mod stack_deck;
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};

@@ -191,32 +191,7 @@ pub trait SolidElement: Sync {
 
     /// Consistent mass M = ∫ ρ Nᵀ N dV (3n × 3n, mass units).
     fn mass(&self, x: &[[f64; 3]], density: f64) -> Result<DMatrix<f64>, ElementError> {
-        let kind = self.kind();
-        check_nodes(kind, x)?;
-        let nn = x.len();
-        let mut m = DMatrix::zeros(nn, nn);
-        let (mut n, mut dn) = (vec![0.0; nn], vec![[0.0; 3]; nn]);
-        for &(p, w) in self.mass_rule() {
-            self.shape(p, &mut n, &mut dn);
-            let (det, _) = jacobian(kind, x, &dn, p)?;
-            let f = density * w * det;
-            for i in 0..nn {
-                for j in i..nn {
-                    let v = f * n[i] * n[j];
-                    m[(i, j)] += v;
-                    if j != i {
-                        m[(j, i)] += v;
-                    }
-                }
-            }
-        }
-        Ok(DMatrix::from_fn(3 * nn, 3 * nn, |r, c| {
-            if r % 3 == c % 3 {
-                m[(r / 3, c / 3)]
-            } else {
-                0.0
-            }
-        }))
+        integrated_mass(self, x, density)
     }
 
     /// Volume ∫ dV (mass rule).
@@ -231,6 +206,40 @@ pub trait SolidElement: Sync {
         }
         Ok(v)
     }
+}
+
+/// M = ∫ ρ Nᵀ N dV by the element's mass rule (the trait's default mass).
+pub fn integrated_mass<E: SolidElement + ?Sized>(
+    e: &E,
+    x: &[[f64; 3]],
+    density: f64,
+) -> Result<DMatrix<f64>, ElementError> {
+    let kind = e.kind();
+    check_nodes(kind, x)?;
+    let nn = x.len();
+    let mut m = DMatrix::zeros(nn, nn);
+    let (mut n, mut dn) = (vec![0.0; nn], vec![[0.0; 3]; nn]);
+    for &(p, w) in e.mass_rule() {
+        e.shape(p, &mut n, &mut dn);
+        let (det, _) = jacobian(kind, x, &dn, p)?;
+        let f = density * w * det;
+        for i in 0..nn {
+            for j in i..nn {
+                let v = f * n[i] * n[j];
+                m[(i, j)] += v;
+                if j != i {
+                    m[(j, i)] += v;
+                }
+            }
+        }
+    }
+    Ok(DMatrix::from_fn(3 * nn, 3 * nn, |r, c| {
+        if r % 3 == c % 3 {
+            m[(r / 3, c / 3)]
+        } else {
+            0.0
+        }
+    }))
 }
 
 /// The routines of one type: its kind and quadrature rules.
@@ -262,6 +271,18 @@ impl SolidElement for Rules {
         &self.mass
     }
 
+    fn mass(&self, x: &[[f64; 3]], density: f64) -> Result<DMatrix<f64>, ElementError> {
+        if !matches!(self.kind, ElementKind::C3D8 | ElementKind::C3D8I) {
+            return integrated_mass(self, x, density);
+        }
+        // The 2×2×2 consistent mass of the structured meshes' hexahedron (hex8.rs): the
+        // same rule, so the box scenes' M is the one they always had, bit for bit.
+        check_nodes(self.kind, x)?;
+        let corners: [[f64; 3]; 8] = std::array::from_fn(|i| x[i]);
+        let m = hex8::mass(&corners, density).map_err(|e| hex8_error(self.kind, e))?;
+        Ok(DMatrix::from_column_slice(24, 24, m.as_slice()))
+    }
+
     fn stiffness(&self, x: &[[f64; 3]], mat: &Material) -> Result<DMatrix<f64>, ElementError> {
         if self.kind != ElementKind::C3D8I {
             return integrated_stiffness(self, x, mat);
@@ -269,17 +290,16 @@ impl SolidElement for Rules {
         // The incompatible-modes hexahedron of the structured meshes (hex8.rs).
         check_nodes(self.kind, x)?;
         let corners: [[f64; 3]; 8] = std::array::from_fn(|i| x[i]);
-        let k = hex8::stiffness(&corners, mat, hex8::Formulation::IncompatibleModes).map_err(
-            |hex8::ElementError::NonPositiveJacobian { det, at }| {
-                ElementError::NonPositiveJacobian {
-                    kind: self.kind,
-                    det,
-                    at,
-                }
-            },
-        )?;
+        let k = hex8::stiffness(&corners, mat, hex8::Formulation::IncompatibleModes)
+            .map_err(|e| hex8_error(self.kind, e))?;
         Ok(DMatrix::from_column_slice(24, 24, k.as_slice()))
     }
+}
+
+/// A hex8 routine's error as this module's, for element type `kind`.
+fn hex8_error(kind: ElementKind, e: hex8::ElementError) -> ElementError {
+    let hex8::ElementError::NonPositiveJacobian { det, at } = e;
+    ElementError::NonPositiveJacobian { kind, det, at }
 }
 
 /// K = ∫ Bᵀ D B dV by the element's stiffness rule (the trait's default stiffness).

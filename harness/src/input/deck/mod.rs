@@ -11,9 +11,11 @@
 pub mod check;
 pub mod error;
 pub mod gmsh;
+pub mod job;
 pub mod lexer;
 pub mod model;
 pub mod parse;
+pub mod props;
 pub mod sets;
 pub mod summary;
 

@@ -12,12 +12,12 @@ use super::error::{DeckError, DeckErrorKind as K, Origin};
 use super::model::{Deck, Procedure, SurfaceKind};
 
 /// Node coordinates in deck order (index = position in `deck.nodes`).
-fn coords(deck: &Deck) -> Vec<[f64; 3]> {
+pub fn coords(deck: &Deck) -> Vec<[f64; 3]> {
     deck.nodes.iter().map(|n| n.x).collect()
 }
 
 /// The element faces of surface `name` as mesh faces over deck node indices.
-fn faces(
+pub fn faces(
     deck: &Deck,
     name: &str,
     origin: &Origin,
@@ -44,7 +44,7 @@ fn faces(
 
 /// Pairs the slave and master surfaces of a contact pair or tie; no paired node at all
 /// is an error ("no overlap").
-fn pair_surfaces(
+pub fn pair_surfaces(
     deck: &Deck,
     slave: &str,
     master: &str,
@@ -66,7 +66,7 @@ fn pair_surfaces(
 }
 
 /// Position tolerance of contact pairs and untoleranced ties: 1e-6 × the model's size.
-fn default_tolerance(deck: &Deck) -> f64 {
+pub fn default_tolerance(deck: &Deck) -> f64 {
     let mut lo = [f64::INFINITY; 3];
     let mut hi = [f64::NEG_INFINITY; 3];
     for n in &deck.nodes {

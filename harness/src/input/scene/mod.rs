@@ -5,12 +5,16 @@
 //! line, column and key. The schema with units is in [`schema`].
 
 pub mod error;
+pub mod model_file;
 pub mod schema;
 pub mod studies;
 pub mod units;
 pub mod validate;
 
 use std::path::Path;
+use std::sync::Arc;
+
+use super::deck::job::DeckJob;
 
 pub use error::SceneError;
 pub use schema::*;
@@ -24,6 +28,9 @@ pub struct Scene {
     /// The file's text (echoed into run.json).
     pub text: String,
     pub spec: SceneFile,
+    /// The deck of `model = "file.inp"`, or of a deck run (`jointlin run DECK.inp`),
+    /// attached by `input::load`; the model is built from it.
+    pub deck: Option<Arc<DeckJob>>,
 }
 
 impl Scene {
@@ -50,6 +57,7 @@ impl Scene {
             file: file.to_string(),
             text: text.to_string(),
             spec,
+            deck: None,
         })
     }
 

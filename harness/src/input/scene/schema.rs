@@ -20,10 +20,15 @@ pub struct SceneFile {
     /// Free text, echoed in run.json and plot titles.
     #[serde(default)]
     pub title: String,
+    /// A deck (`.inp`, path relative to the scene) that provides the model: mesh,
+    /// materials, sets, contact, loads and the sweep (see `model_file`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub model: Option<String>,
     pub units: Units,
     /// Materials by name.
     #[serde(default)]
     pub materials: BTreeMap<String, MaterialSpec>,
+    #[serde(default)]
     pub bodies: Vec<BodySpec>,
     #[serde(default)]
     pub interfaces: Vec<InterfaceSpec>,
@@ -44,10 +49,14 @@ pub struct SceneFile {
     /// read by `jointlin backbone`).
     #[serde(default)]
     pub joints: Vec<JointSpec>,
+    #[serde(default)]
     pub excitation: Vec<ExcitationSpec>,
+    /// Required unless `model` gives it (validation names it missing).
+    #[serde(default)]
     pub sweep: SweepSpec,
     #[serde(default)]
     pub iteration: IterationSpec,
+    #[serde(default)]
     pub outputs: Vec<OutputSpec>,
     #[serde(default)]
     pub effects: Effects,
@@ -420,8 +429,8 @@ pub enum Spacing {
 
 /// The frequencies of the steady-state step (1/time, Hz for seconds): `count` points
 /// from `f_min` to `f_max`, plus the points of any `refine` bands (e.g. around
-/// resonances), merged in ascending order.
-#[derive(Debug, Clone, Deserialize, Serialize, PartialEq)]
+/// resonances), merged in ascending order. The default (count 0) stands for "absent".
+#[derive(Debug, Clone, Deserialize, Serialize, PartialEq, Default)]
 #[serde(deny_unknown_fields)]
 pub struct SweepSpec {
     pub f_min: f64,

@@ -11,10 +11,16 @@ pub fn frequency_unit(units: &Units) -> (String, String) {
         ("frequency_Hz".into(), "Hz".into())
     } else {
         (
-            format!("frequency_per_{}", units.time),
+            format!("frequency_per_{}", column_word(&units.time)),
             format!("1/{}", units.time),
         )
     }
+}
+
+/// A unit name as part of a column name: white space becomes `-` (a deck without a
+/// units comment has "deck length": `tip_amp_deck-length`).
+fn column_word(unit: &str) -> String {
+    unit.split_whitespace().collect::<Vec<_>>().join("-")
 }
 
 /// The frequency column's name (`frequency_Hz` or `frequency_per_<time>`).
@@ -42,7 +48,11 @@ pub struct ColumnUnits {
 impl ColumnUnits {
     /// The suffixes of `units`.
     pub fn new(units: &Units) -> Self {
-        let (l, f, t) = (&units.length, &units.force, &units.time);
+        let (l, f, t) = (
+            column_word(&units.length),
+            column_word(&units.force),
+            column_word(&units.time),
+        );
         ColumnUnits {
             length: l.clone(),
             pressure: format!("{f}_per_{l}2"),
@@ -76,6 +86,16 @@ mod tests {
         assert_eq!(
             frequency_unit(&units("mm", "N", "ms")),
             ("frequency_per_ms".into(), "1/ms".into())
+        );
+    }
+
+    #[test]
+    fn unit_names_with_spaces_make_one_column_word() {
+        let c = ColumnUnits::new(&units("deck length", "deck force", "deck time"));
+        assert_eq!(c.power, "deck-force_deck-length_per_deck-time");
+        assert_eq!(
+            frequency_column(&units("m", "N", "deck time")),
+            "frequency_per_deck-time"
         );
     }
 

@@ -582,7 +582,7 @@ pub fn validate(s: &SceneFile) -> Vec<Problem> {
             c.positive(rp.key("power"), r.power);
         }
     }
-    c.problems
+    super::model_file::adjust(s, c.problems)
 }
 
 /// Most harmonics and samples per period a scene may ask for (H = 64 is far past where

@@ -1,0 +1,61 @@
+//! A step's loads as nodal forces (force units, global axes, full DOFs): `*CLOAD`
+//! forces, `*DLOAD` Pn and `*DSLOAD` P pressures (positive into the face).
+
+use nalgebra::Vector3;
+
+use crate::fe::elements::face::MeshFace;
+use crate::input::deck::job::DeckJob;
+use crate::input::deck::summary::faces;
+use crate::input::deck::{DeckError, DeckErrorKind as K, ElementTarget, Step};
+
+/// The nodal forces of step `st` over `n_dofs` full DOFs.
+pub fn step_loads(job: &DeckJob, st: &Step, n_dofs: usize) -> Result<Vec<f64>, DeckError> {
+    let d = &job.deck;
+    let mut f = vec![0.0; n_dofs];
+    let x: Vec<[f64; 3]> = d.nodes.iter().map(|n| n.x).collect();
+    for l in &st.cloads {
+        for id in job.target_nodes(&l.target) {
+            f[3 * d.node_index[&id] + (l.dof as usize - 1)] += l.value;
+        }
+    }
+    for l in &st.dloads {
+        let ids = match &l.elements {
+            ElementTarget::Element(id) => vec![*id],
+            ElementTarget::Set(s) => d.element_sets[s].clone(),
+        };
+        for id in ids {
+            let ei = d.element_index[&id];
+            let e = &d.elements[ei];
+            let conn: Vec<usize> = e.nodes.iter().map(|n| d.node_index[n]).collect();
+            let face = MeshFace::new(e.kind, ei, &conn, l.face).ok_or_else(|| {
+                l.origin.error(
+                    K::BadValue,
+                    "*DLOAD",
+                    format!("element {id} ({}) has no face P{}", e.kind, l.face + 1),
+                )
+            })?;
+            add_pressure(&x, &face, l.pressure, &mut f);
+        }
+    }
+    for l in &st.dsloads {
+        for face in faces(d, &l.surface, &l.origin, "*DSLOAD")? {
+            add_pressure(&x, &face, l.pressure, &mut f);
+        }
+    }
+    Ok(f)
+}
+
+/// Consistent nodal forces of pressure `p` (positive into the face) on `face`:
+/// fᵢ = p ∫ Nᵢ (∂x/∂s₁ × ∂x/∂s₂) ds, the cross product pointing into the element in the
+/// Abaqus face order (`fe::elements::face`) with the length of the area element.
+fn add_pressure(x: &[[f64; 3]], face: &MeshFace, p: f64, f: &mut [f64]) {
+    for (s, w) in face.shape.rule() {
+        let fp = face.at(x, s);
+        let inward: Vector3<f64> = fp.t1.cross(&fp.t2) * (w * p);
+        for (i, &n) in face.nodes.iter().enumerate() {
+            for c in 0..3 {
+                f[3 * n + c] += fp.n[i] * inward[c];
+            }
+        }
+    }
+}

@@ -1,0 +1,271 @@
+//! Deck → [`Problem`]: the deck's mesh, materials and zero boundary conditions, its ties
+//! (penalty couplings of each slave node to its interpolated master face), its contact
+//! pairs (one contact point per paired slave node, `fe::pairing`), the static step's
+//! loads as preload, the steady-state step's loads as the harmonic excitation, and the
+//! scene's outputs on the deck's sets. The scene (a deck run's, or one with `model`)
+//! gives the effects and the iteration. The contact laws come from the USER property
+//! table (`input::deck::props`).
+//!
+//! A contact point's relative displacement is the slave node's minus the master face's
+//! interpolated one, δ = u_s − Σᵢ Nᵢ u_mᵢ, in the frame of the master's outward normal
+//! (model.md §3: n from the lower body, here the master, into the upper one, the
+//! slave); its area is the slave node's tributary area.
+
+mod loads;
+mod mesh;
+
+use nalgebra::{Complex, Matrix3};
+
+use super::build::material_damping;
+use super::{BuildError, ContactPoint, Interface, Output, Problem};
+use crate::fe::assembly::assemble_couplings;
+use crate::fe::pair_blocks::Coupling;
+use crate::fe::pairing::{PairedNode, Pairing};
+use crate::input::deck::job::DeckJob;
+use crate::input::deck::summary::{default_tolerance, pair_surfaces};
+use crate::input::deck::Deck;
+use crate::input::scene::Scene;
+
+/// Tie penalty: each tied slave node is held to its master face by a spring
+/// TIE_PENALTY · E · √A per direction (E the stiffest material's modulus, A the node's
+/// tributary area): about 1e5 times the stiffness of the elements it joins, so the tie
+/// gives way by about 1e-5 of the elements' own deformation.
+pub const TIE_PENALTY: f64 = 1e5;
+
+/// The coupling of a paired slave node: δ = u_slave − Σᵢ Nᵢ u_masterᵢ.
+fn coupling(p: &PairedNode) -> Coupling {
+    std::iter::once((p.slave, 1.0))
+        .chain(p.weights.iter().map(|&(m, w)| (m, -w)))
+        .collect()
+}
+
+/// Frame columns n, t₁, t₂ (global axes) of a paired node.
+fn frame(p: &PairedNode) -> Matrix3<f64> {
+    Matrix3::from_fn(|g, c| p.frame[c][g])
+}
+
+/// Unmatched slave nodes, as a warning line.
+fn unmatched(deck: &Deck, what: &str, p: &Pairing) -> Option<String> {
+    p.unmatched_report(|n| deck.nodes[n].id)
+        .map(|r| format!("{what}: {r}; they are left out"))
+}
+
+/// Builds the problem of a deck for `scene` (its effects and outputs).
+pub fn build(scene: &Scene, job: &DeckJob) -> Result<Problem, BuildError> {
+    let deck = &job.deck;
+    let mesh::DeckMesh {
+        mut model,
+        rayleigh,
+    } = mesh::mesh(job)?;
+    let mut warnings: Vec<String> = job.warnings.iter().map(|w| w.to_string()).collect();
+    let tol = default_tolerance(deck);
+    let e_max = model
+        .materials
+        .iter()
+        .map(|m| m.youngs_modulus)
+        .fold(0.0, f64::max);
+
+    // Ties: penalty couplings, added to K after assembly.
+    let mut couplings: Vec<Coupling> = Vec::new();
+    let mut tie_springs = Vec::new();
+    for t in &deck.ties {
+        let tol = t.position_tolerance.unwrap_or(tol);
+        let p = pair_surfaces(deck, &t.slave, &t.master, tol, &t.origin, "*TIE")?;
+        if let Some(w) = unmatched(
+            deck,
+            &format!("{}:{}: *TIE {}", t.origin.file, t.origin.line, t.name),
+            &p,
+        ) {
+            warnings.push(w);
+        }
+        for n in &p.nodes {
+            tie_springs.push((couplings.len(), TIE_PENALTY * e_max * n.area.sqrt()));
+            couplings.push(coupling(n));
+        }
+    }
+
+    // Contact pairs: interfaces and their points.
+    let mut interfaces = Vec::new();
+    let mut raw = Vec::new(); // (paired node, interface)
+    for (c, l) in deck.contact_pairs.iter().zip(&job.laws) {
+        interfaces.push(Interface {
+            name: format!("{}/{}", c.slave, c.master),
+            law: l.law,
+            rule: l.rule,
+            mu: l.mu,
+            k_t0_per_area: l.k_t0_per_area,
+            normal_law: l.normal_law,
+            normal_stiffness_per_area: l.normal_stiffness_per_area,
+            hertz_radius: l.hertz_radius,
+            hertz_e_star: l.hertz_e_star,
+            initial_gap: 0.0,
+        });
+        let p = pair_surfaces(deck, &c.slave, &c.master, tol, &c.origin, "*CONTACT PAIR")?;
+        let at = format!(
+            "{}:{}: *CONTACT PAIR {}/{}",
+            c.origin.file, c.origin.line, c.slave, c.master
+        );
+        if let Some(w) = unmatched(deck, &at, &p) {
+            warnings.push(w);
+        }
+        let worst = p.nodes.iter().map(|n| n.gap.abs()).fold(0.0, f64::max);
+        if worst > tol {
+            warnings.push(format!(
+                "{at}: slave nodes lie up to {worst:e} {} off the master surface; the run takes the surfaces as touching (gap 0)",
+                scene.spec.units.length
+            ));
+        }
+        let all_fixed = |n: &PairedNode| {
+            coupling(n)
+                .iter()
+                .all(|&(node, _)| (0..3).all(|g| model.fixed[3 * node + g]))
+        };
+        raw.extend(
+            p.nodes
+                .into_iter()
+                .filter(|n| !all_fixed(n))
+                .map(|n| (n, interfaces.len() - 1)),
+        );
+    }
+    let first_contact = couplings.len();
+    couplings.extend(raw.iter().map(|(n, _)| coupling(n)));
+
+    let mut sys = assemble_couplings(&model, &couplings)?;
+    for &(k, spring) in &tie_springs {
+        sys.pairs.add(
+            &mut sys.k.values,
+            k,
+            &Matrix3::from_diagonal_element(spring),
+        );
+    }
+    let damping = if scene.spec.effects.material_damping {
+        material_damping(&model, &sys, &rayleigh)?
+    } else {
+        None
+    };
+
+    let contacts = raw
+        .iter()
+        .enumerate()
+        .map(|(k, (n, interface))| {
+            let q = frame(n);
+            let cpl = coupling(n);
+            let rows = std::array::from_fn(|c| {
+                let mut r = Vec::new();
+                for &(node, w) in &cpl {
+                    for g in 0..3 {
+                        let v = w * q[(g, c)];
+                        if let Some(f) = sys.dofs.free(3 * node + g) {
+                            if v != 0.0 {
+                                r.push((f, v));
+                            }
+                        }
+                    }
+                }
+                r
+            });
+            let master = n
+                .weights
+                .iter()
+                .max_by(|a, b| a.1.total_cmp(&b.1))
+                .map_or(n.slave, |w| w.0);
+            ContactPoint {
+                pair: first_contact + k,
+                nodes: [master, n.slave],
+                frame: q,
+                area: n.area,
+                interface: *interface,
+                position: model.nodes[n.slave],
+                rows,
+                samples: Vec::new(),
+            }
+        })
+        .collect();
+
+    // Preload (the static step) and excitation (the steady-state step's loads).
+    let n = model.n_dofs();
+    let pre = match job.preload {
+        Some(i) => loads::step_loads(job, &deck.steps[i], n)?,
+        None => vec![0.0; n],
+    };
+    let exc = match job.dynamics {
+        Some(i) => loads::step_loads(job, &deck.steps[i], n)?,
+        None => vec![0.0; n],
+    };
+    model.loads = pre.clone();
+    let preload = sys.dofs.restrict(&pre);
+    let excitation = sys
+        .dofs
+        .restrict(&exc)
+        .into_iter()
+        .map(|v| Complex::new(v, 0.0))
+        .collect();
+
+    let outputs = scene
+        .spec
+        .outputs
+        .iter()
+        .map(|o| {
+            let node = output_node(job, &o.body, o.at).ok_or_else(|| {
+                BuildError::Other(format!(
+                    "{}: output `{}`: `{}` is neither a node set nor an element set of {}",
+                    scene.file, o.name, o.body, job.file
+                ))
+            })?;
+            let len = o.direction.iter().map(|v| v * v).sum::<f64>().sqrt();
+            let dofs = (0..3)
+                .filter_map(|c| {
+                    sys.dofs
+                        .free(3 * node + c)
+                        .map(|f| (f, o.direction[c] / len))
+                })
+                .filter(|&(_, w)| w != 0.0)
+                .collect();
+            Ok(Output {
+                name: o.name.clone(),
+                node,
+                dofs,
+            })
+        })
+        .collect::<Result<Vec<_>, BuildError>>()?;
+
+    Ok(Problem {
+        model,
+        sys,
+        damping,
+        interfaces,
+        contacts,
+        cubic_springs: Vec::new(),
+        preload,
+        excitation,
+        outputs,
+        screws: Vec::new(),
+        warnings,
+    })
+}
+
+/// The node of set `set` (a node set, else an element set's nodes) nearest `at` (its
+/// first node without `at`).
+fn output_node(job: &DeckJob, set: &str, at: Option<[f64; 3]>) -> Option<usize> {
+    let d = &job.deck;
+    let ids: Vec<u64> = match (d.node_sets.get(set), d.element_sets.get(set)) {
+        (Some(n), _) => n.clone(),
+        (None, Some(e)) => e
+            .iter()
+            .flat_map(|id| d.elements[d.element_index[id]].nodes.iter().copied())
+            .collect(),
+        (None, None) => return None,
+    };
+    let nodes = ids.iter().map(|id| d.node_index[id]);
+    match at {
+        None => nodes.into_iter().next(),
+        Some(p) => nodes.min_by(|&a, &b| {
+            let dist = |n: usize| {
+                (0..3)
+                    .map(|c| (d.nodes[n].x[c] - p[c]).powi(2))
+                    .sum::<f64>()
+            };
+            dist(a).total_cmp(&dist(b))
+        }),
+    }
+}

@@ -1,0 +1,217 @@
+//! `jointlin run` and `jointlin modes` on Abaqus-format decks: the results of a deck
+//! run, the same numbers through a scene with `model = "x.inp"`, and decks a run cannot
+//! honour refused with exit code 2 and `file:line: *KEYWORD: message`.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+use jointlin_harness::validate::stack_deck::{stack_deck, Joining};
+
+fn dir(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("jointlin-deck-run-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+fn jointlin(args: &[&str]) -> (i32, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_jointlin"))
+        .args(args)
+        .output()
+        .unwrap();
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+/// The stack with a Jenkins contact (μ = 0.3, k_T0 = 1e5, k_N = 1e6 N/mm³, 1 MPa),
+/// swept over 3 frequencies below its first bending resonance (504 Hz stuck; the
+/// deck's default FREQUENCY SCALE is logarithmic: 200, 282.8, 400 Hz), clamped by
+/// ENCASTRE.
+fn contact_deck() -> String {
+    let joint = Joining::Contact {
+        mu: 0.3,
+        k_t0: 1e5,
+        k_n: 1e6,
+        pressure: 1.0,
+    };
+    stack_deck(joint, 2, Some((200.0, 400.0, 3))).replace("CLAMP, 1, 3", "CLAMP, ENCASTRE")
+}
+
+/// results.csv as (header, rows of numbers; the status column left out).
+fn results(path: &Path) -> (Vec<String>, Vec<Vec<f64>>, Vec<String>) {
+    let text = std::fs::read_to_string(path).unwrap();
+    let mut lines = text.lines();
+    let header: Vec<String> = lines.next().unwrap().split(',').map(String::from).collect();
+    let status = header.iter().position(|h| h == "status").unwrap();
+    let (mut rows, mut statuses) = (Vec::new(), Vec::new());
+    for l in lines {
+        let f: Vec<&str> = l.split(',').collect();
+        statuses.push(f[status].to_string());
+        rows.push(
+            f.iter()
+                .enumerate()
+                .filter(|&(i, _)| i != status)
+                .map(|(_, v)| v.parse().unwrap())
+                .collect(),
+        );
+    }
+    (header, rows, statuses)
+}
+
+#[test]
+fn a_deck_run_and_a_scene_with_model_give_the_same_results() {
+    let d = dir("run");
+    let deck = d.join("stack.inp");
+    std::fs::write(&deck, contact_deck()).unwrap();
+    let out = d.join("deck-out");
+    let (code, log) = jointlin(&[
+        "run",
+        deck.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--quiet",
+        "--no-plots",
+    ]);
+    assert_eq!(code, 0, "{log}");
+    let (header, rows, status) = results(&out.join("results.csv"));
+    assert_eq!(rows.len(), 3);
+    assert!((rows[1][0] - 200.0 * 2f64.sqrt()).abs() < 1e-6, "{rows:?}");
+    assert!(status.iter().all(|s| s == "converged"), "{status:?}\n{log}");
+    // The deck's *NODE PRINT, NSET=TIP, U: one column pair per component of the node.
+    for c in 1..=3 {
+        assert!(
+            header
+                .iter()
+                .any(|h| h.starts_with("TIP_") && h.ends_with(&format!("_u{c}_amp_mm"))),
+            "{header:?}"
+        );
+    }
+    let scene = d.join("from-deck.toml");
+    std::fs::write(
+        &scene,
+        "title = \"the stack deck\"\nmodel = \"stack.inp\"\n[units]\nlength = \"mm\"\nforce = \"N\"\ntime = \"s\"\nmass = \"t\"\n",
+    )
+    .unwrap();
+    let out2 = d.join("scene-out");
+    let (code, log) = jointlin(&[
+        "run",
+        scene.to_str().unwrap(),
+        "--out",
+        out2.to_str().unwrap(),
+        "--quiet",
+        "--no-plots",
+    ]);
+    assert_eq!(code, 0, "{log}");
+    let (header2, rows2, _) = results(&out2.join("results.csv"));
+    assert_eq!(header, header2);
+    for (a, b) in rows.iter().flatten().zip(rows2.iter().flatten()) {
+        assert!((a - b).abs() <= 1e-9 * a.abs().max(1e-300), "{a} vs {b}");
+    }
+    // The scene's own output on a deck set: the top layer's elements (set L3), the node
+    // nearest its tip corner, which is TIP's node: the same numbers as TIP's z column.
+    let scene3 = d.join("own-output.toml");
+    std::fs::write(
+        &scene3,
+        "model = \"stack.inp\"\n[units]\nlength = \"mm\"\nforce = \"N\"\ntime = \"s\"\nmass = \"t\"\n[[outputs]]\nname = \"tip_z\"\nbody = \"L3\"\nat = [100.0, 0.0, 6.0]\ndirection = [0.0, 0.0, 1.0]\n",
+    )
+    .unwrap();
+    let out3 = d.join("own-out");
+    let (code, log) = jointlin(&[
+        "run",
+        scene3.to_str().unwrap(),
+        "--out",
+        out3.to_str().unwrap(),
+        "--quiet",
+        "--no-plots",
+    ]);
+    assert_eq!(code, 0, "{log}");
+    let (header3, rows3, _) = results(&out3.join("results.csv"));
+    assert_eq!(header3[1], "tip_z_amp_mm");
+    let z = header
+        .iter()
+        .position(|h| h.ends_with("_u3_amp_mm"))
+        .unwrap();
+    for (a, b) in rows.iter().zip(&rows3) {
+        assert!((a[z] - b[1]).abs() <= 1e-9 * a[z].abs(), "{a:?} vs {b:?}");
+    }
+    // The modes of the same deck: its *FREQUENCY step asks for 2.
+    let (code, log) = jointlin(&["modes", deck.to_str().unwrap()]);
+    assert_eq!(code, 0, "{log}");
+    assert!(log.contains("2 mode(s), as asked"), "{log}");
+    let _ = std::fs::remove_dir_all(&d);
+}
+
+#[test]
+fn decks_a_run_cannot_honour_are_named_errors_with_their_line() {
+    let d = dir("bad");
+    let base = contact_deck();
+    let line_of =
+        |text: &str, pat: &str| text.lines().position(|l| l.starts_with(pat)).unwrap() + 1;
+    let cases: Vec<(&str, String, &str, &str)> = vec![
+        (
+            "no-props.inp",
+            base.replace(
+                "PROPERTIES=7\n1.\n1, 0, 3e-1, 1e5, 0, 1e6, 0",
+                "PROPERTIES=0\n1.",
+            ),
+            "*CONTACT PAIR",
+            "needs USER, PROPERTIES >= 7",
+        ),
+        (
+            "moving.inp",
+            base.replace("CLAMP, ENCASTRE", "CLAMP, 1, 3, 0.1"),
+            "*BOUNDARY",
+            "prescribed displacement 0.1",
+        ),
+        (
+            "freq-load.inp",
+            base.replace("*FREQUENCY\n2\n", "*FREQUENCY\n2\n*CLOAD\nTIP, 3, 1.\n"),
+            "*FREQUENCY",
+            "loads in a frequency step",
+        ),
+    ];
+    for (name, text, keyword, msg) in cases {
+        assert_ne!(text, base, "{name}: the case did not change the deck");
+        let path = d.join(name);
+        std::fs::write(&path, &text).unwrap();
+        let (code, log) = jointlin(&[
+            "run",
+            path.to_str().unwrap(),
+            "--out",
+            d.join("out").to_str().unwrap(),
+            "--quiet",
+        ]);
+        assert_eq!(code, 2, "{name}: {log}");
+        let card = match keyword {
+            "*FREQUENCY" => "*CLOAD",
+            "*CONTACT PAIR" => "*CONTACT PAIR",
+            k => k,
+        };
+        let line = line_of(&text, card);
+        let want = format!("{name}:{line}: {keyword}: ");
+        assert!(
+            log.contains(&want) && log.contains(msg),
+            "{name}: want `{want}…{msg}` in\n{log}"
+        );
+        assert!(!d.join("out").join("results.csv").exists());
+        let (code, log) = jointlin(&["modes", path.to_str().unwrap()]);
+        assert!(code == 2 && log.contains(&want), "{name}: modes: {log}");
+    }
+    // A scene with `model` may not have its own bodies.
+    std::fs::write(d.join("stack.inp"), &base).unwrap();
+    let scene = d.join("bodies.toml");
+    std::fs::write(
+        &scene,
+        "model = \"stack.inp\"\n[units]\nlength = \"mm\"\nforce = \"N\"\ntime = \"s\"\nmass = \"t\"\n[[bodies]]\nname = \"b\"\nkind = \"mass\"\nposition = [0.0, 0.0, 0.0]\nmass = 1.0\n",
+    )
+    .unwrap();
+    let (code, log) = jointlin(&["check", scene.to_str().unwrap()]);
+    assert_eq!(code, 2, "{log}");
+    assert!(
+        log.contains("bodies.toml:7:") && log.contains("not allowed with `model`"),
+        "{log}"
+    );
+    let _ = std::fs::remove_dir_all(&d);
+}
