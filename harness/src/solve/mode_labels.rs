@@ -10,7 +10,9 @@
 //! - **kind shares**: the body's axis a is the direction of the model's largest extent;
 //!   the nodes fall into cross-sections (planes across a, one per axial node coordinate:
 //!   box meshes). Per section a rigid motion is fitted to the nodal displacements
-//!   (weights: lumped masses, the row sums of M) and the lumped kinetic energy
+//!   (weights: lumped masses by diagonal scaling, HRZ: w ∝ M_ii, positive for every
+//!   element — row sums are not: a C3D10's corner rows sum to less than zero) and the
+//!   lumped kinetic energy
 //!   Σ wᵢ |uᵢ|² splits exactly (the parts are orthogonal in the weighted norm, with
 //!   coordinates s taken from the section's mass centre) into
 //!   longitudinal (the mean axial displacement), bending (the mean transverse
@@ -115,12 +117,25 @@ fn clip<const N: usize>(v: [f64; N], scale: [f64; N]) -> [f64; N] {
     })
 }
 
+/// Diagonal-scaled (HRZ) lumped masses of `m`: M_ii scaled so that they add up to the
+/// row sums' total (the free mass); positive whenever the diagonal is.
+fn hrz_lumped(m: &Csc<f64>) -> Vec<f64> {
+    let p = &m.pattern;
+    let diag: Vec<f64> = (0..p.n)
+        .map(|i| p.find(i, i).map_or(0.0, |k| m.values[k]))
+        .collect();
+    let total: f64 = m.mul_vec(&vec![1.0; p.n]).iter().sum();
+    let sum: f64 = diag.iter().sum();
+    let scale = if sum > 0.0 { total / sum } else { 0.0 };
+    diag.iter().map(|d| d * scale).collect()
+}
+
 impl ModeGeometry {
     /// `positions` per node (length), `dofs` the free-DOF map, `m` the mass matrix on
     /// the free DOFs.
     pub fn new(positions: &[[f64; 3]], dofs: &DofMap, m: &Csc<f64>) -> Self {
         let n_free = dofs.n_free();
-        let lumped = m.mul_vec(&vec![1.0; n_free]);
+        let lumped = hrz_lumped(m);
         let dof_comp: Vec<usize> = (0..n_free).map(|f| dofs.full(f) % 3).collect();
         let dof_pos: Vec<[f64; 3]> = (0..n_free).map(|f| positions[dofs.full(f) / 3]).collect();
         let mut nodes = Vec::new();
