@@ -67,7 +67,8 @@ pub fn main(a: Args) -> ExitCode {
     it.harmonics = a.harmonics.or(it.harmonics);
     it.samples = a.samples.or(it.samples);
     // The overrides are checked by the scene's own rules.
-    if let Some((key, msg)) = validate::validate(&s.spec).into_iter().next() {
+    let size = || validate::size::check(&s.spec);
+    if let Some((key, msg)) = validate::validate(&s.spec).into_iter().next().or_else(size) {
         eprintln!(
             "error: {}: with the command-line overrides, `{key}`: {msg}",
             s.file

@@ -5,6 +5,7 @@ mod bodies;
 mod contact;
 mod loads;
 mod lumped;
+pub mod size;
 mod study;
 
 use std::collections::BTreeMap;
