@@ -8,7 +8,7 @@ use clap::ValueEnum;
 
 use jointlin_harness::input::scene::{validate, Mode, Scene};
 use jointlin_harness::report::{self, ReportOptions};
-use jointlin_harness::run::{run, Extras};
+use jointlin_harness::run::{run, Extras, RunError};
 use jointlin_harness::util::progress::progress_bar;
 
 use super::{load_scene, report_written};
@@ -99,6 +99,11 @@ pub fn main(a: Args) -> ExitCode {
     pb.finish_and_clear();
     let r = match r {
         Ok(r) => r,
+        // A model that cannot be built is the scene's fault: its location, as `check`.
+        Err(RunError::Build(e)) => {
+            eprintln!("error: {}", jointlin_harness::model::locate(&s, &e));
+            return ExitCode::from(2);
+        }
         Err(e) => {
             eprintln!("error: {e}");
             return ExitCode::from(1);

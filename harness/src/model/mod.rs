@@ -7,10 +7,12 @@
 //! its lower side.
 
 mod build;
+mod locate;
 pub mod lumped;
 pub mod subgrid;
 
 pub use build::build;
+pub use locate::locate;
 
 /// The one [`Problem`] of an input, whatever its format: a scene through [`build`].
 pub fn problem(input: &Input) -> Result<Problem, BuildError> {

@@ -4,6 +4,10 @@ use super::{Checker, GROUND};
 use crate::input::scene::error::KeyPath;
 use crate::input::scene::schema::*;
 
+/// Largest constrained modulus (force/length²) a material may have: its products with
+/// element sizes and integration weights stay finite for sizes within 1e±100.
+pub const MAX_MODULUS: f64 = 1e200;
+
 /// Every material's constants.
 pub(super) fn materials(c: &mut Checker, s: &SceneFile) {
     let root = KeyPath::root();
@@ -12,6 +16,15 @@ pub(super) fn materials(c: &mut Checker, s: &SceneFile) {
         c.positive(p.key("E"), m.e);
         if c.finite(p.key("nu"), m.nu) && !(m.nu > -1.0 && m.nu < 0.5) {
             c.fail(p.key("nu"), format!("must be in (-1, 0.5), got {}", m.nu));
+        }
+        // The constrained modulus E(1 − ν)/((1 + ν)(1 − 2ν)) enters every stiffness
+        // entry times element sizes: beyond MAX_MODULUS the element matrices overflow.
+        let modulus = m.e * (1.0 - m.nu) / ((1.0 + m.nu) * (1.0 - 2.0 * m.nu));
+        if m.e.is_finite() && m.e > 0.0 && (modulus.is_nan() || modulus > MAX_MODULUS) {
+            c.fail(
+                p.key("E"),
+                format!("E(1 − ν)/((1 + ν)(1 − 2ν)) = {modulus:e} exceeds {MAX_MODULUS:e}: the element stiffness would overflow"),
+            );
         }
         c.non_negative(p.key("rho"), m.rho);
         c.non_negative(p.key("rayleigh_alpha"), m.rayleigh_alpha);

@@ -3,6 +3,7 @@
 
 mod bodies;
 mod contact;
+mod geometry;
 mod loads;
 mod lumped;
 pub mod size;
@@ -107,6 +108,10 @@ pub fn validate(s: &SceneFile) -> Vec<Problem> {
     contact::interfaces(&mut c, s);
     contact::ties(&mut c, s);
     contact::screws(&mut c, s);
+    if c.problems.is_empty() {
+        geometry::interfaces(&mut c, s);
+        geometry::ties(&mut c, s);
+    }
     loads::preload(&mut c, s);
     loads::clamp(&mut c, s);
     lumped::joints(&mut c, s);
@@ -116,6 +121,7 @@ pub fn validate(s: &SceneFile) -> Vec<Problem> {
     study::iteration(&mut c, s);
     study::outputs(&mut c, s);
     study::loss_study(&mut c, s);
+    study::time_domain(&mut c, s);
     c.problems
 }
 

@@ -6,6 +6,7 @@ use std::collections::BTreeSet;
 use super::{Checker, MAX_HARMONICS, MAX_SAMPLES};
 use crate::input::scene::error::KeyPath;
 use crate::input::scene::schema::*;
+use crate::input::scene::studies::*;
 
 /// The sweep's range and its refine bands.
 pub(super) fn sweep(c: &mut Checker, s: &SceneFile) {
@@ -171,5 +172,43 @@ fn harmonic_balance(c: &mut Checker, s: &SceneFile) {
     }
     if !s.effects.contact_damping {
         c.fail(eff.key("contact_damping"), why);
+    }
+}
+
+/// The `[time_domain]` table: the ranges `time::TimeSettings::check` enforces, here with
+/// the key (the defaults stand in for keys not given).
+pub(super) fn time_domain(c: &mut Checker, s: &SceneFile) {
+    let Some(t) = &s.time_domain else { return };
+    let p = KeyPath::root().key("time_domain");
+    if let Some(n) = t.steps_per_cycle {
+        if !(MIN_STEPS_PER_CYCLE..=MAX_STEPS_PER_CYCLE).contains(&n) {
+            c.fail(
+                p.key("steps_per_cycle"),
+                format!("must be in {MIN_STEPS_PER_CYCLE}..={MAX_STEPS_PER_CYCLE}, got {n}"),
+            );
+        }
+    }
+    if let Some(r) = t.ramp_cycles {
+        c.non_negative(p.key("ramp_cycles"), r);
+    }
+    if let Some(v) = t.tolerance {
+        if !(v.is_finite() && (0.0..1.0).contains(&v)) {
+            c.fail(p.key("tolerance"), format!("must be in [0, 1), got {v}"));
+        }
+    }
+    let min = t.min_cycles.unwrap_or(DEFAULT_MIN_CYCLES);
+    let max = t.max_cycles.unwrap_or(DEFAULT_MAX_CYCLES);
+    if max < 2 {
+        c.fail(p.key("max_cycles"), format!("must be >= 2, got {max}"));
+    } else if min > max {
+        let (key, other) = if t.max_cycles.is_some() {
+            ("max_cycles", "min_cycles")
+        } else {
+            ("min_cycles", "max_cycles")
+        };
+        c.fail(
+            p.key(key),
+            format!("{other} = {min} exceeds max_cycles = {max}: need min_cycles <= max_cycles"),
+        );
     }
 }
