@@ -17,9 +17,9 @@ const MATRIX_BYTES_PER_DOF: f64 = 4000.0;
 /// Bytes per estimated entry of the sparse LU factors ([`factor_entries`]): fitted to
 /// the peak memory of `jointlin run` on two bodies in contact (4 320 and 29 376 DOFs:
 /// 0.10 and 1.56 GB) and three beams (13 608 DOFs: 0.36 GB); with the DOF term the
-/// estimate is 1.1–1.6 × the measured peak (UMFPACK's real fill exceeds the nested
-/// dissection count, and the static and complex factors, the FGMRES basis and the
-/// contact blocks come with it).
+/// estimate is 1.1–1.7 × the measured peak (2.4 × on the knife's 824 DOFs). UMFPACK's
+/// real fill exceeds the nested dissection count, and the static and complex factors,
+/// the FGMRES basis and the contact blocks come with it.
 const FACTOR_BYTES_PER_ENTRY: f64 = 2000.0;
 /// Bytes kept per frequency and contact point (point results: amplitudes, k*, d*,
 /// energy and ratio per direction).
