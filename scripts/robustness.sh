@@ -2,7 +2,8 @@
 # Robustness checks (docs/robustness.md says what each one proves).
 #
 #   bash scripts/robustness.sh ci          # what CI runs: tests + asan + valgrind + fuzz-ci
-#   bash scripts/robustness.sh tests       # tests/hard_cases.rs, threads.rs, restart.rs (release)
+#   bash scripts/robustness.sh tests       # tests/hard_cases.rs, threads.rs, restart.rs, …;
+#                                          # harness/tests/size_limits.rs, check_finds.rs
 #   bash scripts/robustness.sh asan        # C/Fortran hosts + threaded C host, ASan+UBSan
 #   bash scripts/robustness.sh valgrind    # memcheck of the threaded C host (the single-
 #                                          # threaded hosts: cargo test --test hosts)
@@ -27,7 +28,7 @@ ROOT=$PWD
 TARGET=${CARGO_TARGET_DIR:-$ROOT/target}
 OUT=${ROBUST_DIR:-$TARGET/robustness}
 mkdir -p "$OUT"
-TARGETS=(jointlin_linearize jointlin_uinter jointlin_uexternaldb)
+TARGETS=(jointlin_linearize jointlin_uinter jointlin_uexternaldb scene_check)
 
 log() { printf '== %s\n' "$*"; }
 
@@ -69,6 +70,9 @@ cmd_tests() {
     log "tests: hard_cases, whole_range, threads, restart, restart_files, store_scale (release)"
     CARGO_TARGET_DIR=$TARGET cargo test --release -p jointlin --test hard_cases \
         --test whole_range --test threads --test restart --test restart_files --test store_scale
+    log "tests: scene size limits, check finds what run finds (release)"
+    CARGO_TARGET_DIR=$TARGET cargo test --release -p jointlin-harness --test size_limits \
+        --test check_finds
 }
 
 # The hosts built with gcc/gfortran -fsanitize=address,undefined against a

@@ -412,3 +412,22 @@ fn bad_knife_scenes_name_file_line_and_key() {
         );
     }
 }
+
+/// `jointlin loss` with amplitudes 3 and 4 µm at 2500 N·mm: the 3 µm level started from
+/// 0.9 × the 4 µm scale, and the secant cycled between three scales where the amplitude
+/// (iterated to the scene's tolerance 1e-3) jumps by 9.5e-4 ("amplitude level did not
+/// converge at 31819.9 Hz"). Now bracketed and bisected: each level within the scene's
+/// iteration tolerance.
+#[test]
+fn loss_levels_at_three_and_four_microns_converge_at_2500_nmm() {
+    let mut s = coarse();
+    let st = s.spec.loss_study.as_mut().unwrap();
+    st.amplitudes = vec![0.003, 0.004];
+    st.torques = vec![2500.0];
+    let r = loss::run_study(&s, &|_| {}).unwrap();
+    let tol = s.spec.iteration.tolerance;
+    for (sample, a) in r.curves[0].1.iter().zip([0.003, 0.004]) {
+        let e = (sample.amplitude / a).ln().abs();
+        assert!(e <= tol, "{a} mm: |ln(a/target)| = {e}");
+    }
+}

@@ -1,4 +1,5 @@
-//! `jointlin check SCENE|DECK.inp`: validates a scene, or reads an Abaqus-format deck and
+//! `jointlin check SCENE|DECK.inp`: validates a scene and builds its model (so that
+//! every error a run meets before its first solve is found here), or reads an Abaqus-format deck and
 //! pairs its contact surfaces, and prints a summary.
 
 use std::path::{Path, PathBuf};
@@ -6,6 +7,7 @@ use std::process::ExitCode;
 
 use super::load_scene;
 use jointlin_harness::input::{deck, format_of, Format};
+use jointlin_harness::model;
 
 // The command's help is the doc comment of `Command::Check`.
 #[derive(clap::Args)]
@@ -21,6 +23,24 @@ pub fn main(a: Args) -> ExitCode {
         Ok(s) => s,
         Err(code) => return code,
     };
+    // What only the model build finds (contact faces whose nodes do not match, ties
+    // between non-conforming meshes), with the scene's location; lumped scenes with
+    // [[joints]] are `jointlin backbone`'s and have no FE model.
+    let lumped = !s.spec.joints.is_empty() || s.spec.springs.iter().any(|sp| sp.between.is_some());
+    if !lumped {
+        match model::build(&s) {
+            // A deck (a scene's `model`) names its own file:line.
+            Err(model::BuildError::Deck(e)) => {
+                eprintln!("error: {e}");
+                return ExitCode::from(2);
+            }
+            Err(e) => {
+                eprintln!("error: {}", model::locate(&s, &e));
+                return ExitCode::from(2);
+            }
+            Ok(_) => {}
+        }
+    }
     println!(
         "{}: ok — {} bodies, {} interfaces, {} frequencies ({} to {}), mode {:?}",
         s.file,

@@ -68,7 +68,8 @@ pub fn main(a: Args) -> ExitCode {
     it.harmonics = a.harmonics.or(it.harmonics);
     it.samples = a.samples.or(it.samples);
     // The overrides are checked by the scene's own rules.
-    if let Some((key, msg)) = validate::validate(&s.spec).into_iter().next() {
+    let size = || validate::size::check(&s.spec);
+    if let Some((key, msg)) = validate::validate(&s.spec).into_iter().next().or_else(size) {
         eprintln!(
             "error: {}: with the command-line overrides, `{key}`: {msg}",
             s.file
@@ -106,11 +107,19 @@ pub fn main(a: Args) -> ExitCode {
     pb.finish_and_clear();
     let r = match r {
         Ok(r) => r,
+        // A deck the build cannot honour: its own file:line.
+        Err(RunError::Build(BuildError::Deck(e))) => {
+            eprintln!("error: {e}");
+            return ExitCode::from(2);
+        }
+        // A model that cannot be built is the scene's fault: its location, as `check`.
+        Err(RunError::Build(e)) => {
+            eprintln!("error: {}", jointlin_harness::model::locate(&s, &e));
+            return ExitCode::from(2);
+        }
         Err(e) => {
             eprintln!("error: {e}");
-            // A deck the build cannot honour is an input error.
-            let input = matches!(e, RunError::Build(BuildError::Deck(_)));
-            return ExitCode::from(if input { 2 } else { 1 });
+            return ExitCode::from(1);
         }
     };
     for w in &r.problem.warnings {

@@ -10,6 +10,7 @@
 //! (E_cycle per point from the library's linearization, `share` the modelled fraction
 //! of the structure: 0.5 for a half model).
 
+pub mod level;
 pub mod maps;
 pub mod mesh;
 pub mod plot;
@@ -45,9 +46,7 @@ pub enum LossError {
 /// Golden-section steps of the resonance search (interval × 0.618 each: 16 steps take a
 /// sweep step of 250 Hz below 0.1 Hz, far inside the joint-damped half-power width).
 const GOLDEN_STEPS: usize = 16;
-/// Relative tolerance on the output amplitude when setting the excitation.
-pub const LEVEL_TOL: f64 = 1e-4;
-const MAX_LEVEL_STEPS: usize = 30;
+pub use level::LEVEL_TOL;
 /// Most secant steps of the k_T0 calibration (6 reached 0.2 % on the knife).
 const CALIBRATION_STEPS: usize = 12;
 /// The calibration stops at |ln(P/P_ref)| below this (0.2 %).
@@ -184,30 +183,11 @@ impl Operating {
     }
 
     /// The excitation scale at which the output amplitude at `freq` is `target`
-    /// (within [`LEVEL_TOL`]), from the estimate `scale`: secant steps on ln a(ln s),
-    /// which is a straight line of slope 1 for a linear joint.
+    /// (within [`LEVEL_TOL`], or within the scene's iteration tolerance where the
+    /// amplitude jumps across the target), from the estimate `scale`: [`level::search`].
     pub fn level(&mut self, freq: f64, target: f64, scale: f64) -> Result<Sample, LossError> {
-        let mut s = self.solve(freq, scale)?;
-        let mut prev: Option<(f64, f64)> = None;
-        for _ in 0..MAX_LEVEL_STEPS {
-            let err = (s.amplitude / target).ln();
-            if err.abs() <= LEVEL_TOL {
-                return Ok(s);
-            }
-            let slope = match prev {
-                Some((ls, le)) if (s.scale.ln() - ls).abs() > 1e-12 => {
-                    ((err - le) / (s.scale.ln() - ls)).clamp(0.2, 5.0)
-                }
-                _ => 1.0,
-            };
-            prev = Some((s.scale.ln(), err));
-            let next = (s.scale.ln() - err / slope).exp();
-            s = self.solve(freq, next)?;
-        }
-        Err(LossError::NotConverged {
-            what: "amplitude level",
-            freq,
-        })
+        let accept = self.opts.iteration.tolerance;
+        level::search(freq, target, scale, accept, &mut |s| self.solve(freq, s))
     }
 }
 

@@ -8,10 +8,12 @@
 
 mod build;
 pub mod deck;
+mod locate;
 pub mod lumped;
 pub mod subgrid;
 
 pub use build::build;
+pub use locate::locate;
 
 /// The one [`Problem`] of an input, whatever its format: a scene through [`build`], a
 /// deck (or a scene with `model`) through [`deck::build`].

@@ -15,6 +15,9 @@
 use serde::Serialize;
 
 pub use crate::input::scene::{Integrator, Start, TimeDomainSpec};
+use crate::input::scene::{
+    DEFAULT_MAX_CYCLES, DEFAULT_MIN_CYCLES, MAX_STEPS_PER_CYCLE, MIN_STEPS_PER_CYCLE,
+};
 
 /// Largest model (free DOFs) for which `auto` picks RK4.
 pub const AUTO_RK4_MAX_DOFS: usize = 12;
@@ -46,8 +49,8 @@ impl Default for TimeSettings {
             ramp_cycles: 2.0,
             start: Start::Rest,
             tolerance: 1e-5,
-            min_cycles: 3,
-            max_cycles: 2000,
+            min_cycles: DEFAULT_MIN_CYCLES,
+            max_cycles: DEFAULT_MAX_CYCLES,
             newton_tolerance: 1e-10,
         }
     }
@@ -83,9 +86,9 @@ impl TimeSettings {
 
     /// Range checks.
     pub fn check(&self) -> Result<(), String> {
-        if self.steps_per_cycle < 8 {
+        if !(MIN_STEPS_PER_CYCLE..=MAX_STEPS_PER_CYCLE).contains(&self.steps_per_cycle) {
             return Err(format!(
-                "time_domain.steps_per_cycle must be at least 8, got {}",
+                "time_domain.steps_per_cycle must be in {MIN_STEPS_PER_CYCLE}..={MAX_STEPS_PER_CYCLE}, got {}",
                 self.steps_per_cycle
             ));
         }

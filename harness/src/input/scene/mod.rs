@@ -1,8 +1,9 @@
 //! Scenes: TOML files that describe a study (geometry, materials, contact interfaces,
 //! preload, excitation, sweep, iteration, outputs and the `[effects]` switches).
 //!
-//! [`Scene::load`] reads and validates; any problem is a [`SceneError`] naming the file,
-//! line, column and key. The schema with units is in [`schema`].
+//! [`Scene::load`] reads and validates (and refuses a scene whose run would need more
+//! memory than the machine has, `validate::size`); any problem is a [`SceneError`]
+//! naming the file, line, column and key. The schema with units is in [`schema`].
 
 pub mod error;
 pub mod model_file;
@@ -50,7 +51,8 @@ impl Scene {
     /// Parses and validates scene text; `file` names it in errors.
     pub fn parse(file: &str, text: &str) -> Result<Scene, SceneError> {
         let spec: SceneFile = toml::from_str(text).map_err(|e| error::from_toml(file, text, &e))?;
-        if let Some((path, msg)) = validate::validate(&spec).into_iter().next() {
+        let size = || validate::size::check(&spec);
+        if let Some((path, msg)) = validate::validate(&spec).into_iter().next().or_else(size) {
             return Err(error::at_path(file, text, &path, msg));
         }
         Ok(Scene {

@@ -78,6 +78,14 @@ pub enum Start {
     Linear,
 }
 
+/// Periods run at least and at most per frequency when `[time_domain]` does not say.
+pub const DEFAULT_MIN_CYCLES: usize = 3;
+pub const DEFAULT_MAX_CYCLES: usize = 2000;
+/// Time steps per forcing period: at least 8 (the periodicity test's harmonics), at
+/// most 2^20 (beyond any accuracy the steps could buy; bounds each period's work).
+pub const MIN_STEPS_PER_CYCLE: usize = 8;
+pub const MAX_STEPS_PER_CYCLE: usize = 1 << 20;
+
 /// The scene's `[time_domain]` table (all keys optional).
 #[derive(Debug, Clone, Copy, Deserialize, Serialize, PartialEq, Default)]
 #[serde(deny_unknown_fields)]

@@ -1,0 +1,148 @@
+//! Validation of a deserialized scene: every check names the key it is about. One file
+//! per subject; [`validate`] runs them in the order of the scene's tables.
+
+mod bodies;
+mod contact;
+mod geometry;
+mod loads;
+mod lumped;
+pub mod size;
+mod study;
+
+use std::collections::BTreeMap;
+
+use super::error::KeyPath;
+use super::schema::*;
+
+/// A failed check: where and why.
+pub type Problem = (KeyPath, String);
+
+/// Name of the implicit fixed body a mass body can rest on.
+pub const GROUND: &str = "ground";
+
+/// The problems found so far, and the body kinds by name (filled by the bodies' check).
+struct Checker {
+    problems: Vec<Problem>,
+    kinds: BTreeMap<String, BodyKind>,
+}
+
+impl Checker {
+    /// The kind of a named body, if it exists.
+    fn kind(&self, name: &str) -> Option<BodyKind> {
+        self.kinds.get(name).copied()
+    }
+
+    /// The kind of a body named at `path`; a problem if there is none of that name.
+    fn body(&mut self, path: KeyPath, name: &str) -> Option<BodyKind> {
+        let k = self.kind(name);
+        if k.is_none() {
+            self.fail(path, format!("unknown body `{name}`"));
+        }
+        k
+    }
+
+    fn fail(&mut self, path: KeyPath, msg: impl Into<String>) {
+        self.problems.push((path, msg.into()));
+    }
+
+    fn finite(&mut self, path: KeyPath, v: f64) -> bool {
+        if v.is_finite() {
+            true
+        } else {
+            self.fail(path, format!("must be finite, got {v}"));
+            false
+        }
+    }
+
+    fn positive(&mut self, path: KeyPath, v: f64) {
+        if self.finite(path.clone(), v) && v <= 0.0 {
+            self.fail(path, format!("must be > 0, got {v}"));
+        }
+    }
+
+    fn non_negative(&mut self, path: KeyPath, v: f64) {
+        if self.finite(path.clone(), v) && v < 0.0 {
+            self.fail(path, format!("must be >= 0, got {v}"));
+        }
+    }
+
+    fn vec3(&mut self, path: KeyPath, v: &[f64; 3]) {
+        for (i, x) in v.iter().enumerate() {
+            self.finite(path.index(i), *x);
+        }
+    }
+
+    fn direction(&mut self, path: KeyPath, v: &[f64; 3]) {
+        self.vec3(path.clone(), v);
+        let n = v.iter().map(|x| x * x).sum::<f64>().sqrt();
+        if !(n > 0.0 && n.is_finite()) {
+            self.fail(path, "direction must be a nonzero vector");
+        }
+    }
+
+    fn require<T>(&mut self, path: KeyPath, v: &Option<T>, why: &str) -> bool {
+        if v.is_none() {
+            self.fail(path, format!("missing: required {why}"));
+            false
+        } else {
+            true
+        }
+    }
+
+    fn forbid<T>(&mut self, path: KeyPath, v: &Option<T>, why: &str) {
+        if v.is_some() {
+            self.fail(path, format!("not allowed {why}"));
+        }
+    }
+}
+
+/// Checks a scene; returns every problem found, in file order of the tables.
+pub fn validate(s: &SceneFile) -> Vec<Problem> {
+    let mut c = Checker {
+        problems: Vec::new(),
+        kinds: BTreeMap::new(),
+    };
+    units(&mut c, s);
+    bodies::materials(&mut c, s);
+    bodies::bodies(&mut c, s);
+    contact::interfaces(&mut c, s);
+    contact::ties(&mut c, s);
+    contact::screws(&mut c, s);
+    if c.problems.is_empty() {
+        geometry::interfaces(&mut c, s);
+        geometry::ties(&mut c, s);
+    }
+    loads::preload(&mut c, s);
+    loads::clamp(&mut c, s);
+    lumped::joints(&mut c, s);
+    lumped::springs(&mut c, s);
+    loads::excitation(&mut c, s);
+    study::sweep(&mut c, s);
+    study::iteration(&mut c, s);
+    study::outputs(&mut c, s);
+    study::loss_study(&mut c, s);
+    study::time_domain(&mut c, s);
+    super::model_file::adjust(s, c.problems)
+}
+
+/// Unit names are not empty.
+fn units(c: &mut Checker, s: &SceneFile) {
+    let u = KeyPath::root().key("units");
+    for (k, v) in [
+        ("length", &s.units.length),
+        ("force", &s.units.force),
+        ("time", &s.units.time),
+        ("mass", &s.units.mass),
+    ] {
+        if v.trim().is_empty() {
+            c.fail(u.key(k), "unit name must not be empty");
+        }
+    }
+}
+
+/// Most harmonics and samples per period a scene may ask for (H = 64 is far past where
+/// the rungs have converged on any scene here; N bounds the march's memory and time).
+pub const MAX_HARMONICS: usize = 64;
+/// Most sub-grid samples per quarter face and direction (`area_samples`).
+pub const MAX_AREA_SAMPLES: usize = 32;
+pub const MAX_SAMPLES: usize = 1 << 16;

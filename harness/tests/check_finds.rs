@@ -1,0 +1,208 @@
+//! `jointlin check` finds what `jointlin run` finds before its first solve: geometry
+//! (an interface's boxes apart, overlapping, listed the wrong way round, without a
+//! common footprint, with faces whose nodes do not match; a tie between non-conforming
+//! meshes or between boxes that do not touch) and physics (E = 1e308, the
+//! `[time_domain]` table's ranges). Each case: `check` exits 2 naming `file:line:1` and
+//! the key; `run` exits 2 with the same message and writes nothing.
+//!
+//! Before: each passed `check` and failed `run` without a location (E = 1e308 blamed a
+//! "hex8 Jacobian determinant 12.5 <= 0").
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+/// The upper box of scenes/hard/stiffness-ratio.toml (the lower one is the same at z = 0).
+const UPPER: &str = "origin = [0.0, 0.0, 2.0]\nsize = [40.0, 10.0, 2.0]\ndivisions = [4, 2, 1]";
+const TIE: &str = "[[ties]]\nbetween = [\"lower\", \"upper\"]\n\n";
+
+/// scenes/hard/stiffness-ratio.toml with `edits` applied, in a fresh directory.
+fn scene(name: &str, edits: &[(&str, &str)]) -> PathBuf {
+    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes/hard/stiffness-ratio.toml");
+    let mut text = std::fs::read_to_string(src).unwrap();
+    for (from, to) in edits {
+        assert!(text.contains(from), "{from}");
+        text = text.replacen(from, to, 1);
+    }
+    let dir = std::env::temp_dir().join(format!("jointlin-check-{}-{name}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("scene.toml");
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
+/// The 1-based line of the first line of `path` that starts with `start`.
+fn line_of(path: &Path, start: &str) -> usize {
+    let text = std::fs::read_to_string(path).unwrap();
+    text.lines().position(|l| l.starts_with(start)).unwrap() + 1
+}
+
+/// `check` and `run` (with `run_args`) exit 2 with `file:line:1: key `key`: …`
+/// containing `says`, the same message from both; `run` writes no results.
+fn found(path: &Path, line: usize, key: &str, says: &str, run_args: &[&str]) {
+    let p = path.to_str().unwrap();
+    let out_dir = path.with_file_name("out");
+    let mut messages = Vec::new();
+    let mut run = vec!["run", p, "--out", out_dir.to_str().unwrap(), "--quiet"];
+    run.extend_from_slice(run_args);
+    for args in [vec!["check", p], run] {
+        let out = Command::new(env!("CARGO_BIN_EXE_jointlin"))
+            .args(&args)
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&out.stderr).to_string();
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+        let head = format!("error: {p}:{line}:1: key `{key}`: ");
+        assert!(err.starts_with(&head), "{args:?}: want {head}, got {err}");
+        assert!(err.contains(says), "{args:?}: {err}");
+        messages.push(err);
+    }
+    assert_eq!(messages[0], messages[1]);
+    assert!(!out_dir.join("results.csv").exists());
+}
+
+#[test]
+fn an_interface_with_a_gap_is_found_by_check() {
+    let p = scene(
+        "gap",
+        &[("origin = [0.0, 0.0, 2.0]", "origin = [0.0, 0.0, 2.5]")],
+    );
+    found(
+        &p,
+        line_of(&p, "between"),
+        "interfaces[0].between",
+        "a gap of 0.5",
+        &[],
+    );
+}
+
+#[test]
+fn overlapping_interface_bodies_are_found_by_check() {
+    let p = scene(
+        "overlap",
+        &[("origin = [0.0, 0.0, 2.0]", "origin = [0.0, 0.0, 1.0]")],
+    );
+    found(
+        &p,
+        line_of(&p, "between"),
+        "interfaces[0].between",
+        "overlap by 1",
+        &[],
+    );
+}
+
+#[test]
+fn a_reversed_interface_is_found_by_check() {
+    let p = scene(
+        "reversed",
+        &[(
+            "between = [\"lower\", \"upper\"]",
+            "between = [\"upper\", \"lower\"]",
+        )],
+    );
+    found(
+        &p,
+        line_of(&p, "between"),
+        "interfaces[0].between",
+        "reversed",
+        &[],
+    );
+}
+
+#[test]
+fn interface_bodies_side_by_side_are_found_by_check() {
+    let p = scene(
+        "footprint",
+        &[("origin = [0.0, 0.0, 2.0]", "origin = [50.0, 0.0, 2.0]")],
+    );
+    found(
+        &p,
+        line_of(&p, "between"),
+        "interfaces[0].between",
+        "do not overlap in x",
+        &[],
+    );
+}
+
+#[test]
+fn interface_faces_whose_nodes_do_not_match_are_found_by_check() {
+    let finer = UPPER.replace("[4, 2, 1]", "[3, 2, 1]");
+    let p = scene("unmatched", &[(UPPER, &finer)]);
+    found(
+        &p,
+        line_of(&p, "between"),
+        "interfaces[0].between",
+        "no coincident partner",
+        &[],
+    );
+}
+
+#[test]
+fn a_non_conforming_tie_is_found_by_check() {
+    let finer = UPPER.replace("[4, 2, 1]", "[3, 2, 1]");
+    let tie = format!("{TIE}[[interfaces]]");
+    let p = scene("tie", &[(UPPER, &finer), ("[[interfaces]]", &tie)]);
+    found(
+        &p,
+        line_of(&p, "between"),
+        "ties[0].between",
+        "meshes must conform",
+        &[],
+    );
+}
+
+#[test]
+fn a_tie_between_boxes_apart_is_found_by_check() {
+    // The interface joins the boxes; the tie names a third box beside them.
+    let third = "[[bodies]]\nname = \"third\"\nkind = \"box\"\norigin = [0.0, 20.0, 0.0]\nsize = [40.0, 10.0, 2.0]\ndivisions = [4, 2, 1]\nmaterial = \"steel\"\n\n";
+    let tie = format!("{third}[[ties]]\nbetween = [\"lower\", \"third\"]\n\n[[interfaces]]");
+    let p = scene("tiegap", &[("[[interfaces]]", &tie)]);
+    found(
+        &p,
+        line_of(&p, "between"),
+        "ties[0].between",
+        "do not touch",
+        &[],
+    );
+}
+
+#[test]
+fn a_modulus_of_1e308_is_found_by_check() {
+    let p = scene("e308", &[("E = 210000.0", "E = 1e308")]);
+    found(
+        &p,
+        line_of(&p, "E = "),
+        "materials.steel.E",
+        "would overflow",
+        &[],
+    );
+}
+
+#[test]
+fn time_domain_steps_per_cycle_out_of_range_are_found_by_check() {
+    for (n, v) in [("spc2", "2"), ("spc1e12", "1000000000000")] {
+        let with = format!("[time_domain]\nsteps_per_cycle = {v}\n\n[sweep]");
+        let p = scene(n, &[("[sweep]", &with)]);
+        let line = line_of(&p, "steps_per_cycle");
+        found(
+            &p,
+            line,
+            "time_domain.steps_per_cycle",
+            "must be in 8..=",
+            &["--time-domain"],
+        );
+    }
+}
+
+#[test]
+fn time_domain_max_cycles_below_min_cycles_is_found_by_check() {
+    let with = "[time_domain]\nmin_cycles = 10\nmax_cycles = 5\n\n[sweep]";
+    let p = scene("cycles", &[("[sweep]", with)]);
+    let line = line_of(&p, "max_cycles");
+    found(
+        &p,
+        line,
+        "time_domain.max_cycles",
+        "exceeds max_cycles = 5",
+        &["--time-domain"],
+    );
+}

@@ -1,0 +1,130 @@
+//! Scenes too big for the machine: `jointlin check` and `jointlin run` estimate the
+//! memory from the scene's tables before allocating anything and refuse beyond the
+//! available memory (or `JOINTLIN_MAX_MEMORY`) with exit code 2, `file:line:col`, the
+//! key and the estimate — never an abort in an allocation or a panic.
+//!
+//! Before: `count = 1e9` made `check` abort allocating 8 GB of frequencies; `count` near
+//! the largest integer panicked with "capacity overflow" (exit 101).
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+/// scenes/hard/stiffness-ratio.toml (two boxes in contact, 144 DOFs) with `from`
+/// replaced by `to`, written to a fresh directory; the path and the 1-based line of `to`.
+fn scene_with(name: &str, from: &str, to: &str) -> (PathBuf, usize) {
+    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes/hard/stiffness-ratio.toml");
+    let text = std::fs::read_to_string(src).unwrap();
+    assert!(text.contains(from), "{from}");
+    let text = text.replacen(from, to, 1);
+    let line = text.lines().position(|l| l.starts_with(to)).unwrap() + 1;
+    let dir = std::env::temp_dir().join(format!("jointlin-size-{}-{name}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("scene.toml");
+    std::fs::write(&path, text).unwrap();
+    (path, line)
+}
+
+fn jointlin(args: &[&str], limit: Option<&str>) -> Output {
+    let mut c = Command::new(env!("CARGO_BIN_EXE_jointlin"));
+    c.args(args);
+    match limit {
+        Some(l) => c.env("JOINTLIN_MAX_MEMORY", l),
+        None => c.env_remove("JOINTLIN_MAX_MEMORY"),
+    };
+    c.output().unwrap()
+}
+
+/// `check` and `run` both exit 2 naming `file:line:1`, the key and an estimate in GB
+/// above `at_least` GB; `run` writes nothing.
+fn refused(path: &Path, line: usize, key: &str, limit: Option<&str>, at_least: f64) {
+    let p = path.to_str().unwrap();
+    let out_dir = path.with_file_name("out");
+    for args in [
+        vec!["check", p],
+        vec!["run", p, "--out", out_dir.to_str().unwrap()],
+    ] {
+        let out = jointlin(&args, limit);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+        assert!(err.contains(&format!("{p}:{line}:1: key `{key}`")), "{err}");
+        let gb: f64 = err
+            .split("needs about ")
+            .nth(1)
+            .and_then(|r| r.split(" GB").next())
+            .and_then(|g| g.parse().ok())
+            .unwrap_or_else(|| panic!("no estimate in {err}"));
+        assert!(gb >= at_least, "{gb} GB: {err}");
+        assert!(err.contains("JOINTLIN_MAX_MEMORY"), "{err}");
+        assert!(!out_dir.join("results.csv").exists());
+    }
+}
+
+#[test]
+fn a_billion_frequencies_are_refused_at_the_sweep_count() {
+    let (path, line) = scene_with("1e9", "count = 12", "count = 1000000000");
+    // 8 GB of frequencies alone; the results per frequency and contact point more.
+    refused(&path, line, "sweep.count", Some("16G"), 16.0);
+}
+
+#[test]
+fn the_largest_count_is_refused_against_the_machines_memory() {
+    let (path, line) = scene_with("max", "count = 12", "count = 9223372036854775807");
+    refused(&path, line, "sweep.count", None, 1e9);
+}
+
+#[test]
+fn huge_divisions_are_refused_at_the_body() {
+    let (path, line) = scene_with(
+        "div",
+        "divisions = [4, 2, 1]",
+        "divisions = [2000, 2000, 2000]",
+    );
+    refused(&path, line, "bodies[0].divisions", None, 1e3);
+    // Large enough to abort the mesh's allocations on a small machine (1.2e6 DOFs).
+    let (path, line) = scene_with(
+        "div2",
+        "divisions = [4, 2, 1]",
+        "divisions = [200, 100, 20]",
+    );
+    refused(&path, line, "bodies[0].divisions", Some("4G"), 4.0);
+}
+
+#[test]
+fn the_limit_can_be_raised_and_a_bad_limit_is_named() {
+    let (path, _) = scene_with("limit", "count = 12", "count = 13");
+    let p = path.to_str().unwrap();
+    let ok = jointlin(&["check", p], Some("1T"));
+    assert_eq!(
+        ok.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&ok.stderr)
+    );
+    let small = jointlin(&["check", p], Some("1M"));
+    assert_eq!(small.status.code(), Some(2));
+    let bad = jointlin(&["check", p], Some("lots"));
+    let err = String::from_utf8_lossy(&bad.stderr);
+    assert_eq!(bad.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("JOINTLIN_MAX_MEMORY=`lots` is not a size"),
+        "{err}"
+    );
+}
+
+#[test]
+fn every_scene_of_the_repository_passes_against_the_machines_memory() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes");
+    let mut n = 0;
+    for d in [dir.clone(), dir.join("hard")] {
+        for e in std::fs::read_dir(d).unwrap() {
+            let p = e.unwrap().path();
+            if p.extension().is_some_and(|x| x == "toml") {
+                let out = jointlin(&["check", p.to_str().unwrap()], None);
+                let err = String::from_utf8_lossy(&out.stderr);
+                assert_eq!(out.status.code(), Some(0), "{}: {err}", p.display());
+                n += 1;
+            }
+        }
+    }
+    assert!(n >= 15, "{n} scenes");
+}
