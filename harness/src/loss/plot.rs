@@ -80,6 +80,14 @@ pub fn curves(
             )
             .map_err(err)?;
     }
+    // One legend entry for the reference points (their colour is their torque's).
+    if !st.reference.is_empty() {
+        chart
+            .draw_series(std::iter::empty::<Cross<(f64, f64), i32>>())
+            .map_err(err)?
+            .label("reference points (× in the torque's colour)")
+            .legend(|(x, y)| Cross::new((x + 10, y), 5, BLACK.stroke_width(2)));
+    }
     chart
         .configure_series_labels()
         .background_style(WHITE.mix(0.8))
