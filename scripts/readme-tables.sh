@@ -16,6 +16,7 @@ declare -A commands=(
   [backbone_cost]="cargo run --release -q -p jointlin-harness --bin jointlin -- mhb --backbones"
   [three_beams_frf]="cargo run --release -q -p jointlin-harness --bin jointlin -- run scenes/three-beams.toml --out out/three-beams --quiet"
   [duffing_frf]="cargo run --release -q -p jointlin-harness --bin jointlin -- run scenes/duffing.toml --out out/duffing --quiet"
+  [bolted_lap_frf]="cargo run --release -q -p jointlin-harness --bin jointlin -- run examples/deck/bolted-lap.inp --out out/bolted-lap --quiet"
   [deck_stack]="cargo run --release -q -p jointlin-harness --example deck_stack"
 )
 # Plots a block's command writes that the documents show: "from to" pairs. A name with a
@@ -25,6 +26,7 @@ declare -A plots=(
   [tradeoff_block]="out/tradeoff-block/tradeoff.svg docs/accuracy-block.svg"
   [three_beams_frf]="out/three-beams/frf.svg harness/assets/three-beams-frf.svg"
   [duffing_frf]="out/duffing/frf.svg harness/assets/duffing-frf.svg"
+  [bolted_lap_frf]="out/bolted-lap/frf.svg harness/assets/bolted-lap-frf.svg"
 )
 # Blocks whose command prints Markdown (the others are shown as terminal output).
 markdown=" accuracy_table knife knife_mesh tradeoff_beams tradeoff_block backbone_cost deck_stack "
