@@ -198,7 +198,22 @@ fn decks_a_run_cannot_honour_are_named_errors_with_their_line() {
         assert!(!d.join("out").join("results.csv").exists());
         let (code, log) = jointlin(&["modes", path.to_str().unwrap()]);
         assert!(code == 2 && log.contains(&want), "{name}: modes: {log}");
+        // `check` finds what `run` finds, at the same file:line.
+        let (code, log) = jointlin(&["check", path.to_str().unwrap()]);
+        assert!(code == 2 && log.contains(&want), "{name}: check: {log}");
     }
+    // A deck a run can take passes `check` with the run's own numbers.
+    std::fs::write(d.join("good.inp"), &base).unwrap();
+    let o = Command::new(env!("CARGO_BIN_EXE_jointlin"))
+        .args(["check", d.join("good.inp").to_str().unwrap()])
+        .output()
+        .unwrap();
+    let out = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        o.status.success() && out.contains("run checks: ok") && out.contains("contact points"),
+        "{out}{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
     // A scene with `model` may not have its own bodies.
     std::fs::write(d.join("stack.inp"), &base).unwrap();
     let scene = d.join("bodies.toml");
