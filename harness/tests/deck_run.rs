@@ -202,6 +202,23 @@ fn decks_a_run_cannot_honour_are_named_errors_with_their_line() {
         let (code, log) = jointlin(&["check", path.to_str().unwrap()]);
         assert!(code == 2 && log.contains(&want), "{name}: check: {log}");
     }
+    // Nodes without elements: no mesh to run.
+    let bare = d.join("bare.inp");
+    std::fs::write(&bare, "*HEADING\nnodes only\n*NODE\n1, 0., 0., 0.\n").unwrap();
+    let bare_out = d.join("bare-out");
+    let bare_arg = bare.to_str().unwrap();
+    for args in [
+        vec!["check", bare_arg],
+        vec!["modes", bare_arg],
+        vec!["run", bare_arg, "--out", bare_out.to_str().unwrap()],
+    ] {
+        let (code, log) = jointlin(&args);
+        assert!(
+            code == 2 && log.contains("bare.inp:0: *ELEMENT: the deck has no elements"),
+            "{args:?}: {log}"
+        );
+    }
+    assert!(!bare_out.join("results.csv").exists());
     // A deck a run can take passes `check` with the run's own numbers.
     std::fs::write(d.join("good.inp"), &base).unwrap();
     let o = Command::new(env!("CARGO_BIN_EXE_jointlin"))

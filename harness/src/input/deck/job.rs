@@ -128,6 +128,15 @@ impl DeckJob {
                 ));
             }
         }
+        if deck.elements.is_empty() {
+            return Err(DeckError {
+                kind: K::Undefined,
+                file,
+                line: 0,
+                keyword: "*ELEMENT".into(),
+                message: "the deck has no elements: a run needs a mesh".into(),
+            });
+        }
         Ok(DeckJob {
             file,
             deck,
