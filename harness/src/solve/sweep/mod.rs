@@ -37,6 +37,7 @@ use crate::model::Problem;
 use crate::solve::contact::normal_stiffness;
 use crate::solve::static_step::StaticState;
 use crate::solve::umfpack::{Numeric, Symbolic, UmfpackError};
+use crate::util::number::sig;
 
 pub type C64 = Complex<f64>;
 
@@ -67,15 +68,17 @@ pub const SINGULAR_RCOND: f64 = 1e-14;
 pub enum SweepError {
     #[error(transparent)]
     Capi(#[from] CapiError),
-    #[error("at {freq} Hz: {source}")]
+    #[error("at {} Hz: {source}", sig(*freq))]
     Umfpack {
         freq: f64,
         #[source]
         source: UmfpackError,
     },
-    #[error("at {freq} Hz: the condensed contact system is singular")]
+    #[error("at {} Hz: the response is not finite", sig(*freq))]
+    NotFinite { freq: f64 },
+    #[error("at {} Hz: the condensed contact system is singular", sig(*freq))]
     Condensed { freq: f64 },
-    #[error("at {freq} Hz: harmonic balance: {source}")]
+    #[error("at {} Hz: harmonic balance: {source}", sig(*freq))]
     Balance {
         freq: f64,
         #[source]
@@ -416,8 +419,7 @@ pub fn run(
     if opts.iteration.mode != crate::input::scene::Mode::Fast && problem.has_area_samples() {
         return Err(SweepError::AreaSamplesNeedFastMode);
     }
-    let zero_load = opts.iteration.mode != crate::input::scene::Mode::HarmonicBalance
-        && scale::is_zero_load(&setup);
+    let zero_load = scale::is_zero_load(&setup);
     let mut r = match opts.iteration.mode {
         _ if zero_load => scale::zero_load(&mut setup, &order, opts)?,
         crate::input::scene::Mode::Fast => fast::sweep(&mut setup, &order, opts, progress)?,
