@@ -85,6 +85,16 @@ pub fn sweep(
             },
             first => per_freq!(first.map_err(balance)),
         };
+        // The uncondensed check of a converged frequency (harmonic_check.rs); one that
+        // fails it is not converged.
+        let check = if sol.converged {
+            let t = Instant::now();
+            let v = per_freq!(hb.check(&sol, it.tolerance, f));
+            res.time("a-posteriori check", t);
+            Some(v)
+        } else {
+            None
+        };
         let energy: Vec<f64> = sol.dissipated.chunks(2).map(|d| d.iter().sum()).collect();
         if opts.point_results {
             let t = Instant::now();
@@ -116,11 +126,12 @@ pub fn sweep(
             .push(sol.outputs.iter().map(|hs| hs[1.min(h)]).collect());
         res.harmonics.push(sol.outputs.clone());
         res.power.push(energy.iter().sum::<f64>() * f);
+        let converged = sol.converged && check.is_some_and(|v| v.passes(it.tolerance));
         res.iterations.push(sol.iterations);
-        res.converged.push(sol.converged);
+        res.converged.push(converged);
         res.singular.push(false);
         res.failed.push(None);
-        res.checks.push(None);
+        res.checks.push(check.filter(|_| converged));
         start = sol.converged.then_some(sol.r);
     }
     res.factorizations = hb.stats.factorizations;

@@ -15,6 +15,7 @@ pub mod anderson;
 pub mod bracket;
 pub mod fast;
 pub mod harmonic;
+pub mod harmonic_check;
 pub mod harmonic_fe;
 pub mod krylov;
 pub mod posteriori;
