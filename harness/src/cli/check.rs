@@ -6,8 +6,12 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use super::load_scene;
+use jointlin_harness::input::scene::units::frequency_unit;
+use jointlin_harness::input::scene::Scene;
 use jointlin_harness::input::{deck, format_of, Format};
-use jointlin_harness::model;
+use jointlin_harness::model::{self, Problem};
+use jointlin_harness::solve::cost;
+use jointlin_harness::util::number::{sig, sig_n};
 
 // The command's help is the doc comment of `Command::Check`.
 #[derive(clap::Args)]
@@ -26,6 +30,7 @@ pub fn main(a: Args) -> ExitCode {
     // What only the model build finds (contact faces whose nodes do not match, ties
     // between non-conforming meshes), with the scene's location; lumped scenes with
     // [[joints]] are `jointlin backbone`'s and have no FE model.
+    let mut built = None;
     let lumped = !s.spec.joints.is_empty() || s.spec.springs.iter().any(|sp| sp.between.is_some());
     if !lumped {
         match model::build(&s) {
@@ -38,7 +43,7 @@ pub fn main(a: Args) -> ExitCode {
                 eprintln!("error: {}", model::locate(&s, &e));
                 return ExitCode::from(2);
             }
-            Ok(_) => {}
+            Ok(p) => built = Some(p),
         }
     }
     println!(
@@ -51,6 +56,9 @@ pub fn main(a: Args) -> ExitCode {
         s.frequencies().last().copied().unwrap_or(0.0),
         s.spec.iteration.mode
     );
+    if let Some(p) = built {
+        print_forecast(&s, &p);
+    }
     ExitCode::SUCCESS
 }
 
@@ -91,6 +99,7 @@ fn run_checks(path: &Path) -> ExitCode {
                 p.contacts.len(),
                 s.frequencies().len()
             );
+            print_forecast(&s, &p);
             ExitCode::SUCCESS
         }
         Err(model::BuildError::Deck(e)) => {
@@ -101,5 +110,46 @@ fn run_checks(path: &Path) -> ExitCode {
             eprintln!("error: {}: building the model: {e}", path.display());
             ExitCode::from(2)
         }
+    }
+}
+
+/// The time a run of the scene will take, from one factorization and solve timed here
+/// ([`cost`]); a model that cannot be factored at the first frequency says so (the run
+/// then reports its singular frequencies).
+fn print_forecast(s: &Scene, p: &Problem) {
+    let freqs = s.frequencies();
+    let Some(&f0) = freqs.first() else { return };
+    let it = &s.spec.iteration;
+    let (_, unit) = frequency_unit(&s.spec.units);
+    match cost::measure(p, 2.0 * std::f64::consts::PI * f0) {
+        Ok(m) => {
+            let f = cost::forecast(
+                &m,
+                freqs.len(),
+                it.mode,
+                p.contacts.len(),
+                it.harmonics.unwrap_or(1),
+                it.max_passes,
+                true,
+            );
+            println!(
+                "time forecast: one factorization of the dynamic stiffness {} s, one solve {} s (measured here at {} {unit}); {} frequencies in mode {:?}: {}–{} factorizations, {}–{} solves, about {}–{} s with the plots' reference sweep (--no-plots halves it), plus the static step",
+                sig_n(m.factorization, 2),
+                sig_n(m.solve, 2),
+                sig(f0),
+                freqs.len(),
+                it.mode,
+                f.factorizations[0],
+                f.factorizations[1],
+                f.solves[0],
+                f.solves[1],
+                sig_n(f.seconds[0], 2),
+                sig_n(f.seconds[1], 2),
+            );
+        }
+        Err(e) => println!(
+            "time forecast: none (the dynamic stiffness at {} {unit}: {e})",
+            sig(f0)
+        ),
     }
 }

@@ -6,15 +6,21 @@ const DIGITS: usize = 7;
 
 /// `v` with `DIGITS` significant digits: fixed-point from 1e-3 to 1e7, else scientific.
 pub fn sig(v: f64) -> String {
+    sig_n(v, DIGITS)
+}
+
+/// `v` with `digits` (≥ 1) significant digits, as [`sig`].
+pub fn sig_n(v: f64, digits: usize) -> String {
+    let digits = digits.max(1);
     if !v.is_finite() || v == 0.0 {
         return format!("{v}");
     }
     let mag = v.abs().log10().floor() as i32;
     if (-3..7).contains(&mag) {
-        let decimals = (DIGITS as i32 - 1 - mag).max(0) as usize;
+        let decimals = (digits as i32 - 1 - mag).max(0) as usize;
         format!("{v:.decimals$}")
     } else {
-        format!("{v:.*e}", DIGITS - 1)
+        format!("{v:.*e}", digits - 1)
     }
 }
 
@@ -29,5 +35,7 @@ mod tests {
         assert_eq!(sig(31718.038906265498), "31718.04");
         assert_eq!(sig(0.0), "0");
         assert_eq!(sig(f64::INFINITY), "inf");
+        assert_eq!(super::sig_n(209.1622, 2), "209");
+        assert_eq!(super::sig_n(0.6712165, 2), "0.67");
     }
 }
