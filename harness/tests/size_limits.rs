@@ -129,7 +129,7 @@ fn every_scene_of_the_repository_passes_against_the_machines_memory() {
     assert!(n >= 15, "{n} scenes");
 }
 
-/// `check` forecasts the run's time from one factorization and solve timed on the
+/// `check --forecast` forecasts the run's time from one factorization and solve timed on the
 /// machine; the factorization counts it gives hold what the run then does
 /// (three-beams-coarse, fast and thesis mode: the main sweep's count from run.json,
 /// doubled for the plots' reference sweep the forecast includes).
@@ -148,7 +148,7 @@ fn check_forecasts_the_factorizations_a_run_needs() {
         let path = dir.join("scene.toml");
         std::fs::write(&path, text).unwrap();
         let p = path.to_str().unwrap();
-        let out = jointlin(&["check", p], None);
+        let out = jointlin(&["check", "--forecast", p], None);
         let said = String::from_utf8_lossy(&out.stdout).to_string();
         assert!(out.status.success(), "{said}");
         let line = said

@@ -2,7 +2,7 @@
 //! every error a run meets before its first solve is found here), or reads an Abaqus-format deck and
 //! pairs its contact surfaces, and prints a summary.
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::process::ExitCode;
 
 use super::load_scene;
@@ -11,17 +11,27 @@ use jointlin_harness::input::scene::Scene;
 use jointlin_harness::input::{deck, format_of, Format};
 use jointlin_harness::model::{self, Problem};
 use jointlin_harness::solve::cost;
+use jointlin_harness::solve::modal_stuck::{stuck_modes, ModeCount};
 use jointlin_harness::util::number::{sig, sig_n};
 
 // The command's help is the doc comment of `Command::Check`.
 #[derive(clap::Args)]
 pub struct Args {
     scene: PathBuf,
+    /// Also compute the stuck modes (joints closed and stuck after the static step)
+    /// below the sweep's highest frequency and list them (as `jointlin modes`; seconds
+    /// to minutes on a large model).
+    #[arg(long)]
+    modes: bool,
+    /// Also forecast the run's time: one factorization and one solve of the dynamic
+    /// stiffness timed here, times the counts the scene's mode needs.
+    #[arg(long)]
+    forecast: bool,
 }
 
 pub fn main(a: Args) -> ExitCode {
     if format_of(&a.scene) == Format::AbaqusDeck {
-        return check_deck(&a.scene);
+        return check_deck(&a);
     }
     let s = match load_scene(&a.scene) {
         Ok(s) => s,
@@ -57,14 +67,20 @@ pub fn main(a: Args) -> ExitCode {
         s.spec.iteration.mode
     );
     if let Some(p) = built {
-        print_forecast(&s, &p);
+        println!(
+            "model: {} free DOFs, {} contact points",
+            p.sys.dofs.n_free(),
+            p.contacts.len()
+        );
+        extras(&a, &s, &p);
     }
     ExitCode::SUCCESS
 }
 
 /// `jointlin check DECK.inp`: reads the deck, pairs its contact surfaces, prints the
 /// summary and the reader's warnings; exit 2 with `file:line: *KEYWORD: message`.
-fn check_deck(path: &Path) -> ExitCode {
+fn check_deck(a: &Args) -> ExitCode {
+    let path = a.scene.as_path();
     let result = deck::read(path).and_then(|(d, warnings)| {
         deck::summary::summary(&d, &path.display().to_string()).map(|s| (s, warnings))
     });
@@ -74,7 +90,7 @@ fn check_deck(path: &Path) -> ExitCode {
             for w in warnings {
                 eprintln!("warning: {w}");
             }
-            run_checks(path)
+            run_checks(a)
         }
         Err(e) => {
             eprintln!("error: {e}");
@@ -86,7 +102,8 @@ fn check_deck(path: &Path) -> ExitCode {
 /// What `jointlin run` meets before its first solve on a deck: the run-level reading
 /// (units comment, property tables, densities, steps a run can honour) and the model
 /// build (ties, contact pairs, loads, outputs); exit 2 with the deck's file:line.
-fn run_checks(path: &Path) -> ExitCode {
+fn run_checks(a: &Args) -> ExitCode {
+    let path = a.scene.as_path();
     let s = match load_scene(path) {
         Ok(s) => s,
         Err(code) => return code,
@@ -99,7 +116,7 @@ fn run_checks(path: &Path) -> ExitCode {
                 p.contacts.len(),
                 s.frequencies().len()
             );
-            print_forecast(&s, &p);
+            extras(a, &s, &p);
             ExitCode::SUCCESS
         }
         Err(model::BuildError::Deck(e)) => {
@@ -151,5 +168,52 @@ fn print_forecast(s: &Scene, p: &Problem) {
             "time forecast: none (the dynamic stiffness at {} {unit}: {e})",
             sig(f0)
         ),
+    }
+}
+
+/// What --modes and --forecast ask for.
+fn extras(a: &Args, s: &Scene, p: &Problem) {
+    if a.modes {
+        print_modes(s);
+    }
+    if a.forecast {
+        print_forecast(s, p);
+    }
+}
+
+/// Most stuck modes the summary lists.
+const SUMMARY_MODES: usize = 50;
+
+/// The stuck modes (joints closed and stuck after the static step) below the sweep's
+/// highest frequency, as `jointlin modes` computes them; a model whose modes cannot be
+/// computed says why (the run may still work: it never needs them).
+fn print_modes(s: &Scene) {
+    let (_, unit) = frequency_unit(&s.spec.units);
+    let count = ModeCount::Band {
+        factor: 1.0,
+        min: 1,
+        max: SUMMARY_MODES,
+    };
+    match stuck_modes(s, count) {
+        Ok(m) => {
+            let top = m.limit.unwrap_or(0.0);
+            let below: Vec<String> = m
+                .band
+                .modes
+                .frequencies_hz()
+                .into_iter()
+                .filter(|&f| f <= top)
+                .map(|f| sig_n(f, 5))
+                .collect();
+            let more = if m.band.complete { "" } else { "at least " };
+            println!(
+                "stuck modes below the sweep's top {} {unit}: {more}{}{}{}",
+                sig(top),
+                below.len(),
+                if below.is_empty() { "" } else { " — " },
+                below.join(", ")
+            );
+        }
+        Err(e) => println!("stuck modes: not computed ({e})"),
     }
 }
