@@ -86,7 +86,9 @@ install: lib bin shim
 		exit 1; }
 	install -d $(DEST)/bin $(DEST)/lib/pkgconfig $(DEST)/include \
 		$(DEST)/share/jointlin/fortran-shim $(DEST)/share/jointlin/examples/c \
-		$(DEST)/share/jointlin/examples/fortran $(DEST)/share/jointlin/examples/abaqus
+		$(DEST)/share/jointlin/examples/fortran $(DEST)/share/jointlin/examples/abaqus \
+		$(DEST)/share/jointlin/examples/abaqus/block-on-plane \
+		$(DEST)/share/jointlin/examples/abaqus/three-beams
 	$(call stripped,$(BIN),$(DEST)/bin/jointlin,$(DEST)/bin/.debug)
 	$(call stripped,$(LIBDIR)/libjointlin.so,$(DEST)/lib/$(REALNAME),$(DEST)/lib/.debug)
 	ln -sfn $(REALNAME) $(DEST)/lib/$(SONAME)
@@ -104,7 +106,12 @@ install: lib bin shim
 		> $(DEST)/share/jointlin/fortran-shim/Makefile
 	install -m 644 examples/c/hello.c $(DEST)/share/jointlin/examples/c/
 	install -m 644 examples/fortran/hello.f90 $(DEST)/share/jointlin/examples/fortran/
-	install -m 644 examples/abaqus/* $(DEST)/share/jointlin/examples/abaqus/
+	install -m 644 examples/abaqus/abaqus_v6.env examples/abaqus/user.f \
+		$(DEST)/share/jointlin/examples/abaqus/
+	install -m 644 examples/abaqus/block-on-plane/* \
+		$(DEST)/share/jointlin/examples/abaqus/block-on-plane/
+	install -m 644 examples/abaqus/three-beams/* \
+		$(DEST)/share/jointlin/examples/abaqus/three-beams/
 	sed -e 's|@PREFIX@|$(PREFIX)|' -e 's|@VERSION@|$(VERSION)|' jointlin.pc.in \
 		> $(DEST)/lib/pkgconfig/jointlin.pc
 

@@ -117,6 +117,10 @@ fn install_places_program_library_header_modules_and_pkg_config_file() {
         "share/jointlin/fortran-shim/agree_mpi.f90",
         "share/jointlin/fortran-shim/agree_nompi.f90",
         "share/jointlin/examples/abaqus/abaqus_v6.env",
+        "share/jointlin/examples/abaqus/block-on-plane/block.inp",
+        "share/jointlin/examples/abaqus/block-on-plane/sweep.frq",
+        "share/jointlin/examples/abaqus/block-on-plane/jointlin.cfg",
+        "share/jointlin/examples/abaqus/three-beams/three-beams.inp",
     ] {
         assert!(p.join(f).is_file(), "{f} not installed");
     }
@@ -491,8 +495,7 @@ fn readme_carries_the_examples_verbatim() {
         ("examples/c/hello.c", "c"),
         ("examples/fortran/hello.f90", "fortran"),
         ("examples/abaqus/abaqus_v6.env", "python"),
-        ("examples/abaqus/jointlin.cfg", "ini"),
-        ("examples/abaqus/block.inp", "text"),
+        ("examples/abaqus/block-on-plane/jointlin.cfg", "ini"),
         ("examples/abaqus/user.f", "fortran"),
     ] {
         let body = std::fs::read_to_string(root().join(file)).unwrap();

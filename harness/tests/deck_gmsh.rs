@@ -241,9 +241,10 @@ fn calculix_modes_of_the_tied_variant_are_finite_and_the_sweep_covers_the_first(
     assert!(f.iter().all(|v| v.is_finite() && *v > 0.0), "{f:?}");
     assert!(f.windows(2).all(|w| w[0] <= w[1]), "{f:?}");
     let (shipped, _) = deck::read(&example("bolted-lap.inp")).unwrap();
-    let Procedure::SteadyState { f_low, f_high, .. } = shipped.steps[2].procedure else {
+    let Procedure::SteadyState { ranges, .. } = &shipped.steps[2].procedure else {
         panic!("step 3 is not the sweep");
     };
+    let (f_low, f_high) = (ranges[0].f_low, ranges[0].f_high);
     assert!(
         f_low < f[0] && f[0] < f_high,
         "{f_low}…{f_high} vs {}",

@@ -5,6 +5,7 @@
 mod backbone;
 mod bench;
 mod check;
+mod export;
 mod loss;
 mod mhb;
 mod modes;
@@ -108,6 +109,24 @@ pub enum Command {
     /// modes below the sweep's top, with --forecast the time a run will take (from one
     /// factorization and solve timed here).
     Check(check::Args),
+    /// Write a scene as an Abaqus/Standard job: FILE (the input deck), sweep.frq and
+    /// jointlin.cfg beside it (README, "Using jointlin from Abaqus").
+    ///
+    /// The deck is the scene's model node for node: *NODE, *ELEMENT C3D8I per box,
+    /// *MATERIAL with *DAMPING (Rayleigh), *SOLID SECTION, clamps as *BOUNDARY, ties as
+    /// *TIE, each interface as *SURFACE INTERACTION, USER (the shim's 12 properties,
+    /// DEPVAR=57) with its *CONTACT PAIR, step 1 *STATIC with the preload, step 2
+    /// *STEADY STATE DYNAMICS, DIRECT with *INCLUDE, INPUT=sweep.frq (one frequency per
+    /// line) and the harmonic loads, *NODE PRINT/*NODE OUTPUT of U for every output
+    /// (node set named after it), and the `** jointlin units:` comment. jointlin.cfg is
+    /// the UEXTERNALDB configuration with the scene's [iteration]. `jointlin run FILE`
+    /// gives the scene's results (with --mode thesis for a thesis-mode scene).
+    ///
+    /// What a deck cannot express is an error naming the scene key (exit 2, nothing
+    /// written): lumped masses, springs, joints, an initial gap, area_samples, a load
+    /// phase, a downward sweep, harmonic balance, physics switched off in [effects].
+    #[command(verbatim_doc_comment)]
+    Export(export::Args),
     /// Modes of the scene's (or deck's) model with every closed joint stuck (k_T0) after
     /// the static step: where to put the sweep.
     ///
@@ -154,6 +173,7 @@ pub fn dispatch(command: Command) -> ExitCode {
         Command::Tradeoff(a) => tradeoff::main(a),
         Command::Loss(a) => loss::main(a),
         Command::Check(a) => check::main(a),
+        Command::Export(a) => export::main(a),
         Command::Modes(a) => modes::main(a),
         Command::Bench(a) => bench::main(a),
         Command::Mhb(a) => mhb::main(a),

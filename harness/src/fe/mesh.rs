@@ -117,10 +117,12 @@ impl Face {
     }
 
     /// Local corner indices (C3D8 order) of this face of an element, counter-clockwise
-    /// seen from outside, so (p1−p0)×(p3−p0) points outward.
+    /// seen from outside, so (p1−p0)×(p3−p0) points outward; reversed from the first
+    /// corner, `[c0, c3, c2, c1]`, they are the element's Abaqus face S1…S6
+    /// (`fe::elements::hex::FACES20`).
     pub fn element_corners(self) -> [usize; 4] {
         match self {
-            Face::XMin => [0, 4, 7, 3],
+            Face::XMin => [3, 0, 4, 7],
             Face::XMax => [1, 2, 6, 5],
             Face::YMin => [0, 1, 5, 4],
             Face::YMax => [2, 3, 7, 6],

@@ -1,75 +1,47 @@
-//! Surface loads on element faces: consistent nodal forces of a uniform pressure and
-//! nodal tributary areas.
+//! Surface loads on the faces of boxes: consistent nodal forces of a uniform pressure and
+//! nodal tributary areas, computed by the element faces' own routines
+//! ([`crate::fe::elements::face`]: one place for a face's integrals, whether the face
+//! comes from a scene's box or a deck's surface, so both give the same numbers bit for
+//! bit).
 //!
 //! A face is a bilinear quad `[n0, n1, n2, n3]` of global nodes, counter-clockwise seen
-//! from outside (as `mesh::Body::face_quads` gives them). Pressure follows Abaqus:
-//! positive in compression, i.e. it pushes against the outward normal.
-//! Integrals use 2×2 Gauss, exact for bilinear quads: Nᵢ (degree 1 per direction) times
-//! ∂x/∂ξ × ∂x/∂η (degree 1 per direction) is of degree 2 per direction.
+//! from outside (as `mesh::Body::face_quads` gives them); reversed, `[n0, n3, n2, n1]`,
+//! it is the element face in the Abaqus order (normal into the element, `Face::
+//! element_corners`). Pressure follows Abaqus: positive in compression, i.e. it pushes
+//! against the outward normal.
 
-use std::collections::BTreeMap;
-
-use nalgebra::Vector3;
-
+use crate::fe::elements::face::{self, tributary_areas, FaceShape, MeshFace};
 use crate::fe::mesh::Model;
 
-const G2: f64 = 0.577_350_269_189_625_8;
-const QUAD: [[f64; 2]; 4] = [[-1.0, -1.0], [1.0, -1.0], [1.0, 1.0], [-1.0, 1.0]];
-
-/// For each Gauss point: shape values Nᵢ and the area vector n dA/(dξ dη) = ∂x/∂ξ × ∂x/∂η.
-fn gauss_terms(x: &[Vector3<f64>; 4]) -> [([f64; 4], Vector3<f64>); 4] {
-    QUAD.map(|g| {
-        let (s, t) = (g[0] * G2, g[1] * G2);
-        let mut n = [0.0; 4];
-        let mut dxds = Vector3::zeros();
-        let mut dxdt = Vector3::zeros();
-        for (i, c) in QUAD.iter().enumerate() {
-            n[i] = 0.25 * (1.0 + c[0] * s) * (1.0 + c[1] * t);
-            dxds += x[i] * (0.25 * c[0] * (1.0 + c[1] * t));
-            dxdt += x[i] * (0.25 * (1.0 + c[0] * s) * c[1]);
-        }
-        (n, dxds.cross(&dxdt))
-    })
-}
-
-fn quad_coords(model: &Model, q: &[usize; 4]) -> [Vector3<f64>; 4] {
-    q.map(|n| Vector3::from(model.nodes[n]))
+/// The element face of quad `q` in the Abaqus node order.
+fn mesh_face(q: &[usize; 4]) -> MeshFace {
+    MeshFace {
+        element: 0,
+        face: 0,
+        nodes: vec![q[0], q[3], q[2], q[1]],
+        shape: FaceShape::Quad4,
+    }
 }
 
 /// Adds the consistent nodal forces of uniform pressure `p` (force/length², positive
 /// in compression) on `quads` to `loads` (full DOF vector): fᵢ = −p ∫ Nᵢ n dA.
 pub fn add_pressure(model: &Model, quads: &[[usize; 4]], p: f64, loads: &mut [f64]) {
     for q in quads {
-        let x = quad_coords(model, q);
-        for (n, area_vec) in gauss_terms(&x) {
-            for i in 0..4 {
-                for c in 0..3 {
-                    loads[3 * q[i] + c] -= p * n[i] * area_vec[c];
-                }
-            }
-        }
+        face::add_pressure(&model.nodes, &mesh_face(q), p, loads);
     }
 }
 
 /// Tributary area of every node of `quads`: Aᵢ = ∫ Nᵢ dA summed over the quads
 /// (a quarter of each rectangular face it touches). Sorted by node id.
 pub fn nodal_areas(model: &Model, quads: &[[usize; 4]]) -> Vec<(usize, f64)> {
-    let mut acc: BTreeMap<usize, f64> = BTreeMap::new();
-    for q in quads {
-        let x = quad_coords(model, q);
-        for (n, area_vec) in gauss_terms(&x) {
-            let da = area_vec.norm();
-            for i in 0..4 {
-                *acc.entry(q[i]).or_insert(0.0) += n[i] * da;
-            }
-        }
-    }
-    acc.into_iter().collect()
+    let faces: Vec<MeshFace> = quads.iter().map(mesh_face).collect();
+    tributary_areas(&faces, &model.nodes).into_iter().collect()
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use nalgebra::Vector3;
     use crate::fe::mesh::{BoxSpec, Face, Material};
 
     fn model() -> Model {

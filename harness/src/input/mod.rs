@@ -44,7 +44,8 @@ pub enum Input {
     /// A scene (with its deck attached when it says `model = "x.inp"`).
     Scene(Scene),
     /// A deck run: the deck with the scene a run of it takes (default `[effects]` and
-    /// `[iteration]`, the deck's sweep and node outputs).
+    /// `[iteration]`, the latter as the `jointlin.cfg` beside the deck sets it
+    /// ([`deck::config`]); the deck's sweep and node outputs).
     Deck(Scene),
 }
 
@@ -107,7 +108,11 @@ pub fn load(path: &Path) -> Result<Input, InputError> {
         Format::AbaqusDeck => {
             let job = DeckJob::load(path)?;
             let text = std::fs::read_to_string(path).unwrap_or_default();
-            Ok(Input::Deck(scene::model_file::deck_scene(job, text)))
+            let mut s = scene::model_file::deck_scene(job, text);
+            if let Some(c) = deck::config::ShimConfig::beside(path)? {
+                c.apply(&mut s.spec.iteration);
+            }
+            Ok(Input::Deck(s))
         }
     }
 }

@@ -17,7 +17,7 @@ use crate::input::scene::validate::GROUND;
 use crate::input::scene::*;
 
 /// Relative tolerance for coincident interface nodes (of the smallest element size).
-const PAIR_TOL: f64 = 1e-6;
+pub const PAIR_TOL: f64 = 1e-6;
 
 /// A body of the model.
 #[derive(Debug, Clone, Copy)]

@@ -266,3 +266,18 @@ pub fn tributary_areas(faces: &[MeshFace], coords: &[[f64; 3]]) -> BTreeMap<usiz
     }
     out
 }
+
+/// Consistent nodal forces of pressure `p` (positive into the face) on `face`:
+/// fᵢ = p ∫ Nᵢ (∂x/∂s₁ × ∂x/∂s₂) ds, the cross product pointing into the element in the
+/// Abaqus face order (`fe::elements::face`) with the length of the area element.
+pub fn add_pressure(x: &[[f64; 3]], face: &MeshFace, p: f64, f: &mut [f64]) {
+    for (s, w) in face.shape.rule() {
+        let fp = face.at(x, s);
+        let inward: Vector3<f64> = fp.t1.cross(&fp.t2) * (w * p);
+        for (i, &n) in face.nodes.iter().enumerate() {
+            for c in 0..3 {
+                f[3 * n + c] += fp.n[i] * inward[c];
+            }
+        }
+    }
+}

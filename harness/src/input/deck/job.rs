@@ -7,7 +7,7 @@
 use super::error::{DeckError, DeckErrorKind as K, DeckWarning};
 use super::model::{Deck, FrequencyScale, NodeTarget, Procedure, Step};
 use super::props::{user_law, UserLaw};
-use crate::input::scene::{OutputSpec, Spacing, SweepSpec, Units};
+use crate::input::scene::{BandSpec, OutputSpec, Spacing, SweepSpec, Units};
 
 /// The comment line that states a deck's units (decks carry none):
 /// `** jointlin units: length=mm force=N time=s mass=t`.
@@ -149,28 +149,32 @@ impl DeckJob {
         })
     }
 
-    /// The steady-state step's frequencies as a scene sweep (1/time), if it has one.
+    /// The steady-state step's frequencies as a scene sweep (1/time), if it has one: its
+    /// first data line is the sweep's range, every further line a band of its own
+    /// (`refine`; checked by [`check_step`] to be linearly spaced or of at most two
+    /// points, which a band reproduces).
     pub fn sweep(&self) -> Option<SweepSpec> {
         let st = &self.deck.steps[self.dynamics?];
-        let Procedure::SteadyState {
-            f_low,
-            f_high,
-            points,
-            scale,
-            ..
-        } = st.procedure
-        else {
+        let Procedure::SteadyState { ranges, scale } = &st.procedure else {
             return None;
         };
+        let (first, more) = ranges.split_first()?;
         Some(SweepSpec {
-            f_min: f_low,
-            f_max: f_high,
-            count: points,
+            f_min: first.f_low,
+            f_max: first.f_high,
+            count: first.points,
             spacing: match scale {
                 FrequencyScale::Linear => Spacing::Linear,
                 FrequencyScale::Logarithmic => Spacing::Log,
             },
-            refine: Vec::new(),
+            refine: more
+                .iter()
+                .map(|r| BandSpec {
+                    f_min: r.f_low,
+                    f_max: r.f_high,
+                    count: r.points,
+                })
+                .collect(),
             direction: Default::default(),
         })
     }
@@ -244,12 +248,35 @@ fn check_step(st: &Step) -> Result<(), DeckError> {
                 ));
             }
         }
-        Procedure::SteadyState { bias, .. } if bias != 1.0 => {
-            return Err(st.origin.error(
-                K::Unsupported,
-                "*STEADY STATE DYNAMICS",
-                format!("bias {bias}: a run spaces the points evenly (bias 1)"),
-            ));
+        Procedure::SteadyState {
+            ref ranges, scale, ..
+        } => {
+            let err = |m: String| {
+                Err(st
+                    .origin
+                    .error(K::Unsupported, "*STEADY STATE DYNAMICS", m))
+            };
+            if let Some(r) = ranges.iter().find(|r| r.bias != 1.0) {
+                return err(format!(
+                    "bias {}: a run spaces the points evenly (bias 1)",
+                    r.bias
+                ));
+            }
+            let log = scale == FrequencyScale::Logarithmic;
+            if let Some((i, r)) = ranges
+                .iter()
+                .enumerate()
+                .skip(1)
+                .find(|(_, r)| log && r.points > 2)
+            {
+                return err(format!(
+                    "data line {}: {} logarithmically spaced points from {} to {}: a run spaces the lines after the first linearly (FREQUENCY SCALE=LINEAR, or single frequencies)",
+                    i + 1,
+                    r.points,
+                    r.f_low,
+                    r.f_high
+                ));
+            }
         }
         _ => {}
     }

@@ -1,8 +1,10 @@
 //! Cards of an Abaqus-format deck: a keyword line (`*NAME, PARAM=VALUE, …`, continued
 //! on the next line when it ends with a comma) and its data lines. `**` lines are
 //! comments; keywords and parameter names are case-insensitive (stored upper case);
-//! `*INCLUDE, INPUT=file` is replaced by the cards of that file (relative to the
-//! including file).
+//! `*INCLUDE, INPUT=file` is replaced by the lines of that file (relative to the
+//! including file): its keyword lines start cards, and data lines before its first
+//! keyword line go on the card the `*INCLUDE` stands in (an included list of frequencies
+//! or nodes, as Abaqus reads it).
 
 use std::path::{Path, PathBuf};
 
@@ -87,7 +89,9 @@ pub fn read_file(path: &Path) -> Result<Vec<Card>, DeckError> {
         file: path.display().to_string(),
         line: 0,
     };
-    lex_file(path, &origin, 0, &mut cards)?;
+    let mut current = None;
+    lex_file(path, &origin, 0, &mut cards, &mut current)?;
+    cards.extend(current);
     Ok(cards)
 }
 
@@ -95,7 +99,9 @@ pub fn read_file(path: &Path) -> Result<Vec<Card>, DeckError> {
 /// relative to `dir`.
 pub fn read_str(text: &str, name: &str, dir: &Path) -> Result<Vec<Card>, DeckError> {
     let mut cards = Vec::new();
-    lex_text(text, name, dir, 0, &mut cards)?;
+    let mut current = None;
+    lex_text(text, name, dir, 0, &mut cards, &mut current)?;
+    cards.extend(current);
     Ok(cards)
 }
 
@@ -104,6 +110,7 @@ fn lex_file(
     from: &Origin,
     depth: usize,
     cards: &mut Vec<Card>,
+    current: &mut Option<Card>,
 ) -> Result<(), DeckError> {
     let bytes = std::fs::read(path).map_err(|e| {
         from.error(
@@ -125,7 +132,7 @@ fn lex_file(
         )
     })?;
     let dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
-    lex_text(&text, &name, &dir, depth, cards)
+    lex_text(&text, &name, &dir, depth, cards, current)
 }
 
 fn lex_text(
@@ -134,9 +141,9 @@ fn lex_text(
     dir: &Path,
     depth: usize,
     cards: &mut Vec<Card>,
+    current: &mut Option<Card>,
 ) -> Result<(), DeckError> {
     let mut lines = text.lines().enumerate().peekable();
-    let mut current: Option<Card> = None;
     while let Some((i, raw)) = lines.next() {
         let line = raw.trim();
         let origin = Origin {
@@ -147,7 +154,6 @@ fn lex_text(
             continue;
         }
         if let Some(rest) = line.strip_prefix('*') {
-            cards.extend(current.take());
             // Continuation: a keyword line ending with a comma goes on on the next line.
             let mut head = rest.to_string();
             while head.trim_end().ends_with(',') {
@@ -169,9 +175,10 @@ fn lex_text(
                 }
                 let input = card.required("INPUT")?;
                 let path: PathBuf = dir.join(input.trim_matches('"'));
-                lex_file(&path, &card.origin, depth + 1, cards)?;
+                lex_file(&path, &card.origin, depth + 1, cards, current)?;
             } else {
-                current = Some(card);
+                cards.extend(current.take());
+                *current = Some(card);
             }
             continue;
         }
@@ -196,7 +203,6 @@ fn lex_text(
             }
         }
     }
-    cards.extend(current);
     Ok(())
 }
 

@@ -9,6 +9,7 @@
 //! neither [`SUPPORTED_KEYWORDS`] nor [`IGNORED_KEYWORDS`] is an error.
 
 pub mod check;
+pub mod config;
 pub mod error;
 pub mod gmsh;
 pub mod job;

@@ -191,15 +191,23 @@ pub enum Procedure {
     Static,
     /// `*FREQUENCY`: the lowest `modes` eigenpairs.
     Frequency { modes: usize },
-    /// `*STEADY STATE DYNAMICS, DIRECT`: f_low … f_high (cycles/time), `points` points,
-    /// `bias` (1 = uniform).
+    /// `*STEADY STATE DYNAMICS, DIRECT`: one frequency range per data line, run in the
+    /// order given, spaced by `scale`.
     SteadyState {
-        f_low: f64,
-        f_high: f64,
-        points: usize,
-        bias: f64,
+        ranges: Vec<FrequencyRange>,
         scale: FrequencyScale,
     },
+}
+
+/// One data line of `*STEADY STATE DYNAMICS, DIRECT` as Abaqus reads it: f_low … f_high
+/// (cycles/time) at `points` points including both ends, `bias` (1 = uniform); an upper
+/// limit given as zero or left blank asks for the single frequency f_low (`points` 1).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FrequencyRange {
+    pub f_low: f64,
+    pub f_high: f64,
+    pub points: usize,
+    pub bias: f64,
 }
 
 /// Node output request: the variables (e.g. U) of a node set.

@@ -136,6 +136,41 @@ fn face_label(label: &str, letter: char) -> Option<usize> {
     (1..=6).contains(&n).then_some(n - 1)
 }
 
+/// A `*STEADY STATE DYNAMICS` data line as Abaqus reads it: f_low, f_high (zero or
+/// blank: the single frequency f_low), points (fewer than 2 or blank: 20), bias
+/// (default 1).
+fn frequency_range(card: &Card, l: &DataLine) -> Result<FrequencyRange, DeckError> {
+    /// Abaqus's number of points when the line gives fewer than 2.
+    const DEFAULT_POINTS: f64 = 20.0;
+    let f_low = number(card, l, 0, "lower frequency")?;
+    let f_high = opt_number(card, l, 1, "upper frequency", 0.0)?;
+    if f_high == 0.0 {
+        if f_low < 0.0 {
+            return Err(card.error_at(l.line, K::BadValue, format!("frequency {f_low} < 0")));
+        }
+        return Ok(FrequencyRange {
+            f_low,
+            f_high: f_low,
+            points: 1,
+            bias: 1.0,
+        });
+    }
+    let mut points = opt_number(card, l, 2, "number of points", DEFAULT_POINTS)?;
+    if points < 2.0 {
+        points = DEFAULT_POINTS;
+    }
+    let bias = opt_number(card, l, 3, "bias", 1.0)?;
+    if f_low < 0.0 || f_high < f_low || points.fract() != 0.0 || points > 1e7 || bias <= 0.0 {
+        return Err(card.error_at(l.line, K::BadValue, format!("need 0 <= f_low <= f_high, a whole number of points and bias > 0; got {f_low}, {f_high}, {points}, {bias}")));
+    }
+    Ok(FrequencyRange {
+        f_low,
+        f_high,
+        points: points as usize,
+        bias,
+    })
+}
+
 impl Reader {
     fn node_target(
         &self,
@@ -948,29 +983,15 @@ impl Reader {
                         ))
                     }
                 };
-                let l = first.ok_or_else(|| {
-                    card.error(K::Syntax, "needs a data line (f_low, f_high, points, bias)")
-                })?;
-                let f_low = number(card, &l, 0, "lower frequency")?;
-                let f_high = opt_number(card, &l, 1, "upper frequency", f_low)?;
-                let points = opt_number(card, &l, 2, "number of points", 20.0)?;
-                let bias = opt_number(card, &l, 3, "bias", 1.0)?;
-                if f_low < 0.0
-                    || f_high < f_low
-                    || points < 1.0
-                    || points.fract() != 0.0
-                    || points > 1e7
-                    || bias <= 0.0
-                {
-                    return Err(card.error_at(l.line, K::BadValue, format!("need 0 <= f_low <= f_high, a whole number of points >= 1 and bias > 0; got {f_low}, {f_high}, {points}, {bias}")));
+                if first.is_none() {
+                    return Err(
+                        card.error(K::Syntax, "needs a data line (f_low, f_high, points, bias)")
+                    );
                 }
-                Procedure::SteadyState {
-                    f_low,
-                    f_high,
-                    points: points as usize,
-                    bias,
-                    scale,
-                }
+                let ranges = lines(card)
+                    .map(|l| frequency_range(card, l))
+                    .collect::<Result<Vec<_>, _>>()?;
+                Procedure::SteadyState { ranges, scale }
             }
         };
         let name = self.step_mut(card)?.name.clone();

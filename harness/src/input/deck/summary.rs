@@ -154,12 +154,15 @@ pub fn summary(deck: &Deck, file: &str) -> Result<String, DeckError> {
         let what = match &st.procedure {
             Procedure::Static => "static".to_string(),
             Procedure::Frequency { modes } => format!("frequency, {modes} modes"),
-            Procedure::SteadyState {
-                f_low,
-                f_high,
-                points,
-                ..
-            } => format!("steady-state dynamics {f_low}…{f_high} (1/time), {points} points"),
+            Procedure::SteadyState { ranges, .. } => {
+                let lo = ranges.iter().map(|r| r.f_low).fold(f64::INFINITY, f64::min);
+                let hi = ranges.iter().map(|r| r.f_high).fold(0.0, f64::max);
+                let points: usize = ranges.iter().map(|r| r.points).sum();
+                format!(
+                    "steady-state dynamics {lo}…{hi} (1/time), {points} points on {} data lines",
+                    ranges.len()
+                )
+            }
         };
         let _ = writeln!(
             s,

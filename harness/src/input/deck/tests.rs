@@ -120,10 +120,12 @@ fn flat_deck_reads_every_keyword() {
     assert_eq!(
         sweep.procedure,
         Procedure::SteadyState {
-            f_low: 100.0,
-            f_high: 2000.0,
-            points: 41,
-            bias: 1.0,
+            ranges: vec![FrequencyRange {
+                f_low: 100.0,
+                f_high: 2000.0,
+                points: 41,
+                bias: 1.0,
+            }],
             scale: FrequencyScale::Linear
         }
     );

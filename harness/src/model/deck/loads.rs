@@ -1,9 +1,7 @@
 //! A step's loads as nodal forces (force units, global axes, full DOFs): `*CLOAD`
 //! forces, `*DLOAD` Pn and `*DSLOAD` P pressures (positive into the face).
 
-use nalgebra::Vector3;
-
-use crate::fe::elements::face::MeshFace;
+use crate::fe::elements::face::{add_pressure, MeshFace};
 use crate::input::deck::job::DeckJob;
 use crate::input::deck::summary::faces;
 use crate::input::deck::{DeckError, DeckErrorKind as K, ElementTarget, Step};
@@ -43,19 +41,4 @@ pub fn step_loads(job: &DeckJob, st: &Step, n_dofs: usize) -> Result<Vec<f64>, D
         }
     }
     Ok(f)
-}
-
-/// Consistent nodal forces of pressure `p` (positive into the face) on `face`:
-/// fᵢ = p ∫ Nᵢ (∂x/∂s₁ × ∂x/∂s₂) ds, the cross product pointing into the element in the
-/// Abaqus face order (`fe::elements::face`) with the length of the area element.
-fn add_pressure(x: &[[f64; 3]], face: &MeshFace, p: f64, f: &mut [f64]) {
-    for (s, w) in face.shape.rule() {
-        let fp = face.at(x, s);
-        let inward: Vector3<f64> = fp.t1.cross(&fp.t2) * (w * p);
-        for (i, &n) in face.nodes.iter().enumerate() {
-            for c in 0..3 {
-                f[3 * n + c] += fp.n[i] * inward[c];
-            }
-        }
-    }
 }

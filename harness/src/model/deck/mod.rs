@@ -32,16 +32,42 @@ use crate::input::scene::Scene;
 /// gives way by about 1e-5 of the elements' own deformation.
 pub const TIE_PENALTY: f64 = 1e5;
 
-/// The coupling of a paired slave node: δ = u_slave − Σᵢ Nᵢ u_masterᵢ.
+/// The coupling of a paired slave node: δ = u_slave − Σᵢ Nᵢ u_masterᵢ (master nodes
+/// of weight zero left out: a node coincident with a master node couples to that node
+/// alone, as a scene's coincident pair does).
 fn coupling(p: &PairedNode) -> Coupling {
     std::iter::once((p.slave, 1.0))
-        .chain(p.weights.iter().map(|&(m, w)| (m, -w)))
+        .chain(
+            p.weights
+                .iter()
+                .filter(|&&(_, w)| w != 0.0)
+                .map(|&(m, w)| (m, -w)),
+        )
         .collect()
 }
 
 /// Frame columns n, t₁, t₂ (global axes) of a paired node.
 fn frame(p: &PairedNode) -> Matrix3<f64> {
     Matrix3::from_fn(|g, c| p.frame[c][g])
+}
+
+/// The `[slave, master]` node pairs of a conforming pairing: every slave node paired
+/// and lying within `tol` (length) of a node of its master face; None otherwise.
+fn coincident(x: &[[f64; 3]], p: &Pairing, tol: f64) -> Option<Vec<[usize; 2]>> {
+    if !p.unmatched.is_empty() {
+        return None;
+    }
+    let dist = |a: usize, b: usize| (0..3).map(|c| (x[a][c] - x[b][c]).powi(2)).sum::<f64>().sqrt();
+    p.nodes
+        .iter()
+        .map(|n| {
+            n.weights
+                .iter()
+                .map(|&(m, _)| m)
+                .find(|&m| dist(n.slave, m) <= tol)
+                .map(|m| [n.slave, m])
+        })
+        .collect()
 }
 
 /// Unmatched slave nodes, as a warning line.
@@ -65,12 +91,18 @@ pub fn build(scene: &Scene, job: &DeckJob) -> Result<Problem, BuildError> {
         .map(|m| m.youngs_modulus)
         .fold(0.0, f64::max);
 
-    // Ties: penalty couplings, added to K after assembly.
+    // Ties: a conforming tie merges each slave node with its coincident master node
+    // (one set of DOFs, exact, as Abaqus eliminates a tie's slave DOFs); any other tie
+    // becomes penalty couplings, added to K after assembly.
     let mut couplings: Vec<Coupling> = Vec::new();
     let mut tie_springs = Vec::new();
     for t in &deck.ties {
         let tol = t.position_tolerance.unwrap_or(tol);
         let p = pair_surfaces(deck, &t.slave, &t.master, tol, &t.origin, "*TIE")?;
+        if let Some(merged) = coincident(&model.nodes, &p, tol) {
+            model.ties.extend(merged);
+            continue;
+        }
         if let Some(w) = unmatched(
             deck,
             &format!("{}:{}: *TIE {}", t.origin.file, t.origin.line, t.name),

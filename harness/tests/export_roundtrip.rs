@@ -1,0 +1,196 @@
+//! `jointlin export SCENE --inp FILE` read back by the deck reader: the exported deck
+//! passes `jointlin check`, and `jointlin run FILE` (iteration settings from the
+//! jointlin.cfg written beside it) gives the scene's own results.csv for the solid
+//! block on a plane and the coarse three beams; the committed decks of
+//! examples/abaqus/ are what the command writes today; what a deck cannot say is a
+//! named error (exit 2) and writes nothing.
+//!
+//! Run: `cargo test --release -p jointlin-harness --test export_roundtrip`.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+/// Largest difference between a scene run and the run of its exported deck, relative
+/// to the column's largest value (amplitudes, power) or in degrees (phases). The deck is
+/// the scene's model node for node (nodes, elements and DOF numbering, the tied nodes
+/// merged, contact rows and tributary areas, the loads), every number written in
+/// shortest round-trip form, and the deck reader computes face areas and pressure loads
+/// with the same routines as the scene (`fe::elements::face`), so the two runs do the
+/// same arithmetic: measured identical to the last printed digit (results.csv prints
+/// 11 significant digits, phases to 1e-6°). The bound is the project's requirement.
+const RTOL: f64 = 1e-10;
+
+fn root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("..")
+}
+
+fn dir(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("jointlin-export-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+fn jointlin(args: &[&str]) -> (i32, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_jointlin"))
+        .current_dir(root())
+        .args(args)
+        .output()
+        .unwrap();
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stdout).into_owned()
+            + &String::from_utf8_lossy(&out.stderr),
+    )
+}
+
+/// results.csv as header and rows of fields.
+fn results(path: &Path) -> (Vec<String>, Vec<Vec<String>>) {
+    let text = std::fs::read_to_string(path).unwrap();
+    let mut lines = text.lines();
+    let header = lines.next().unwrap().split(',').map(String::from).collect();
+    let rows = lines
+        .map(|l| l.split(',').map(String::from).collect())
+        .collect();
+    (header, rows)
+}
+
+/// Exports `scene` to DIR/`deck`, checks and runs both; compares the scene's columns
+/// with the deck's (`<output>_amp_mm` ↔ `<OUTPUT>_<node>_u<axis>_amp_mm`).
+fn round_trip(scene: &str, deck: &str, axes: &[(&str, usize)]) {
+    let d = dir(deck);
+    let inp = d.join(deck);
+    let (code, log) = jointlin(&["export", scene, "--inp", inp.to_str().unwrap()]);
+    assert_eq!(code, 0, "{log}");
+    for f in ["sweep.frq", "jointlin.cfg"] {
+        assert!(d.join(f).is_file(), "{f} not written beside the deck");
+    }
+    let (code, log) = jointlin(&["check", inp.to_str().unwrap()]);
+    assert_eq!(code, 0, "{log}");
+    assert!(log.contains("run checks: ok"), "{log}");
+    let out_s = d.join("scene");
+    let out_d = d.join("deck");
+    for (input, out) in [(scene.to_string(), &out_s), (inp.display().to_string(), &out_d)] {
+        let (code, log) = jointlin(&[
+            "run",
+            &input,
+            "--out",
+            out.to_str().unwrap(),
+            "--quiet",
+            "--no-plots",
+        ]);
+        assert_eq!(code, 0, "{input}: {log}");
+    }
+    let (hs, rs) = results(&out_s.join("results.csv"));
+    let (hd, rd) = results(&out_d.join("results.csv"));
+    assert_eq!(rs.len(), rd.len(), "frequencies");
+    let column = |h: &[String], name: &str| {
+        h.iter()
+            .position(|c| c == name)
+            .unwrap_or_else(|| panic!("no column {name} in {h:?}"))
+    };
+    let deck_name = |name: &str| -> String {
+        for (out, axis) in axes {
+            if let Some(rest) = name.strip_prefix(&format!("{out}_")) {
+                let prefix = format!("{}_", out.to_ascii_uppercase());
+                let stem = hd
+                    .iter()
+                    .find(|c| c.starts_with(&prefix) && c.ends_with(&format!("_u{axis}_{rest}")))
+                    .unwrap_or_else(|| panic!("no deck column for {name} in {hd:?}"));
+                return stem.clone();
+            }
+        }
+        name.to_string()
+    };
+    let mut worst = 0.0f64;
+    for (i, name) in hs.iter().enumerate() {
+        let j = column(&hd, &deck_name(name));
+        if name == "status" {
+            for (a, b) in rs.iter().zip(&rd) {
+                assert_eq!(a[i], b[j], "status");
+            }
+            continue;
+        }
+        let a: Vec<f64> = rs.iter().map(|r| r[i].parse().unwrap()).collect();
+        let b: Vec<f64> = rd.iter().map(|r| r[j].parse().unwrap()).collect();
+        let phase = name.ends_with("_deg");
+        let scale = if phase {
+            1.0
+        } else {
+            a.iter().fold(0.0f64, |m, v| m.max(v.abs()))
+        };
+        for (k, (x, y)) in a.iter().zip(&b).enumerate() {
+            let e = (x - y).abs() / scale;
+            worst = worst.max(e);
+            assert!(e <= RTOL, "{scene} {name} row {k}: scene {x}, deck {y} ({e:e})");
+        }
+    }
+    eprintln!("{scene}: largest difference {worst:e} (bound {RTOL:e})");
+    let _ = std::fs::remove_dir_all(&d);
+}
+
+#[test]
+fn block_on_plane_deck_gives_the_scene_s_results() {
+    round_trip("scenes/block-on-plane.toml", "block.inp", &[("block_x", 1)]);
+}
+
+#[test]
+fn three_beams_deck_gives_the_scene_s_results() {
+    round_trip(
+        "scenes/three-beams-coarse.toml",
+        "three-beams.inp",
+        &[("middle_tip", 3), ("top_tip", 3)],
+    );
+}
+
+/// The committed example jobs are what `jointlin export` writes from their scenes
+/// (`scripts/abaqus-examples.sh` regenerates them).
+#[test]
+fn committed_abaqus_examples_are_fresh_exports() {
+    for (scene, job, deck) in [
+        ("scenes/block-on-plane.toml", "block-on-plane", "block.inp"),
+        ("scenes/three-beams-coarse.toml", "three-beams", "three-beams.inp"),
+    ] {
+        let d = dir(job);
+        let inp = d.join(deck);
+        let (code, log) = jointlin(&["export", scene, "--inp", inp.to_str().unwrap()]);
+        assert_eq!(code, 0, "{log}");
+        for f in [deck, "sweep.frq", "jointlin.cfg"] {
+            let committed = root().join("examples/abaqus").join(job).join(f);
+            let fresh = std::fs::read_to_string(d.join(f)).unwrap();
+            let old = std::fs::read_to_string(&committed)
+                .unwrap_or_else(|e| panic!("{}: {e}", committed.display()));
+            assert!(
+                old == fresh,
+                "{} is stale: run scripts/abaqus-examples.sh",
+                committed.display()
+            );
+        }
+        let _ = std::fs::remove_dir_all(&d);
+    }
+}
+
+#[test]
+fn what_a_deck_cannot_say_is_a_named_error_and_nothing_is_written() {
+    let d = dir("refused");
+    let inp = d.join("x.inp");
+    for (scene, key) in [
+        ("scenes/block-stick.toml", "`bodies[0].kind`"),
+        ("scenes/duffing.toml", "`bodies[0].kind`"),
+    ] {
+        let (code, log) = jointlin(&["export", scene, "--inp", inp.to_str().unwrap()]);
+        assert_eq!(code, 2, "{log}");
+        assert!(log.contains(key), "{scene}: {log}");
+        assert!(!inp.exists() && !d.join("jointlin.cfg").exists());
+    }
+    let text = std::fs::read_to_string(root().join("scenes/block-on-plane.toml"))
+        .unwrap()
+        .replace("[sweep]\n", "[sweep]\ndirection = \"down\"\n");
+    let scene = d.join("down.toml");
+    std::fs::write(&scene, text).unwrap();
+    let (code, log) = jointlin(&["export", scene.to_str().unwrap(), "--inp", inp.to_str().unwrap()]);
+    assert_eq!(code, 2, "{log}");
+    assert!(log.contains("`sweep.direction`"), "{log}");
+    assert!(!inp.exists());
+    let _ = std::fs::remove_dir_all(&d);
+}
