@@ -39,8 +39,7 @@ fn jointlin(args: &[&str]) -> (i32, String) {
         .unwrap();
     (
         out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into_owned()
-            + &String::from_utf8_lossy(&out.stderr),
+        String::from_utf8_lossy(&out.stdout).into_owned() + &String::from_utf8_lossy(&out.stderr),
     )
 }
 
@@ -70,7 +69,10 @@ fn round_trip(scene: &str, deck: &str, axes: &[(&str, usize)]) {
     assert!(log.contains("run checks: ok"), "{log}");
     let out_s = d.join("scene");
     let out_d = d.join("deck");
-    for (input, out) in [(scene.to_string(), &out_s), (inp.display().to_string(), &out_d)] {
+    for (input, out) in [
+        (scene.to_string(), &out_s),
+        (inp.display().to_string(), &out_d),
+    ] {
         let (code, log) = jointlin(&[
             "run",
             &input,
@@ -122,7 +124,10 @@ fn round_trip(scene: &str, deck: &str, axes: &[(&str, usize)]) {
         for (k, (x, y)) in a.iter().zip(&b).enumerate() {
             let e = (x - y).abs() / scale;
             worst = worst.max(e);
-            assert!(e <= RTOL, "{scene} {name} row {k}: scene {x}, deck {y} ({e:e})");
+            assert!(
+                e <= RTOL,
+                "{scene} {name} row {k}: scene {x}, deck {y} ({e:e})"
+            );
         }
     }
     eprintln!("{scene}: largest difference {worst:e} (bound {RTOL:e})");
@@ -149,7 +154,11 @@ fn three_beams_deck_gives_the_scene_s_results() {
 fn committed_abaqus_examples_are_fresh_exports() {
     for (scene, job, deck) in [
         ("scenes/block-on-plane.toml", "block-on-plane", "block.inp"),
-        ("scenes/three-beams-coarse.toml", "three-beams", "three-beams.inp"),
+        (
+            "scenes/three-beams-coarse.toml",
+            "three-beams",
+            "three-beams.inp",
+        ),
     ] {
         let d = dir(job);
         let inp = d.join(deck);
@@ -188,7 +197,12 @@ fn what_a_deck_cannot_say_is_a_named_error_and_nothing_is_written() {
         .replace("[sweep]\n", "[sweep]\ndirection = \"down\"\n");
     let scene = d.join("down.toml");
     std::fs::write(&scene, text).unwrap();
-    let (code, log) = jointlin(&["export", scene.to_str().unwrap(), "--inp", inp.to_str().unwrap()]);
+    let (code, log) = jointlin(&[
+        "export",
+        scene.to_str().unwrap(),
+        "--inp",
+        inp.to_str().unwrap(),
+    ]);
     assert_eq!(code, 2, "{log}");
     assert!(log.contains("`sweep.direction`"), "{log}");
     assert!(!inp.exists());

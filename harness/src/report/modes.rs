@@ -178,7 +178,7 @@ fn cell_type(kind: ElementKind) -> CellType {
 }
 
 /// The model's elements, and a vertex per node outside every element.
-fn cells(model: &Model) -> Vec<(CellType, Vec<usize>)> {
+pub(super) fn cells(model: &Model) -> Vec<(CellType, Vec<usize>)> {
     let mut used = vec![false; model.nodes.len()];
     let mut cells: Vec<(CellType, Vec<usize>)> = model
         .elements

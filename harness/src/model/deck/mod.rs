@@ -57,7 +57,12 @@ fn coincident(x: &[[f64; 3]], p: &Pairing, tol: f64) -> Option<Vec<[usize; 2]>> 
     if !p.unmatched.is_empty() {
         return None;
     }
-    let dist = |a: usize, b: usize| (0..3).map(|c| (x[a][c] - x[b][c]).powi(2)).sum::<f64>().sqrt();
+    let dist = |a: usize, b: usize| {
+        (0..3)
+            .map(|c| (x[a][c] - x[b][c]).powi(2))
+            .sum::<f64>()
+            .sqrt()
+    };
     p.nodes
         .iter()
         .map(|n| {

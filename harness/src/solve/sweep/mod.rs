@@ -103,6 +103,9 @@ pub struct Options {
     pub condense_max: usize,
     /// Run the frequencies in descending order (results are still stored ascending).
     pub descending: bool,
+    /// Fast mode: keep each converged frequency's displacement field
+    /// ([`SweepResult::fields`]).
+    pub keep_fields: bool,
 }
 
 impl Options {
@@ -113,6 +116,7 @@ impl Options {
             point_results: effects.point_energy_output || effects.stick_slip_map,
             condense_max: fast::CONDENSE_MAX,
             descending: false,
+            keep_fields: false,
         }
     }
 }
@@ -174,6 +178,10 @@ pub struct SweepResult {
     /// solution ([`posteriori`]; `None` where not converged or not checked); a frequency
     /// that fails it is not converged.
     pub checks: Vec<Option<posteriori::Verdict>>,
+    /// Fast mode with [`Options::keep_fields`]: (frequency, the complex displacement
+    /// amplitude of every free DOF in length) of each converged frequency, in run order.
+    /// Else empty.
+    pub fields: Vec<(f64, Vec<C64>)>,
     pub passes: Vec<PassRecord>,
     pub factorizations: usize,
     /// Fast mode with FGMRES: preconditioner applications (solves) in all.
