@@ -3,7 +3,9 @@
 //! jointlin.cfg written beside it) gives the scene's own results.csv for the solid
 //! block on a plane and the coarse three beams; the committed decks of
 //! examples/abaqus/ are what the command writes today; what a deck cannot say is a
-//! named error (exit 2) and writes nothing.
+//! named error (exit 2) and writes nothing; CalculiX reads the exported three-beam deck
+//! (the USER interaction replaced by ccx's own penalty contact, the preload step alone:
+//! ccx has no direct steady-state dynamics) and runs it.
 //!
 //! Run: `cargo test --release -p jointlin-harness --test export_roundtrip`.
 
@@ -39,8 +41,7 @@ fn jointlin(args: &[&str]) -> (i32, String) {
         .unwrap();
     (
         out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into_owned()
-            + &String::from_utf8_lossy(&out.stderr),
+        String::from_utf8_lossy(&out.stdout).into_owned() + &String::from_utf8_lossy(&out.stderr),
     )
 }
 
@@ -70,7 +71,10 @@ fn round_trip(scene: &str, deck: &str, axes: &[(&str, usize)]) {
     assert!(log.contains("run checks: ok"), "{log}");
     let out_s = d.join("scene");
     let out_d = d.join("deck");
-    for (input, out) in [(scene.to_string(), &out_s), (inp.display().to_string(), &out_d)] {
+    for (input, out) in [
+        (scene.to_string(), &out_s),
+        (inp.display().to_string(), &out_d),
+    ] {
         let (code, log) = jointlin(&[
             "run",
             &input,
@@ -122,7 +126,10 @@ fn round_trip(scene: &str, deck: &str, axes: &[(&str, usize)]) {
         for (k, (x, y)) in a.iter().zip(&b).enumerate() {
             let e = (x - y).abs() / scale;
             worst = worst.max(e);
-            assert!(e <= RTOL, "{scene} {name} row {k}: scene {x}, deck {y} ({e:e})");
+            assert!(
+                e <= RTOL,
+                "{scene} {name} row {k}: scene {x}, deck {y} ({e:e})"
+            );
         }
     }
     eprintln!("{scene}: largest difference {worst:e} (bound {RTOL:e})");
@@ -149,7 +156,11 @@ fn three_beams_deck_gives_the_scene_s_results() {
 fn committed_abaqus_examples_are_fresh_exports() {
     for (scene, job, deck) in [
         ("scenes/block-on-plane.toml", "block-on-plane", "block.inp"),
-        ("scenes/three-beams-coarse.toml", "three-beams", "three-beams.inp"),
+        (
+            "scenes/three-beams-coarse.toml",
+            "three-beams",
+            "three-beams.inp",
+        ),
     ] {
         let d = dir(job);
         let inp = d.join(deck);
@@ -188,9 +199,96 @@ fn what_a_deck_cannot_say_is_a_named_error_and_nothing_is_written() {
         .replace("[sweep]\n", "[sweep]\ndirection = \"down\"\n");
     let scene = d.join("down.toml");
     std::fs::write(&scene, text).unwrap();
-    let (code, log) = jointlin(&["export", scene.to_str().unwrap(), "--inp", inp.to_str().unwrap()]);
+    let (code, log) = jointlin(&[
+        "export",
+        scene.to_str().unwrap(),
+        "--inp",
+        inp.to_str().unwrap(),
+    ]);
     assert_eq!(code, 2, "{log}");
     assert!(log.contains("`sweep.direction`"), "{log}");
     assert!(!inp.exists());
+    let _ = std::fs::remove_dir_all(&d);
+}
+
+/// The exported deck with its USER interactions replaced by ccx's linear penalty and
+/// Coulomb friction (k_N, μ, stick slope from the property table's values) and the
+/// steady-state step left out.
+fn for_ccx(deck: &str) -> String {
+    let mut out = String::new();
+    let mut lines = deck.lines().peekable();
+    while let Some(l) = lines.next() {
+        if l.starts_with("** Step 2") {
+            break;
+        }
+        if let Some(rest) = l.strip_prefix("*SURFACE INTERACTION, NAME=") {
+            let name = rest.split(',').next().unwrap();
+            let mut props = Vec::new();
+            while let Some(n) = lines.peek() {
+                if n.starts_with('*') && !n.starts_with("**") {
+                    break;
+                }
+                if !n.starts_with("**") {
+                    props.extend(n.split(',').filter_map(|f| f.trim().parse::<f64>().ok()));
+                }
+                lines.next();
+            }
+            // props: thickness, law, rule, μ, k_T0, normal law, k_N, …
+            out += &format!(
+                "*SURFACE INTERACTION, NAME={name}\n*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR\n{:e}\n*FRICTION\n{:e}, {:e}\n",
+                props[6], props[3], props[4]
+            );
+            continue;
+        }
+        out += l;
+        out.push('\n');
+    }
+    out
+}
+
+#[test]
+fn calculix_reads_and_runs_the_exported_deck() {
+    if let Some(why) = jointlin_harness::validate::ccx::ccx_missing() {
+        assert!(std::env::var("CI").is_err(), "ccx missing in CI: {why}");
+        eprintln!("ccx check skipped: {why}");
+        return;
+    }
+    let d = dir("ccx");
+    let (code, log) = jointlin(&[
+        "export",
+        "scenes/three-beams-coarse.toml",
+        "--inp",
+        d.join("three-beams.inp").to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{log}");
+    let deck = std::fs::read_to_string(d.join("three-beams.inp")).unwrap();
+    std::fs::write(d.join("job.inp"), for_ccx(&deck)).unwrap();
+    let out = Command::new("ccx")
+        .args(["-i", "job"])
+        .current_dir(&d)
+        .output()
+        .unwrap();
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success() && !text.contains("*ERROR"), "{text}");
+    // The preload step's printed displacements of both output nodes, finite.
+    let dat = std::fs::read_to_string(d.join("job.dat")).unwrap();
+    for set in ["MIDDLE_TIP", "TOP_TIP"] {
+        let head = format!("displacements (vx,vy,vz) for set {set}");
+        let at = dat
+            .find(&head)
+            .unwrap_or_else(|| panic!("no {set} in\n{dat}"));
+        let row: Vec<f64> = dat[at..]
+            .lines()
+            .nth(2)
+            .unwrap()
+            .split_whitespace()
+            .skip(1)
+            .map(|v| v.parse().unwrap())
+            .collect();
+        assert!(
+            row.len() == 3 && row.iter().all(|v| v.is_finite()),
+            "{set}: {row:?}"
+        );
+    }
     let _ = std::fs::remove_dir_all(&d);
 }

@@ -95,11 +95,21 @@ fn surface(out: &mut String, name: &str, faces: &[(usize, Face)]) {
 }
 
 /// Writes the model data of `scene` (its built `p`) to `out`.
-pub fn write(out: &mut String, scene: &Scene, p: &Problem, names: &Names) -> Result<(), ExportError> {
+pub fn write(
+    out: &mut String,
+    scene: &Scene,
+    p: &Problem,
+    names: &Names,
+) -> Result<(), ExportError> {
     let s = &scene.spec;
     let m = &p.model;
     let u = &s.units;
-    for (what, v) in [("length", &u.length), ("force", &u.force), ("time", &u.time), ("mass", &u.mass)] {
+    for (what, v) in [
+        ("length", &u.length),
+        ("force", &u.force),
+        ("time", &u.time),
+        ("mass", &u.mass),
+    ] {
         if v.is_empty() || v.contains(char::is_whitespace) {
             return Err(ExportError::Unsupported {
                 file: scene.file.clone(),
@@ -108,7 +118,11 @@ pub fn write(out: &mut String, scene: &Scene, p: &Problem, names: &Names) -> Res
             });
         }
     }
-    let title = if s.title.is_empty() { &scene.file } else { &s.title };
+    let title = if s.title.is_empty() {
+        &scene.file
+    } else {
+        &s.title
+    };
     let _ = writeln!(out, "*HEADING\n{}", title.replace(['\n', '*'], " "));
     let _ = writeln!(
         out,
@@ -122,17 +136,36 @@ pub fn write(out: &mut String, scene: &Scene, p: &Problem, names: &Names) -> Res
     );
     let _ = writeln!(out, "*NODE");
     for (i, x) in m.nodes.iter().enumerate() {
-        let _ = writeln!(out, "{}, {}, {}, {}", i + 1, num(x[0]), num(x[1]), num(x[2]));
+        let _ = writeln!(
+            out,
+            "{}, {}, {}, {}",
+            i + 1,
+            num(x[0]),
+            num(x[1]),
+            num(x[2])
+        );
     }
     for (b, body) in m.bodies.iter().enumerate() {
         let _ = writeln!(out, "*ELEMENT, TYPE=C3D8I, ELSET={}", names.bodies[b]);
         for e in body.first_element..body.first_element + body.n_elements() {
-            let nodes: Vec<String> = m.elements[e].nodes.iter().map(|n| (n + 1).to_string()).collect();
+            let nodes: Vec<String> = m.elements[e]
+                .nodes
+                .iter()
+                .map(|n| (n + 1).to_string())
+                .collect();
             let _ = writeln!(out, "{}, {}", e + 1, nodes.join(", "));
         }
     }
-    let used: BTreeSet<&str> = s.bodies.iter().filter_map(|b| b.material.as_deref()).collect();
-    for (key, mat) in s.materials.iter().filter(|(k, _)| used.contains(k.as_str())) {
+    let used: BTreeSet<&str> = s
+        .bodies
+        .iter()
+        .filter_map(|b| b.material.as_deref())
+        .collect();
+    for (key, mat) in s
+        .materials
+        .iter()
+        .filter(|(k, _)| used.contains(k.as_str()))
+    {
         let _ = writeln!(out, "*MATERIAL, NAME={}", names.materials[key]);
         let _ = writeln!(out, "*ELASTIC\n{}, {}", num(mat.e), num(mat.nu));
         let _ = writeln!(out, "*DENSITY\n{}", num(mat.rho));
@@ -146,7 +179,10 @@ pub fn write(out: &mut String, scene: &Scene, p: &Problem, names: &Names) -> Res
         }
     }
     for (b, body) in s.bodies.iter().enumerate() {
-        let mat = body.material.as_deref().expect("validated: boxes have a material");
+        let mat = body
+            .material
+            .as_deref()
+            .expect("validated: boxes have a material");
         let _ = writeln!(
             out,
             "*SOLID SECTION, ELSET={}, MATERIAL={}",
@@ -189,13 +225,12 @@ pub fn body_index(scene: &Scene, name: &str) -> usize {
 fn ties(out: &mut String, scene: &Scene, m: &Model, names: &Names) -> Result<(), ExportError> {
     for (i, t) in scene.spec.ties.iter().enumerate() {
         let [a, b] = [0, 1].map(|k| body_index(scene, &t.between[k]));
-        let pairs = find_ties(m, a, b, PAIR_TOL).map_err(|source| {
-            crate::model::BuildError::Tie {
+        let pairs =
+            find_ties(m, a, b, PAIR_TOL).map_err(|source| crate::model::BuildError::Tie {
                 a: t.between[0].clone(),
                 b: t.between[1].clone(),
                 source,
-            }
-        })?;
+            })?;
         let mut sides = Vec::new();
         for (side, body) in [(0, a), (1, b)] {
             let tied: BTreeSet<usize> = pairs.iter().map(|p| p[side]).collect();
@@ -224,7 +259,10 @@ fn ties(out: &mut String, scene: &Scene, m: &Model, names: &Names) -> Result<(),
         let name = format!("TIE_{}_{}", names.bodies[a], names.bodies[b]);
         surface(out, &format!("{name}_MASTER"), &sides[0]);
         surface(out, &format!("{name}_SLAVE"), &sides[1]);
-        let _ = writeln!(out, "*TIE, NAME={name}, ADJUST=NO\n{name}_SLAVE, {name}_MASTER");
+        let _ = writeln!(
+            out,
+            "*TIE, NAME={name}, ADJUST=NO\n{name}_SLAVE, {name}_MASTER"
+        );
     }
     Ok(())
 }
@@ -284,7 +322,7 @@ fn interfaces(out: &mut String, scene: &Scene, m: &Model, names: &Names) {
         );
         let _ = writeln!(
             out,
-            "*CONTACT PAIR, INTERACTION={name}, SMALL SLIDING\n{name}_SLAVE, {name}_MASTER"
+            "*CONTACT PAIR, INTERACTION={name}, TYPE=NODE TO SURFACE, SMALL SLIDING\n{name}_SLAVE, {name}_MASTER"
         );
     }
 }

@@ -61,7 +61,11 @@ pub fn write(out: &mut String, scene: &Scene, p: &Problem, names: &Names) {
                 let f = l.face.expect("validated");
                 let name = format!("PRESSURE_{}_{}", names.bodies[b], face_label(f));
                 // The surface is model data (`surfaces`).
-                let _ = writeln!(out, "*DSLOAD\n{name}, P, {}", num(l.pressure.expect("validated")));
+                let _ = writeln!(
+                    out,
+                    "*DSLOAD\n{name}, P, {}",
+                    num(l.pressure.expect("validated"))
+                );
             }
             PreloadKind::Force => {
                 let n = nearest(m, b, l.at.unwrap_or(m.nodes[m.bodies[b].first_node]));

@@ -41,8 +41,8 @@ pub fn nodal_areas(model: &Model, quads: &[[usize; 4]]) -> Vec<(usize, f64)> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use nalgebra::Vector3;
     use crate::fe::mesh::{BoxSpec, Face, Material};
+    use nalgebra::Vector3;
 
     fn model() -> Model {
         let mut m = Model::new(vec![Material::new(1.0, 0.3, 1.0).unwrap()]);

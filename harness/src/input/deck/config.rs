@@ -53,7 +53,11 @@ impl ShimConfig {
             return Ok(None);
         }
         let text = std::fs::read_to_string(&path).map_err(|e| {
-            origin(&path, 0).error(K::Io, KEYWORD, format!("cannot read {}: {e}", path.display()))
+            origin(&path, 0).error(
+                K::Io,
+                KEYWORD,
+                format!("cannot read {}: {e}", path.display()),
+            )
         })?;
         ShimConfig::parse(&path, &text).map(Some)
     }
@@ -86,9 +90,10 @@ impl ShimConfig {
                 "initial_amplitude" => c.initial_amplitude = Some(number()?),
                 "rtol" => c.rtol = Some(number()?),
                 "max_passes" => {
-                    c.max_passes = Some(value.parse().map_err(|_| {
-                        err(format!("max_passes = {value}: not a whole number"))
-                    })?)
+                    c.max_passes =
+                        Some(value.parse().map_err(|_| {
+                            err(format!("max_passes = {value}: not a whole number"))
+                        })?)
                 }
                 "scheme" => {
                     c.scheme = Some(match value.to_ascii_lowercase().as_str() {

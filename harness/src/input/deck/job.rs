@@ -251,11 +251,7 @@ fn check_step(st: &Step) -> Result<(), DeckError> {
         Procedure::SteadyState {
             ref ranges, scale, ..
         } => {
-            let err = |m: String| {
-                Err(st
-                    .origin
-                    .error(K::Unsupported, "*STEADY STATE DYNAMICS", m))
-            };
+            let err = |m: String| Err(st.origin.error(K::Unsupported, "*STEADY STATE DYNAMICS", m));
             if let Some(r) = ranges.iter().find(|r| r.bias != 1.0) {
                 return err(format!(
                     "bias {}: a run spaces the points evenly (bias 1)",

@@ -1,5 +1,6 @@
 //! Deck → [`Problem`]: the deck's mesh, materials and zero boundary conditions, its ties
-//! (penalty couplings of each slave node to its interpolated master face), its contact
+//! (a conforming tie's coincident nodes merged, as a scene's ties are; otherwise penalty
+//! couplings of each slave node to its interpolated master face), its contact
 //! pairs (one contact point per paired slave node, `fe::pairing`), the static step's
 //! loads as preload, the steady-state step's loads as the harmonic excitation, and the
 //! scene's outputs on the deck's sets. The scene (a deck run's, or one with `model`)
@@ -57,7 +58,12 @@ fn coincident(x: &[[f64; 3]], p: &Pairing, tol: f64) -> Option<Vec<[usize; 2]>> 
     if !p.unmatched.is_empty() {
         return None;
     }
-    let dist = |a: usize, b: usize| (0..3).map(|c| (x[a][c] - x[b][c]).powi(2)).sum::<f64>().sqrt();
+    let dist = |a: usize, b: usize| {
+        (0..3)
+            .map(|c| (x[a][c] - x[b][c]).powi(2))
+            .sum::<f64>()
+            .sqrt()
+    };
     p.nodes
         .iter()
         .map(|n| {
