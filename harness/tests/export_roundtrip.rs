@@ -150,6 +150,34 @@ fn three_beams_deck_gives_the_scene_s_results() {
     );
 }
 
+/// Ten tied boxes and a screw's preload: the coarse knife with its slot's
+/// play closed (a deck has no initial gap: that is a named error, tested below).
+#[test]
+fn tied_knife_deck_gives_the_scene_s_results() {
+    let text = std::fs::read_to_string(root().join("scenes/knife-coarse.toml")).unwrap();
+    let closed: String = text
+        .lines()
+        .map(|l| {
+            if l.starts_with("initial_gap") {
+                "initial_gap = 0.0"
+            } else {
+                l
+            }
+        })
+        .collect::<Vec<_>>()
+        .join("\n");
+    assert_ne!(closed.trim(), text.trim(), "the knife has a gap to close");
+    let d = dir("knife-scene");
+    let scene = d.join("knife-closed.toml");
+    std::fs::write(&scene, closed).unwrap();
+    round_trip(
+        scene.to_str().unwrap(),
+        "knife.inp",
+        &[("end_face", 1), ("blade_tip", 1)],
+    );
+    let _ = std::fs::remove_dir_all(&d);
+}
+
 /// The committed example jobs are what `jointlin export` writes from their scenes
 /// (`scripts/abaqus-examples.sh` regenerates them).
 #[test]
@@ -194,6 +222,14 @@ fn what_a_deck_cannot_say_is_a_named_error_and_nothing_is_written() {
         assert!(log.contains(key), "{scene}: {log}");
         assert!(!inp.exists() && !d.join("jointlin.cfg").exists());
     }
+    let (code, log) = jointlin(&[
+        "export",
+        "scenes/knife-coarse.toml",
+        "--inp",
+        inp.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 2, "{log}");
+    assert!(log.contains("`interfaces[0].initial_gap`"), "{log}");
     let text = std::fs::read_to_string(root().join("scenes/block-on-plane.toml"))
         .unwrap()
         .replace("[sweep]\n", "[sweep]\ndirection = \"down\"\n");
