@@ -319,6 +319,34 @@ fn fortran_sweep_as_separate_jobs_matches_the_rust_store() {
     check_sweep("Fortran sweep", &got, KincNumbering::Sequential);
 }
 
+/// The Abaqus example job's jointlin.cfg (examples/abaqus/block-on-plane, written by
+/// `jointlin export`) read by the shim's own parser: the Fortran sweep host, run as
+/// separate jobs with it, iterates exactly as with its own configuration (the same start
+/// amplitude 1e-4, rtol 1e-6, secant scheme, sweep step 2, sequential numbering; 50
+/// passes allowed instead of 30, and it needs fewer). The host reads its action file by
+/// name, so the configuration's file names become the host's (sweep.next, sweep.restart).
+#[test]
+fn fortran_sweep_with_the_exported_abaqus_configuration() {
+    let p = programs();
+    let mut cmd = command(p.fortran.join("sweep"), true, false);
+    let work = scratch("fortran-sweep-exported-cfg");
+    let cfg = std::fs::read_to_string(root().join("examples/abaqus/block-on-plane/jointlin.cfg"))
+        .unwrap();
+    let renamed = cfg
+        .replace("= jointlin.restart", "= sweep.restart")
+        .replace("= jointlin.next", "= sweep.next");
+    assert_ne!(renamed, cfg, "the exported configuration names its files");
+    std::fs::write(work.join("exported.cfg"), renamed).unwrap();
+    cmd.current_dir(&work)
+        .env("JOINTLIN_CONFIG", work.join("exported.cfg"));
+    let got = parse(&run_ok(&mut cmd).stdout);
+    check_sweep(
+        "Fortran sweep with the exported jointlin.cfg",
+        &got,
+        KincNumbering::Sequential,
+    );
+}
+
 #[test]
 fn hosts_link_the_shared_library_with_an_rpath() {
     let p = programs();

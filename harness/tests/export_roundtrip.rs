@@ -3,7 +3,9 @@
 //! jointlin.cfg written beside it) gives the scene's own results.csv for the solid
 //! block on a plane and the coarse three beams; the committed decks of
 //! examples/abaqus/ are what the command writes today; what a deck cannot say is a
-//! named error (exit 2) and writes nothing.
+//! named error (exit 2) and writes nothing; CalculiX reads the exported three-beam deck
+//! (the USER interaction replaced by ccx's own penalty contact, the preload step alone:
+//! ccx has no direct steady-state dynamics) and runs it.
 //!
 //! Run: `cargo test --release -p jointlin-harness --test export_roundtrip`.
 
@@ -148,6 +150,34 @@ fn three_beams_deck_gives_the_scene_s_results() {
     );
 }
 
+/// Ten tied boxes and a screw's preload: the coarse knife with its slot's
+/// play closed (a deck has no initial gap: that is a named error, tested below).
+#[test]
+fn tied_knife_deck_gives_the_scene_s_results() {
+    let text = std::fs::read_to_string(root().join("scenes/knife-coarse.toml")).unwrap();
+    let closed: String = text
+        .lines()
+        .map(|l| {
+            if l.starts_with("initial_gap") {
+                "initial_gap = 0.0"
+            } else {
+                l
+            }
+        })
+        .collect::<Vec<_>>()
+        .join("\n");
+    assert_ne!(closed.trim(), text.trim(), "the knife has a gap to close");
+    let d = dir("knife-scene");
+    let scene = d.join("knife-closed.toml");
+    std::fs::write(&scene, closed).unwrap();
+    round_trip(
+        scene.to_str().unwrap(),
+        "knife.inp",
+        &[("end_face", 1), ("blade_tip", 1)],
+    );
+    let _ = std::fs::remove_dir_all(&d);
+}
+
 /// The committed example jobs are what `jointlin export` writes from their scenes
 /// (`scripts/abaqus-examples.sh` regenerates them).
 #[test]
@@ -192,6 +222,14 @@ fn what_a_deck_cannot_say_is_a_named_error_and_nothing_is_written() {
         assert!(log.contains(key), "{scene}: {log}");
         assert!(!inp.exists() && !d.join("jointlin.cfg").exists());
     }
+    let (code, log) = jointlin(&[
+        "export",
+        "scenes/knife-coarse.toml",
+        "--inp",
+        inp.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 2, "{log}");
+    assert!(log.contains("`interfaces[0].initial_gap`"), "{log}");
     let text = std::fs::read_to_string(root().join("scenes/block-on-plane.toml"))
         .unwrap()
         .replace("[sweep]\n", "[sweep]\ndirection = \"down\"\n");
@@ -206,5 +244,87 @@ fn what_a_deck_cannot_say_is_a_named_error_and_nothing_is_written() {
     assert_eq!(code, 2, "{log}");
     assert!(log.contains("`sweep.direction`"), "{log}");
     assert!(!inp.exists());
+    let _ = std::fs::remove_dir_all(&d);
+}
+
+/// The exported deck with its USER interactions replaced by ccx's linear penalty and
+/// Coulomb friction (k_N, μ, stick slope from the property table's values) and the
+/// steady-state step left out.
+fn for_ccx(deck: &str) -> String {
+    let mut out = String::new();
+    let mut lines = deck.lines().peekable();
+    while let Some(l) = lines.next() {
+        if l.starts_with("** Step 2") {
+            break;
+        }
+        if let Some(rest) = l.strip_prefix("*SURFACE INTERACTION, NAME=") {
+            let name = rest.split(',').next().unwrap();
+            let mut props = Vec::new();
+            while let Some(n) = lines.peek() {
+                if n.starts_with('*') && !n.starts_with("**") {
+                    break;
+                }
+                if !n.starts_with("**") {
+                    props.extend(n.split(',').filter_map(|f| f.trim().parse::<f64>().ok()));
+                }
+                lines.next();
+            }
+            // props: thickness, law, rule, μ, k_T0, normal law, k_N, …
+            out += &format!(
+                "*SURFACE INTERACTION, NAME={name}\n*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR\n{:e}\n*FRICTION\n{:e}, {:e}\n",
+                props[6], props[3], props[4]
+            );
+            continue;
+        }
+        out += l;
+        out.push('\n');
+    }
+    out
+}
+
+#[test]
+fn calculix_reads_and_runs_the_exported_deck() {
+    if let Some(why) = jointlin_harness::validate::ccx::ccx_missing() {
+        assert!(std::env::var("CI").is_err(), "ccx missing in CI: {why}");
+        eprintln!("ccx check skipped: {why}");
+        return;
+    }
+    let d = dir("ccx");
+    let (code, log) = jointlin(&[
+        "export",
+        "scenes/three-beams-coarse.toml",
+        "--inp",
+        d.join("three-beams.inp").to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{log}");
+    let deck = std::fs::read_to_string(d.join("three-beams.inp")).unwrap();
+    std::fs::write(d.join("job.inp"), for_ccx(&deck)).unwrap();
+    let out = Command::new("ccx")
+        .args(["-i", "job"])
+        .current_dir(&d)
+        .output()
+        .unwrap();
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success() && !text.contains("*ERROR"), "{text}");
+    // The preload step's printed displacements of both output nodes, finite.
+    let dat = std::fs::read_to_string(d.join("job.dat")).unwrap();
+    for set in ["MIDDLE_TIP", "TOP_TIP"] {
+        let head = format!("displacements (vx,vy,vz) for set {set}");
+        let at = dat
+            .find(&head)
+            .unwrap_or_else(|| panic!("no {set} in\n{dat}"));
+        let row: Vec<f64> = dat[at..]
+            .lines()
+            .nth(2)
+            .unwrap()
+            .split_whitespace()
+            .skip(1)
+            .map(|v| v.parse().unwrap())
+            .collect();
+        assert!(
+            row.len() == 3 && row.iter().all(|v| v.is_finite()),
+            "{set}: {row:?}"
+        );
+    }
     let _ = std::fs::remove_dir_all(&d);
 }

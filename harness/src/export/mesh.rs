@@ -322,7 +322,7 @@ fn interfaces(out: &mut String, scene: &Scene, m: &Model, names: &Names) {
         );
         let _ = writeln!(
             out,
-            "*CONTACT PAIR, INTERACTION={name}, SMALL SLIDING\n{name}_SLAVE, {name}_MASTER"
+            "*CONTACT PAIR, INTERACTION={name}, TYPE=NODE TO SURFACE, SMALL SLIDING\n{name}_SLAVE, {name}_MASTER"
         );
     }
 }

@@ -331,6 +331,15 @@ impl Reader {
             "SURFACE INTERACTION" => self.interaction(card)?,
             "CONTACT PAIR" => {
                 let interaction = scope.name(card.required("INTERACTION")?);
+                if let Some(t) = card
+                    .param("TYPE")
+                    .filter(|t| !t.eq_ignore_ascii_case("NODE TO SURFACE"))
+                {
+                    return Err(card.error(
+                        K::Unsupported,
+                        format!("TYPE={t}: a run pairs node to surface (UINTER per slave node)"),
+                    ));
+                }
                 for l in lines(card) {
                     let [slave, master] = self.surface_pair(card, l, scope)?;
                     self.deck.contact_pairs.push(ContactPair {

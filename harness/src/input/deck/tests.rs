@@ -457,3 +457,47 @@ fn decks_written_for_ccx_read_back_for_every_element_type() {
         assert_eq!(d.node_sets["FIXED"], vec![1, 2]);
     }
 }
+
+/// `*STEADY STATE DYNAMICS` data lines as Abaqus reads them (an upper limit of zero or
+/// blank: one frequency; fewer than 2 points: 20), here from an `*INCLUDE`d file of
+/// data lines that continues the step's card; a contact pair of another TYPE than node
+/// to surface is refused.
+#[test]
+fn frequency_lines_single_frequencies_and_included_data_lines() {
+    let dir = std::env::temp_dir().join(format!("jointlin-deck-frq-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(dir.join("sweep.frq"), "150.,\n175., 0.\n200., 300., 1\n").unwrap();
+    let main = FLAT.replace(
+        "100., 2.e3, 41, 1.\n",
+        "100., 2.e3, 41, 1.\n*INCLUDE, INPUT=sweep.frq\n",
+    );
+    assert_ne!(main, FLAT);
+    std::fs::write(dir.join("main.inp"), &main).unwrap();
+    let (d, _) = read(&dir.join("main.inp")).unwrap();
+    let Procedure::SteadyState { ranges, .. } = &d.steps[2].procedure else {
+        panic!("step 3 is the sweep");
+    };
+    let got: Vec<(f64, f64, usize)> = ranges
+        .iter()
+        .map(|r| (r.f_low, r.f_high, r.points))
+        .collect();
+    assert_eq!(
+        got,
+        [
+            (100.0, 2000.0, 41),
+            (150.0, 150.0, 1),
+            (175.0, 175.0, 1),
+            (200.0, 300.0, 20)
+        ]
+    );
+    // The step's loads after the include still belong to it.
+    assert_eq!(d.steps[2].cloads.len(), 1);
+    let _ = std::fs::remove_dir_all(&dir);
+    let e = read_text(&FLAT.replace(
+        "*Contact Pair, interaction=JOINT, small sliding",
+        "*Contact Pair, interaction=JOINT, type=surface to surface",
+    ))
+    .unwrap_err();
+    assert_eq!(e.kind, DeckErrorKind::Unsupported);
+    assert!(e.message.starts_with("TYPE=surface to surface"), "{e}");
+}

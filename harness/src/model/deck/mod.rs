@@ -1,5 +1,6 @@
 //! Deck → [`Problem`]: the deck's mesh, materials and zero boundary conditions, its ties
-//! (penalty couplings of each slave node to its interpolated master face), its contact
+//! (a conforming tie's coincident nodes merged, as a scene's ties are; otherwise penalty
+//! couplings of each slave node to its interpolated master face), its contact
 //! pairs (one contact point per paired slave node, `fe::pairing`), the static step's
 //! loads as preload, the steady-state step's loads as the harmonic excitation, and the
 //! scene's outputs on the deck's sets. The scene (a deck run's, or one with `model`)
