@@ -105,25 +105,16 @@ impl FeBalance<'_, '_> {
 
 #[cfg(test)]
 mod tests {
-    use crate::input::scene::Scene;
     use crate::mhb::NewtonOptions;
-    use crate::model::build;
-    use crate::solve::static_step;
     use crate::solve::sweep::harmonic_fe::FeBalance;
-    use crate::solve::sweep::Setup;
+    use crate::solve::sweep::{three_beams_coarse, Setup};
 
     /// three-beams-coarse at 1180 Hz (just above its first resonance, the joints in
     /// microslip), H = 3: the converged balance passes; the same solution with one
     /// contact coefficient 1 % off, or claimed for forces 1 % off, does not.
     #[test]
     fn the_uncondensed_path_confirms_a_balance_and_catches_planted_errors() {
-        let path = format!(
-            "{}/../scenes/three-beams-coarse.toml",
-            env!("CARGO_MANIFEST_DIR")
-        );
-        let scene = Scene::load(std::path::Path::new(&path)).unwrap();
-        let p = build(&scene).unwrap();
-        let stat = static_step::solve(&p, true).unwrap();
+        let (scene, p, stat) = three_beams_coarse();
         let mut setup = Setup::new(&p, &stat, &scene.spec.effects).unwrap();
         let mut hb = FeBalance::new(&mut setup, 3, 64);
         let f = 1180.0;

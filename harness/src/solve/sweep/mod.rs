@@ -448,3 +448,16 @@ pub fn run(
     *r.timings.entry("symbolic analysis".into()).or_default() += analysis;
     Ok(r)
 }
+
+/// The model of scenes/three-beams-coarse.toml after its static step, for unit tests.
+#[cfg(test)]
+pub(crate) fn three_beams_coarse() -> (crate::input::scene::Scene, Problem, StaticState) {
+    let path = format!(
+        "{}/../scenes/three-beams-coarse.toml",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let scene = crate::input::scene::Scene::load(std::path::Path::new(&path)).unwrap();
+    let p = crate::model::build(&scene).unwrap();
+    let stat = crate::solve::static_step::solve(&p, true).unwrap();
+    (scene, p, stat)
+}

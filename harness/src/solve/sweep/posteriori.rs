@@ -238,19 +238,11 @@ pub fn residual(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::input::scene::Scene;
-    use crate::model::build;
-    use crate::solve::static_step;
+    use crate::solve::sweep::three_beams_coarse;
 
     #[test]
     fn a_planted_wrong_solution_is_caught() {
-        let path = format!(
-            "{}/../scenes/three-beams-coarse.toml",
-            env!("CARGO_MANIFEST_DIR")
-        );
-        let scene = Scene::load(std::path::Path::new(&path)).unwrap();
-        let p = build(&scene).unwrap();
-        let stat = static_step::solve(&p, true).unwrap();
+        let (scene, p, stat) = three_beams_coarse();
         let mut setup = Setup::new(&p, &stat, &scene.spec.effects).unwrap();
         // Stuck joints (κ = k_T0) near the first resonance (1174.5 Hz), where K − ω²M
         // nearly cancels.
