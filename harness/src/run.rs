@@ -9,7 +9,7 @@ use serde::Serialize;
 use thiserror::Error;
 
 use crate::capi::{self, CallCounts};
-use crate::input::scene::{Direction, Effects, Mode, Scene};
+use crate::input::scene::{Direction, Effects, FieldOutputSpec, Mode, Scene};
 use crate::model::{build, BuildError, Problem};
 use crate::solve::static_step::{self, StaticError, StaticState};
 use crate::solve::sweep::{self, Options, SweepError, SweepResult};
@@ -56,6 +56,9 @@ pub struct RunResult {
     /// The descending sweep of `direction = "up_down"`.
     pub down: Option<SweepResult>,
     pub reference: Option<SweepResult>,
+    /// The `[field_output]` frequencies solved once more in fast mode with their
+    /// displacement fields ([`SweepResult::fields`]) and point results.
+    pub fields: Option<SweepResult>,
     pub effects: Vec<EffectLog>,
     /// C-API calls made by the run (this thread).
     pub calls: CallCounts,
@@ -120,6 +123,22 @@ pub fn run(
         None
     };
     let t_ref = t.elapsed().as_secs_f64();
+    let t = Instant::now();
+    let fields = match &spec.field_output {
+        Some(fo) => {
+            let at = field_frequencies(fo, &main);
+            let mut o = opts;
+            o.iteration.mode = Mode::Fast;
+            o.keep_fields = true;
+            o.point_results = true;
+            o.descending = false;
+            Some(sweep::run(&problem, &stat, &at, &o, &|l, i, n| {
+                progress(&format!("field output: {l}"), i, n)
+            })?)
+        }
+        None => None,
+    };
+    let t_fields = t.elapsed().as_secs_f64();
     let c1 = capi::counts();
     let calls = CallCounts {
         linearize: c1.linearize - calls0.linearize,
@@ -210,6 +229,18 @@ pub fn run(
             seconds: 0.0,
             work: "regime per point and frequency (stick_slip.csv/svg), from the point results".into(),
         },
+        EffectLog {
+            name: "field_output",
+            active: fields.is_some(),
+            seconds: t_fields,
+            work: match &fields {
+                Some(f) => format!(
+                    "displacement and contact fields at {} frequencies, each solved once more in fast mode (field_*.vtu)",
+                    f.freqs.len()
+                ),
+                None => "none ([field_output] not in the scene)".into(),
+            },
+        },
     ];
     Ok(RunResult {
         problem,
@@ -217,8 +248,46 @@ pub fn run(
         main,
         down,
         reference,
+        fields,
         effects,
         calls,
         seconds: [t_build, t_static, t_main, t_ref],
     })
+}
+
+/// The frequencies of `[field_output]`: the `peaks` highest local maxima of the first
+/// output's amplitude over the converged frequencies of `main` (an end of the sweep
+/// counts when it is higher than its one neighbour), then the named ones; ascending,
+/// each once.
+pub fn field_frequencies(fo: &FieldOutputSpec, main: &SweepResult) -> Vec<f64> {
+    let amp: Vec<Option<f64>> = (0..main.freqs.len())
+        .map(|i| {
+            let ok = main.converged.get(i).copied().unwrap_or(false);
+            let v = main
+                .outputs
+                .get(i)
+                .and_then(|o| o.first())
+                .map(|z| z.norm());
+            v.filter(|_| ok)
+        })
+        .collect();
+    let mut peaks: Vec<(f64, f64)> = (0..amp.len())
+        .filter_map(|i| {
+            let a = amp[i]?;
+            let below = |j: Option<usize>| j.and_then(|j| amp[j]).is_none_or(|b| b < a);
+            let left = i.checked_sub(1);
+            let right = (i + 1 < amp.len()).then_some(i + 1);
+            (below(left) && below(right) && amp.len() > 1).then_some((a, main.freqs[i]))
+        })
+        .collect();
+    peaks.sort_by(|x, y| y.0.total_cmp(&x.0));
+    let mut at: Vec<f64> = peaks
+        .into_iter()
+        .take(fo.peaks)
+        .map(|(_, f)| f)
+        .chain(fo.frequencies.iter().copied())
+        .collect();
+    at.sort_by(f64::total_cmp);
+    at.dedup();
+    at
 }

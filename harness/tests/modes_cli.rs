@@ -214,3 +214,38 @@ fn default_count_covers_the_knife_band() {
     assert!(i >= 6, "the band's mode is mode {}", i + 1);
     assert_eq!(labels[i], "longitudinal_x");
 }
+
+/// `check --modes` lists the stuck modes below the sweep's top as `jointlin modes`
+/// computes them (knife-coarse: 8 modes below 34 kHz, the 9th being beyond it).
+#[test]
+fn check_lists_the_modes_below_the_sweeps_top() {
+    let scene = Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes/knife-coarse.toml");
+    let dir = tmp("knife-check");
+    modes(&[scene.to_str().unwrap(), "--out", dir.to_str().unwrap()]);
+    let (h, rows) = csv_rows(&dir.join("modes.csv"));
+    let below: Vec<f64> = floats(&column(&h, &rows, "frequency_Hz"))
+        .into_iter()
+        .filter(|&f| f <= 34_000.0)
+        .collect();
+    let out = Command::new(env!("CARGO_BIN_EXE_jointlin"))
+        .args(["check", "--modes", scene.to_str().unwrap()])
+        .output()
+        .unwrap();
+    let said = String::from_utf8_lossy(&out.stdout).to_string();
+    assert!(out.status.success(), "{said}");
+    assert!(
+        said.contains("model: 824 free DOFs, 30 contact points"),
+        "{said}"
+    );
+    let line = said
+        .lines()
+        .find(|l| l.starts_with("stuck modes below the sweep's top 34000.00 Hz: "))
+        .unwrap_or_else(|| panic!("{said}"));
+    let (count, list) = line.rsplit_once(": ").unwrap().1.split_once(" — ").unwrap();
+    assert_eq!(count.parse::<usize>().unwrap(), below.len(), "{line}");
+    let listed: Vec<f64> = list.split(", ").map(|v| v.parse().unwrap()).collect();
+    for (a, b) in listed.iter().zip(&below) {
+        // Five significant digits.
+        assert!((a - b).abs() <= 5e-5 * b, "{a} against {b}");
+    }
+}

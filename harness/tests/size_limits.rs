@@ -128,3 +128,58 @@ fn every_scene_of_the_repository_passes_against_the_machines_memory() {
     }
     assert!(n >= 15, "{n} scenes");
 }
+
+/// `check --forecast` forecasts the run's time from one factorization and solve timed on the
+/// machine; the factorization counts it gives hold what the run then does
+/// (three-beams-coarse, fast and thesis mode: the main sweep's count from run.json,
+/// doubled for the plots' reference sweep the forecast includes).
+#[test]
+fn check_forecasts_the_factorizations_a_run_needs() {
+    let scene = Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes/three-beams-coarse.toml");
+    let scene = scene.to_str().unwrap();
+    for mode in ["fast", "thesis"] {
+        let text = std::fs::read_to_string(scene)
+            .unwrap()
+            .replace("mode = \"fast\"", &format!("mode = \"{mode}\""));
+        assert!(text.contains(&format!("mode = \"{mode}\"")), "{mode}");
+        let dir =
+            std::env::temp_dir().join(format!("jointlin-forecast-{}-{mode}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("scene.toml");
+        std::fs::write(&path, text).unwrap();
+        let p = path.to_str().unwrap();
+        let out = jointlin(&["check", "--forecast", p], None);
+        let said = String::from_utf8_lossy(&out.stdout).to_string();
+        assert!(out.status.success(), "{said}");
+        let line = said
+            .lines()
+            .find(|l| l.starts_with("time forecast: one factorization of the dynamic stiffness"))
+            .unwrap_or_else(|| panic!("{said}"));
+        let range = line.split(" factorizations,").next().unwrap();
+        let range = range.rsplit(": ").next().unwrap();
+        let (lo, hi) = range.split_once('–').unwrap();
+        let (lo, hi): (f64, f64) = (lo.parse().unwrap(), hi.parse().unwrap());
+        let o = dir.join("out");
+        let run = jointlin(
+            &[
+                "run",
+                "--quiet",
+                "--no-plots",
+                "--out",
+                o.to_str().unwrap(),
+                p,
+            ],
+            None,
+        );
+        assert!(
+            run.status.success(),
+            "{}",
+            String::from_utf8_lossy(&run.stderr)
+        );
+        let json: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(o.join("run.json")).unwrap()).unwrap();
+        let done = 2.0 * json["factorizations"].as_f64().unwrap();
+        assert!(lo <= done && done <= hi, "{mode}: {lo}–{hi} against {done}");
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+}

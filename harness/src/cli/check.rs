@@ -2,22 +2,36 @@
 //! every error a run meets before its first solve is found here), or reads an Abaqus-format deck and
 //! pairs its contact surfaces, and prints a summary.
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::process::ExitCode;
 
 use super::load_scene;
+use jointlin_harness::input::scene::units::frequency_unit;
+use jointlin_harness::input::scene::Scene;
 use jointlin_harness::input::{deck, format_of, Format};
-use jointlin_harness::model;
+use jointlin_harness::model::{self, Problem};
+use jointlin_harness::solve::cost;
+use jointlin_harness::solve::modal_stuck::{stuck_modes, ModeCount};
+use jointlin_harness::util::number::{sig, sig_n};
 
 // The command's help is the doc comment of `Command::Check`.
 #[derive(clap::Args)]
 pub struct Args {
     scene: PathBuf,
+    /// Also compute the stuck modes (joints closed and stuck after the static step)
+    /// below the sweep's highest frequency and list them (as `jointlin modes`; seconds
+    /// to minutes on a large model).
+    #[arg(long)]
+    modes: bool,
+    /// Also forecast the run's time: one factorization and one solve of the dynamic
+    /// stiffness timed here, times the counts the scene's mode needs.
+    #[arg(long)]
+    forecast: bool,
 }
 
 pub fn main(a: Args) -> ExitCode {
     if format_of(&a.scene) == Format::AbaqusDeck {
-        return check_deck(&a.scene);
+        return check_deck(&a);
     }
     let s = match load_scene(&a.scene) {
         Ok(s) => s,
@@ -26,6 +40,7 @@ pub fn main(a: Args) -> ExitCode {
     // What only the model build finds (contact faces whose nodes do not match, ties
     // between non-conforming meshes), with the scene's location; lumped scenes with
     // [[joints]] are `jointlin backbone`'s and have no FE model.
+    let mut built = None;
     let lumped = !s.spec.joints.is_empty() || s.spec.springs.iter().any(|sp| sp.between.is_some());
     if !lumped {
         match model::build(&s) {
@@ -38,7 +53,7 @@ pub fn main(a: Args) -> ExitCode {
                 eprintln!("error: {}", model::locate(&s, &e));
                 return ExitCode::from(2);
             }
-            Ok(_) => {}
+            Ok(p) => built = Some(p),
         }
     }
     println!(
@@ -51,12 +66,21 @@ pub fn main(a: Args) -> ExitCode {
         s.frequencies().last().copied().unwrap_or(0.0),
         s.spec.iteration.mode
     );
+    if let Some(p) = built {
+        println!(
+            "model: {} free DOFs, {} contact points",
+            p.sys.dofs.n_free(),
+            p.contacts.len()
+        );
+        extras(&a, &s, &p);
+    }
     ExitCode::SUCCESS
 }
 
 /// `jointlin check DECK.inp`: reads the deck, pairs its contact surfaces, prints the
 /// summary and the reader's warnings; exit 2 with `file:line: *KEYWORD: message`.
-fn check_deck(path: &Path) -> ExitCode {
+fn check_deck(a: &Args) -> ExitCode {
+    let path = a.scene.as_path();
     let result = deck::read(path).and_then(|(d, warnings)| {
         deck::summary::summary(&d, &path.display().to_string()).map(|s| (s, warnings))
     });
@@ -66,7 +90,7 @@ fn check_deck(path: &Path) -> ExitCode {
             for w in warnings {
                 eprintln!("warning: {w}");
             }
-            run_checks(path)
+            run_checks(a)
         }
         Err(e) => {
             eprintln!("error: {e}");
@@ -78,7 +102,8 @@ fn check_deck(path: &Path) -> ExitCode {
 /// What `jointlin run` meets before its first solve on a deck: the run-level reading
 /// (units comment, property tables, densities, steps a run can honour) and the model
 /// build (ties, contact pairs, loads, outputs); exit 2 with the deck's file:line.
-fn run_checks(path: &Path) -> ExitCode {
+fn run_checks(a: &Args) -> ExitCode {
+    let path = a.scene.as_path();
     let s = match load_scene(path) {
         Ok(s) => s,
         Err(code) => return code,
@@ -91,6 +116,7 @@ fn run_checks(path: &Path) -> ExitCode {
                 p.contacts.len(),
                 s.frequencies().len()
             );
+            extras(a, &s, &p);
             ExitCode::SUCCESS
         }
         Err(model::BuildError::Deck(e)) => {
@@ -101,5 +127,93 @@ fn run_checks(path: &Path) -> ExitCode {
             eprintln!("error: {}: building the model: {e}", path.display());
             ExitCode::from(2)
         }
+    }
+}
+
+/// The time a run of the scene will take, from one factorization and solve timed here
+/// ([`cost`]); a model that cannot be factored at the first frequency says so (the run
+/// then reports its singular frequencies).
+fn print_forecast(s: &Scene, p: &Problem) {
+    let freqs = s.frequencies();
+    let Some(&f0) = freqs.first() else { return };
+    let it = &s.spec.iteration;
+    let (_, unit) = frequency_unit(&s.spec.units);
+    match cost::measure(p, 2.0 * std::f64::consts::PI * f0) {
+        Ok(m) => {
+            let f = cost::forecast(
+                &m,
+                freqs.len(),
+                it.mode,
+                p.contacts.len(),
+                it.harmonics.unwrap_or(1),
+                it.max_passes,
+                true,
+            );
+            println!(
+                "time forecast: one factorization of the dynamic stiffness {} s, one solve {} s (measured here at {} {unit}); {} frequencies in mode {:?}: {}–{} factorizations, {}–{} solves, about {}–{} s with the plots' reference sweep (--no-plots halves it), plus the static step",
+                sig_n(m.factorization, 2),
+                sig_n(m.solve, 2),
+                sig(f0),
+                freqs.len(),
+                it.mode,
+                f.factorizations[0],
+                f.factorizations[1],
+                f.solves[0],
+                f.solves[1],
+                sig_n(f.seconds[0], 2),
+                sig_n(f.seconds[1], 2),
+            );
+        }
+        Err(e) => println!(
+            "time forecast: none (the dynamic stiffness at {} {unit}: {e})",
+            sig(f0)
+        ),
+    }
+}
+
+/// What --modes and --forecast ask for.
+fn extras(a: &Args, s: &Scene, p: &Problem) {
+    if a.modes {
+        print_modes(s);
+    }
+    if a.forecast {
+        print_forecast(s, p);
+    }
+}
+
+/// Most stuck modes the summary lists.
+const SUMMARY_MODES: usize = 50;
+
+/// The stuck modes (joints closed and stuck after the static step) below the sweep's
+/// highest frequency, as `jointlin modes` computes them; a model whose modes cannot be
+/// computed says why (the run may still work: it never needs them).
+fn print_modes(s: &Scene) {
+    let (_, unit) = frequency_unit(&s.spec.units);
+    let count = ModeCount::Band {
+        factor: 1.0,
+        min: 1,
+        max: SUMMARY_MODES,
+    };
+    match stuck_modes(s, count) {
+        Ok(m) => {
+            let top = m.limit.unwrap_or(0.0);
+            let below: Vec<String> = m
+                .band
+                .modes
+                .frequencies_hz()
+                .into_iter()
+                .filter(|&f| f <= top)
+                .map(|f| sig_n(f, 5))
+                .collect();
+            let more = if m.band.complete { "" } else { "at least " };
+            println!(
+                "stuck modes below the sweep's top {} {unit}: {more}{}{}{}",
+                sig(top),
+                below.len(),
+                if below.is_empty() { "" } else { " — " },
+                below.join(", ")
+            );
+        }
+        Err(e) => println!("stuck modes: not computed ({e})"),
     }
 }

@@ -6,6 +6,7 @@ use std::process::ExitCode;
 
 use jointlin_harness::input::scene::Scene;
 use jointlin_harness::loss::{self, mesh};
+use jointlin_harness::util::atomic;
 
 use super::{load_scene, report_written, with_progress};
 
@@ -126,8 +127,8 @@ fn mesh_study(
         let io = |e: std::io::Error| format!("{}: {e}", out.display());
         std::fs::create_dir_all(out).map_err(io)?;
         let (a, b) = (out.join("mesh_study.md"), out.join("mesh_study.csv"));
-        std::fs::write(&a, md).map_err(io)?;
-        std::fs::write(&b, mesh::csv(&rows)).map_err(io)?;
+        atomic::write_text(&a, &md)?;
+        atomic::write_text(&b, &mesh::csv(&rows))?;
         Ok(vec![a, b])
     };
     report_written(write())

@@ -105,7 +105,9 @@ pub enum Command {
     #[command(verbatim_doc_comment)]
     Loss(loss::Args),
     /// Validate a scene or an Abaqus-format deck (.inp) and print a summary (nothing is
-    /// run or written).
+    /// run or written): the model's free DOFs and contact points; with --modes the stuck
+    /// modes below the sweep's top, with --forecast the time a run will take (from one
+    /// factorization and solve timed here).
     Check(check::Args),
     /// Write a scene as an Abaqus/Standard job: FILE (the input deck), sweep.frq and
     /// jointlin.cfg beside it (README, "Using jointlin from Abaqus").

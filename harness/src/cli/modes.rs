@@ -5,8 +5,10 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use jointlin_harness::input::scene::units::frequency_unit;
-use jointlin_harness::report::modes::{sig, ModeTable};
+use jointlin_harness::report::modes::ModeTable;
 use jointlin_harness::solve::modal_stuck::{stuck_modes, ModeCount};
+use jointlin_harness::util::atomic;
+use jointlin_harness::util::number::sig;
 
 use super::load_scene;
 
@@ -82,11 +84,13 @@ pub fn main(a: Args) -> ExitCode {
     let table = ModeTable::new(&modes, units);
     print!("{}", table.markdown());
     if let Some(dir) = &a.out {
+        // Each file complete or absent (util::atomic).
         let written = std::fs::create_dir_all(dir)
-            .and_then(|_| std::fs::write(dir.join("modes.csv"), table.csv()))
-            .and_then(|_| std::fs::write(dir.join("modes.vtu"), table.vtu()));
+            .map_err(|e| format!("{}: {e}", dir.display()))
+            .and_then(|_| atomic::write_text(&dir.join("modes.csv"), &table.csv()))
+            .and_then(|_| atomic::write_text(&dir.join("modes.vtu"), &table.vtu()));
         if let Err(e) = written {
-            eprintln!("error: cannot write to {}: {e}", dir.display());
+            eprintln!("error: cannot write: {e}");
             return ExitCode::from(1);
         }
         eprintln!("wrote {0}/modes.csv and {0}/modes.vtu", dir.display());

@@ -37,7 +37,7 @@ pub enum LossError {
     Static(#[from] StaticError),
     #[error("steady-state solve: {0}")]
     Sweep(#[from] SweepError),
-    #[error("{what} did not converge at {freq} Hz")]
+    #[error("{what} did not converge at {} Hz", crate::util::number::sig(*freq))]
     NotConverged { what: &'static str, freq: f64 },
     #[error("k_T0 calibration did not reach the reference in {0} steps")]
     Calibration(usize),

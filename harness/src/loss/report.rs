@@ -132,7 +132,9 @@ pub fn write(dir: &Path, scene: &Scene, r: &StudyResult) -> Result<Vec<PathBuf>,
     put("loss.csv", csv(st, r))?;
     put("loss.md", markdown(scene, st, r))?;
     let p = dir.join("loss.svg");
-    plot::curves(&p, &scene.spec.title, &torque_unit(scene), st, r)?;
+    crate::util::atomic::with_temp(&p, |t| {
+        plot::curves(t, &scene.spec.title, &torque_unit(scene), st, r)
+    })?;
     out.push(p);
     if let Some((op, sample)) = &r.maps {
         let vals = maps::values(&op.problem, &op.stat.pressure, &sample.points);
@@ -157,14 +159,16 @@ pub fn write(dir: &Path, scene: &Scene, r: &StudyResult) -> Result<Vec<PathBuf>,
             ),
         ] {
             let p = dir.join(name);
-            maps::svg(
-                &p,
-                &format!("{title}, {what}"),
-                &scene.spec.units.length,
-                &op.problem,
-                &vals,
-                kind,
-            )?;
+            crate::util::atomic::with_temp(&p, |t| {
+                maps::svg(
+                    t,
+                    &format!("{title}, {what}"),
+                    &scene.spec.units.length,
+                    &op.problem,
+                    &vals,
+                    kind,
+                )
+            })?;
             out.push(p);
         }
     }

@@ -2,6 +2,7 @@
 
 pub mod backbone;
 pub mod csv;
+pub mod field;
 pub mod modes;
 pub mod svg;
 pub mod vtu;
@@ -64,6 +65,15 @@ pub fn run_json(scene: &Scene, r: &RunResult) -> serde_json::Value {
         "gmres_solves": m.gmres_solves,
         "macroslip_caps": m.macroslip_caps,
         "sweep_direction": scene.spec.sweep.direction,
+        // [field_output]: each asked frequency, its file, or why there is none.
+        "field_output": r.fields.as_ref().map(|f| f.freqs.iter().enumerate().map(|(i, &fr)| {
+            let kept = f.fields.iter().any(|(k, _)| *k == fr);
+            json!({
+                "frequency": fr,
+                "file": kept.then(|| field::file_name(fr, &scene.spec.units)),
+                "converged": f.converged.get(i).copied().unwrap_or(false),
+            })
+        }).collect::<Vec<_>>()),
         "down_sweep": r.down.as_ref().map(|d| json!({
             "passes": d.passes,
             "iterations_per_frequency": d.iterations,
@@ -131,6 +141,11 @@ pub fn write_all(
             &csv::stick_slip(&r.main, &r.stat.closed, units),
             &mut out,
         )?;
+    }
+    if let Some(fields) = &r.fields {
+        for (name, text) in field::files(&r.problem, fields, &r.stat.closed, units) {
+            write(dir, &name, &text, &mut out)?;
+        }
     }
     if opts.plots {
         let title = if scene.spec.title.is_empty() {

@@ -11,23 +11,7 @@ use crate::input::scene::Units;
 use crate::report::vtu::{unstructured_grid, CellType, PointField};
 use crate::solve::modal_stuck::StuckModes;
 use crate::solve::mode_labels::{Character, Kind, ModeGeometry};
-
-/// Significant digits of printed numbers: 31718.04 Hz, 1.234568e-6 t.
-const DIGITS: usize = 7;
-
-/// `v` with `DIGITS` significant digits: fixed-point from 1e-3 to 1e7, else scientific.
-pub fn sig(v: f64) -> String {
-    if !v.is_finite() || v == 0.0 {
-        return format!("{v}");
-    }
-    let mag = v.abs().log10().floor() as i32;
-    if (-3..7).contains(&mag) {
-        let decimals = (DIGITS as i32 - 1 - mag).max(0) as usize;
-        format!("{v:.decimals$}")
-    } else {
-        format!("{v:.*e}", DIGITS - 1)
-    }
-}
+use crate::util::number::sig;
 
 /// The modes with their characters.
 pub struct ModeTable<'a> {
@@ -194,7 +178,7 @@ fn cell_type(kind: ElementKind) -> CellType {
 }
 
 /// The model's elements, and a vertex per node outside every element.
-fn cells(model: &Model) -> Vec<(CellType, Vec<usize>)> {
+pub(super) fn cells(model: &Model) -> Vec<(CellType, Vec<usize>)> {
     let mut used = vec![false; model.nodes.len()];
     let mut cells: Vec<(CellType, Vec<usize>)> = model
         .elements

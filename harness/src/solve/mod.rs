@@ -1,6 +1,7 @@
 //! Linear solvers (UMFPACK, modal), the static preload step and the steady-state sweep.
 
 pub mod contact;
+pub mod cost;
 pub mod dense;
 pub mod line_search;
 pub mod modal;

@@ -35,6 +35,7 @@ use crate::mhb::default_samples;
 use crate::run::{run, Extras};
 use crate::time::scene_run::{integrator_for, run_scene, FreqResult};
 use crate::time::{Integrator, Start, TimeSettings};
+use crate::util::atomic;
 
 /// The harmonic-balance rungs.
 pub const HARMONICS: [usize; 4] = [1, 3, 7, 15];
@@ -445,15 +446,16 @@ pub fn markdown(t: &Tradeoff) -> String {
     s
 }
 
-/// Writes tradeoff.csv, tradeoff.md and tradeoff.svg into `dir`.
+/// Writes tradeoff.csv, tradeoff.md and tradeoff.svg into `dir`, each atomically (a file
+/// is complete or absent).
 pub fn write(dir: &Path, t: &Tradeoff) -> Result<Vec<PathBuf>, String> {
     std::fs::create_dir_all(dir).map_err(|e| e.to_string())?;
     let a = dir.join("tradeoff.csv");
     let b = dir.join("tradeoff.md");
     let c = dir.join("tradeoff.svg");
-    std::fs::write(&a, csv(t)).map_err(|e| e.to_string())?;
-    std::fs::write(&b, markdown(t)).map_err(|e| e.to_string())?;
-    plot::pareto(&c, t)?;
+    atomic::write_text(&a, &csv(t))?;
+    atomic::write_text(&b, &markdown(t))?;
+    atomic::with_temp(&c, |tmp| plot::pareto(tmp, t))?;
     Ok(vec![a, b, c])
 }
 

@@ -30,6 +30,8 @@ use std::path::{Path, PathBuf};
 
 use serde::Serialize;
 
+use crate::util::atomic;
+
 /// One compared quantity.
 #[derive(Debug, Clone, Serialize)]
 pub struct Row {
@@ -234,13 +236,14 @@ pub fn markdown(rep: &Report) -> String {
     s
 }
 
-/// Writes validation.csv and validation.md.
-pub fn write(dir: &Path, rep: &Report) -> std::io::Result<Vec<PathBuf>> {
-    std::fs::create_dir_all(dir)?;
+/// Writes validation.csv and validation.md, each atomically (a file is complete or
+/// absent).
+pub fn write(dir: &Path, rep: &Report) -> Result<Vec<PathBuf>, String> {
+    std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
     let a = dir.join("validation.csv");
     let b = dir.join("validation.md");
-    std::fs::write(&a, csv(rep))?;
-    std::fs::write(&b, markdown(rep))?;
+    atomic::write_text(&a, &csv(rep))?;
+    atomic::write_text(&b, &markdown(rep))?;
     Ok(vec![a, b])
 }
 

@@ -154,6 +154,7 @@ pub fn deck_scene(job: DeckJob, text: String) -> Scene {
         effects: Default::default(),
         loss_study: None,
         time_domain: None,
+        field_output: None,
     };
     Scene {
         file: job.file.clone(),

@@ -11,7 +11,7 @@ use serde::{Deserialize, Serialize};
 
 pub use crate::names::{LawName, NormalLawName, RuleName, SchemeName};
 
-use super::studies::{LossStudySpec, TimeDomainSpec};
+use super::studies::{FieldOutputSpec, LossStudySpec, TimeDomainSpec};
 
 /// The whole scene file.
 #[derive(Debug, Clone, Deserialize, Serialize, PartialEq)]
@@ -67,6 +67,10 @@ pub struct SceneFile {
     /// Settings of the time-domain reference (`jointlin run --time-domain`); optional.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub time_domain: Option<TimeDomainSpec>,
+    /// Displacement fields for ParaView at the sweep's peaks or named frequencies
+    /// (`jointlin run`); optional.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub field_output: Option<FieldOutputSpec>,
 }
 
 /// The scene's unit system, stated (names only; the numbers must be consistent with

@@ -1,6 +1,7 @@
-//! The study tables of a scene: `[loss_study]` (read by the loss study) and
+//! The study tables of a scene: `[loss_study]` (read by the loss study),
 //! `[time_domain]` (the time-domain reference's settings, resolved by
-//! `time::TimeSettings`). They are part of the input, so they live with it.
+//! `time::TimeSettings`) and `[field_output]` (the displacement fields `jointlin run`
+//! writes for ParaView). They are part of the input, so they live with it.
 
 use serde::{Deserialize, Serialize};
 
@@ -99,4 +100,19 @@ pub struct TimeDomainSpec {
     pub tolerance: Option<f64>,
     pub min_cycles: Option<usize>,
     pub max_cycles: Option<usize>,
+}
+
+/// The `[field_output]` table: displacement fields (`field_<frequency>.vtu`) that
+/// `jointlin run` writes for ParaView, each solved once more at its frequency in fast
+/// mode (first order) with the run's static state.
+#[derive(Debug, Clone, Default, Deserialize, Serialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct FieldOutputSpec {
+    /// At the `peaks` highest resonance peaks (local maxima over the sweep) of the first
+    /// `[[outputs]]` amplitude, converged frequencies only.
+    #[serde(default)]
+    pub peaks: usize,
+    /// And at these frequencies (1/time).
+    #[serde(default)]
+    pub frequencies: Vec<f64>,
 }

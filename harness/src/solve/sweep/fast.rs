@@ -494,6 +494,9 @@ pub fn sweep(
             check = Some(v);
             converged = v.passes(it.tolerance);
             res.time("a-posteriori check", t);
+            if converged && opts.keep_fields {
+                res.fields.push((f, x.clone()));
+            }
         }
 
         drop(num);

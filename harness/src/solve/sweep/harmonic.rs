@@ -37,27 +37,37 @@ pub fn sweep(
     };
     let mut hb = FeBalance::new(setup, h, n);
     let mut start: Option<Vec<f64>> = None;
-    for (fi, &f) in freqs.iter().enumerate() {
+    let nout = p.outputs.len();
+    let npoints = opts.point_results.then_some(p.contacts.len());
+    'freqs: for (fi, &f) in freqs.iter().enumerate() {
         progress("frequency", fi + 1, freqs.len());
         let omega = 2.0 * std::f64::consts::PI * f;
-        let regular = hb
+        // A solve or a library call that fails at this frequency fails this frequency
+        // only (status `failed`, the message in run.json); the next one starts cold.
+        macro_rules! per_freq {
+            ($e:expr) => {
+                match $e {
+                    Ok(v) => v,
+                    Err(e) => {
+                        let e: SweepError = e;
+                        res.push_failed(&e, nout, npoints);
+                        res.harmonics
+                            .push(vec![vec![C64::new(0.0, 0.0); h + 1]; nout]);
+                        let _ = start.take();
+                        continue 'freqs;
+                    }
+                }
+            };
+        }
+        let regular = per_freq!(hb
             .condense(omega)
-            .map_err(|source| SweepError::Umfpack { freq: f, source })?;
-        res.singular.push(!regular);
+            .map_err(|source| SweepError::Umfpack { freq: f, source }));
         if !regular {
             // Singular dynamic stiffness (e.g. an undamped eigenfrequency with the joint
             // open): no response, as in the other modes; the next frequency starts afresh.
-            let nout = p.outputs.len();
-            res.outputs.push(vec![C64::new(0.0, 0.0); nout]);
+            res.push_singular(nout, npoints);
             res.harmonics
                 .push(vec![vec![C64::new(0.0, 0.0); h + 1]; nout]);
-            res.power.push(0.0);
-            if opts.point_results {
-                res.points
-                    .push(vec![PointFreq::default(); p.contacts.len()]);
-            }
-            res.iterations.push(0);
-            res.converged.push(false);
             start = None;
             continue;
         }
@@ -71,15 +81,21 @@ pub fn sweep(
                 (Ok(a), Ok(b)) if !b.converged && a.residual < b.residual => a,
                 (_, Ok(b)) => b,
                 (Ok(a), Err(_)) => a,
-                (Err(e), Err(_)) => return Err(balance(e)),
+                (Err(e), Err(_)) => per_freq!(Err(balance(e))),
             },
-            first => first.map_err(balance)?,
+            first => per_freq!(first.map_err(balance)),
         };
-        res.outputs
-            .push(sol.outputs.iter().map(|hs| hs[1.min(h)]).collect());
-        res.harmonics.push(sol.outputs.clone());
+        // The uncondensed check of a converged frequency (harmonic_check.rs); one that
+        // fails it is not converged.
+        let check = if sol.converged {
+            let t = Instant::now();
+            let v = per_freq!(hb.check(&sol, it.tolerance, f));
+            res.time("a-posteriori check", t);
+            Some(v)
+        } else {
+            None
+        };
         let energy: Vec<f64> = sol.dissipated.chunks(2).map(|d| d.iter().sum()).collect();
-        res.power.push(energy.iter().sum::<f64>() * f);
         if opts.point_results {
             let t = Instant::now();
             let nc = hb.tr.ncoef();
@@ -94,7 +110,7 @@ pub fn sweep(
                     let j = 2 * q + d;
                     let amp = sol.r[j * nc + 1].hypot(sol.r[j * nc + 2]);
                     // A/δ* and the regime of the first-harmonic amplitude (library's).
-                    let l = capi::linearize(&tg, amp, omega)?;
+                    let l = per_freq!(capi::linearize(&tg, amp, omega).map_err(SweepError::from));
                     pf.amplitude[d] = amp;
                     pf.k_star[d] = sol.describing[j].re;
                     pf.d_star[d] = sol.describing[j].im / omega;
@@ -106,8 +122,16 @@ pub fn sweep(
             res.points.push(pts);
             res.time("point outputs", t);
         }
+        res.outputs
+            .push(sol.outputs.iter().map(|hs| hs[1.min(h)]).collect());
+        res.harmonics.push(sol.outputs.clone());
+        res.power.push(energy.iter().sum::<f64>() * f);
+        let converged = sol.converged && check.is_some_and(|v| v.passes(it.tolerance));
         res.iterations.push(sol.iterations);
-        res.converged.push(sol.converged);
+        res.converged.push(converged);
+        res.singular.push(false);
+        res.failed.push(None);
+        res.checks.push(check.filter(|_| converged));
         start = sol.converged.then_some(sol.r);
     }
     res.factorizations = hb.stats.factorizations;

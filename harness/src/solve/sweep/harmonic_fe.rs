@@ -84,6 +84,8 @@ pub struct FeSolution {
     pub residual: f64,
     /// ‖R‖ / ‖r₀‖ ≤ rtol reached within the iteration limit (else: the last iterate).
     pub converged: bool,
+    /// ĝ(r): the contact forces beyond the reference spring, direction-major like r.
+    pub ghat: Vec<f64>,
 }
 
 /// Contact forces at one r.
@@ -98,12 +100,12 @@ struct Forces {
 
 /// The harmonic balance of an FE problem (its closed, microslip-active points).
 pub struct FeBalance<'s, 'a> {
-    setup: &'s mut Setup<'a>,
+    pub(super) setup: &'s mut Setup<'a>,
     pub tr: Transforms,
-    tang: Vec<Tangential>,
+    pub(super) tang: Vec<Tangential>,
     area: Vec<f64>,
     rec: Vec<Receptance>,
-    omega: f64,
+    pub(super) omega: f64,
     pub stats: Stats,
 }
 
@@ -397,6 +399,7 @@ impl<'s, 'a> FeBalance<'s, 'a> {
             iterations: it,
             residual: res,
             converged: res <= opt.rtol,
+            ghat: f.ghat,
         })
     }
 

@@ -15,6 +15,7 @@ pub mod anderson;
 pub mod bracket;
 pub mod fast;
 pub mod harmonic;
+pub mod harmonic_check;
 pub mod harmonic_fe;
 pub mod krylov;
 pub mod posteriori;
@@ -37,6 +38,7 @@ use crate::model::Problem;
 use crate::solve::contact::normal_stiffness;
 use crate::solve::static_step::StaticState;
 use crate::solve::umfpack::{Numeric, Symbolic, UmfpackError};
+use crate::util::number::sig;
 
 pub type C64 = Complex<f64>;
 
@@ -67,15 +69,17 @@ pub const SINGULAR_RCOND: f64 = 1e-14;
 pub enum SweepError {
     #[error(transparent)]
     Capi(#[from] CapiError),
-    #[error("at {freq} Hz: {source}")]
+    #[error("at {} Hz: {source}", sig(*freq))]
     Umfpack {
         freq: f64,
         #[source]
         source: UmfpackError,
     },
-    #[error("at {freq} Hz: the condensed contact system is singular")]
+    #[error("at {} Hz: the response is not finite", sig(*freq))]
+    NotFinite { freq: f64 },
+    #[error("at {} Hz: the condensed contact system is singular", sig(*freq))]
     Condensed { freq: f64 },
-    #[error("at {freq} Hz: harmonic balance: {source}")]
+    #[error("at {} Hz: harmonic balance: {source}", sig(*freq))]
     Balance {
         freq: f64,
         #[source]
@@ -99,6 +103,9 @@ pub struct Options {
     pub condense_max: usize,
     /// Run the frequencies in descending order (results are still stored ascending).
     pub descending: bool,
+    /// Fast mode: keep each converged frequency's displacement field
+    /// ([`SweepResult::fields`]).
+    pub keep_fields: bool,
 }
 
 impl Options {
@@ -109,6 +116,7 @@ impl Options {
             point_results: effects.point_energy_output || effects.stick_slip_map,
             condense_max: fast::CONDENSE_MAX,
             descending: false,
+            keep_fields: false,
         }
     }
 }
@@ -170,6 +178,10 @@ pub struct SweepResult {
     /// solution ([`posteriori`]; `None` where not converged or not checked); a frequency
     /// that fails it is not converged.
     pub checks: Vec<Option<posteriori::Verdict>>,
+    /// Fast mode with [`Options::keep_fields`]: (frequency, the complex displacement
+    /// amplitude of every free DOF in length) of each converged frequency, in run order.
+    /// Else empty.
+    pub fields: Vec<(f64, Vec<C64>)>,
     pub passes: Vec<PassRecord>,
     pub factorizations: usize,
     /// Fast mode with FGMRES: preconditioner applications (solves) in all.
@@ -416,8 +428,7 @@ pub fn run(
     if opts.iteration.mode != crate::input::scene::Mode::Fast && problem.has_area_samples() {
         return Err(SweepError::AreaSamplesNeedFastMode);
     }
-    let zero_load = opts.iteration.mode != crate::input::scene::Mode::HarmonicBalance
-        && scale::is_zero_load(&setup);
+    let zero_load = scale::is_zero_load(&setup);
     let mut r = match opts.iteration.mode {
         _ if zero_load => scale::zero_load(&mut setup, &order, opts)?,
         crate::input::scene::Mode::Fast => fast::sweep(&mut setup, &order, opts, progress)?,

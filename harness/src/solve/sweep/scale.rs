@@ -13,6 +13,7 @@ use std::time::Instant;
 
 use super::{Options, PassRecord, PointFreq, Setup, SweepError, SweepResult, C64};
 use crate::capi::{self, Linearized};
+use crate::input::scene::Mode;
 use crate::solve::contact::tangential;
 
 /// A → 0 linearization of every active point (k* = k_T0, d* = 0, regime stick), at ω.
@@ -92,6 +93,7 @@ pub fn is_zero_load(setup: &Setup) -> bool {
 /// The sweep of a zero load: zero response and power, the closed points stuck
 /// (k* = k_T0, d* = 0, energy 0, A/δ* = 0), converged; a frequency where the stuck
 /// dynamic stiffness is singular is reported singular (its free vibration is undetermined).
+/// In harmonic-balance mode every harmonic 0..H of every output is zero too.
 pub fn zero_load(
     setup: &mut Setup,
     freqs: &[f64],
@@ -101,8 +103,16 @@ pub fn zero_load(
     let kappa = stuck_kappa(setup);
     let linear: Vec<f64> = p.cubic_springs.iter().map(|sp| sp.stiffness).collect();
     let nf = freqs.len();
+    let harmonics = match opts.iteration.mode {
+        Mode::HarmonicBalance => {
+            let h = opts.iteration.harmonics.unwrap_or(1).max(1);
+            vec![vec![vec![C64::new(0.0, 0.0); h + 1]; p.outputs.len()]; nf]
+        }
+        _ => Vec::new(),
+    };
     let mut res = SweepResult {
         freqs: freqs.to_vec(),
+        harmonics,
         outputs: vec![vec![C64::new(0.0, 0.0); p.outputs.len()]; nf],
         power: vec![0.0; nf],
         iterations: vec![0; nf],

@@ -47,6 +47,7 @@ pub fn sweep(
         converged: vec![na == 0 && springs.is_empty(); nf],
         singular: vec![false; nf],
         checks: vec![None; nf],
+        failed: vec![None; nf],
         ..Default::default()
     };
     // Per frequency: the last solve passed the a-posteriori check (posteriori.rs).
@@ -150,17 +151,49 @@ pub fn sweep(
         };
         store.external_db(0, 0, 0)?;
         store.external_db(5, SWEEP_STEP, 0)?;
-        for (li, &kinc) in list.iter().enumerate() {
+        'increments: for (li, &kinc) in list.iter().enumerate() {
             progress(&format!("pass {pass} ({kind})"), li + 1, list.len());
             let fi = kinc as usize - 1;
             let f = freqs[fi];
             let omega = 2.0 * std::f64::consts::PI * f;
             store.external_db(1, SWEEP_STEP, kinc)?;
+            // A library call or a solve that fails in this increment fails this frequency
+            // only (status `failed`, the message in run.json): its points stay
+            // unreported, so the store counts the increment not converged and re-runs it
+            // in the next pass (a later estimate may succeed), as a failed UINTER
+            // increment would be in an FE job.
+            macro_rules! per_freq {
+                ($e:expr) => {
+                    match $e {
+                        Ok(v) => v,
+                        Err(e) => {
+                            let e: SweepError = e.into();
+                            res.failed[fi] = Some(e.to_string());
+                            res.outputs[fi] = vec![C64::new(0.0, 0.0); p.outputs.len()];
+                            res.power[fi] = 0.0;
+                            if opts.point_results {
+                                res.points[fi].fill(PointFreq::default());
+                            }
+                            res.iterations[fi] += 1;
+                            store.external_db(2, SWEEP_STEP, kinc)?;
+                            continue 'increments;
+                        }
+                    }
+                };
+            }
+            res.failed[fi] = None;
             let t = Instant::now();
             for (j, &i) in setup.active.iter().enumerate() {
                 let c = &p.contacts[i];
                 let pt = uinter_point(p, c, &props[c.interface]);
-                let o = capi::uinter_linear(&store, &pt, &mut statev[j], f, SWEEP_STEP, kinc)?;
+                let o = per_freq!(capi::uinter_linear(
+                    &store,
+                    &pt,
+                    &mut statev[j],
+                    f,
+                    SWEEP_STEP,
+                    kinc
+                ));
                 ids[j] = o.report.point;
                 kappa[j] = std::array::from_fn(|d| {
                     let damp = if eff.contact_damping {
@@ -175,12 +208,13 @@ pub fn sweep(
             res.time("linearization (C API)", t);
             let t = Instant::now();
             for (q, (sp, &id)) in springs.iter().zip(&spring_ids).enumerate() {
-                let [a, _] = store.estimate(id, kinc)?;
+                let [a, _] = per_freq!(store.estimate(id, kinc));
                 spring_estimate[q] = a;
-                ks[q] = capi::linearize_cubic(sp.stiffness, sp.cubic, a)?;
+                ks[q] = per_freq!(capi::linearize_cubic(sp.stiffness, sp.cubic, a));
             }
             res.time(super::fast::CUBIC_TIMING, t);
-            res.singular[fi] = !solve_one(setup, omega, &kappa, &ks, &mut x, &mut res, f)?;
+            res.singular[fi] =
+                !per_freq!(solve_one(setup, omega, &kappa, &ks, &mut x, &mut res, f));
             if res.singular[fi] && opts.point_results {
                 res.points[fi].fill(PointFreq::default());
             }
@@ -204,6 +238,9 @@ pub fn sweep(
                 res.time("a-posteriori check", t);
             }
             let t = Instant::now();
+            if x.iter().any(|v| !v.is_finite()) {
+                per_freq!(Err(SweepError::NotFinite { freq: f }));
+            }
             let mut power = 0.0;
             for (j, &i) in setup.active.iter().enumerate() {
                 let d = setup.tangential(j, &x);
@@ -222,7 +259,7 @@ pub fn sweep(
                         }
                     }
                 }
-                store.report(ids[j], kinc, amp)?;
+                per_freq!(store.report(ids[j], kinc, amp));
                 let c = &p.contacts[i];
                 let e = if eff.contact_damping {
                     outs[j].report.energy_per_cycle * c.area
@@ -239,8 +276,8 @@ pub fn sweep(
                     // direction, only because per-point output was asked for.
                     let tg = tangential(&p.interfaces[c.interface], stat.pressure[i]);
                     let ratio = [
-                        capi::linearize(&tg, rep.amplitude[0], omega)?.amplitude_ratio,
-                        capi::linearize(&tg, rep.amplitude[1], omega)?.amplitude_ratio,
+                        per_freq!(capi::linearize(&tg, rep.amplitude[0], omega)).amplitude_ratio,
+                        per_freq!(capi::linearize(&tg, rep.amplitude[1], omega)).amplitude_ratio,
                     ];
                     res.points[fi][i] = PointFreq {
                         amplitude: amp,
@@ -263,7 +300,7 @@ pub fn sweep(
                 } else {
                     sp.row.iter().map(|&(i, w)| x[i] * w).sum::<C64>().norm()
                 };
-                store.report(id, kinc, [amp, 0.0])?;
+                per_freq!(store.report(id, kinc, [amp, 0.0]));
             }
             res.time("reporting and point outputs", t);
             res.power[fi] = power;
@@ -289,8 +326,14 @@ pub fn sweep(
     }
     // A final pass that found an increment out of tolerance turns into a re-run; what
     // the store left unconverged was marked above. A singular frequency has no response.
-    for ((c, &s), &ok) in res.converged.iter_mut().zip(&res.singular).zip(&checked) {
-        *c &= !s && ok;
+    for (((c, &s), &ok), e) in res
+        .converged
+        .iter_mut()
+        .zip(&res.singular)
+        .zip(&checked)
+        .zip(&res.failed)
+    {
+        *c &= !s && ok && e.is_none();
     }
     for (b, &c) in res.checks.iter_mut().zip(&res.converged) {
         if !c {

@@ -122,6 +122,7 @@ pub fn validate(s: &SceneFile) -> Vec<Problem> {
     study::outputs(&mut c, s);
     study::loss_study(&mut c, s);
     study::time_domain(&mut c, s);
+    study::field_output(&mut c, s);
     super::model_file::adjust(s, c.problems)
 }
 

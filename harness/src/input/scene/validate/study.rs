@@ -1,5 +1,5 @@
-//! `[sweep]`, `[iteration]`, `[[outputs]]` and `[loss_study]`: what the run computes
-//! and reports.
+//! `[sweep]`, `[iteration]`, `[[outputs]]`, `[loss_study]` and `[field_output]`: what
+//! the run computes and reports.
 
 use std::collections::BTreeSet;
 
@@ -209,6 +209,37 @@ pub(super) fn time_domain(c: &mut Checker, s: &SceneFile) {
         c.fail(
             p.key(key),
             format!("{other} = {min} exceeds max_cycles = {max}: need min_cycles <= max_cycles"),
+        );
+    }
+}
+
+/// Most resonance peaks `[field_output]` may ask for (one VTU and one solve each).
+pub const MAX_FIELD_PEAKS: usize = 20;
+
+/// `[field_output]`: a few peaks, finite positive frequencies, a first-order mode and an
+/// output to find the peaks of.
+pub(super) fn field_output(c: &mut Checker, s: &SceneFile) {
+    let Some(fo) = &s.field_output else { return };
+    let root = KeyPath::root().key("field_output");
+    if fo.peaks > MAX_FIELD_PEAKS {
+        c.fail(
+            root.key("peaks"),
+            format!("at most {MAX_FIELD_PEAKS} (one solve and one file each)"),
+        );
+    }
+    if fo.peaks > 0 && s.outputs.is_empty() {
+        c.fail(
+            root.key("peaks"),
+            "needs an [[outputs]] entry: the peaks are the first output's",
+        );
+    }
+    for (i, &f) in fo.frequencies.iter().enumerate() {
+        c.positive(root.key("frequencies").index(i), f);
+    }
+    if s.iteration.mode == Mode::HarmonicBalance {
+        c.fail(
+            root.clone(),
+            "the fields are first order (solved in fast mode); the harmonic balance keeps only the contact directions: use mode fast or thesis",
         );
     }
 }

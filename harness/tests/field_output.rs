@@ -1,0 +1,176 @@
+//! `[field_output]`: `jointlin run` writes the displacement field and contact state at
+//! the sweep's highest peaks and at named frequencies as `.vtu` files (ParaView). The
+//! files are read back with an XML parser: the peaks are the results' own, the field at
+//! the output's node equals the output's amplitude in results.csv, and every contact
+//! node carries a regime.
+
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+fn scratch(tag: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("jointlin-field-{}-{tag}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+/// three-beams-coarse with `extra` appended, in a fresh directory.
+fn scene(tag: &str, extra: &str) -> PathBuf {
+    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes/three-beams-coarse.toml");
+    let text = std::fs::read_to_string(src).unwrap() + extra;
+    let d = scratch(tag);
+    let p = d.join("scene.toml");
+    std::fs::write(&p, text).unwrap();
+    p
+}
+
+fn jointlin(args: &[&str]) -> (bool, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_jointlin"))
+        .args(args)
+        .output()
+        .unwrap();
+    (
+        out.status.success(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+/// A `.vtu` file's DataArrays by name (positions under "position").
+fn arrays(path: &Path) -> HashMap<String, Vec<f64>> {
+    let text = std::fs::read_to_string(path).unwrap();
+    let mut out = HashMap::new();
+    for part in text.split("<DataArray").skip(1) {
+        let head = &part[..part.find('>').unwrap()];
+        let name = head
+            .split("Name=\"")
+            .nth(1)
+            .map(|r| r[..r.find('"').unwrap()].to_string())
+            .unwrap_or_else(|| "position".into());
+        let body = &part[part.find('>').unwrap() + 1..part.find("</DataArray>").unwrap()];
+        let values = body
+            .split_whitespace()
+            .filter_map(|v| v.parse().ok())
+            .collect();
+        out.insert(name, values);
+    }
+    out
+}
+
+#[test]
+fn fields_at_the_peaks_and_named_frequencies_match_the_sweep() {
+    let p = scene(
+        "peaks",
+        "\n[field_output]\npeaks = 2\nfrequencies = [1000.0]\n",
+    );
+    let out = p.parent().unwrap().join("out");
+    let (ok, log) = jointlin(&[
+        "run",
+        "--quiet",
+        "--no-plots",
+        "--out",
+        out.to_str().unwrap(),
+        p.to_str().unwrap(),
+    ]);
+    assert!(ok, "{log}");
+    // The two highest local maxima of middle_tip (the first output) in results.csv.
+    let text = std::fs::read_to_string(out.join("results.csv")).unwrap();
+    let rows: Vec<Vec<f64>> = text
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').take(5).map(|v| v.parse().unwrap()).collect())
+        .collect();
+    let mut peaks: Vec<(f64, f64)> = (1..rows.len() - 1)
+        .filter(|&i| rows[i][1] > rows[i - 1][1] && rows[i][1] > rows[i + 1][1])
+        .map(|i| (rows[i][1], rows[i][0]))
+        .collect();
+    peaks.sort_by(|a, b| b.0.total_cmp(&a.0));
+    let mut want: Vec<f64> = peaks.iter().take(2).map(|p| p.1).chain([1000.0]).collect();
+    want.sort_by(f64::total_cmp);
+    let mut files: Vec<String> = std::fs::read_dir(&out)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .filter(|n| n.starts_with("field_"))
+        .collect();
+    files.sort_by(|a, b| {
+        let f = |n: &str| n[6..n.len() - 7].parse::<f64>().unwrap();
+        f(a).total_cmp(&f(b))
+    });
+    assert_eq!(files.len(), 3, "{files:?}");
+    for (name, f) in files.iter().zip(&want) {
+        assert!(name.ends_with("_Hz.vtu"), "{name}");
+        let got: f64 = name[6..name.len() - 7].parse().unwrap();
+        assert!((got - f).abs() <= 1e-3 * f, "{name} against {f} Hz");
+        let a = arrays(&out.join(name));
+        // top_tip at (60, 5, 5), z: the field equals results.csv's amplitude there.
+        let pos = &a["position"];
+        let node = (0..pos.len() / 3)
+            .find(|&n| {
+                (pos[3 * n] - 60.0).abs() < 1e-9
+                    && (pos[3 * n + 1] - 5.0).abs() < 1e-9
+                    && (pos[3 * n + 2] - 5.0).abs() < 1e-9
+            })
+            .expect("the top_tip node");
+        let uz = a["displacement_amplitude_mm"][3 * node + 2];
+        let re = a["displacement_real_mm"][3 * node + 2];
+        let im = a["displacement_imag_mm"][3 * node + 2];
+        // The file's digits (the VTU writer's precision).
+        assert!(
+            (re.hypot(im) - uz).abs() <= 1e-9 * uz,
+            "{name}: {re}, {im}, {uz}"
+        );
+        // A sweep frequency (the peaks; 1000 Hz is none): both converged to the
+        // scene's tolerance (1e-3) from different starts.
+        if let Some(row) = rows.iter().find(|r| (r[0] - got).abs() <= 1e-6 * got) {
+            assert!(
+                (uz - row[3]).abs() <= 2e-3 * row[3],
+                "{name}: {uz} against {}",
+                row[3]
+            );
+        } else {
+            assert_eq!(got, 1000.0);
+        }
+        let regime = &a["contact_regime"];
+        assert!(regime
+            .iter()
+            .all(|&g| [-1.0, 0.0, 1.0, 2.0, 3.0].contains(&g)));
+        assert!(regime.iter().filter(|&&g| g >= 1.0).count() >= 36, "{name}");
+        assert!(a["contact_amplitude_ratio"]
+            .iter()
+            .all(|&r| r.is_finite() && r >= 0.0));
+    }
+}
+
+#[test]
+fn field_output_rules_are_checked_at_their_keys() {
+    for (extra, key) in [
+        ("\n[field_output]\npeaks = 21\n", "field_output.peaks"),
+        (
+            "\n[field_output]\nfrequencies = [-5.0]\n",
+            "field_output.frequencies[0]",
+        ),
+    ] {
+        let p = scene("rules", extra);
+        let (ok, log) = jointlin(&["check", p.to_str().unwrap()]);
+        assert!(
+            !ok && log.contains(&format!("key `{key}`")),
+            "{extra}: {log}"
+        );
+    }
+    let p = scene("hb", "\n[field_output]\npeaks = 1\n");
+    let (ok, log) = jointlin(&[
+        "run",
+        "--quiet",
+        "--mode",
+        "harmonic-balance",
+        "--harmonics",
+        "3",
+        "--out",
+        "/dev/null/x",
+        p.to_str().unwrap(),
+    ]);
+    assert!(
+        !ok && log.contains("`field_output`") && log.contains("first order"),
+        "{log}"
+    );
+}
