@@ -323,7 +323,7 @@ fn fortran_sweep_as_separate_jobs_matches_the_rust_store() {
 /// `jointlin export`) read by the shim's own parser: the Fortran sweep host, run as
 /// separate jobs with it, iterates exactly as with its own configuration (the same start
 /// amplitude 1e-4, rtol 1e-6, secant scheme, sweep step 2, sequential numbering; 50
-/// passes allowed instead of 30, and it needs fewer). The host reads its action file by
+/// passes allowed instead of 30, and it needs fewer; the host's atol). The host reads its action file by
 /// name, so the configuration's file names become the host's (sweep.next, sweep.restart).
 #[test]
 fn fortran_sweep_with_the_exported_abaqus_configuration() {
@@ -332,9 +332,20 @@ fn fortran_sweep_with_the_exported_abaqus_configuration() {
     let work = scratch("fortran-sweep-exported-cfg");
     let cfg = std::fs::read_to_string(root().join("examples/abaqus/block-on-plane/jointlin.cfg"))
         .unwrap();
-    let renamed = cfg
+    // The host's reference iterates without an absolute tolerance: the exported one
+    // (the block's scale) becomes 0.
+    let renamed: String = cfg
         .replace("= jointlin.restart", "= sweep.restart")
-        .replace("= jointlin.next", "= sweep.next");
+        .replace("= jointlin.next", "= sweep.next")
+        .lines()
+        .map(|l| match l.split_once('#') {
+            Some((kv, comment)) if kv.trim_start().starts_with("atol") => {
+                format!("atol = 0.0   #{comment}\n")
+            }
+            _ => format!("{l}\n"),
+        })
+        .collect();
+    assert!(renamed.contains("atol = 0.0"), "{renamed}");
     assert_ne!(renamed, cfg, "the exported configuration names its files");
     std::fs::write(work.join("exported.cfg"), renamed).unwrap();
     cmd.current_dir(&work)

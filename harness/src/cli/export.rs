@@ -32,6 +32,10 @@ pub fn main(a: Args) -> ExitCode {
         .unwrap_or_default();
     let job = match export(&s, &name) {
         Ok(j) => j,
+        Err(e @ ExportError::Solve(_)) => {
+            eprintln!("error: {e}");
+            return ExitCode::from(1);
+        }
         Err(e @ ExportError::Unsupported { .. }) => {
             eprintln!("error: {e}");
             return ExitCode::from(2);

@@ -119,7 +119,8 @@ pub enum Command {
     /// *STEADY STATE DYNAMICS, DIRECT with *INCLUDE, INPUT=sweep.frq (one frequency per
     /// line) and the harmonic loads, *NODE PRINT/*NODE OUTPUT of U for every output
     /// (node set named after it), and the `** jointlin units:` comment. jointlin.cfg is
-    /// the UEXTERNALDB configuration with the scene's [iteration]. `jointlin run FILE`
+    /// the UEXTERNALDB configuration: the scene's [iteration] and the absolute tolerance
+    /// of --mode thesis. `jointlin run FILE`
     /// gives the scene's results (with --mode thesis for a thesis-mode scene).
     ///
     /// What a deck cannot express is an error naming the scene key (exit 2, nothing

@@ -49,6 +49,9 @@ pub enum ExportError {
     /// The scene's model cannot be built.
     #[error("{0}")]
     Build(#[from] BuildError),
+    /// The static step or the stuck response (for the configuration's `atol`) failed.
+    #[error("{0}")]
+    Solve(String),
 }
 
 /// The files of an exported job (text).
@@ -77,7 +80,7 @@ pub fn export(scene: &Scene, deck_name: &str) -> Result<Job, ExportError> {
     Ok(Job {
         deck,
         frequencies: steps::frequency_lines(scene),
-        config: config::text(scene, deck_name),
+        config: config::text(scene, deck_name, config::atol(scene, &problem)?),
         left_out,
     })
 }
