@@ -107,10 +107,58 @@ fn mul_cols(a: &Csc<f64>, x: &DMatrix<f64>) -> DMatrix<f64> {
     y
 }
 
+/// The shifts [`lowest_modes`] tries in turn when σ = 0 fails (a structure not held: K
+/// singular, rigid-body modes at λ = 0): −rel × max diag K / max diag M, (rad/time)². The
+/// diagonal ratio is about the stiffest element's own ω²; the first shift lies far below
+/// the first flexible mode (three-beams-coarse unclamped: −4e5 against λ = 2.1e9 of its
+/// 7354 Hz mode), a larger one keeps the rigid modes' amplified vectors from swamping
+/// the projected mass (a free 20 × 4 × 4 mm steel box needs −1e6).
+const FREE_SHIFT_REL: [f64; 3] = [1e-8, 1e-6, 1e-4];
+
+/// A shift of a free structure ([`FREE_SHIFT_REL`]).
+fn free_shift(k: &Csc<f64>, m: &Csc<f64>, rel: f64) -> f64 {
+    let diag_max = |a: &Csc<f64>| {
+        (0..a.n())
+            .filter_map(|j| a.pattern.find(j, j).map(|s| a.values[s].abs()))
+            .fold(0.0f64, f64::max)
+    };
+    let (dk, dm) = (diag_max(k), diag_max(m));
+    if dm > 0.0 && dk > 0.0 {
+        -rel * dk / dm
+    } else {
+        -1.0
+    }
+}
+
 /// The `opts.n_modes` eigenpairs of K φ = λ M φ nearest `opts.shift` (the lowest ones
 /// for a shift at or below the spectrum). K, M symmetric on one pattern, M positive
-/// definite, K − σM nonsingular.
+/// definite. With `shift` 0 and K singular (a free structure: the factorization, the
+/// projected mass or the iteration fails) it tries once more below the spectrum
+/// ([`FREE_SHIFT_REL`]); other shifts must leave K − σM nonsingular.
 pub fn lowest_modes(k: &Csc<f64>, m: &Csc<f64>, opts: &ModalOptions) -> Result<Modes, ModalError> {
+    let mut result = lowest_modes_about(k, m, opts);
+    for rel in FREE_SHIFT_REL {
+        match result {
+            Err(
+                ModalError::ProjectedMass
+                | ModalError::NotConverged { .. }
+                | ModalError::Umfpack(UmfpackError::Singular { .. }),
+            ) if opts.shift == 0.0 => {
+                let shift = free_shift(k, m, rel);
+                result = lowest_modes_about(k, m, &ModalOptions { shift, ..*opts });
+            }
+            _ => break,
+        }
+    }
+    result
+}
+
+/// [`lowest_modes`] about `opts.shift` as given.
+fn lowest_modes_about(
+    k: &Csc<f64>,
+    m: &Csc<f64>,
+    opts: &ModalOptions,
+) -> Result<Modes, ModalError> {
     if !same_pattern(&k.pattern, &m.pattern) {
         return Err(ModalError::PatternMismatch);
     }
@@ -423,6 +471,21 @@ mod tests {
             assert!(l.abs() < 1e-8 * l7, "{l} vs {l7}");
         }
         assert!(l7 > 1e6);
+        // The default shift 0 finds the singular K and shifts by itself (it stopped with
+        // "projected mass matrix not positive definite"): the same spectrum.
+        let auto = lowest_modes(
+            &sys.k,
+            &sys.m,
+            &ModalOptions {
+                n_modes: 9,
+                ..Default::default()
+            },
+        )
+        .unwrap();
+        for &l in &auto.eigenvalues[..6] {
+            assert!(l.abs() < 1e-8 * l7, "{l} vs {l7}");
+        }
+        approx::assert_relative_eq!(auto.eigenvalues[6], l7, max_relative = 1e-10);
     }
 
     /// A cantilever 100×4×4 mm cut at x = 40 into two tied boxes has exactly the
