@@ -9,7 +9,8 @@ use super::{num, ExportError};
 use crate::fe::mesh::{Body, Face, Model};
 use crate::fe::ties::find_ties;
 use crate::input::deck::job::UNITS_COMMENT;
-use crate::input::scene::{FaceName, NormalLawName, Scene};
+use crate::input::scene::{NormalLawName, Scene};
+use crate::model::mesh_face;
 use crate::model::{Problem, PAIR_TOL};
 use crate::names::{LawName, RuleName};
 
@@ -18,27 +19,6 @@ pub const DEPVAR: usize = 57;
 
 /// Entries per data line of a set (Abaqus reads at most 16).
 const PER_LINE: usize = 16;
-
-/// The mesh face of a scene face name.
-pub fn mesh_face(f: FaceName) -> Face {
-    match f {
-        FaceName::XMin => Face::XMin,
-        FaceName::XMax => Face::XMax,
-        FaceName::YMin => Face::YMin,
-        FaceName::YMax => Face::YMax,
-        FaceName::ZMin => Face::ZMin,
-        FaceName::ZMax => Face::ZMax,
-    }
-}
-
-const FACES: [Face; 6] = [
-    Face::XMin,
-    Face::XMax,
-    Face::YMin,
-    Face::YMax,
-    Face::ZMin,
-    Face::ZMax,
-];
 
 /// The Abaqus label of a box face on a C3D8 element (the node order of
 /// `Model::add_graded_box`): S1 z-min, S2 z-max, S3 y-min, S4 x-max, S5 y-max, S6 x-min.
@@ -236,7 +216,7 @@ fn ties(out: &mut String, scene: &Scene, m: &Model, names: &Names) -> Result<(),
             let tied: BTreeSet<usize> = pairs.iter().map(|p| p[side]).collect();
             let mut faces = Vec::new();
             let mut covered = BTreeSet::new();
-            for f in FACES {
+            for f in Face::ALL {
                 for (e, corners) in face_elements(m, &m.bodies[body], f) {
                     if corners.iter().all(|n| tied.contains(n)) {
                         faces.push((e, f));

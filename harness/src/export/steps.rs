@@ -8,12 +8,13 @@ use std::fmt::Write;
 
 use nalgebra::Vector3;
 
-use super::mesh::{body_index, id_lines, mesh_face};
+use super::mesh::{body_index, id_lines};
 use super::names::{face as face_label, Names};
 use super::{num, FREQUENCY_FILE};
 use crate::fe::mesh::Model;
 use crate::fe::surface::nodal_areas;
 use crate::input::scene::{ExcitationKind, PreloadKind, Scene};
+use crate::model::mesh_face;
 use crate::model::Problem;
 
 /// The frequency list: one data line per frequency (1/time), the upper limit left

@@ -96,6 +96,16 @@ pub enum Face {
 }
 
 impl Face {
+    /// The six faces.
+    pub const ALL: [Face; 6] = [
+        Face::XMin,
+        Face::XMax,
+        Face::YMin,
+        Face::YMax,
+        Face::ZMin,
+        Face::ZMax,
+    ];
+
     /// Axis (0, 1, 2) the face is normal to.
     pub fn axis(self) -> usize {
         match self {

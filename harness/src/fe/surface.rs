@@ -98,14 +98,7 @@ mod tests {
         // ∮ n dA = 0 for a closed surface; the warped top face must still close it.
         let m = model();
         let mut f = vec![0.0; m.n_dofs()];
-        for face in [
-            Face::XMin,
-            Face::XMax,
-            Face::YMin,
-            Face::YMax,
-            Face::ZMin,
-            Face::ZMax,
-        ] {
+        for face in Face::ALL {
             add_pressure(&m, &quads(&m, face), 1.0, &mut f);
         }
         for c in 0..3 {

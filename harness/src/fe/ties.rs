@@ -23,17 +23,8 @@ pub enum TieError {
     NonConforming { node: usize, at: [f64; 3], tol: f64 },
 }
 
-const FACES: [Face; 6] = [
-    Face::XMin,
-    Face::XMax,
-    Face::YMin,
-    Face::YMax,
-    Face::ZMin,
-    Face::ZMax,
-];
-
 fn boundary_nodes(b: &Body) -> Vec<usize> {
-    let mut v: Vec<usize> = FACES.iter().flat_map(|&f| b.face_nodes(f)).collect();
+    let mut v: Vec<usize> = Face::ALL.iter().flat_map(|&f| b.face_nodes(f)).collect();
     v.sort_unstable();
     v.dedup();
     v

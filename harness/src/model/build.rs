@@ -33,7 +33,8 @@ enum BodyRef {
     },
 }
 
-fn face(f: FaceName) -> Face {
+/// The mesh face of a scene face name.
+pub fn mesh_face(f: FaceName) -> Face {
     match f {
         FaceName::XMin => Face::XMin,
         FaceName::XMax => Face::XMax,
@@ -136,7 +137,7 @@ pub fn build(scene: &Scene) -> Result<Problem, BuildError> {
     for c in &s.clamp {
         match body(&c.body) {
             BodyRef::Box(b) => {
-                let nodes = model.bodies[b].face_nodes(face(c.face.expect("validated")));
+                let nodes = model.bodies[b].face_nodes(mesh_face(c.face.expect("validated")));
                 model.fix(&nodes, c.components)?;
             }
             BodyRef::Mass { node, .. } => model.fix(&[node], c.components)?,
@@ -331,8 +332,8 @@ pub fn build(scene: &Scene) -> Result<Problem, BuildError> {
     for l in &s.preload {
         match (l.kind, body(&l.body)) {
             (PreloadKind::Pressure, BodyRef::Box(b)) => {
-                let quads =
-                    model.bodies[b].face_quads(face(l.face.expect("validated")), &model.elements);
+                let quads = model.bodies[b]
+                    .face_quads(mesh_face(l.face.expect("validated")), &model.elements);
                 add_pressure(&model, &quads, l.pressure.expect("validated"), &mut pre);
             }
             (PreloadKind::Force, r) => {
@@ -386,8 +387,8 @@ pub fn build(scene: &Scene) -> Result<Problem, BuildError> {
         let loads: Vec<(usize, f64)> = match (e.kind, r) {
             (ExcitationKind::Point, _) => vec![(nearest(&model, r, e.at), 1.0)],
             (ExcitationKind::Face, BodyRef::Box(b)) => {
-                let quads =
-                    model.bodies[b].face_quads(face(e.face.expect("validated")), &model.elements);
+                let quads = model.bodies[b]
+                    .face_quads(mesh_face(e.face.expect("validated")), &model.elements);
                 nodal_areas(&model, &quads)
             }
             (ExcitationKind::Face, BodyRef::Mass { .. }) => unreachable!("validated"),

@@ -12,7 +12,7 @@ mod locate;
 pub mod lumped;
 pub mod subgrid;
 
-pub use build::{build, PAIR_TOL};
+pub use build::{build, mesh_face, PAIR_TOL};
 pub use locate::locate;
 
 /// The one [`Problem`] of an input, whatever its format: a scene through [`build`], a
