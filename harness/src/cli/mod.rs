@@ -7,6 +7,7 @@ mod bench;
 mod check;
 mod export;
 mod loss;
+mod matrices;
 mod mhb;
 mod modes;
 mod run;
@@ -163,6 +164,10 @@ pub enum Command {
     /// --harmonics H the extended periodic motion concept (AFT through
     /// jointlin_point_step). Writes backbone.csv, backbone.svg and run.json.
     Backbone(backbone::Args),
+    /// Models given by their matrices (`[[matrices]]` of a scene): converters of FE
+    /// codes' matrix output.
+    #[command(subcommand)]
+    Matrices(matrices::Args),
 }
 
 /// Runs the command.
@@ -178,6 +183,7 @@ pub fn dispatch(command: Command) -> ExitCode {
         Command::Bench(a) => bench::main(a),
         Command::Mhb(a) => mhb::main(a),
         Command::Backbone(a) => backbone::main(a),
+        Command::Matrices(a) => matrices::main(a),
     }
 }
 
