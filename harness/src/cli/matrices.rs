@@ -36,7 +36,11 @@ pub fn main(a: Args) -> ExitCode {
         eprintln!("error: {}: {e}", out.display());
         return ExitCode::from(1);
     }
-    for (name, text) in [("K.mtx", &m.stiffness), ("M.mtx", &m.mass), ("dofs.csv", &m.dofs)] {
+    for (name, text) in [
+        ("K.mtx", &m.stiffness),
+        ("M.mtx", &m.mass),
+        ("dofs.csv", &m.dofs),
+    ] {
         let p = out.join(name);
         if let Err(e) = atomic::write_text(&p, text) {
             eprintln!("error: {e}");

@@ -3,7 +3,7 @@
 //! on), `[[springs]]` grounded (`body`) or `between` two bodies (k·nnᵀ and c·nnᵀ blocks;
 //! a cubic term α along a coordinate axis becomes an element F = αδ³), `[[joints]]`
 //! (a library contact point on one axis: μ, F_N, k_T0 in force form), `[[outputs]]`
-//! (a direction at a mass body or point). `[[matrices]]` models (`input::matrices`) add
+//! (a direction at a mass body or point), point `[[excitation]]`s (the first-harmonic load). `[[matrices]]` models (`input::matrices`) add
 //! their M, K, D blocks; their points `<name>.<point>` are ends, clamps and outputs like
 //! mass bodies, with the directions their DOF list has.
 
@@ -30,6 +30,41 @@ pub struct Lumped {
     pub elements: Vec<String>,
     /// Per `[[outputs]]`: name and weights over the DOFs (the unit direction).
     pub outputs: Vec<(String, Vec<f64>)>,
+}
+
+impl Lumped {
+    /// Undamped natural frequencies (1/time, ascending) with every joint stuck (its
+    /// k_T0 between its two DOFs; a cubic element adds nothing at zero amplitude):
+    /// K_s φ = ω² M φ solved as the symmetric (L⁻¹ K_s L⁻ᵀ) with M = L Lᵀ.
+    pub fn stuck_frequencies(&self) -> Result<Vec<f64>, String> {
+        let sys = &self.system;
+        let mut k = sys.k.clone();
+        for e in &sys.elements {
+            if let Law::Point(t) = e.law {
+                k[(e.i, e.i)] += t.k_t0;
+                if let Some(j) = e.j {
+                    k[(j, j)] += t.k_t0;
+                    k[(e.i, j)] -= t.k_t0;
+                    k[(j, e.i)] -= t.k_t0;
+                }
+            }
+        }
+        let l = sys
+            .m
+            .clone()
+            .cholesky()
+            .ok_or("the mass matrix is not positive definite")?
+            .l();
+        let li = l.try_inverse().ok_or("the mass matrix is singular")?;
+        let a = &li * k * li.transpose();
+        let mut f: Vec<f64> = ((&a + a.transpose()) * 0.5)
+            .symmetric_eigenvalues()
+            .iter()
+            .map(|w2| w2.max(0.0).sqrt() / (2.0 * std::f64::consts::PI))
+            .collect();
+        f.sort_by(f64::total_cmp);
+        Ok(f)
+    }
 }
 
 fn axis(d: &[f64; 3]) -> Option<usize> {
@@ -90,7 +125,10 @@ pub fn build(scene: &Scene) -> Result<Lumped, String> {
             m[(nm + 3 * b + c, nm + 3 * b + c)] = body.mass.unwrap_or(0.0);
             all_names.push(format!("{}.{}", body.name, ["x", "y", "z"][c]));
         }
-        sites.insert(body.name.clone(), std::array::from_fn(|c| Some(nm + 3 * b + c)));
+        sites.insert(
+            body.name.clone(),
+            std::array::from_fn(|c| Some(nm + 3 * b + c)),
+        );
     }
     let site = |name: &str| -> Result<Site, String> {
         sites.get(name).copied().ok_or_else(|| match name.split_once('.') {
@@ -102,12 +140,7 @@ pub fn build(scene: &Scene) -> Result<Lumped, String> {
     };
     // The DOF of `name` along axis `c`, or an error naming what lacks it.
     let component = |name: &str, st: &Site, c: usize| -> Result<usize, String> {
-        st[c].ok_or_else(|| {
-            format!(
-                "`{name}` has no {} DOF in its DOF list",
-                ["x", "y", "z"][c]
-            )
-        })
+        st[c].ok_or_else(|| format!("`{name}` has no {} DOF in its DOF list", ["x", "y", "z"][c]))
     };
     let ends = |x: &str, y: &str| -> Result<((String, Site), Option<(String, Site)>), String> {
         let look = |n: &str| -> Result<Option<(String, Site)>, String> {
@@ -163,7 +196,10 @@ pub fn build(scene: &Scene) -> Result<Lumped, String> {
             let c = axis(&sp.direction).ok_or(format!(
                 "springs[{i}]: a cubic term needs a coordinate axis"
             ))?;
-            let p = axes.iter().position(|&x| x == c).expect("the axis is a component");
+            let p = axes
+                .iter()
+                .position(|&x| x == c)
+                .expect("the axis is a component");
             elements.push(Element {
                 i: da[p],
                 j: db.as_ref().map(|db| db[p]),
@@ -176,7 +212,9 @@ pub fn build(scene: &Scene) -> Result<Lumped, String> {
         let c =
             axis(&j.direction).ok_or(format!("joint `{}`: direction must be an axis", j.name))?;
         let (a, b) = ends(&j.between[0], &j.between[1])?;
-        let at = |e: &(String, Site)| component(&e.0, &e.1, c).map_err(|m| format!("joint `{}`: {m}", j.name));
+        let at = |e: &(String, Site)| {
+            component(&e.0, &e.1, c).map_err(|m| format!("joint `{}`: {m}", j.name))
+        };
         elements.push(Element {
             i: at(&a)?,
             j: b.as_ref().map(at).transpose()?,
@@ -237,13 +275,26 @@ pub fn build(scene: &Scene) -> Result<Lumped, String> {
         outputs.push((o.name.clone(), w));
     }
     let zero = Complex::new(0.0, 0.0);
+    // Point excitations: f̂ = F e^{iφ} along their direction (f(t) = Re(f̂ e^{iωt})).
+    let mut f1 = vec![zero; keep.len()];
+    for (i, e) in s.excitation.iter().enumerate() {
+        let st = site(&e.body).map_err(|m| format!("excitation[{i}]: {m}"))?;
+        let dir = Vector3::from(e.direction).normalize();
+        let amp = Complex::from_polar(e.amplitude, e.phase_deg.to_radians());
+        for c in (0..3).filter(|&c| dir[c] != 0.0) {
+            let r = component(&e.body, &st, c).map_err(|m| format!("excitation[{i}]: {m}"))?;
+            if let Some(p) = new(r) {
+                f1[p] += amp * dir[c];
+            }
+        }
+    }
     Ok(Lumped {
         system: System {
             m: mk,
             d: pick(&d),
             k: pick(&k),
             f0: vec![0.0; keep.len()],
-            f1: vec![zero; keep.len()],
+            f1,
             elements: kept_elements,
         },
         dofs,

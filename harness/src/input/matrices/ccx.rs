@@ -74,7 +74,9 @@ fn matrix(file: &str, text: &str, n: usize, what: &str) -> Result<String, Matrix
         }
         let idx = |s: &str| match s.parse::<usize>() {
             Ok(k) if (1..=n).contains(&k) => Ok(k),
-            _ => Err(bad(format!("index `{s}` outside 1..={n} (the .dof file's rows)"))),
+            _ => Err(bad(format!(
+                "index `{s}` outside 1..={n} (the .dof file's rows)"
+            ))),
         };
         let (r, c) = (idx(f[0])?, idx(f[1])?);
         let v: f64 = f[2]
@@ -83,7 +85,9 @@ fn matrix(file: &str, text: &str, n: usize, what: &str) -> Result<String, Matrix
             .filter(|v: &f64| v.is_finite())
             .ok_or_else(|| bad(format!("`{}` is not a finite number", f[2])))?;
         if r > c {
-            return Err(bad(format!("entry ({r}, {c}) below the diagonal: ccx stores the upper triangle")));
+            return Err(bad(format!(
+                "entry ({r}, {c}) below the diagonal: ccx stores the upper triangle"
+            )));
         }
         // Stored entries that are exactly zero carry nothing.
         if v != 0.0 || r == c {
@@ -110,7 +114,12 @@ pub fn import(job: &Path) -> Result<Imported, MatrixError> {
     let (dof_p, sti_p, mas_p) = (with(".dof"), with(".sti"), with(".mas"));
     let rows = dofs(&dof_p.display().to_string(), &read(&dof_p)?)?;
     let n = rows.len();
-    let stiffness = matrix(&sti_p.display().to_string(), &read(&sti_p)?, n, "stiffness K")?;
+    let stiffness = matrix(
+        &sti_p.display().to_string(),
+        &read(&sti_p)?,
+        n,
+        "stiffness K",
+    )?;
     let mass = matrix(&mas_p.display().to_string(), &read(&mas_p)?, n, "mass M")?;
     let mut dofs = String::from("point,direction\n");
     for r in rows {

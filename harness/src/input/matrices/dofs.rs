@@ -43,7 +43,12 @@ pub fn parse_lines<'a>(
             continue;
         }
         let f: Vec<&str> = l.split(',').map(str::trim).collect();
-        if out.is_empty() && seen.is_empty() && f.len() == 2 && f[0] == "point" && f[1] == "direction" {
+        if out.is_empty()
+            && seen.is_empty()
+            && f.len() == 2
+            && f[0] == "point"
+            && f[1] == "direction"
+        {
             seen.insert(("".to_string(), "".to_string()), line);
             continue;
         }
@@ -54,7 +59,10 @@ pub fn parse_lines<'a>(
                 format!("`{l}`: expected `point,direction` (e.g. `tip,x`, or `modal,1` for a modal coordinate)"),
             ));
         }
-        let ok = |s: &str| s.chars().all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-');
+        let ok = |s: &str| {
+            s.chars()
+                .all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-')
+        };
         if !ok(f[0]) || !ok(f[1]) {
             return Err(MatrixError::at(
                 file,
@@ -82,7 +90,11 @@ pub fn parse_lines<'a>(
         });
     }
     if out.is_empty() {
-        return Err(MatrixError::at(file, 0, "the DOF list is empty".to_string()));
+        return Err(MatrixError::at(
+            file,
+            0,
+            "the DOF list is empty".to_string(),
+        ));
     }
     Ok(out)
 }

@@ -65,7 +65,12 @@ fn read_text(path: &Path) -> Result<String, MatrixError> {
 
 /// Reads one matrix file and checks it against the DOF list: square of the list's size,
 /// symmetric (a `general` file to [`SYMMETRY_TOL`]), finite.
-fn matrix(path: &Path, what: &str, dofs: &[Dof], dofs_file: &str) -> Result<DMatrix<f64>, MatrixError> {
+fn matrix(
+    path: &Path,
+    what: &str,
+    dofs: &[Dof],
+    dofs_file: &str,
+) -> Result<DMatrix<f64>, MatrixError> {
     let file = path.display().to_string();
     let r = mtx::parse(&file, &read_text(path)?)?;
     let n = r.matrix.nrows();
@@ -73,7 +78,10 @@ fn matrix(path: &Path, what: &str, dofs: &[Dof], dofs_file: &str) -> Result<DMat
         return Err(MatrixError::at(
             &file,
             r.size_line,
-            format!("{what} is {n} × {n}, the DOF list ({dofs_file}) has {} rows", dofs.len()),
+            format!(
+                "{what} is {n} × {n}, the DOF list ({dofs_file}) has {} rows",
+                dofs.len()
+            ),
         ));
     }
     if !r.symmetric {

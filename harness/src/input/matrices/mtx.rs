@@ -33,9 +33,12 @@ pub struct Read {
 pub fn parse(file: &str, text: &str) -> Result<Read, MatrixError> {
     let err = |line: usize, msg: String| MatrixError::at(file, line, msg);
     let mut lines = text.lines().enumerate().map(|(i, l)| (i + 1, l));
-    let (_, header) = lines
-        .next()
-        .ok_or_else(|| err(1, "empty file: a Matrix Market file starts with `%%MatrixMarket matrix …`".into()))?;
+    let (_, header) = lines.next().ok_or_else(|| {
+        err(
+            1,
+            "empty file: a Matrix Market file starts with `%%MatrixMarket matrix …`".into(),
+        )
+    })?;
     let words: Vec<String> = header.split_whitespace().map(str::to_lowercase).collect();
     if words.len() != 5 || words[0] != "%%matrixmarket" || words[1] != "matrix" {
         return Err(err(
@@ -46,18 +49,31 @@ pub fn parse(file: &str, text: &str) -> Result<Read, MatrixError> {
     let coordinate = match words[2].as_str() {
         "coordinate" => true,
         "array" => false,
-        f => return Err(err(1, format!("format `{f}`: only `coordinate` and `array` are read"))),
+        f => {
+            return Err(err(
+                1,
+                format!("format `{f}`: only `coordinate` and `array` are read"),
+            ))
+        }
     };
     if !matches!(words[3].as_str(), "real" | "integer") {
         return Err(err(
             1,
-            format!("field `{}`: only `real` and `integer` matrices are model matrices", words[3]),
+            format!(
+                "field `{}`: only `real` and `integer` matrices are model matrices",
+                words[3]
+            ),
         ));
     }
     let symmetric = match words[4].as_str() {
         "general" => false,
         "symmetric" => true,
-        s => return Err(err(1, format!("symmetry `{s}`: only `general` and `symmetric` are read"))),
+        s => {
+            return Err(err(
+                1,
+                format!("symmetry `{s}`: only `general` and `symmetric` are read"),
+            ))
+        }
     };
     let mut data = lines.filter(|(_, l)| !l.trim().is_empty() && !l.trim_start().starts_with('%'));
     let (size_line, size) = data
@@ -72,16 +88,26 @@ pub fn parse(file: &str, text: &str) -> Result<Read, MatrixError> {
             size_line,
             format!(
                 "size line `{size}`: expected {} non-negative integers",
-                if coordinate { "rows, columns, entries:" } else { "rows, columns:" }
+                if coordinate {
+                    "rows, columns, entries:"
+                } else {
+                    "rows, columns:"
+                }
             ),
         ));
     }
     let (nr, nc) = (dims[0], dims[1]);
     if nr != nc {
-        return Err(err(size_line, format!("the matrix is {nr} × {nc}: model matrices are square")));
+        return Err(err(
+            size_line,
+            format!("the matrix is {nr} × {nc}: model matrices are square"),
+        ));
     }
     if nr == 0 || nr > MAX_DIM {
-        return Err(err(size_line, format!("dimension {nr}: 1 to {MAX_DIM} rows are read")));
+        return Err(err(
+            size_line,
+            format!("dimension {nr}: 1 to {MAX_DIM} rows are read"),
+        ));
     }
     let n = nr;
     let mut matrix = DMatrix::<f64>::zeros(n, n);
@@ -99,7 +125,12 @@ pub fn parse(file: &str, text: &str) -> Result<Read, MatrixError> {
         if at[(i, j)] != 0 {
             return Err(err(
                 line,
-                format!("entry ({}, {}) given twice (first at line {})", i + 1, j + 1, at[(i, j)]),
+                format!(
+                    "entry ({}, {}) given twice (first at line {})",
+                    i + 1,
+                    j + 1,
+                    at[(i, j)]
+                ),
             ));
         }
         matrix[(i, j)] = v;
@@ -135,7 +166,10 @@ pub fn parse(file: &str, text: &str) -> Result<Read, MatrixError> {
             }
             count += 1;
             if count > nnz {
-                return Err(err(line, format!("more entries than the {nnz} of the size line")));
+                return Err(err(
+                    line,
+                    format!("more entries than the {nnz} of the size line"),
+                ));
             }
             store(line, i, j, value(line, f[2])?)?;
         }
@@ -154,7 +188,14 @@ pub fn parse(file: &str, text: &str) -> Result<Read, MatrixError> {
         for (line, l) in data {
             for s in l.split_whitespace() {
                 let Some(&(i, j)) = next.next() else {
-                    return Err(err(line, format!("more values than the {} of a {n} × {n} {} array", cells.len(), words[4])));
+                    return Err(err(
+                        line,
+                        format!(
+                            "more values than the {} of a {n} × {n} {} array",
+                            cells.len(),
+                            words[4]
+                        ),
+                    ));
                 };
                 store(line, i, j, value(line, s)?)?;
                 count += 1;
@@ -163,7 +204,11 @@ pub fn parse(file: &str, text: &str) -> Result<Read, MatrixError> {
         if count != cells.len() {
             return Err(err(
                 size_line,
-                format!("a {n} × {n} {} array has {} values, the file has {count}", words[4], cells.len()),
+                format!(
+                    "a {n} × {n} {} array has {} values, the file has {count}",
+                    words[4],
+                    cells.len()
+                ),
             ));
         }
     }
@@ -173,4 +218,26 @@ pub fn parse(file: &str, text: &str) -> Result<Read, MatrixError> {
         lines: at,
         size_line,
     })
+}
+
+/// `matrix` (symmetric) as Matrix Market `coordinate real symmetric` text: its nonzero
+/// lower triangle, each value in the shortest form that reads back exactly; `comment`
+/// lines follow the header.
+pub fn write_symmetric(matrix: &DMatrix<f64>, comment: &str) -> String {
+    use std::fmt::Write as _;
+    let n = matrix.nrows();
+    let entries: Vec<(usize, usize, f64)> = (0..n)
+        .flat_map(|j| (j..n).map(move |i| (i, j)))
+        .map(|(i, j)| (i, j, matrix[(i, j)]))
+        .filter(|&(i, j, v)| v != 0.0 || i == j)
+        .collect();
+    let mut out = String::from("%%MatrixMarket matrix coordinate real symmetric\n");
+    for l in comment.lines() {
+        writeln!(out, "% {l}").expect("string");
+    }
+    writeln!(out, "{n} {n} {}", entries.len()).expect("string");
+    for (i, j, v) in entries {
+        writeln!(out, "{} {} {v:e}", i + 1, j + 1).expect("string");
+    }
+    out
 }

@@ -18,7 +18,10 @@ pub(super) fn matrices(c: &mut Checker, s: &SceneFile) {
         if !ok {
             c.fail(p.key("name"), "names use only A-Z a-z 0-9 _ -");
         } else if m.name == GROUND || c.kinds.contains_key(&m.name) {
-            c.fail(p.key("name"), format!("`{}` is already a body's name or \"ground\"", m.name));
+            c.fail(
+                p.key("name"),
+                format!("`{}` is already a body's name or \"ground\"", m.name),
+            );
         } else if !c.matrices.insert(m.name.clone()) {
             c.fail(p.key("name"), format!("duplicate matrices `{}`", m.name));
         }
@@ -27,7 +30,11 @@ pub(super) fn matrices(c: &mut Checker, s: &SceneFile) {
                 c.fail(p.key(key), "a Matrix Market file name is needed");
             }
         }
-        if i == 0 && (s.model.is_some() || !s.interfaces.is_empty() || s.bodies.iter().any(|b| b.kind == BodyKind::Box)) {
+        if i == 0
+            && (s.model.is_some()
+                || !s.interfaces.is_empty()
+                || s.bodies.iter().any(|b| b.kind == BodyKind::Box))
+        {
             c.fail(
                 p,
                 "a [[matrices]] model is joined by mass bodies, [[springs]] and [[joints]]: no `model`, box bodies or [[interfaces]]",
