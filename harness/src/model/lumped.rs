@@ -75,6 +75,9 @@ fn axis(d: &[f64; 3]) -> Option<usize> {
 /// Per axis x, y, z: the DOF of a named end in the full system, if it has one.
 type Site = [Option<usize>; 3];
 
+/// A named end and its site.
+type End = (String, Site);
+
 /// Builds the lumped system; a scene with FE (`box`) bodies or interfaces is refused
 /// with a message. `[[matrices]]` models come first in the DOF order (their rows as
 /// listed), then three translations per mass body.
@@ -142,8 +145,8 @@ pub fn build(scene: &Scene) -> Result<Lumped, String> {
     let component = |name: &str, st: &Site, c: usize| -> Result<usize, String> {
         st[c].ok_or_else(|| format!("`{name}` has no {} DOF in its DOF list", ["x", "y", "z"][c]))
     };
-    let ends = |x: &str, y: &str| -> Result<((String, Site), Option<(String, Site)>), String> {
-        let look = |n: &str| -> Result<Option<(String, Site)>, String> {
+    let ends = |x: &str, y: &str| -> Result<(End, Option<End>), String> {
+        let look = |n: &str| -> Result<Option<End>, String> {
             if n == GROUND {
                 Ok(None)
             } else {
@@ -212,9 +215,7 @@ pub fn build(scene: &Scene) -> Result<Lumped, String> {
         let c =
             axis(&j.direction).ok_or(format!("joint `{}`: direction must be an axis", j.name))?;
         let (a, b) = ends(&j.between[0], &j.between[1])?;
-        let at = |e: &(String, Site)| {
-            component(&e.0, &e.1, c).map_err(|m| format!("joint `{}`: {m}", j.name))
-        };
+        let at = |e: &End| component(&e.0, &e.1, c).map_err(|m| format!("joint `{}`: {m}", j.name));
         elements.push(Element {
             i: at(&a)?,
             j: b.as_ref().map(at).transpose()?,

@@ -149,7 +149,7 @@ fn positive_mass(m: &DMatrix<f64>, dofs: &[Dof], file: &str) -> Result<(), Matri
     let mut l = DMatrix::<f64>::zeros(n, n);
     for j in 0..n {
         let s = m[(j, j)] - (0..j).map(|k| l[(j, k)] * l[(j, k)]).sum::<f64>();
-        if !(s > MASS_PIVOT_TOL * m[(j, j)].abs()) || m[(j, j)] <= 0.0 {
+        if s.is_nan() || s <= MASS_PIVOT_TOL * m[(j, j)].abs() || m[(j, j)] <= 0.0 {
             return Err(MatrixError::at(
                 file,
                 0,
