@@ -1,6 +1,7 @@
 //! scenes/beam-cb.toml through the CLI: `jointlin check` reads its matrices, a broken
 //! matrix file is reported at its file:line with exit 2, and `jointlin backbone` traces
-//! the joint's mode from the tip held to the free cantilever.
+//! the joint's mode from the tip held to the free cantilever; `jointlin modes` lists
+//! its stuck frequencies.
 
 use std::path::PathBuf;
 use std::process::Command;
@@ -50,6 +51,20 @@ fn check_reads_the_matrices_and_names_a_broken_file() {
         err.contains("beam-cb/K.mtx:10: value `NaN` is not finite"),
         "{err}"
     );
+}
+
+#[test]
+fn modes_of_the_reduced_model_with_the_joint_stuck() {
+    let o = jointlin(&["modes", "scenes/beam-cb.toml", "--count", "3"]);
+    let out = String::from_utf8_lossy(&o.stdout);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    // The reduced model's y bending and its z bending against the stuck tip joint
+    // (the full matrices with the tip spring: 999.9795 and 1575.408 Hz, matrices_ccx).
+    assert!(
+        out.contains("| 1 | 999.9969 |") && out.contains("| 2 | 1575.432 |"),
+        "{out}"
+    );
+    assert_eq!(out.lines().count(), 5, "{out}");
 }
 
 #[test]

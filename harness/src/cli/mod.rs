@@ -140,6 +140,9 @@ pub enum Command {
     /// and the effective masses per direction. Labels: longitudinal_x, bending_xz (axis
     /// x, moving along z), torsion_x, section, translation_z (lumped masses).
     ///
+    /// A lumped scene (mass bodies, [[matrices]], springs, joints) lists its frequencies
+    /// with every joint stuck (k_T0) and writes modes.csv (mode, frequency) only.
+    ///
     /// Files written to DIR with --out DIR:
     ///   modes.csv   mode, frequency_Hz (or frequency_per_<time>), label, dominant,
     ///               share_longitudinal, share_bending, share_torsion, share_section,
