@@ -41,8 +41,16 @@ pub fn main(a: Args) -> ExitCode {
     // between non-conforming meshes), with the scene's location; lumped scenes with
     // [[joints]] are `jointlin backbone`'s and have no FE model.
     let mut built = None;
-    let lumped = !s.spec.joints.is_empty() || s.spec.springs.iter().any(|sp| sp.between.is_some());
-    if !lumped {
+    let lumped = !s.spec.joints.is_empty()
+        || !s.spec.matrices.is_empty()
+        || s.spec.springs.iter().any(|sp| sp.between.is_some());
+    if lumped {
+        // The lumped system reads the [[matrices]] files: their errors name file:line.
+        if let Err(e) = model::lumped::build(&s) {
+            eprintln!("error: {}: {e}", s.file);
+            return ExitCode::from(2);
+        }
+    } else {
         match model::build(&s) {
             // A deck (a scene's `model`) names its own file:line.
             Err(model::BuildError::Deck(e)) => {

@@ -7,6 +7,7 @@ mod bench;
 mod check;
 mod export;
 mod loss;
+mod matrices;
 mod mhb;
 mod modes;
 mod run;
@@ -140,6 +141,9 @@ pub enum Command {
     /// and the effective masses per direction. Labels: longitudinal_x, bending_xz (axis
     /// x, moving along z), torsion_x, section, translation_z (lumped masses).
     ///
+    /// A lumped scene (mass bodies, [[matrices]], springs, joints) lists its frequencies
+    /// with every joint stuck (k_T0) and writes modes.csv (mode, frequency) only.
+    ///
     /// Files written to DIR with --out DIR:
     ///   modes.csv   mode, frequency_Hz (or frequency_per_<time>), label, dominant,
     ///               share_longitudinal, share_bending, share_torsion, share_section,
@@ -164,6 +168,10 @@ pub enum Command {
     /// --harmonics H the extended periodic motion concept (AFT through
     /// jointlin_point_step). Writes backbone.csv, backbone.svg and run.json.
     Backbone(backbone::Args),
+    /// Models given by their matrices (`[[matrices]]` of a scene): converters of FE
+    /// codes' matrix output.
+    #[command(subcommand)]
+    Matrices(matrices::Args),
 }
 
 /// Runs the command.
@@ -179,6 +187,7 @@ pub fn dispatch(command: Command) -> ExitCode {
         Command::Bench(a) => bench::main(a),
         Command::Mhb(a) => mhb::main(a),
         Command::Backbone(a) => backbone::main(a),
+        Command::Matrices(a) => matrices::main(a),
     }
 }
 

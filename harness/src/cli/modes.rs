@@ -35,6 +35,12 @@ pub fn main(a: Args) -> ExitCode {
         Ok(s) => s,
         Err(code) => return code,
     };
+    let lumped = !s.spec.matrices.is_empty()
+        || !s.spec.joints.is_empty()
+        || s.spec.springs.iter().any(|sp| sp.between.is_some());
+    if lumped {
+        return lumped_modes(&a, &s);
+    }
     // A deck's *FREQUENCY step says how many modes, unless --count does.
     let deck_modes = s.deck.as_ref().and_then(|d| d.frequency_modes());
     let count = a
@@ -94,6 +100,54 @@ pub fn main(a: Args) -> ExitCode {
             return ExitCode::from(1);
         }
         eprintln!("wrote {0}/modes.csv and {0}/modes.vtu", dir.display());
+    }
+    ExitCode::SUCCESS
+}
+
+/// The modes of a lumped scene (mass bodies, `[[matrices]]`, springs, joints) with every
+/// joint stuck: frequencies only (no mesh for labels, effective masses or modes.vtu).
+fn lumped_modes(a: &Args, s: &jointlin_harness::input::scene::Scene) -> ExitCode {
+    let f = match jointlin_harness::model::lumped::build(s).and_then(|l| l.stuck_frequencies()) {
+        Ok(f) => f,
+        Err(e) => {
+            eprintln!("error: {}: {e}", s.file);
+            return ExitCode::from(2);
+        }
+    };
+    let (column, fu) = frequency_unit(&s.spec.units);
+    let limit = 1.5 * s.frequencies().last().copied().unwrap_or(0.0);
+    let n = match a.count {
+        Some(n) => n.min(f.len()),
+        None => f.iter().filter(|&&x| x < limit).count().max(6).min(f.len()),
+    };
+    eprintln!(
+        "{n} of {} mode(s) of the lumped system, every joint stuck (k_T0){}",
+        f.len(),
+        if a.count.is_none() {
+            format!(": every one below {} {fu}, at least 6", sig(limit))
+        } else {
+            String::new()
+        }
+    );
+    let mut md = format!("| mode | frequency ({fu}) |\n|---:|---:|\n");
+    let mut csv = format!("mode,{column}\n");
+    for (i, x) in f.iter().take(n).enumerate() {
+        md.push_str(&format!("| {} | {} |\n", i + 1, sig(*x)));
+        csv.push_str(&format!("{},{x:e}\n", i + 1));
+    }
+    print!("{md}");
+    if let Some(dir) = &a.out {
+        let written = std::fs::create_dir_all(dir)
+            .map_err(|e| format!("{}: {e}", dir.display()))
+            .and_then(|_| atomic::write_text(&dir.join("modes.csv"), &csv));
+        if let Err(e) = written {
+            eprintln!("error: cannot write: {e}");
+            return ExitCode::from(1);
+        }
+        eprintln!(
+            "wrote {}/modes.csv (a lumped system has no mesh: no modes.vtu)",
+            dir.display()
+        );
     }
     ExitCode::SUCCESS
 }

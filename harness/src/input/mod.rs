@@ -10,6 +10,7 @@
 //!   ([`deck::job::DeckJob`]); a scene may take its model from one (`model = "x.inp"`).
 
 pub mod deck;
+pub mod matrices;
 pub mod scene;
 
 use std::path::Path;

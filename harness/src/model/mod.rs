@@ -7,6 +7,7 @@
 //! its lower side.
 
 mod build;
+pub mod craig_bampton;
 pub mod deck;
 mod locate;
 pub mod lumped;

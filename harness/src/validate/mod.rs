@@ -22,6 +22,7 @@ pub mod block;
 pub mod ccx;
 pub mod deck_ccx;
 pub mod duffing;
+pub mod matrices_ccx;
 pub mod softening;
 pub mod stack_deck;
 

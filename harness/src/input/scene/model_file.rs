@@ -140,6 +140,7 @@ pub fn deck_scene(job: DeckJob, text: String) -> Scene {
         units: job.units.clone(),
         materials: Default::default(),
         bodies: Vec::new(),
+        matrices: Vec::new(),
         interfaces: Vec::new(),
         ties: Vec::new(),
         preload: Vec::new(),

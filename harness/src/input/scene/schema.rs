@@ -30,6 +30,10 @@ pub struct SceneFile {
     pub materials: BTreeMap<String, MaterialSpec>,
     #[serde(default)]
     pub bodies: Vec<BodySpec>,
+    /// Models given by their matrices (M, K, D from any FE code, a DOF list naming the
+    /// rows by point and direction); their points are named `<name>.<point>`.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub matrices: Vec<MatricesSpec>,
     #[serde(default)]
     pub interfaces: Vec<InterfaceSpec>,
     /// Boxes that move as one where they touch (coincident nodes merged).
@@ -345,6 +349,32 @@ pub struct ClampSpec {
 
 fn all_components() -> [bool; 3] {
     [true; 3]
+}
+
+/// A model given by its matrices (`[[matrices]]`, read by `input::matrices`): Matrix
+/// Market files (paths relative to the scene) in the scene's units, and the DOF list.
+#[derive(Debug, Clone, Deserialize, Serialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct MatricesSpec {
+    /// Prefix of its points: `<name>.<point>` in joints, springs, clamps, loads, outputs.
+    pub name: String,
+    /// M (mass).
+    pub mass: String,
+    /// K (force/length).
+    pub stiffness: String,
+    /// D (force·time/length), optional.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub damping: Option<String>,
+    /// The DOF list: a CSV file of `point,direction` rows, or the rows inline.
+    pub dofs: DofsSpec,
+}
+
+/// A DOF list: a file, or its rows inline (`["tip,x", "tip,y", "modal,1"]`).
+#[derive(Debug, Clone, Deserialize, Serialize, PartialEq)]
+#[serde(untagged)]
+pub enum DofsSpec {
+    File(String),
+    Inline(Vec<String>),
 }
 
 /// A discrete contact element (`[[joints]]`): one tangential direction between two mass

@@ -284,3 +284,40 @@ fn area_samples_are_validated() {
     assert_eq!(e.key, "interfaces[0].area_samples", "{e}");
     assert!(e.message.contains("fast"), "{e}");
 }
+
+#[test]
+fn matrices_tables_are_validated() {
+    let text = |extra: &str, name: &str| {
+        format!(
+            "[units]\nlength = \"mm\"\nforce = \"N\"\ntime = \"s\"\nmass = \"t\"\n\
+             [[matrices]]\nname = \"{name}\"\nmass = \"M.mtx\"\nstiffness = \"K.mtx\"\ndofs = [\"tip,x\", \"modal,1\"]\n{extra}\
+             [[joints]]\nname = \"j\"\nbetween = [\"{name}.tip\", \"ground\"]\ndirection = [1.0, 0.0, 0.0]\n\
+             law = \"jenkins\"\nmu = 1.0\nnormal_force = 1.0\nk_t0 = 1.0\n\
+             [[excitation]]\nkind = \"point\"\nbody = \"{name}.tip\"\ndirection = [1.0, 0.0, 0.0]\namplitude = 1.0\n\
+             [sweep]\nf_min = 1.0\nf_max = 2.0\ncount = 3\n\
+             [[outputs]]\nname = \"tip\"\nbody = \"{name}.tip\"\ndirection = [1.0, 0.0, 0.0]\n"
+        )
+    };
+    // Points `<name>.<point>` stand where mass bodies do; no [[bodies]] needed.
+    let s = Scene::parse("m.toml", &text("", "beam")).unwrap();
+    assert_eq!(
+        s.spec.matrices[0].dofs,
+        DofsSpec::Inline(vec!["tip,x".into(), "modal,1".into()])
+    );
+    let e = err(&text("", "ground"));
+    assert_eq!(e.key, "matrices[0].name", "{}", e.message);
+    let e = err(&text("", "be.am"));
+    assert_eq!(e.key, "matrices[0].name", "{}", e.message);
+    let other =
+        text("", "beam").replace("[\"beam.tip\", \"ground\"]", "[\"other.tip\", \"ground\"]");
+    let e = err(&other);
+    assert_eq!(e.key, "joints[0].between[0]", "{}", e.message);
+    // A matrix model joins lumped parts only.
+    let boxed = text(
+        "[materials.steel]\nE = 2e5\nnu = 0.3\nrho = 7.85e-9\n[[bodies]]\nname = \"b\"\nkind = \"box\"\n\
+         origin = [0.0, 0.0, 0.0]\nsize = [1.0, 1.0, 1.0]\ndivisions = [1, 1, 1]\nmaterial = \"steel\"\n",
+        "beam",
+    );
+    let e = err(&boxed);
+    assert_eq!(e.key, "matrices[0]", "{}", e.message);
+}

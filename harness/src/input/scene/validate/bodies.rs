@@ -35,8 +35,11 @@ pub(super) fn materials(c: &mut Checker, s: &SceneFile) {
 /// Every body: a unique name, the keys of its kind; records the kinds for the later tables.
 pub(super) fn bodies(c: &mut Checker, s: &SceneFile) {
     let root = KeyPath::root();
-    if s.bodies.is_empty() {
-        c.fail(root.key("bodies"), "at least one body is needed");
+    if s.bodies.is_empty() && s.matrices.is_empty() {
+        c.fail(
+            root.key("bodies"),
+            "at least one body (or [[matrices]] model) is needed",
+        );
     }
     for (i, b) in s.bodies.iter().enumerate() {
         let p = root.key("bodies").index(i);

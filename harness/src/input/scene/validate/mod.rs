@@ -6,10 +6,11 @@ mod contact;
 mod geometry;
 mod loads;
 mod lumped;
+mod matrices;
 pub mod size;
 mod study;
 
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, BTreeSet};
 
 use super::error::KeyPath;
 use super::schema::*;
@@ -20,16 +21,26 @@ pub type Problem = (KeyPath, String);
 /// Name of the implicit fixed body a mass body can rest on.
 pub const GROUND: &str = "ground";
 
-/// The problems found so far, and the body kinds by name (filled by the bodies' check).
+/// The problems found so far, the body kinds by name (filled by the bodies' check) and
+/// the names of the `[[matrices]]` models.
 struct Checker {
     problems: Vec<Problem>,
     kinds: BTreeMap<String, BodyKind>,
+    matrices: BTreeSet<String>,
 }
 
 impl Checker {
-    /// The kind of a named body, if it exists.
+    /// The kind of a named body, if it exists; a point `<matrices>.<point>` of a
+    /// `[[matrices]]` model counts as a mass body (whether the point exists is the
+    /// model build's check: it reads the DOF list).
     fn kind(&self, name: &str) -> Option<BodyKind> {
-        self.kinds.get(name).copied()
+        let point_of_matrices = name
+            .split_once('.')
+            .is_some_and(|(m, p)| !p.is_empty() && self.matrices.contains(m));
+        self.kinds
+            .get(name)
+            .copied()
+            .or(point_of_matrices.then_some(BodyKind::Mass))
     }
 
     /// The kind of a body named at `path`; a problem if there is none of that name.
@@ -101,10 +112,12 @@ pub fn validate(s: &SceneFile) -> Vec<Problem> {
     let mut c = Checker {
         problems: Vec::new(),
         kinds: BTreeMap::new(),
+        matrices: BTreeSet::new(),
     };
     units(&mut c, s);
     bodies::materials(&mut c, s);
     bodies::bodies(&mut c, s);
+    matrices::matrices(&mut c, s);
     contact::interfaces(&mut c, s);
     contact::ties(&mut c, s);
     contact::screws(&mut c, s);
