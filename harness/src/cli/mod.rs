@@ -11,6 +11,7 @@ mod matrices;
 mod mhb;
 mod modes;
 mod run;
+mod run_lumped;
 mod tradeoff;
 mod validate;
 

@@ -91,6 +91,19 @@ pub fn main(a: Args) -> ExitCode {
     if a.time_domain {
         return time_domain_run(&s, &a.out, a.quiet);
     }
+    let lumped = !s.spec.matrices.is_empty()
+        || !s.spec.joints.is_empty()
+        || s.spec.springs.iter().any(|sp| sp.between.is_some());
+    if lumped {
+        if s.spec.iteration.mode != Mode::Fast {
+            eprintln!(
+                "error: {}: a lumped system ([[matrices]], [[joints]]) is swept by the first-order method only: mode \"fast\" (the default); `jointlin backbone --harmonics H` for harmonic balance",
+                s.file
+            );
+            return ExitCode::from(2);
+        }
+        return super::run_lumped::main(&s, &a.out);
+    }
     let pb = progress_bar(a.quiet);
     let r = run(
         &s,

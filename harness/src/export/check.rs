@@ -21,6 +21,12 @@ pub fn check(scene: &Scene) -> Result<Vec<String>, ExportError> {
             "the scene's model is already a deck: run or edit that deck",
         ));
     }
+    if !s.matrices.is_empty() {
+        return Err(err(
+            "matrices[0]".into(),
+            "a model given by its matrices has no elements to write: its FE code has the deck",
+        ));
+    }
     if let Some(i) = s.bodies.iter().position(|b| b.kind == BodyKind::Mass) {
         return Err(err(
             format!("bodies[{i}].kind"),
