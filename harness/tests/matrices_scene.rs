@@ -67,27 +67,46 @@ fn modes_of_the_reduced_model_with_the_joint_stuck() {
     assert_eq!(out.lines().count(), 5, "{out}");
 }
 
-#[test]
-fn backbone_of_the_tip_joint_mode() {
-    let out = std::env::temp_dir().join(format!("jointlin-beam-cb-bb-{}", std::process::id()));
-    let o = jointlin(&[
-        "backbone",
-        "scenes/beam-cb.toml",
-        "--mode",
-        "2",
-        "--harmonics",
-        "1",
-        "--out",
-        out.to_str().unwrap(),
-    ]);
+/// backbone.csv rows of `jointlin backbone scenes/beam-cb.toml --mode 2` with `extra`.
+fn backbone_rows(tag: &str, extra: &[&str]) -> (String, Vec<Vec<f64>>) {
+    let out =
+        std::env::temp_dir().join(format!("jointlin-beam-cb-bb-{}-{tag}", std::process::id()));
+    let mut args = vec!["backbone", "scenes/beam-cb.toml", "--mode", "2"];
+    args.extend_from_slice(extra);
+    args.extend_from_slice(&["--out", out.to_str().unwrap()]);
+    let o = jointlin(&args);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let csv = std::fs::read_to_string(out.join("backbone.csv")).unwrap();
     let _ = std::fs::remove_dir_all(&out);
-    let rows: Vec<Vec<f64>> = csv
+    let rows = csv
         .lines()
         .skip(1)
         .map(|l| l.split(',').map(|v| v.parse().unwrap()).collect())
         .collect();
+    (csv, rows)
+}
+
+/// The first-order backbone of the reduced model (it stopped with "amplitudes not
+/// consistent" while the complex modes of its 18 rows were 3 % off) equals the H = 1
+/// EPMC one where the joint damps little (ζ < 0.02: 1e-5; 1.2e-6 measured at ζ = 0.011)
+/// and within 2 % where it damps most (the two methods define the damped frequency
+/// differently).
+#[test]
+fn first_order_backbone_equals_h1_epmc() {
+    let (_, first) = backbone_rows("first", &[]);
+    let (csv, h1) = backbone_rows("h1", &["--harmonics", "1"]);
+    assert_eq!(first.len(), h1.len(), "{csv}");
+    for (a, b) in first.iter().zip(&h1) {
+        assert_eq!(a[0], b[0]);
+        let rel = (a[1] / b[1] - 1.0).abs();
+        let bound = if b[2] < 0.02 { 1e-5 } else { 2e-2 };
+        assert!(rel < bound, "{a:?} against {b:?}");
+    }
+}
+
+#[test]
+fn backbone_of_the_tip_joint_mode() {
+    let (csv, rows) = backbone_rows("epmc", &["--harmonics", "1"]);
     let (first, last) = (&rows[0], &rows[rows.len() - 1]);
     // Stuck: the full matrices with the tip spring give 1575.41 Hz (matrices_ccx); the
     // reduced model 1575.43 Hz; sliding: toward the free cantilever's 686.68 Hz.

@@ -1,9 +1,12 @@
 //! Complex modes of a damped linear system: λ²Mφ + λDφ + Kφ = 0 (docs/model.md §3: the
 //! first-order method's linear system with k*, d* in K and D). Eigenvalues from the
 //! real Schur form of the first-order companion matrix [0, I; −M⁻¹K, −M⁻¹D]; each shape
-//! is the right singular vector of the smallest singular value of λ²M + λD + K.
-//! Oscillatory modes only (Im λ > 0), mass-normalized φᴴMφ = 1, phase such that the
-//! largest component is real and positive.
+//! is the right singular vector of the smallest singular value of λ²M + λD + K. Each pair
+//! is then refined ([`refine`]): the companion matrix of a stiff model spans many decades
+//! (a C3D8 cantilever of 180 DOFs: 687 Hz to MHz), and its Schur form leaves the lowest
+//! eigenvalues with an error of ε times the largest (5e-4 relative at 687 Hz, 3 % on a
+//! Craig–Bampton model). Oscillatory modes only (Im λ > 0), mass-normalized φᴴMφ = 1,
+//! phase such that the largest component is real and positive.
 
 use nalgebra::{Complex, DMatrix, DVector};
 
@@ -58,13 +61,69 @@ pub fn complex_modes(
     let mut modes: Vec<Mode> = eig
         .iter()
         .filter(|l| l.im > 1e-12 * l.norm())
-        .map(|&lambda| Mode {
-            lambda,
-            shape: shape(m, d, k, lambda),
-        })
+        .map(|&lambda| refine(m, d, k, lambda, shape(m, d, k, lambda)))
         .collect();
     modes.sort_by(|a, b| a.omega().total_cmp(&b.omega()));
     Ok(modes)
+}
+
+/// Refinement steps of [`refine`]; each at least doubles the correct digits (the
+/// quadratic Rayleigh quotient is stationary for symmetric M, D, K), and it stops when λ
+/// no longer moves.
+const REFINE_STEPS: usize = 6;
+
+/// λ and φ refined by inverse iteration with the quadratic Rayleigh quotient: λ the root
+/// nearer the current λ of (φᴴMφ)λ² + (φᴴDφ)λ + φᴴKφ = 0, then φ ← (λ²M + λD + K)⁻¹Mφ.
+fn refine(
+    m: &DMatrix<f64>,
+    d: &DMatrix<f64>,
+    k: &DMatrix<f64>,
+    lambda: C64,
+    phi: Vec<C64>,
+) -> Mode {
+    let n = m.nrows();
+    let c = |a: &DMatrix<f64>| a.map(|v| C64::new(v, 0.0));
+    let (mc, dc, kc) = (c(m), c(d), c(k));
+    let mut best = Mode { lambda, shape: phi };
+    for _ in 0..REFINE_STEPS {
+        let p = DVector::from_column_slice(&best.shape);
+        let q = |a: &DMatrix<C64>| (p.adjoint() * a * &p)[(0, 0)];
+        let (a, b, cc) = (q(&mc), q(&dc), q(&kc));
+        if a.norm() == 0.0 {
+            break;
+        }
+        let disc = (b * b - 4.0 * a * cc).sqrt();
+        let roots = [(-b + disc) / (2.0 * a), (-b - disc) / (2.0 * a)];
+        let l = if (roots[0] - best.lambda).norm() <= (roots[1] - best.lambda).norm() {
+            roots[0]
+        } else {
+            roots[1]
+        };
+        if !(l.re.is_finite() && l.im.is_finite()) || l.im <= 0.0 {
+            break;
+        }
+        let moved = (l - best.lambda).norm();
+        let qm = DMatrix::<C64>::from_fn(n, n, |i, j| {
+            l * l * mc[(i, j)] + l * dc[(i, j)] + kc[(i, j)]
+        });
+        let Some(x) = qm.lu().solve(&(&mc * &p)) else {
+            // λ is an eigenvalue to working precision: φ stays.
+            best.lambda = l;
+            break;
+        };
+        if !x.iter().all(|v| v.re.is_finite() && v.im.is_finite()) {
+            best.lambda = l;
+            break;
+        }
+        best = Mode {
+            lambda: l,
+            shape: normalize(m, x.as_slice()),
+        };
+        if moved <= 4.0 * f64::EPSILON * l.norm() {
+            break;
+        }
+    }
+    best
 }
 
 /// Null vector of λ²M + λD + K (smallest singular value), mass-normalized.
@@ -181,5 +240,42 @@ mod tests {
         assert_eq!(pick(&m, &modes, &modes[1].shape, 1.0), Some(1));
         let bad = complex_modes(&DMatrix::zeros(2, 2), &d, &k).unwrap_err();
         assert_eq!(bad, ModeError::SingularMass);
+    }
+
+    /// A stiff chain (masses from 1 down to 1e-6, springs 1 … 1e6: ω from ~0.1 to ~1e6
+    /// rad/time): the lowest modes equal the symmetric eigen-solve of M^-1/2 K M^-1/2
+    /// to 1e-12 (the companion matrix's Schur form alone was off by ~1e-4 on such spreads).
+    #[test]
+    fn a_stiff_chain_keeps_the_digits_of_its_lowest_modes() {
+        let n = 30;
+        let mass: Vec<f64> = (0..n)
+            .map(|i| 10f64.powf(-6.0 * i as f64 / (n - 1) as f64))
+            .collect();
+        let spring: Vec<f64> = (0..=n)
+            .map(|i| 10f64.powf(6.0 * i as f64 / n as f64))
+            .collect();
+        let m = DMatrix::from_diagonal(&DVector::from_vec(mass.clone()));
+        let mut k = DMatrix::zeros(n, n);
+        for i in 0..n {
+            k[(i, i)] = spring[i] + spring[i + 1];
+            if i + 1 < n {
+                k[(i, i + 1)] = -spring[i + 1];
+                k[(i + 1, i)] = -spring[i + 1];
+            }
+        }
+        let d = DMatrix::zeros(n, n);
+        let modes = complex_modes(&m, &d, &k).unwrap();
+        let s = DMatrix::from_fn(n, n, |i, j| k[(i, j)] / (mass[i] * mass[j]).sqrt());
+        let mut w2: Vec<f64> = s.symmetric_eigen().eigenvalues.iter().copied().collect();
+        w2.sort_by(f64::total_cmp);
+        for (md, l) in modes.iter().zip(&w2).take(5) {
+            let w = l.sqrt();
+            assert!(
+                (md.omega() / w - 1.0).abs() < 1e-12,
+                "{} against {w}",
+                md.omega()
+            );
+            assert!(md.damping_ratio().abs() < 1e-12);
+        }
     }
 }
