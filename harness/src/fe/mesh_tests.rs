@@ -57,14 +57,7 @@ fn face_selection_matches_predicate() {
         assert_eq!(a, m.nodes_where(pred), "{face:?}");
     }
     // Face quads have outward normals and lie on the face.
-    for face in [
-        Face::XMin,
-        Face::XMax,
-        Face::YMin,
-        Face::YMax,
-        Face::ZMin,
-        Face::ZMax,
-    ] {
+    for face in Face::ALL {
         let quads = body.face_quads(face, &m.elements);
         let n = face.outward_normal();
         let [nx, ny, nz] = body.spec.divisions;
