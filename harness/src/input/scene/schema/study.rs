@@ -1,0 +1,167 @@
+//! What a run computes: `[sweep]`, `[iteration]`, `[[outputs]]`, `[effects]`.
+
+use serde::{Deserialize, Serialize};
+
+use super::*;
+
+/// Frequency spacing of the sweep.
+#[derive(Debug, Clone, Copy, Deserialize, Serialize, PartialEq, Eq, Default)]
+#[serde(rename_all = "snake_case")]
+pub enum Spacing {
+    #[default]
+    Linear,
+    Log,
+}
+
+/// The frequencies of the steady-state step (1/time, Hz for seconds): `count` points
+/// from `f_min` to `f_max`, plus the points of any `refine` bands (e.g. around
+/// resonances), merged in ascending order. The default (count 0) stands for "absent".
+#[derive(Debug, Clone, Deserialize, Serialize, PartialEq, Default)]
+#[serde(deny_unknown_fields)]
+pub struct SweepSpec {
+    pub f_min: f64,
+    pub f_max: f64,
+    pub count: usize,
+    #[serde(default)]
+    pub spacing: Spacing,
+    #[serde(default)]
+    pub refine: Vec<BandSpec>,
+    /// Order in which the frequencies are run; each frequency starts from the previous
+    /// one's converged state, so multi-valued responses (Duffing) follow their branch.
+    #[serde(default)]
+    pub direction: Direction,
+}
+
+/// Sweep direction.
+#[derive(Debug, Clone, Copy, Deserialize, Serialize, PartialEq, Eq, Default)]
+#[serde(rename_all = "snake_case")]
+pub enum Direction {
+    /// Ascending frequencies.
+    #[default]
+    Up,
+    /// Descending frequencies.
+    Down,
+    /// Ascending, then a second sweep descending (results_down.csv).
+    UpDown,
+}
+
+/// An extra band of frequencies, linearly spaced.
+#[derive(Debug, Clone, Copy, Deserialize, Serialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct BandSpec {
+    pub f_min: f64,
+    pub f_max: f64,
+    pub count: usize,
+}
+
+/// Iteration mode of the steady-state step.
+#[derive(Debug, Clone, Copy, Deserialize, Serialize, PartialEq, Eq, Default)]
+#[serde(rename_all = "snake_case")]
+pub enum Mode {
+    /// One factorization per frequency, contact iterations on the condensed system.
+    #[default]
+    Fast,
+    /// The thesis's multi-pass UEXTERNALDB scheme (§4.3.2).
+    Thesis,
+    /// Multi-harmonic balance (`harmonics`, `samples`): the contact loops marched in time
+    /// through the C API, the linear part condensed onto the contacts per harmonic.
+    HarmonicBalance,
+}
+
+/// Amplitude-consistency iteration.
+#[derive(Debug, Clone, Copy, Deserialize, Serialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct IterationSpec {
+    #[serde(default)]
+    pub mode: Mode,
+    /// Relative amplitude tolerance |a − a*| ≤ tol·max(a*, floor).
+    #[serde(default = "default_tolerance")]
+    pub tolerance: f64,
+    #[serde(default)]
+    pub scheme: SchemeName,
+    /// Most passes (thesis) or contact iterations per frequency (fast).
+    #[serde(default = "default_max_passes")]
+    pub max_passes: usize,
+    /// Amplitude estimate (length) of the first frequency increment.
+    #[serde(default = "default_initial_amplitude")]
+    pub initial_amplitude: f64,
+    /// Harmonic balance: harmonics H (zeroth included besides); required by that mode.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub harmonics: Option<usize>,
+    /// Harmonic balance: samples N per period (default 16(H + 1) rounded up to a power
+    /// of two, at least 64).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub samples: Option<usize>,
+}
+
+fn default_tolerance() -> f64 {
+    1e-3
+}
+fn default_max_passes() -> usize {
+    50
+}
+fn default_initial_amplitude() -> f64 {
+    1e-9
+}
+
+impl Default for IterationSpec {
+    fn default() -> Self {
+        IterationSpec {
+            mode: Mode::default(),
+            tolerance: default_tolerance(),
+            scheme: SchemeName::default(),
+            max_passes: default_max_passes(),
+            initial_amplitude: default_initial_amplitude(),
+            harmonics: None,
+            samples: None,
+        }
+    }
+}
+
+/// A named output: the displacement of the body's node nearest `at` along `direction`.
+#[derive(Debug, Clone, Deserialize, Serialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct OutputSpec {
+    pub name: String,
+    pub body: String,
+    /// Point (length); ignored for a mass body.
+    pub at: Option<[f64; 3]>,
+    pub direction: [f64; 3],
+}
+
+/// Physics and output switches: the engine runs only what is on.
+#[derive(Debug, Clone, Copy, Deserialize, Serialize, PartialEq, Eq)]
+#[serde(deny_unknown_fields, default)]
+pub struct Effects {
+    /// Static step with the library's normal law by Newton (open points stay open);
+    /// off: constant normal springs, one linear static solve, no open/close.
+    pub normal_contact_nonlinearity: bool,
+    /// Tangential k* from the library's linearization; off: constant k_T0 and no
+    /// linearization calls at all.
+    pub tangential_microslip: bool,
+    /// Coulomb sliding allowed; off: the amplitude handed to the linearization is
+    /// capped at the slip limit δ* (and the cap is counted in the run log).
+    pub macroslip: bool,
+    /// Equivalent contact damping d* in the dynamic stiffness; off: d* = 0.
+    pub contact_damping: bool,
+    /// Rayleigh damping of the materials and the springs' dashpots; off: none.
+    pub material_damping: bool,
+    /// points.csv: per point and frequency amplitude, k*, d*, energy, A/δ*.
+    pub point_energy_output: bool,
+    /// Regime (stick/microslip/sliding) per point and frequency, stick_slip.csv/svg.
+    pub stick_slip_map: bool,
+}
+
+impl Default for Effects {
+    fn default() -> Self {
+        Effects {
+            normal_contact_nonlinearity: true,
+            tangential_microslip: true,
+            macroslip: true,
+            contact_damping: true,
+            material_damping: true,
+            point_energy_output: false,
+            stick_slip_map: false,
+        }
+    }
+}
