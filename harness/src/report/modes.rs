@@ -13,6 +13,11 @@ use crate::solve::modal_stuck::StuckModes;
 use crate::solve::mode_labels::{Character, Kind, ModeGeometry};
 use crate::util::number::sig;
 
+/// An eigenvalue at most this fraction of the table's largest is a rigid-body mode's
+/// (three-beams-coarse unclamped: its six rigid ones are 1e-11 of the largest; the
+/// lowest flexible modes of the scenes here are 2.4e-4 of their table's largest or more).
+const RIGID_REL: f64 = 1e-8;
+
 /// The modes with their characters.
 pub struct ModeTable<'a> {
     pub modes: &'a StuckModes,
@@ -43,6 +48,19 @@ impl<'a> ModeTable<'a> {
         self.modes.band.modes.frequencies_hz()
     }
 
+    /// The label of mode `i`: `rigid_body` when its eigenvalue is round-off beside the
+    /// largest of the table ([`RIGID_REL`]: a structure held nowhere), else its
+    /// character's.
+    fn label(&self, i: usize) -> String {
+        let l = &self.modes.band.modes.eigenvalues;
+        let top = l.iter().copied().fold(0.0f64, f64::max);
+        if top > 0.0 && l[i].abs() <= RIGID_REL * top {
+            "rigid_body".into()
+        } else {
+            self.characters[i].label()
+        }
+    }
+
     /// Markdown table: mode, frequency, label, dominant direction, kind shares (%),
     /// effective masses.
     pub fn markdown(&self) -> String {
@@ -58,7 +76,7 @@ impl<'a> ModeTable<'a> {
                 "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |",
                 i + 1,
                 sig(*f),
-                c.label(),
+                self.label(i),
                 c.dominant_name(),
                 pct[0],
                 pct[1],
@@ -89,7 +107,7 @@ impl<'a> ModeTable<'a> {
         let modes = &self.modes.band.modes;
         for (i, (f, c)) in self.frequencies().iter().zip(&self.characters).enumerate() {
             // Frequency in the shortest round-trip form: a sweep can hold it exactly.
-            let _ = write!(s, "{},{f},{},{}", i + 1, c.label(), c.dominant_name());
+            let _ = write!(s, "{},{f},{},{}", i + 1, self.label(i), c.dominant_name());
             for v in shares(c) {
                 let _ = write!(s, ",{}", v.map_or(String::new(), sig));
             }
