@@ -182,7 +182,7 @@ fn write(
             json!({
                 "modal_amplitude": r.point.modal_amplitude,
                 "omega": r.point.omega,
-                "frequency": report::frequency(r.point.omega),
+                "frequency": report::frequency(r.point.omega, units),
                 "damping_ratio": r.point.damping_ratio,
                 "outputs": names.iter().zip(&r.outputs).map(|(n, v)| json!({"name": n, "amplitude": v})).collect::<Vec<_>>(),
                 "elements": l.elements.iter().zip(r.point.element_amplitudes.iter().zip(&r.point.energy_per_cycle)).map(|(n, (amp, e))| json!({"name": n, "amplitude": amp, "energy_per_cycle": e})).collect::<Vec<_>>(),
@@ -196,7 +196,7 @@ fn write(
         "mode": a.mode,
         "method": method,
         "dofs": l.dofs,
-        "frequency_unit": frequency_unit(units).1,
+        "frequency_unit": frequency_unit(units).text,
         "rows": json_rows,
     });
     let text = serde_json::to_string_pretty(&run).map_err(|e| e.to_string())?;
