@@ -133,14 +133,31 @@ mod tests {
 
     #[test]
     fn frequency_follows_the_time_unit() {
-        assert_eq!(
+        let (hz, per_ms) = (
             frequency_unit(&units("mm", "N", "s")),
-            ("frequency_Hz".into(), "Hz".into())
-        );
-        assert_eq!(
             frequency_unit(&units("mm", "N", "ms")),
-            ("frequency_per_ms".into(), "1/ms".into())
         );
+        assert_eq!((hz.column.as_str(), hz.text.as_str()), ("frequency_Hz", "Hz"));
+        assert_eq!(
+            (per_ms.column.as_str(), per_ms.text.as_str()),
+            ("frequency_per_ms", "1/ms")
+        );
+        assert_eq!((hz.factor, hz.suffix()), (1.0, "Hz"));
+        assert_eq!(per_ms.suffix(), "per_ms");
+    }
+
+    #[test]
+    fn a_declared_angular_unit_shows_two_pi_f() {
+        let mut u = units("mm", "N", "ms");
+        u.frequency = Some("rad/ms".into());
+        let w = frequency_unit(&u);
+        assert_eq!(w.column, "angular_frequency_rad_per_ms");
+        assert_eq!((w.text.as_str(), w.suffix()), ("rad/ms", "rad_per_ms"));
+        assert_eq!(w.show(1.0), 2.0 * std::f64::consts::PI);
+        assert_eq!(frequency_spellings(&u), ["1/ms", "rad/ms"]);
+        // Cycles spelled out keep the default.
+        u.frequency = Some("1/ms".into());
+        assert_eq!(frequency_unit(&u).factor, 1.0);
     }
 
     #[test]
