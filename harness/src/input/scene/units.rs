@@ -137,7 +137,10 @@ mod tests {
             frequency_unit(&units("mm", "N", "s")),
             frequency_unit(&units("mm", "N", "ms")),
         );
-        assert_eq!((hz.column.as_str(), hz.text.as_str()), ("frequency_Hz", "Hz"));
+        assert_eq!(
+            (hz.column.as_str(), hz.text.as_str()),
+            ("frequency_Hz", "Hz")
+        );
         assert_eq!(
             (per_ms.column.as_str(), per_ms.text.as_str()),
             ("frequency_per_ms", "1/ms")
