@@ -74,7 +74,9 @@ const REFINE_STEPS: usize = 6;
 
 /// λ and φ refined by inverse iteration with the quadratic Rayleigh quotient: λ the root
 /// nearer the current λ of (φᴴMφ)λ² + (φᴴDφ)λ + φᴴKφ = 0, then φ ← (λ²M + λD + K)⁻¹Mφ.
-fn refine(
+/// From a nearby pair (the same mode of slightly different matrices) it converges to
+/// that mode with O(n³) work, where [`complex_modes`] costs O(n⁴).
+pub fn refine(
     m: &DMatrix<f64>,
     d: &DMatrix<f64>,
     k: &DMatrix<f64>,

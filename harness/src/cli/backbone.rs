@@ -1,16 +1,19 @@
-//! `jointlin backbone`: frequency and damping ratio of one mode of a lumped scene
-//! against its amplitude, first order or EPMC; backbone.csv, backbone.svg, run.json.
+//! `jointlin backbone`: frequency and damping ratio of one mode of a lumped scene, or of
+//! an FE scene reduced onto its contact points (`backbone::fe`), against its amplitude,
+//! first order or EPMC; backbone.csv, backbone.svg, run.json.
 
 use std::path::PathBuf;
 use std::process::ExitCode;
 
 use serde_json::json;
 
-use jointlin_harness::backbone::{epmc, first_order, log_space, BackbonePoint, C64};
+use jointlin_harness::backbone::{epmc, fe, first_order, log_space, BackbonePoint, C64};
 use jointlin_harness::input::scene::units::frequency_unit;
 use jointlin_harness::mhb::default_samples;
 use jointlin_harness::model::lumped::{self, Lumped};
 use jointlin_harness::report::backbone::{self as report, Row};
+use jointlin_harness::input::scene::schema::BodyKind;
+use jointlin_harness::input::scene::Scene;
 use jointlin_harness::util::atomic;
 
 use super::{load_scene, report_written};
@@ -18,7 +21,8 @@ use super::{load_scene, report_written};
 // The command's help is the doc comment of `Command::Backbone`.
 #[derive(clap::Args)]
 pub struct Args {
-    /// Lumped scene (mass bodies, springs, [[joints]]).
+    /// Lumped scene (mass bodies, springs, [[joints]], [[matrices]]) or FE scene (box
+    /// bodies with [[interfaces]], or a deck).
     scene: PathBuf,
     /// Mode number (1 = lowest frequency with every contact stuck).
     #[arg(long, default_value_t = 1)]
@@ -31,21 +35,26 @@ pub struct Args {
     harmonics: Option<usize>,
     /// Modal amplitudes FROM,TO,COUNT (log spaced); default from a tenth of the first
     /// contact's slip onset to 30 times the last one's, 60 points.
-    #[arg(long, value_delimiter = ',', num_args = 3)]
+    #[arg(long, value_delimiter = ',')]
     amplitudes: Vec<f64>,
 }
 
-/// Default amplitude range: stuck … fully sliding for the scene's contacts.
+/// Default amplitude range: stuck … fully sliding for the contacts the mode moves.
 fn default_range(l: &Lumped, mode: usize) -> Result<(f64, f64), String> {
     let st = first_order::stuck_mode(&l.system, mode).map_err(|e| e.to_string())?;
     let rel = first_order::relative(&l.system, &st.shape);
+    // Contacts that move less than this fraction of the one moving most are left out: a
+    // reduced FE model's lateral directions of a bending mode move at round-off level,
+    // and their "onsets" would stretch the range by ten decades.
+    const MOVES: f64 = 1e-3;
+    let big = rel.iter().copied().fold(0.0, f64::max);
     let mut onsets = Vec::new();
     for (e, r) in l.system.elements.iter().zip(rel) {
         if let jointlin_harness::mhb::Law::Point(t) = e.law {
             let ds = jointlin_harness::capi::linearize(&t, 0.0, 1.0)
                 .map_err(|e| e.to_string())?
                 .slip_limit;
-            if r > 0.0 {
+            if r > MOVES * big {
                 onsets.push(ds / r);
             }
         }
@@ -58,18 +67,64 @@ fn default_range(l: &Lumped, mode: usize) -> Result<(f64, f64), String> {
     Ok((0.1 * lo, 30.0 * hi))
 }
 
+/// The lumped system of a scene: its own (mass bodies, [[matrices]]) or an FE scene's
+/// reduction with how it was reduced.
+fn build(scene: &Scene, mode: usize) -> Result<(Lumped, Option<fe::Reduced>), String> {
+    let s = &scene.spec;
+    let fe_scene = scene.deck.is_some()
+        || !s.interfaces.is_empty()
+        || s.bodies.iter().any(|b| b.kind != BodyKind::Mass);
+    if !fe_scene {
+        return lumped::build(scene).map(|l| (l, None));
+    }
+    let p = jointlin_harness::model::build(scene).map_err(|e| e.to_string())?;
+    for w in &p.warnings {
+        eprintln!("warning: {w}");
+    }
+    let r = fe::reduce(&p, &s.effects, mode)?;
+    Ok((r.lumped.clone(), Some(r)))
+}
+
 pub fn main(a: Args) -> ExitCode {
     let scene = match load_scene(&a.scene) {
         Ok(s) => s,
         Err(code) => return code,
     };
-    let l = match lumped::build(&scene) {
+    let (l, reduction) = match build(&scene, a.mode) {
         Ok(l) => l,
         Err(e) => {
             eprintln!("error: {}: {e}", a.scene.display());
             return ExitCode::from(2);
         }
     };
+    if let Some(r) = &reduction {
+        let fu = frequency_unit(&scene.spec.units).1;
+        eprintln!(
+            "reduced: {} closed contact points ({} open, no joint), {} joints, {} interior modes; \
+             mode {}: stuck {:.9} {fu} (full model {:.9} {fu}), sliding {:.9} {fu}{}",
+            r.closed,
+            r.open,
+            r.lumped.elements.len(),
+            r.modes,
+            a.mode,
+            r.stuck.last().copied().unwrap_or(f64::NAN),
+            r.stuck_full.last().copied().unwrap_or(f64::NAN),
+            r.sliding.last().copied().unwrap_or(f64::NAN),
+            if r.converged {
+                String::new()
+            } else {
+                format!(
+                    " (not converged to {:e} at {} modes)",
+                    fe::MODE_TOL,
+                    r.modes
+                )
+            }
+        );
+    }
+    if !a.amplitudes.is_empty() && a.amplitudes.len() != 3 {
+        eprintln!("error: --amplitudes FROM,TO,COUNT: three numbers");
+        return ExitCode::from(2);
+    }
     let q = if a.amplitudes.len() == 3 {
         let (f, t, n) = (a.amplitudes[0], a.amplitudes[1], a.amplitudes[2]);
         if !(f > 0.0 && t > 0.0 && f.is_finite() && t.is_finite() && (1.0..=1e6).contains(&n)) {
@@ -144,7 +199,7 @@ pub fn main(a: Args) -> ExitCode {
         );
         return ExitCode::from(1);
     }
-    let code = report_written(write(&a, &scene, &l, &method, &rows));
+    let code = report_written(write(&a, &scene, &l, reduction.as_ref(), &method, &rows));
     match stopped {
         Some(e) => {
             eprintln!(
@@ -159,8 +214,9 @@ pub fn main(a: Args) -> ExitCode {
 
 fn write(
     a: &Args,
-    scene: &jointlin_harness::input::scene::Scene,
+    scene: &Scene,
     l: &Lumped,
+    reduction: Option<&fe::Reduced>,
     method: &str,
     rows: &[Row],
 ) -> Result<Vec<PathBuf>, String> {
@@ -196,6 +252,18 @@ fn write(
         "mode": a.mode,
         "method": method,
         "dofs": l.dofs,
+        "reduction": reduction.map(|r| json!({
+            "closed_points": r.closed,
+            "open_points": r.open,
+            "joints": r.lumped.elements.len(),
+            "interior_modes": r.modes,
+            "stuck_frequencies": r.stuck,
+            "stuck_frequencies_full_model": r.stuck_full,
+            "sliding_frequencies": r.sliding,
+            "sliding_frequencies_half_modes": r.sliding_previous,
+            "converged": r.converged,
+            "tolerance": fe::MODE_TOL,
+        })),
         "frequency_unit": frequency_unit(units).1,
         "rows": json_rows,
     });
