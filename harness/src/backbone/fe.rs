@@ -24,6 +24,7 @@
 
 use nalgebra::{Complex, DMatrix};
 
+use crate::capi::Tangential;
 use crate::fe::csc::Csc;
 use crate::input::scene::schema::Effects;
 use crate::mhb::{Element, Law, System};
@@ -34,7 +35,6 @@ use crate::solve::modal::{lowest_modes, ModalOptions};
 use crate::solve::static_step;
 use crate::solve::sweep::Setup;
 use crate::solve::umfpack::{to_complex, Symbolic};
-use crate::capi::Tangential;
 
 /// Convergence of the reduction: the sliding frequencies up to the traced mode change by
 /// less than this fraction of its stuck frequency when the interior modes double.
@@ -88,7 +88,9 @@ fn frequencies(k: &DMatrix<f64>, m: &DMatrix<f64>) -> Result<Vec<f64>, String> {
         .cholesky()
         .ok_or("the reduced mass matrix is not positive definite")?
         .l();
-    let li = l.try_inverse().ok_or("the reduced mass matrix is singular")?;
+    let li = l
+        .try_inverse()
+        .ok_or("the reduced mass matrix is singular")?;
     let a = &li * k * li.transpose();
     let mut f: Vec<f64> = ((&a + a.transpose()) * 0.5)
         .symmetric_eigenvalues()

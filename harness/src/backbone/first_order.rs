@@ -8,14 +8,14 @@
 //!
 //! Large systems (a reduced FE model: a hundred joints, a few hundred DOFs) take two
 //! cheaper steps with the same fixed point: above [`ALL_MODES_MAX`] DOFs the traced mode
-//! is refined from the previous one ([`refine`]) instead of computing every mode, and
+//! is continued from the previous one ([`track`]) instead of computing every mode, and
 //! above [`NEWTON_MAX`] elements the amplitudes are iterated by Anderson acceleration in
 //! ln A (one mode per iteration, as the FE sweep's fast mode) instead of Newton with a
 //! forward-difference Jacobian (elements + 1 modes per iteration).
 
 use nalgebra::DMatrix;
 
-use super::modes::{complex_modes, mac, normalize, pick, refine, Mode, C64};
+use super::modes::{complex_modes, mac, normalize, pick, track, Mode, C64};
 use super::{BackboneError, BackbonePoint};
 use crate::capi;
 use crate::mhb::{consistency, Law, System};
@@ -85,7 +85,7 @@ pub fn linearized_modes(sys: &System, amp: &[f64], omega: f64) -> Result<Vec<Mod
 }
 
 /// The mode of the system linearized at `amp` and ω that continues `reference`: every
-/// mode and the pick by MAC up to [`ALL_MODES_MAX`] DOFs, else [`refine`] from it.
+/// mode and the pick by MAC up to [`ALL_MODES_MAX`] DOFs, else [`track`] from it.
 fn traced_mode(
     sys: &System,
     amp: &[f64],
@@ -100,9 +100,10 @@ fn traced_mode(
         let mut d = sys.d.clone();
         add_elements(sys, &mut k, |i| lin[i].0);
         add_elements(sys, &mut d, |i| lin[i].1);
-        let md = refine(&sys.m, &d, &k, reference.lambda, reference.shape.clone());
-        if md.lambda.im > 0.0 && mac(&sys.m, &reference.shape, &md.shape) >= MAC_MIN {
-            return Ok(md);
+        if let Some(md) = track(&sys.m, &d, &k, reference.lambda, &reference.shape) {
+            if mac(&sys.m, &reference.shape, &md.shape) >= MAC_MIN {
+                return Ok(md);
+            }
         }
     }
     let modes = linearized_modes(sys, amp, omega)?;
@@ -137,7 +138,7 @@ pub fn stuck_mode(sys: &System, mode: usize) -> Result<Mode, BackboneError> {
 }
 
 /// [`stuck_mode`] of a large system: the undamped mode `mode` of (K_s, M) (symmetric,
-/// K_s φ = ω² M φ as (L⁻¹K_sL⁻ᵀ) y = ω² y with M = LLᵀ), refined with D ([`refine`]).
+/// K_s φ = ω² M φ as (L⁻¹K_sL⁻ᵀ) y = ω² y with M = LLᵀ), continued to D ([`track`]).
 fn stuck_mode_refined(sys: &System, mode: usize, zeros: &[f64]) -> Result<Mode, BackboneError> {
     let lin = linearized(sys, zeros, 1.0)?;
     let mut k = sys.k.clone();
@@ -153,9 +154,7 @@ fn stuck_mode_refined(sys: &System, mode: usize, zeros: &[f64]) -> Result<Mode, 
         .ok_or(super::modes::ModeError::SingularMass)?;
     let a = &li * &k * li.transpose();
     let eig = ((&a + a.transpose()) * 0.5).symmetric_eigen();
-    let mut order: Vec<usize> = (0..sys.n())
-        .filter(|&i| eig.eigenvalues[i] > 0.0)
-        .collect();
+    let mut order: Vec<usize> = (0..sys.n()).filter(|&i| eig.eigenvalues[i] > 0.0).collect();
     order.sort_by(|&x, &y| eig.eigenvalues[x].total_cmp(&eig.eigenvalues[y]));
     let &o = order
         .get(mode.wrapping_sub(1))
@@ -169,20 +168,9 @@ fn stuck_mode_refined(sys: &System, mode: usize, zeros: &[f64]) -> Result<Mode, 
         .map(|&v| C64::new(v, 0.0))
         .collect();
     let w = eig.eigenvalues[o].sqrt();
-    let md = refine(
-        &sys.m,
-        &sys.d,
-        &k,
-        C64::new(0.0, w),
-        normalize(&sys.m, &phi),
-    );
-    if md.lambda.im > 0.0 {
-        Ok(md)
-    } else {
-        Err(BackboneError::Overdamped {
-            modal_amplitude: 0.0,
-        })
-    }
+    track(&sys.m, &sys.d, &k, C64::new(0.0, w), &phi).ok_or(BackboneError::Overdamped {
+        modal_amplitude: 0.0,
+    })
 }
 
 /// The amplitudes a = g(a) of many elements (and ω, the last entry) by Anderson
@@ -199,7 +187,10 @@ fn anderson_consistency(
     let mut mismatch = f64::INFINITY;
     for it in 0..ANDERSON_MAX_ITER {
         let gx = g(&x)?;
-        let big = gx[..ne].iter().chain(&x[..ne]).fold(0.0f64, |m, v| m.max(*v));
+        let big = gx[..ne]
+            .iter()
+            .chain(&x[..ne])
+            .fold(0.0f64, |m, v| m.max(*v));
         let floor = (ZERO_AMP_REL * big).max(f64::MIN_POSITIVE);
         mismatch = x
             .iter()
@@ -223,8 +214,11 @@ fn anderson_consistency(
             .iter()
             .zip(lx.iter().zip(&lg))
             .map(|(v, (a, b))| {
-                v.clamp(a.min(*b) - std::f64::consts::LN_10, a.max(*b) + std::f64::consts::LN_10)
-                    .exp()
+                v.clamp(
+                    a.min(*b) - std::f64::consts::LN_10,
+                    a.max(*b) + std::f64::consts::LN_10,
+                )
+                .exp()
             })
             .collect();
     }
