@@ -244,6 +244,35 @@ pub fn stick_limit(sys: &System, shape: &[C64]) -> Result<f64, BackboneError> {
     Ok(q)
 }
 
+/// Contacts that move less than this fraction of the one moving most are left out of
+/// [`slip_range`]: a reduced FE model's lateral directions of a bending mode move at
+/// round-off level, and their "onsets" would stretch the range by ten decades.
+const MOVES: f64 = 1e-3;
+
+/// The default modal amplitudes of a backbone of mode `mode`, stuck … fully sliding: a
+/// tenth of the first contact's slip onset δ*/|P_e φ| to 30 times the last one's, over
+/// the contacts the stuck mode moves ([`MOVES`]). `NoContact` if none moves.
+pub fn slip_range(sys: &System, mode: usize) -> Result<(f64, f64), BackboneError> {
+    let st = stuck_mode(sys, mode)?;
+    let rel = relative(sys, &st.shape);
+    let big = rel.iter().copied().fold(0.0, f64::max);
+    let mut onsets = Vec::new();
+    for (e, r) in sys.elements.iter().zip(rel) {
+        if let Law::Point(t) = e.law {
+            let ds = capi::linearize(&t, 0.0, 1.0)?.slip_limit;
+            if r > MOVES * big {
+                onsets.push(ds / r);
+            }
+        }
+    }
+    let lo = onsets.iter().copied().fold(f64::INFINITY, f64::min);
+    let hi = onsets.iter().copied().fold(0.0, f64::max);
+    if !lo.is_finite() {
+        return Err(BackboneError::NoContact);
+    }
+    Ok((0.1 * lo, 30.0 * hi))
+}
+
 /// The first-order backbone of mode `mode` (1-based) at the modal amplitudes `q`
 /// (ascending or not; each starts from its predecessor).
 pub fn backbone(sys: &System, mode: usize, q: &[f64]) -> Result<Vec<BackbonePoint>, BackboneError> {

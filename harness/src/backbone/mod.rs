@@ -55,6 +55,8 @@ pub enum BackboneError {
     Mhb(#[from] MhbError),
     #[error("mode {mode} does not exist ({count} oscillatory modes)")]
     NoMode { mode: usize, count: usize },
+    #[error("no contact moves in this mode")]
+    NoContact,
     #[error("modal amplitude {0:e} is not positive and finite")]
     Amplitude(f64),
     #[error("no oscillatory mode at modal amplitude {modal_amplitude:.6e} (overdamped)")]

@@ -4,6 +4,7 @@
 
 use std::path::PathBuf;
 use std::process::ExitCode;
+use std::time::Instant;
 
 use serde_json::json;
 
@@ -37,34 +38,6 @@ pub struct Args {
     /// contact's slip onset to 30 times the last one's, 60 points.
     #[arg(long, value_delimiter = ',')]
     amplitudes: Vec<f64>,
-}
-
-/// Default amplitude range: stuck … fully sliding for the contacts the mode moves.
-fn default_range(l: &Lumped, mode: usize) -> Result<(f64, f64), String> {
-    let st = first_order::stuck_mode(&l.system, mode).map_err(|e| e.to_string())?;
-    let rel = first_order::relative(&l.system, &st.shape);
-    // Contacts that move less than this fraction of the one moving most are left out: a
-    // reduced FE model's lateral directions of a bending mode move at round-off level,
-    // and their "onsets" would stretch the range by ten decades.
-    const MOVES: f64 = 1e-3;
-    let big = rel.iter().copied().fold(0.0, f64::max);
-    let mut onsets = Vec::new();
-    for (e, r) in l.system.elements.iter().zip(rel) {
-        if let jointlin_harness::mhb::Law::Point(t) = e.law {
-            let ds = jointlin_harness::capi::linearize(&t, 0.0, 1.0)
-                .map_err(|e| e.to_string())?
-                .slip_limit;
-            if r > MOVES * big {
-                onsets.push(ds / r);
-            }
-        }
-    }
-    let lo = onsets.iter().copied().fold(f64::INFINITY, f64::min);
-    let hi = onsets.iter().copied().fold(0.0, f64::max);
-    if !lo.is_finite() {
-        return Err("no contact moves in this mode: give --amplitudes FROM,TO,COUNT".into());
-    }
-    Ok((0.1 * lo, 30.0 * hi))
 }
 
 /// The lumped system of a scene: its own (mass bodies, [[matrices]]) or an FE scene's
@@ -135,10 +108,10 @@ pub fn main(a: Args) -> ExitCode {
         }
         log_space(f, t, n as usize)
     } else {
-        match default_range(&l, a.mode) {
+        match first_order::slip_range(&l.system, a.mode) {
             Ok((f, t)) => log_space(f, t, 60),
             Err(e) => {
-                eprintln!("error: {e}");
+                eprintln!("error: {e}; give --amplitudes FROM,TO,COUNT");
                 return ExitCode::from(1);
             }
         }
@@ -150,6 +123,7 @@ pub fn main(a: Args) -> ExitCode {
     }
     // EPMC keeps the points converged before a failure: they are written, the failure
     // is printed and the exit code is 1.
+    let started = Instant::now();
     let (method, result) = match a.harmonics {
         None => (
             "first order (jointlin_linearize)".to_string(),
@@ -175,6 +149,12 @@ pub fn main(a: Args) -> ExitCode {
             return ExitCode::from(1);
         }
     };
+    eprintln!(
+        "{method}: {} of {} amplitudes in {:.2} s",
+        points.len(),
+        q.len(),
+        started.elapsed().as_secs_f64()
+    );
     let rows: Vec<Row> = points
         .into_iter()
         .map(|p| {
