@@ -5,17 +5,42 @@
 //! |λ| is the ω d* was taken at. The fixed point (A_e, ω) is found by
 //! [`crate::mhb::consistency`]; each amplitude starts from the previous one and follows
 //! the mode by MAC. Frequency |λ|, damping ratio −Re λ/|λ|.
+//!
+//! Large systems (a reduced FE model: a hundred joints, a few hundred DOFs) take two
+//! cheaper steps with the same fixed point: above [`ALL_MODES_MAX`] DOFs the traced mode
+//! is continued from the previous one ([`track`]) instead of computing every mode, and
+//! above [`NEWTON_MAX`] elements the amplitudes are iterated by Anderson acceleration in
+//! ln A (one mode per iteration, as the FE sweep's fast mode) instead of Newton with a
+//! forward-difference Jacobian (elements + 1 modes per iteration).
 
 use nalgebra::DMatrix;
 
-use super::modes::{complex_modes, normalize, pick, Mode, C64};
+use super::modes::{complex_modes, mac, normalize, pick, track, Mode, C64};
 use super::{BackboneError, BackbonePoint};
 use crate::capi;
 use crate::mhb::{consistency, Law, System};
+use crate::solve::sweep::anderson::Anderson;
 
 /// Relative tolerance of the consistency (amplitudes and ω).
 const TOL: f64 = 1e-10;
 const MAX_ITER: usize = 60;
+/// Every mode (and the pick by MAC) up to this many DOFs; above, the traced mode is
+/// refined from the previous one: every mode of a 150-DOF reduced model costs seconds
+/// (a singular-value decomposition and refinement per mode), one mode milliseconds.
+pub const ALL_MODES_MAX: usize = 40;
+/// Newton with a forward-difference Jacobian up to this many elements; above, Anderson.
+pub const NEWTON_MAX: usize = 8;
+/// A refined mode whose MAC with the previous one is below this is a different mode: the
+/// step falls back to every mode and the pick by MAC.
+const MAC_MIN: f64 = 0.9;
+/// Anderson: history depth, most iterations, and the fraction of the largest amplitude
+/// below which an amplitude is round-off (floored there in ln A and left out of the
+/// mismatch; its k* differs from k_T0 by O(A/δ*), see `solve::sweep::fast`).
+const ANDERSON_DEPTH: usize = 5;
+const ANDERSON_MAX_ITER: usize = 200;
+const ZERO_AMP_REL: f64 = 1e-9;
+/// The Anderson iteration, as named in messages.
+const ANDERSON_METHOD: &str = "Anderson acceleration in ln A";
 
 /// k* and d* of every element at amplitudes `amp` and ω.
 fn linearized(
@@ -59,6 +84,33 @@ pub fn linearized_modes(sys: &System, amp: &[f64], omega: f64) -> Result<Vec<Mod
     Ok(complex_modes(&sys.m, &d, &k)?)
 }
 
+/// The mode of the system linearized at `amp` and ω that continues `reference`: every
+/// mode and the pick by MAC up to [`ALL_MODES_MAX`] DOFs, else [`track`] from it.
+fn traced_mode(
+    sys: &System,
+    amp: &[f64],
+    omega: f64,
+    reference: &Mode,
+    modal_amplitude: f64,
+) -> Result<Mode, BackboneError> {
+    let overdamped = BackboneError::Overdamped { modal_amplitude };
+    if sys.n() > ALL_MODES_MAX {
+        let lin = linearized(sys, amp, omega)?;
+        let mut k = sys.k.clone();
+        let mut d = sys.d.clone();
+        add_elements(sys, &mut k, |i| lin[i].0);
+        add_elements(sys, &mut d, |i| lin[i].1);
+        if let Some(md) = track(&sys.m, &d, &k, reference.lambda, &reference.shape) {
+            if mac(&sys.m, &reference.shape, &md.shape) >= MAC_MIN {
+                return Ok(md);
+            }
+        }
+    }
+    let modes = linearized_modes(sys, amp, omega)?;
+    let i = pick(&sys.m, &modes, &reference.shape, omega).ok_or(overdamped)?;
+    Ok(modes[i].clone())
+}
+
 /// Relative amplitudes |P_e φ| of the elements for a shape φ.
 pub fn relative(sys: &System, phi: &[C64]) -> Vec<f64> {
     sys.elements
@@ -71,6 +123,9 @@ pub fn relative(sys: &System, phi: &[C64]) -> Vec<f64> {
 /// amplitude (k* = k_T0, d* = 0).
 pub fn stuck_mode(sys: &System, mode: usize) -> Result<Mode, BackboneError> {
     let zeros = vec![0.0; sys.elements.len()];
+    if sys.n() > ALL_MODES_MAX {
+        return stuck_mode_refined(sys, mode, &zeros);
+    }
     // ω only scales d*, which is 0 at zero amplitude.
     let modes = linearized_modes(sys, &zeros, 1.0)?;
     modes
@@ -80,6 +135,97 @@ pub fn stuck_mode(sys: &System, mode: usize) -> Result<Mode, BackboneError> {
             mode,
             count: modes.len(),
         })
+}
+
+/// [`stuck_mode`] of a large system: the undamped mode `mode` of (K_s, M) (symmetric,
+/// K_s φ = ω² M φ as (L⁻¹K_sL⁻ᵀ) y = ω² y with M = LLᵀ), continued to D ([`track`]).
+fn stuck_mode_refined(sys: &System, mode: usize, zeros: &[f64]) -> Result<Mode, BackboneError> {
+    let lin = linearized(sys, zeros, 1.0)?;
+    let mut k = sys.k.clone();
+    add_elements(sys, &mut k, |i| lin[i].0);
+    let l = sys
+        .m
+        .clone()
+        .cholesky()
+        .ok_or(super::modes::ModeError::SingularMass)?
+        .l();
+    let li = l
+        .try_inverse()
+        .ok_or(super::modes::ModeError::SingularMass)?;
+    let a = &li * &k * li.transpose();
+    let eig = ((&a + a.transpose()) * 0.5).symmetric_eigen();
+    let mut order: Vec<usize> = (0..sys.n()).filter(|&i| eig.eigenvalues[i] > 0.0).collect();
+    order.sort_by(|&x, &y| eig.eigenvalues[x].total_cmp(&eig.eigenvalues[y]));
+    let &o = order
+        .get(mode.wrapping_sub(1))
+        .ok_or(BackboneError::NoMode {
+            mode,
+            count: order.len(),
+        })?;
+    let y = eig.eigenvectors.column(o);
+    let phi: Vec<C64> = (li.transpose() * y)
+        .iter()
+        .map(|&v| C64::new(v, 0.0))
+        .collect();
+    let w = eig.eigenvalues[o].sqrt();
+    track(&sys.m, &sys.d, &k, C64::new(0.0, w), &phi).ok_or(BackboneError::Overdamped {
+        modal_amplitude: 0.0,
+    })
+}
+
+/// The amplitudes a = g(a) of many elements (and ω, the last entry) by Anderson
+/// acceleration in ln a from `z0`, to the relative mismatch `tol` over the entries above
+/// [`ZERO_AMP_REL`] of the largest amplitude.
+fn anderson_consistency(
+    z0: &[f64],
+    mut g: impl FnMut(&[f64]) -> Result<Vec<f64>, BackboneError>,
+    tol: f64,
+) -> Result<Result<consistency::Converged, consistency::Stalled>, BackboneError> {
+    let ne = z0.len() - 1;
+    let mut acc = Anderson::new(ANDERSON_DEPTH);
+    let mut x = z0.to_vec();
+    let mut mismatch = f64::INFINITY;
+    for it in 0..ANDERSON_MAX_ITER {
+        let gx = g(&x)?;
+        let big = gx[..ne]
+            .iter()
+            .chain(&x[..ne])
+            .fold(0.0f64, |m, v| m.max(*v));
+        let floor = (ZERO_AMP_REL * big).max(f64::MIN_POSITIVE);
+        mismatch = x
+            .iter()
+            .zip(&gx)
+            .enumerate()
+            // Entries floored in an earlier step sit at about `floor`: noise, not mismatch.
+            .filter(|(i, (a, b))| *i == ne || a.max(**b) > 10.0 * floor)
+            .map(|(_, (a, b))| (a - b).abs() / a.max(*b))
+            .fold(0.0, f64::max);
+        if mismatch <= tol {
+            return Ok(Ok(consistency::Converged {
+                x: gx,
+                iterations: it + 1,
+            }));
+        }
+        let lx: Vec<f64> = x.iter().map(|v| v.max(floor).ln()).collect();
+        let lg: Vec<f64> = gx.iter().map(|v| v.max(floor).ln()).collect();
+        let next = acc.next(&lx, &lg);
+        // At most a decade beyond the bracket of x and g(x) per step.
+        x = next
+            .iter()
+            .zip(lx.iter().zip(&lg))
+            .map(|(v, (a, b))| {
+                v.clamp(
+                    a.min(*b) - std::f64::consts::LN_10,
+                    a.max(*b) + std::f64::consts::LN_10,
+                )
+                .exp()
+            })
+            .collect();
+    }
+    Ok(Err(consistency::Stalled {
+        mismatch,
+        iterations: ANDERSON_MAX_ITER,
+    }))
 }
 
 /// The modal amplitude at which the first contact of the stuck mode reaches its slip
@@ -98,57 +244,94 @@ pub fn stick_limit(sys: &System, shape: &[C64]) -> Result<f64, BackboneError> {
     Ok(q)
 }
 
+/// Contacts that move less than this fraction of the one moving most are left out of
+/// [`slip_range`]: a reduced FE model's lateral directions of a bending mode move at
+/// round-off level, and their "onsets" would stretch the range by ten decades.
+const MOVES: f64 = 1e-3;
+
+/// The default modal amplitudes of a backbone of mode `mode`, stuck … fully sliding: a
+/// tenth of the first contact's slip onset δ*/|P_e φ| to 30 times the last one's, over
+/// the contacts the stuck mode moves ([`MOVES`]). `NoContact` if none moves.
+pub fn slip_range(sys: &System, mode: usize) -> Result<(f64, f64), BackboneError> {
+    let st = stuck_mode(sys, mode)?;
+    let rel = relative(sys, &st.shape);
+    let big = rel.iter().copied().fold(0.0, f64::max);
+    let mut onsets = Vec::new();
+    for (e, r) in sys.elements.iter().zip(rel) {
+        if let Law::Point(t) = e.law {
+            let ds = capi::linearize(&t, 0.0, 1.0)?.slip_limit;
+            if r > MOVES * big {
+                onsets.push(ds / r);
+            }
+        }
+    }
+    let lo = onsets.iter().copied().fold(f64::INFINITY, f64::min);
+    let hi = onsets.iter().copied().fold(0.0, f64::max);
+    if !lo.is_finite() {
+        return Err(BackboneError::NoContact);
+    }
+    Ok((0.1 * lo, 30.0 * hi))
+}
+
 /// The first-order backbone of mode `mode` (1-based) at the modal amplitudes `q`
 /// (ascending or not; each starts from its predecessor).
 pub fn backbone(sys: &System, mode: usize, q: &[f64]) -> Result<Vec<BackbonePoint>, BackboneError> {
-    let start = stuck_mode(sys, mode)?;
-    let mut shape = start.shape.clone();
-    let mut omega = start.omega();
+    let mut current = stuck_mode(sys, mode)?;
     let ne = sys.elements.len();
     let mut out = Vec::with_capacity(q.len());
     for &qa in q {
         if !(qa.is_finite() && qa > 0.0) {
             return Err(BackboneError::Amplitude(qa));
         }
-        // Unknowns (A_1 … A_ne, ω); g gives them back from the picked mode.
-        let reference = shape.clone();
+        // Unknowns (A_1 … A_ne, ω); g gives them back from the traced mode, which each
+        // evaluation refines from the last one.
+        let mut last = current.clone();
         let g = |z: &[f64]| -> Result<Vec<f64>, BackboneError> {
             let w = z[ne].max(f64::MIN_POSITIVE);
-            let modes = linearized_modes(sys, &z[..ne], w)?;
-            let i = pick(&sys.m, &modes, &reference, w).ok_or(BackboneError::Overdamped {
-                modal_amplitude: qa,
-            })?;
-            let mut next: Vec<f64> = relative(sys, &modes[i].shape)
-                .iter()
-                .map(|r| qa * r)
-                .collect();
-            next.push(modes[i].omega());
+            let md = traced_mode(sys, &z[..ne], w, &last, qa)?;
+            let mut next: Vec<f64> = relative(sys, &md.shape).iter().map(|r| qa * r).collect();
+            next.push(md.omega());
+            if sys.n() > ALL_MODES_MAX {
+                last = md;
+            }
             Ok(next)
         };
-        let mut z0: Vec<f64> = relative(sys, &shape).iter().map(|r| qa * r).collect();
-        z0.push(omega);
-        let z = match consistency::solve(&z0, g, TOL, MAX_ITER)? {
+        let mut z0: Vec<f64> = relative(sys, &current.shape)
+            .iter()
+            .map(|r| qa * r)
+            .collect();
+        z0.push(current.omega());
+        let solved = if ne > NEWTON_MAX {
+            anderson_consistency(&z0, g, TOL)?
+        } else {
+            consistency::solve(&z0, g, TOL, MAX_ITER)?
+        };
+        let z = match solved {
             Ok(c) => c.x,
             Err(st) => {
                 return Err(BackboneError::NotConsistent {
                     modal_amplitude: qa,
                     mismatch: st.mismatch,
                     iterations: st.iterations,
+                    method: if ne > NEWTON_MAX {
+                        ANDERSON_METHOD
+                    } else {
+                        consistency::METHOD
+                    },
                 })
             }
         };
         let w = z[ne];
-        let modes = linearized_modes(sys, &z[..ne], w)?;
-        let i = pick(&sys.m, &modes, &shape, w).ok_or(BackboneError::Overdamped {
-            modal_amplitude: qa,
-        })?;
-        let md = &modes[i];
+        let md = traced_mode(sys, &z[..ne], w, &current, qa)?;
         let lin = linearized(sys, &z[..ne], md.omega())?;
-        shape = normalize(&sys.m, &md.shape);
-        omega = md.omega();
+        let shape = normalize(&sys.m, &md.shape);
+        current = Mode {
+            lambda: md.lambda,
+            shape: shape.clone(),
+        };
         out.push(BackbonePoint {
             modal_amplitude: qa,
-            omega,
+            omega: md.omega(),
             damping_ratio: md.damping_ratio(),
             shape: shape.iter().map(|v| v * qa).collect(),
             element_amplitudes: relative(sys, &shape).iter().map(|r| qa * r).collect(),

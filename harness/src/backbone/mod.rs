@@ -9,10 +9,13 @@
 //!   in a complex eigenvalue problem, made consistent with the mode's own amplitudes.
 //! - [`epmc`]: the extended periodic motion concept (Krack 2015) at H harmonics with
 //!   the alternating frequency–time forces of [`crate::mhb::aft`].
+//! - [`fe`]: an FE scene reduced onto its contact points' tangential relative
+//!   displacements, one joint per point and direction, as such a system.
 //! - [`ringdown`]: a free decay integrated in time through the C API, the reference
 //!   the backbones are checked against.
 
 pub mod epmc;
+pub mod fe;
 pub mod first_order;
 pub mod modes;
 pub mod ringdown;
@@ -52,15 +55,19 @@ pub enum BackboneError {
     Mhb(#[from] MhbError),
     #[error("mode {mode} does not exist ({count} oscillatory modes)")]
     NoMode { mode: usize, count: usize },
+    #[error("no contact moves in this mode")]
+    NoContact,
     #[error("modal amplitude {0:e} is not positive and finite")]
     Amplitude(f64),
     #[error("no oscillatory mode at modal amplitude {modal_amplitude:.6e} (overdamped)")]
     Overdamped { modal_amplitude: f64 },
-    #[error("amplitudes not consistent at modal amplitude {modal_amplitude:.6e} (relative mismatch {mismatch:.3e} after {iterations} steps of {method})", method = crate::mhb::consistency::METHOD)]
+    #[error("amplitudes not consistent at modal amplitude {modal_amplitude:.6e} (relative mismatch {mismatch:.3e} after {iterations} steps of {method})")]
     NotConsistent {
         modal_amplitude: f64,
         mismatch: f64,
         iterations: usize,
+        /// The iteration that stalled.
+        method: &'static str,
     },
     #[error("EPMC: Newton did not converge at modal amplitude {modal_amplitude:.6e} (|R| = {residual:.3e})")]
     NotConverged { modal_amplitude: f64, residual: f64 },

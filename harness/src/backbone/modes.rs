@@ -72,6 +72,77 @@ pub fn complex_modes(
 /// no longer moves.
 const REFINE_STEPS: usize = 6;
 
+/// Most steps of [`track`].
+const TRACK_STEPS: usize = 40;
+
+/// The mode of (M, D, K) that continues a nearby pair (λ₀, φ₀) (the same mode of slightly
+/// different matrices): O(n³) per step, where [`complex_modes`] costs O(n⁴). Inverse
+/// iteration with the two-sided quadratic Rayleigh quotient: λ the root nearer the
+/// current λ of (φᵀMφ)λ² + (φᵀDφ)λ + φᵀKφ = 0, then φ ← (λ²M + λD + K)⁻¹Mφ, until λ
+/// moves less than 4ε|λ|. φᵀ, not φᴴ: with M, D, K real symmetric, λ²M + λD + K is
+/// complex symmetric, its left eigenvectors are its right ones, and this quotient is
+/// stationary at every eigenpair, damped or not (with φᴴ, [`refine`]'s quotient, the
+/// steps converge only linearly once the mode is strongly damped). `None` if λ does not
+/// settle within [`TRACK_STEPS`] steps or leaves the upper half plane.
+pub fn track(
+    m: &DMatrix<f64>,
+    d: &DMatrix<f64>,
+    k: &DMatrix<f64>,
+    lambda: C64,
+    phi: &[C64],
+) -> Option<Mode> {
+    let n = m.nrows();
+    let c = |a: &DMatrix<f64>| a.map(|v| C64::new(v, 0.0));
+    let (mc, dc, kc) = (c(m), c(d), c(k));
+    let mut l = lambda;
+    let mut p = DVector::from_column_slice(phi);
+    for _ in 0..TRACK_STEPS {
+        let q = |a: &DMatrix<C64>| (p.transpose() * a * &p)[(0, 0)];
+        let (a, b, cc) = (q(&mc), q(&dc), q(&kc));
+        if a.norm() == 0.0 {
+            return None;
+        }
+        let disc = (b * b - 4.0 * a * cc).sqrt();
+        let roots = [(-b + disc) / (2.0 * a), (-b - disc) / (2.0 * a)];
+        let next = if (roots[0] - l).norm() <= (roots[1] - l).norm() {
+            roots[0]
+        } else {
+            roots[1]
+        };
+        if !(next.re.is_finite() && next.im.is_finite()) || next.im <= 0.0 {
+            return None;
+        }
+        let moved = (next - l).norm();
+        l = next;
+        let qm = DMatrix::<C64>::from_fn(n, n, |i, j| {
+            l * l * mc[(i, j)] + l * dc[(i, j)] + kc[(i, j)]
+        });
+        match qm.lu().solve(&(&mc * &p)) {
+            Some(x) if x.iter().all(|v| v.re.is_finite() && v.im.is_finite()) => {
+                let scale = x.iter().fold(0.0f64, |s, v| s.max(v.norm()));
+                if scale == 0.0 {
+                    return None;
+                }
+                p = x / C64::new(scale, 0.0);
+            }
+            // λ is an eigenvalue to working precision: φ stays.
+            _ => {
+                return Some(Mode {
+                    lambda: l,
+                    shape: normalize(m, p.as_slice()),
+                })
+            }
+        }
+        if moved <= 4.0 * f64::EPSILON * l.norm() {
+            return Some(Mode {
+                lambda: l,
+                shape: normalize(m, p.as_slice()),
+            });
+        }
+    }
+    None
+}
+
 /// λ and φ refined by inverse iteration with the quadratic Rayleigh quotient: λ the root
 /// nearer the current λ of (φᴴMφ)λ² + (φᴴDφ)λ + φᴴKφ = 0, then φ ← (λ²M + λD + K)⁻¹Mφ.
 fn refine(

@@ -1,12 +1,15 @@
 //! `jointlin mhb --backbones`: cost of backbones of the 3-DOF Jenkins chain
 //! ([`super::mhb_chain::jenkins_chain`]): 100 modal amplitudes from a tenth of the first
-//! slip onset to 300 times it, first order and EPMC at H = 1, 3, 7, as a Markdown table.
+//! slip onset to 300 times it, first order and EPMC at H = 1, 3, 7, as a Markdown table;
+//! with scenes, the first-order backbone of FE scenes and their reduction ([`fe_row`]).
 
 use std::time::Instant;
 
-use crate::backbone::{epmc, first_order, log_space};
+use crate::backbone::{epmc, fe, first_order, log_space};
 use crate::capi;
+use crate::input::scene::Scene;
 use crate::mhb::default_samples;
+use crate::model;
 
 use super::mhb_chain::jenkins_chain;
 
@@ -44,3 +47,39 @@ pub fn table() -> String {
     }
     s
 }
+
+/// Cost of the first-order backbone of an FE scene's mode 1 (`backbone::fe`): the
+/// static step and reduction, then 100 modal amplitudes over the default range
+/// ([`first_order::slip_range`]); one Markdown row.
+pub fn fe_row(scene: &Scene) -> Result<String, String> {
+    let t = Instant::now();
+    let p = model::build(scene).map_err(|e| e.to_string())?;
+    let r = fe::reduce(&p, &scene.spec.effects, 1)?;
+    let t_reduce = t.elapsed().as_secs_f64();
+    let sys = &r.lumped.system;
+    let (from, to) = first_order::slip_range(sys, 1).map_err(|e| e.to_string())?;
+    let q = log_space(from, to, 100);
+    let t = Instant::now();
+    let calls = capi::counts().linearize;
+    let reached = first_order::backbone(sys, 1, &q).map_or(0, |p| p.len());
+    let t_backbone = t.elapsed().as_secs_f64();
+    Ok(format!(
+        "| {} | {} | {} | {} | {} | {:.3e} | {:.3e} | {reached} | {} |\n",
+        scene.file,
+        p.sys.dofs.n_free(),
+        sys.elements.len(),
+        r.modes,
+        sys.n(),
+        t_reduce,
+        t_backbone,
+        capi::counts().linearize - calls
+    ))
+}
+
+/// The FE table's header.
+pub const FE_HEADER: &str = "FE scenes, mode 1, first order, 100 modal amplitudes over the \
+    default range (a tenth of the first slip onset to 30 times the last); reduction: \
+    static step, Craig–Bampton onto the contact directions (`backbone::fe`):\n\n\
+    | scene | free DOFs | joints | interior modes | reduced DOFs | reduction [s] | \
+    backbone [s] | amplitudes reached | C-API calls (linearize) |\n\
+    |---|---:|---:|---:|---:|---:|---:|---:|---:|\n";

@@ -1,13 +1,17 @@
-//! `jointlin backbone`: frequency and damping ratio of one mode of a lumped scene
-//! against its amplitude, first order or EPMC; backbone.csv, backbone.svg, run.json.
+//! `jointlin backbone`: frequency and damping ratio of one mode of a lumped scene, or of
+//! an FE scene reduced onto its contact points (`backbone::fe`), against its amplitude,
+//! first order or EPMC; backbone.csv, backbone.svg, run.json.
 
 use std::path::PathBuf;
 use std::process::ExitCode;
+use std::time::Instant;
 
 use serde_json::json;
 
-use jointlin_harness::backbone::{epmc, first_order, log_space, BackbonePoint, C64};
+use jointlin_harness::backbone::{epmc, fe, first_order, log_space, BackbonePoint, C64};
+use jointlin_harness::input::scene::schema::BodyKind;
 use jointlin_harness::input::scene::units::frequency_unit;
+use jointlin_harness::input::scene::Scene;
 use jointlin_harness::mhb::default_samples;
 use jointlin_harness::model::lumped::{self, Lumped};
 use jointlin_harness::report::backbone::{self as report, Row};
@@ -18,7 +22,8 @@ use super::{load_scene, report_written};
 // The command's help is the doc comment of `Command::Backbone`.
 #[derive(clap::Args)]
 pub struct Args {
-    /// Lumped scene (mass bodies, springs, [[joints]]).
+    /// Lumped scene (mass bodies, springs, [[joints]], [[matrices]]) or FE scene (box
+    /// bodies with [[interfaces]], or a deck).
     scene: PathBuf,
     /// Mode number (1 = lowest frequency with every contact stuck).
     #[arg(long, default_value_t = 1)]
@@ -31,31 +36,26 @@ pub struct Args {
     harmonics: Option<usize>,
     /// Modal amplitudes FROM,TO,COUNT (log spaced); default from a tenth of the first
     /// contact's slip onset to 30 times the last one's, 60 points.
-    #[arg(long, value_delimiter = ',', num_args = 3)]
+    #[arg(long, value_delimiter = ',')]
     amplitudes: Vec<f64>,
 }
 
-/// Default amplitude range: stuck … fully sliding for the scene's contacts.
-fn default_range(l: &Lumped, mode: usize) -> Result<(f64, f64), String> {
-    let st = first_order::stuck_mode(&l.system, mode).map_err(|e| e.to_string())?;
-    let rel = first_order::relative(&l.system, &st.shape);
-    let mut onsets = Vec::new();
-    for (e, r) in l.system.elements.iter().zip(rel) {
-        if let jointlin_harness::mhb::Law::Point(t) = e.law {
-            let ds = jointlin_harness::capi::linearize(&t, 0.0, 1.0)
-                .map_err(|e| e.to_string())?
-                .slip_limit;
-            if r > 0.0 {
-                onsets.push(ds / r);
-            }
-        }
+/// The lumped system of a scene: its own (mass bodies, [[matrices]]) or an FE scene's
+/// reduction with how it was reduced.
+fn build(scene: &Scene, mode: usize) -> Result<(Lumped, Option<fe::Reduced>), String> {
+    let s = &scene.spec;
+    let fe_scene = scene.deck.is_some()
+        || !s.interfaces.is_empty()
+        || s.bodies.iter().any(|b| b.kind != BodyKind::Mass);
+    if !fe_scene {
+        return lumped::build(scene).map(|l| (l, None));
     }
-    let lo = onsets.iter().copied().fold(f64::INFINITY, f64::min);
-    let hi = onsets.iter().copied().fold(0.0, f64::max);
-    if !lo.is_finite() {
-        return Err("no contact moves in this mode: give --amplitudes FROM,TO,COUNT".into());
+    let p = jointlin_harness::model::build(scene).map_err(|e| e.to_string())?;
+    for w in &p.warnings {
+        eprintln!("warning: {w}");
     }
-    Ok((0.1 * lo, 30.0 * hi))
+    let r = fe::reduce(&p, &s.effects, mode)?;
+    Ok((r.lumped.clone(), Some(r)))
 }
 
 pub fn main(a: Args) -> ExitCode {
@@ -63,13 +63,46 @@ pub fn main(a: Args) -> ExitCode {
         Ok(s) => s,
         Err(code) => return code,
     };
-    let l = match lumped::build(&scene) {
+    let (l, reduction) = match build(&scene, a.mode) {
         Ok(l) => l,
         Err(e) => {
             eprintln!("error: {}: {e}", a.scene.display());
             return ExitCode::from(2);
         }
     };
+    if let Some(r) = &reduction {
+        let unit = frequency_unit(&scene.spec.units);
+        let fu = &unit.text;
+        let last = |f: &[f64]| {
+            f.last()
+                .map_or("–".into(), |&f| format!("{:.9}", unit.show(f)))
+        };
+        eprintln!(
+            "reduced: {} closed contact points ({} open, no joint), {} joints, {} interior modes; \
+             mode {}: stuck {} {fu} (full model {} {fu}), sliding {} {fu}{}",
+            r.closed,
+            r.open,
+            r.lumped.elements.len(),
+            r.modes,
+            a.mode,
+            last(&r.stuck),
+            last(&r.stuck_full),
+            last(&r.sliding),
+            if r.converged {
+                String::new()
+            } else {
+                format!(
+                    " (not converged to {:e} at {} modes)",
+                    fe::MODE_TOL,
+                    r.modes
+                )
+            }
+        );
+    }
+    if !a.amplitudes.is_empty() && a.amplitudes.len() != 3 {
+        eprintln!("error: --amplitudes FROM,TO,COUNT: three numbers");
+        return ExitCode::from(2);
+    }
     let q = if a.amplitudes.len() == 3 {
         let (f, t, n) = (a.amplitudes[0], a.amplitudes[1], a.amplitudes[2]);
         if !(f > 0.0 && t > 0.0 && f.is_finite() && t.is_finite() && (1.0..=1e6).contains(&n)) {
@@ -80,10 +113,10 @@ pub fn main(a: Args) -> ExitCode {
         }
         log_space(f, t, n as usize)
     } else {
-        match default_range(&l, a.mode) {
+        match first_order::slip_range(&l.system, a.mode) {
             Ok((f, t)) => log_space(f, t, 60),
             Err(e) => {
-                eprintln!("error: {e}");
+                eprintln!("error: {e}; give --amplitudes FROM,TO,COUNT");
                 return ExitCode::from(1);
             }
         }
@@ -95,6 +128,7 @@ pub fn main(a: Args) -> ExitCode {
     }
     // EPMC keeps the points converged before a failure: they are written, the failure
     // is printed and the exit code is 1.
+    let started = Instant::now();
     let (method, result) = match a.harmonics {
         None => (
             "first order (jointlin_linearize)".to_string(),
@@ -120,6 +154,12 @@ pub fn main(a: Args) -> ExitCode {
             return ExitCode::from(1);
         }
     };
+    eprintln!(
+        "{method}: {} of {} amplitudes in {:.2} s",
+        points.len(),
+        q.len(),
+        started.elapsed().as_secs_f64()
+    );
     let rows: Vec<Row> = points
         .into_iter()
         .map(|p| {
@@ -144,7 +184,7 @@ pub fn main(a: Args) -> ExitCode {
         );
         return ExitCode::from(1);
     }
-    let code = report_written(write(&a, &scene, &l, &method, &rows));
+    let code = report_written(write(&a, &scene, &l, reduction.as_ref(), &method, &rows));
     match stopped {
         Some(e) => {
             eprintln!(
@@ -159,8 +199,9 @@ pub fn main(a: Args) -> ExitCode {
 
 fn write(
     a: &Args,
-    scene: &jointlin_harness::input::scene::Scene,
+    scene: &Scene,
     l: &Lumped,
+    reduction: Option<&fe::Reduced>,
     method: &str,
     rows: &[Row],
 ) -> Result<Vec<PathBuf>, String> {
@@ -189,6 +230,7 @@ fn write(
             })
         })
         .collect();
+    let fu = frequency_unit(units);
     let run = json!({
         "command": "backbone",
         "scene": {"file": scene.file, "spec": scene.spec, "text": scene.text},
@@ -196,7 +238,22 @@ fn write(
         "mode": a.mode,
         "method": method,
         "dofs": l.dofs,
-        "frequency_unit": frequency_unit(units).text,
+        "reduction": reduction.map(|r| {
+            let show = |f: &[f64]| f.iter().map(|&f| fu.show(f)).collect::<Vec<_>>();
+            json!({
+                "closed_points": r.closed,
+                "open_points": r.open,
+                "joints": r.lumped.elements.len(),
+                "interior_modes": r.modes,
+                "stuck_frequencies": show(&r.stuck),
+                "stuck_frequencies_full_model": show(&r.stuck_full),
+                "sliding_frequencies": show(&r.sliding),
+                "sliding_frequencies_half_modes": show(&r.sliding_previous),
+                "converged": r.converged,
+                "tolerance": fe::MODE_TOL,
+            })
+        }),
+        "frequency_unit": fu.text,
         "rows": json_rows,
     });
     let text = serde_json::to_string_pretty(&run).map_err(|e| e.to_string())?;

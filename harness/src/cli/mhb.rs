@@ -24,7 +24,8 @@ pub struct Args {
     /// Band f_min,f_max (1/time) for scenes; default each scene's first refine band.
     #[arg(long, value_delimiter = ',', num_args = 2)]
     band: Vec<f64>,
-    /// Print the cost of backbones of the chain instead (first order, EPMC H = 1, 3, 7).
+    /// Print the cost of backbones of the chain instead (first order, EPMC H = 1, 3, 7),
+    /// and with --scene of the FE scenes' first-order backbones and their reduction.
     #[arg(long)]
     backbones: bool,
     /// Force amplitude on the last mass.
@@ -34,7 +35,26 @@ pub struct Args {
 
 pub fn main(a: Args) -> ExitCode {
     if a.backbones {
-        println!("{}", jointlin_harness::bench::backbone::table());
+        use jointlin_harness::bench::backbone;
+        println!("{}", backbone::table());
+        if a.scene.is_empty() {
+            return ExitCode::SUCCESS;
+        }
+        let mut t = backbone::FE_HEADER.to_string();
+        for path in &a.scene {
+            let s = match load_scene(path) {
+                Ok(s) => s,
+                Err(code) => return code,
+            };
+            match backbone::fe_row(&s) {
+                Ok(r) => t += &r,
+                Err(e) => {
+                    eprintln!("error: {}: {e}", path.display());
+                    return ExitCode::from(1);
+                }
+            }
+        }
+        println!("{t}");
         return ExitCode::SUCCESS;
     }
     if a.scene.is_empty() {
