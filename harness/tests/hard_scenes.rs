@@ -209,6 +209,7 @@ fn open_joint_at_undamped_eigenfrequencies_is_named_singular() {
     }
     let mut near = s.clone();
     near.spec.sweep = jointlin_harness::input::scene::SweepSpec {
+        bias: 1.0,
         f_min: modes[0] * (1.0 - 2e-6),
         f_max: modes[0] * (1.0 - 1e-6),
         count: 2,

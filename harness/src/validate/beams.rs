@@ -35,6 +35,7 @@ pub fn set_freqs(s: &mut Scene, freqs: &[f64]) {
     s.spec.sweep.refine = freqs[1..]
         .iter()
         .map(|&f| crate::input::scene::BandSpec {
+            bias: 1.0,
             f_min: f,
             f_max: f,
             count: 2,

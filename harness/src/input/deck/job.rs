@@ -168,12 +168,14 @@ impl DeckJob {
                 FrequencyScale::Linear => Spacing::Linear,
                 FrequencyScale::Logarithmic => Spacing::Log,
             },
+            bias: first.bias,
             refine: more
                 .iter()
                 .map(|r| BandSpec {
                     f_min: r.f_low,
                     f_max: r.f_high,
                     count: r.points,
+                    bias: r.bias,
                 })
                 .collect(),
             direction: Default::default(),
@@ -231,7 +233,7 @@ impl DeckJob {
 }
 
 /// A step's content that a run cannot honour: loads in a `*FREQUENCY` step, rotational
-/// load DOFs, a biased steady-state spacing.
+/// load DOFs, logarithmic spacing on data lines after the first.
 fn check_step(st: &Step) -> Result<(), DeckError> {
     match st.procedure {
         Procedure::Frequency { .. } => {
@@ -253,12 +255,6 @@ fn check_step(st: &Step) -> Result<(), DeckError> {
             ref ranges, scale, ..
         } => {
             let err = |m: String| Err(st.origin.error(K::Unsupported, "*STEADY STATE DYNAMICS", m));
-            if let Some(r) = ranges.iter().find(|r| r.bias != 1.0) {
-                return err(format!(
-                    "bias {}: a run spaces the points evenly (bias 1)",
-                    r.bias
-                ));
-            }
             let log = scale == FrequencyScale::Logarithmic;
             if let Some((i, r)) = ranges
                 .iter()

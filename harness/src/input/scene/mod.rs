@@ -72,7 +72,7 @@ impl Scene {
         } else {
             (0..s.count)
                 .map(|i| {
-                    let t = i as f64 / (s.count - 1) as f64;
+                    let t = biased(i as f64 / (s.count - 1) as f64, s.bias);
                     match s.spacing {
                         Spacing::Linear => s.f_min + t * (s.f_max - s.f_min),
                         Spacing::Log => s.f_min * (s.f_max / s.f_min).powf(t),
@@ -82,7 +82,7 @@ impl Scene {
         };
         for b in &s.refine {
             f.extend((0..b.count).map(|i| {
-                let t = i as f64 / (b.count.max(2) - 1) as f64;
+                let t = biased(i as f64 / (b.count.max(2) - 1) as f64, b.bias);
                 b.f_min + (b.f_max - b.f_min) * t
             }));
         }

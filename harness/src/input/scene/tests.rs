@@ -153,6 +153,40 @@ fn log_spacing() {
     approx::assert_relative_eq!(f[1], (100.0f64 * 200.0).sqrt(), max_relative = 1e-14);
 }
 
+/// Abaqus's steady-state bias p: y = −1 … 1 evenly, points at ½(f₁ + f₂) + ½(f₂ − f₁)
+/// sign(y)|y|^{1/p}; p = 3 over 100 … 200 Hz with 5 points: 100, 150 − 50·0.5^{1/3}, 150,
+/// 150 + 50·0.5^{1/3}, 200 (denser toward the ends). In bands too; p ≤ 0 is named.
+#[test]
+fn biased_points_crowd_toward_both_ends() {
+    let text = GOOD.replace("count = 3", "count = 5\nbias = 3.0");
+    let f = Scene::parse("x", &text).unwrap().frequencies();
+    let d = 50.0 * 0.5f64.powf(1.0 / 3.0);
+    let want = [100.0, 150.0 - d, 150.0, 150.0 + d, 200.0];
+    for (g, w) in f.iter().zip(want) {
+        approx::assert_relative_eq!(*g, w, max_relative = 1e-15);
+    }
+    assert_eq!(f.len(), 5);
+    let band = GOOD.replace(
+        "count = 3",
+        "count = 3\nrefine = [{ f_min = 160.0, f_max = 180.0, count = 5, bias = 3.0 }]",
+    );
+    let f = Scene::parse("x", &band).unwrap().frequencies();
+    // 100, 150, then the band 160, 170 − 10·0.5^{1/3}, 170, …, then 200.
+    approx::assert_relative_eq!(
+        f[3],
+        170.0 - 10.0 * 0.5f64.powf(1.0 / 3.0),
+        max_relative = 1e-15
+    );
+    assert_eq!(
+        err(&text.replace("bias = 3.0", "bias = 0.0")).key,
+        "sweep.bias"
+    );
+    assert_eq!(
+        err(&band.replace("bias = 3.0", "bias = -1.0")).key,
+        "sweep.refine[0].bias"
+    );
+}
+
 #[test]
 fn refine_bands_merge_sorted() {
     let text = GOOD.replace(

@@ -24,6 +24,10 @@ pub struct SweepSpec {
     pub count: usize,
     #[serde(default)]
     pub spacing: Spacing,
+    /// Bias p of the points toward both ends (Abaqus's steady-state bias parameter):
+    /// p = 1 even spacing, p > 1 denser near f_min and f_max ([`biased`]).
+    #[serde(default = "unbiased", skip_serializing_if = "is_unbiased")]
+    pub bias: f64,
     #[serde(default)]
     pub refine: Vec<BandSpec>,
     /// Order in which the frequencies are run; each frequency starts from the previous
@@ -45,13 +49,34 @@ pub enum Direction {
     UpDown,
 }
 
-/// An extra band of frequencies, linearly spaced.
+/// An extra band of frequencies, linearly spaced (with `bias`, denser toward its ends).
 #[derive(Debug, Clone, Copy, Deserialize, Serialize, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub struct BandSpec {
     pub f_min: f64,
     pub f_max: f64,
     pub count: usize,
+    #[serde(default = "unbiased", skip_serializing_if = "is_unbiased")]
+    pub bias: f64,
+}
+
+fn unbiased() -> f64 {
+    1.0
+}
+
+fn is_unbiased(p: &f64) -> bool {
+    *p == 1.0
+}
+
+/// Position t ∈ [0, 1] of a point in its range after the bias p: with y = 2t − 1,
+/// y' = sign(y)|y|^{1/p} (the spacing of Abaqus's steady-state bias parameter: p > 1
+/// moves points toward both ends), t' = (y' + 1)/2; p = 1 leaves t unchanged.
+pub fn biased(t: f64, p: f64) -> f64 {
+    if p == 1.0 {
+        return t;
+    }
+    let y = 2.0 * t - 1.0;
+    (y.signum() * y.abs().powf(1.0 / p) + 1.0) / 2.0
 }
 
 /// Iteration mode of the steady-state step.

@@ -17,6 +17,7 @@ pub(super) fn sweep(c: &mut Checker, s: &SceneFile) {
     if s.sweep.count == 0 {
         c.fail(sw.key("count"), "must be >= 1");
     }
+    c.positive(sw.key("bias"), s.sweep.bias);
     if s.sweep.f_max < s.sweep.f_min || (s.sweep.count > 1 && s.sweep.f_max == s.sweep.f_min) {
         c.fail(
             sw.key("f_max"),
@@ -28,6 +29,7 @@ pub(super) fn sweep(c: &mut Checker, s: &SceneFile) {
         let bp = sw.key("refine").index(i);
         c.positive(bp.key("f_min"), b.f_min);
         c.positive(bp.key("f_max"), b.f_max);
+        c.positive(bp.key("bias"), b.bias);
         // count = 1 with f_max = f_min puts one exact frequency into the sweep (e.g. an
         // eigenfrequency from `jointlin modes`).
         if b.count == 0 || (b.count == 1 && b.f_max != b.f_min) {
