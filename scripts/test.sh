@@ -8,6 +8,11 @@ echo "== cargo fmt --check"
 cargo fmt --all -- --check
 echo "== cargo clippy -D warnings"
 cargo clippy --workspace --all-targets --release -- -D warnings
+echo "== cargo build (workspace, release)"
+# The host-program tests load target/release/libjointlin.so and run target/release/jointlin:
+# built first, so that a target directory kept from an earlier build never hands them a
+# stale copy.
+cargo build --workspace --release
 echo "== cargo test (workspace, release)"
 cargo test --workspace --release
 echo "== robustness: sanitizers, threaded valgrind, short fuzz run"
