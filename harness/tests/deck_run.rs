@@ -171,6 +171,18 @@ fn decks_a_run_cannot_honour_are_named_errors_with_their_line() {
             "*FREQUENCY",
             "loads in a frequency step",
         ),
+        (
+            "static-imaginary.inp",
+            base.replace("*STATIC\n*DSLOAD\n", "*STATIC\n*DSLOAD, IMAGINARY\n"),
+            "*STATIC",
+            "an IMAGINARY load in a static step",
+        ),
+        (
+            "amplitude.inp",
+            base.replace("*CLOAD\nTIP, 3, 1.", "*CLOAD, AMPLITUDE=RAMP\nTIP, 3, 1."),
+            "*CLOAD",
+            "AMPLITUDE=RAMP: a frequency-dependent load amplitude is not read",
+        ),
     ];
     for (name, text, keyword, msg) in cases {
         assert_ne!(text, base, "{name}: the case did not change the deck");
@@ -186,6 +198,7 @@ fn decks_a_run_cannot_honour_are_named_errors_with_their_line() {
         assert_eq!(code, 2, "{name}: {log}");
         let card = match keyword {
             "*FREQUENCY" => "*CLOAD",
+            "*STATIC" => "*DSLOAD",
             "*CONTACT PAIR" => "*CONTACT PAIR",
             k => k,
         };

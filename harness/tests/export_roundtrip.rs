@@ -159,6 +159,35 @@ fn three_beams_deck_gives_the_scene_s_results() {
     );
 }
 
+/// A phased load: the three beams driven by 0.05 N at 35° and a second force of 0.02 N
+/// at −120° on the middle beam. The deck carries each as its real part (`*CLOAD`) and
+/// its imaginary part (`*CLOAD, IMAGINARY`), and the deck run gives the scene's results,
+/// phases included.
+#[test]
+fn phased_loads_travel_as_real_and_imaginary_parts() {
+    let text = std::fs::read_to_string(root().join("scenes/three-beams-coarse.toml"))
+        .unwrap()
+        .replace(
+            "amplitude = 0.05         # N: microslip at both resonances (A/δ* ≲ 2), no gross sliding\n",
+            "amplitude = 0.05\nphase_deg = 35.0\n\n[[excitation]]\nkind = \"point\"\nbody = \"middle\"\nat = [60.0, 5.0, 15.0]\ndirection = [0.0, 0.0, 1.0]\namplitude = 0.02\nphase_deg = -120.0\n",
+        );
+    assert!(text.contains("phase_deg = -120.0"));
+    let d = dir("phased-scene");
+    let scene = d.join("phased.toml");
+    std::fs::write(&scene, text).unwrap();
+    let (h, rows) = round_trip(
+        scene.to_str().unwrap(),
+        "phased.inp",
+        &[("middle_tip", 3), ("top_tip", 3)],
+    );
+    // The phase of the response moved with the load's: not the unphased run's.
+    let i = h.iter().position(|c| c == "top_tip_phase_deg").unwrap();
+    assert!(rows
+        .iter()
+        .any(|r| r[i].parse::<f64>().unwrap().abs() > 1.0));
+    let _ = std::fs::remove_dir_all(&d);
+}
+
 /// Ten tied boxes and a screw's preload: the coarse knife with its slot's
 /// play closed (a deck has no initial gap: that is a named error, tested below).
 #[test]

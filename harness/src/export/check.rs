@@ -1,7 +1,6 @@
 //! What a deck cannot express, as named errors before anything is built: lumped bodies,
 //! springs and joints (a deck run reads solid elements only), contact features the
-//! property table has no entry for (initial gap, area sub-grid), harmonic loads with a
-//! phase, sweeps run downwards, harmonic balance, and physics switched off (a deck run
+//! property table has no entry for (initial gap, area sub-grid), sweeps run downwards, harmonic balance, and physics switched off (a deck run
 //! has every effect on). Study tables a deck does not carry are returned as notes.
 
 use super::ExportError;
@@ -58,12 +57,6 @@ pub fn check(scene: &Scene) -> Result<Vec<String>, ExportError> {
                 "UINTER evaluates the law at the slave node over its whole area; the sub-grid has no deck equivalent",
             ));
         }
-    }
-    if let Some(i) = s.excitation.iter().position(|e| e.phase_deg != 0.0) {
-        return Err(err(
-            format!("excitation[{i}].phase_deg"),
-            "the deck reader takes real harmonic loads only (no *CLOAD, IMAGINARY)",
-        ));
     }
     if s.sweep.direction != Direction::Up {
         return Err(err(

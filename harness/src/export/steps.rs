@@ -1,12 +1,14 @@
 //! The deck's history data: step 1 `*STATIC` with the preload (pressures as `*DSLOAD`
 //! on the face, point forces and screws as `*CLOAD`), step 2
 //! `*STEADY STATE DYNAMICS, DIRECT` with the frequency list and the harmonic loads as
-//! `*CLOAD` (face tractions as the consistent nodal forces the scene applies), node
-//! output of every `[[outputs]]` node (U: real and imaginary parts per frequency).
+//! `*CLOAD` (face tractions as the consistent nodal forces the scene applies; a phase φ
+//! as the real part F cos φ and a `*CLOAD, IMAGINARY` part F sin φ, so that the load acts
+//! as F cos(ωt + φ)), node output of every `[[outputs]]` node (U: real and imaginary
+//! parts per frequency).
 
 use std::fmt::Write;
 
-use nalgebra::Vector3;
+use nalgebra::{Complex, Vector3};
 
 use super::mesh::{body_index, id_lines};
 use super::names::{face as face_label, Names};
@@ -104,11 +106,12 @@ pub fn write(out: &mut String, scene: &Scene, p: &Problem, names: &Names) {
     for e in &s.excitation {
         let b = body_index(scene, &e.body);
         let d = unit(e.direction);
-        let _ = writeln!(out, "*CLOAD");
-        match e.kind {
+        // As model::build forms it: F e^{iφ} times each node's weight and direction.
+        let amp = Complex::from_polar(e.amplitude, e.phase_deg.to_radians());
+        let nodes: Vec<(usize, f64)> = match e.kind {
             ExcitationKind::Point => {
                 let n = nearest(m, b, e.at.unwrap_or(m.nodes[m.bodies[b].first_node]));
-                cload(out, n, [0, 1, 2].map(|c| e.amplitude * d[c]));
+                vec![(n, 1.0)]
             }
             ExcitationKind::Face => {
                 let f = e.face.expect("validated");
@@ -121,9 +124,16 @@ pub fn write(out: &mut String, scene: &Scene, p: &Problem, names: &Names) {
                     face_label(f)
                 );
                 let quads = m.bodies[b].face_quads(mesh_face(f), &m.elements);
-                for (n, w) in nodal_areas(m, &quads) {
-                    cload(out, n, [0, 1, 2].map(|c| e.amplitude * (w * d[c])));
-                }
+                nodal_areas(m, &quads)
+            }
+        };
+        for (card, part) in [("*CLOAD", amp.re), ("*CLOAD, IMAGINARY", amp.im)] {
+            if part == 0.0 && card != "*CLOAD" {
+                continue;
+            }
+            let _ = writeln!(out, "{card}");
+            for &(n, w) in &nodes {
+                cload(out, n, [0, 1, 2].map(|c| part * (w * d[c])));
             }
         }
     }

@@ -232,10 +232,24 @@ impl DeckJob {
     }
 }
 
-/// A step's content that a run cannot honour: loads in a `*FREQUENCY` step, rotational
-/// load DOFs, logarithmic spacing on data lines after the first.
+/// A step's content that a run cannot honour: loads in a `*FREQUENCY` step, imaginary
+/// loads in a `*STATIC` step, rotational load DOFs, logarithmic spacing on data lines
+/// after the first.
 fn check_step(st: &Step) -> Result<(), DeckError> {
     match st.procedure {
+        Procedure::Static => {
+            let imaginary = (st.cloads.iter().filter(|l| l.imaginary).map(|l| &l.origin))
+                .chain(st.dloads.iter().filter(|l| l.imaginary).map(|l| &l.origin))
+                .chain(st.dsloads.iter().filter(|l| l.imaginary).map(|l| &l.origin))
+                .next();
+            if let Some(o) = imaginary {
+                return Err(o.error(
+                    K::Unsupported,
+                    "*STATIC",
+                    "an IMAGINARY load in a static step: only steady-state loads have a phase",
+                ));
+            }
+        }
         Procedure::Frequency { .. } => {
             let load = st
                 .cloads
@@ -271,7 +285,6 @@ fn check_step(st: &Step) -> Result<(), DeckError> {
                 ));
             }
         }
-        _ => {}
     }
     for l in &st.cloads {
         if !(1..=3).contains(&l.dof) {

@@ -147,6 +147,9 @@ pub struct CLoad {
     pub target: NodeTarget,
     pub dof: u8,
     pub value: f64,
+    /// The imaginary (out-of-phase) part of a steady-state load (`IMAGINARY`): a load
+    /// Re + i Im acts as Re cos ωt − Im sin ωt.
+    pub imaginary: bool,
     pub origin: Origin,
 }
 
@@ -159,6 +162,8 @@ pub struct DLoad {
     /// Face index, 0 = S1.
     pub face: usize,
     pub pressure: f64,
+    /// The imaginary part (`IMAGINARY`), as for [`CLoad`].
+    pub imaginary: bool,
     pub origin: Origin,
 }
 
@@ -174,6 +179,8 @@ pub enum ElementTarget {
 pub struct DsLoad {
     pub surface: String,
     pub pressure: f64,
+    /// The imaginary part (`IMAGINARY`), as for [`CLoad`].
+    pub imaginary: bool,
     pub origin: Origin,
 }
 

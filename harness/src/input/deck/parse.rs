@@ -99,6 +99,26 @@ fn opt_number(
     }
 }
 
+/// Whether a load card gives the imaginary part of a steady-state load (`IMAGINARY`;
+/// `REAL`, the default, the real part). An `AMPLITUDE` is refused: a frequency-dependent
+/// load would otherwise be read as constant.
+fn load_part(card: &Card) -> Result<bool, DeckError> {
+    if let Some(a) = card.param("AMPLITUDE") {
+        return Err(card.error(
+            K::Unsupported,
+            format!("AMPLITUDE={a}: a frequency-dependent load amplitude is not read (the data lines' values would be taken at every frequency)"),
+        ));
+    }
+    let (re, im) = (card.flag("REAL"), card.flag("IMAGINARY"));
+    if re && im {
+        return Err(card.error(
+            K::BadValue,
+            "REAL and IMAGINARY together: one card per part",
+        ));
+    }
+    Ok(im)
+}
+
 fn param_number(card: &Card, name: &str, default: f64) -> Result<f64, DeckError> {
     match card.param(name) {
         None => Ok(default),
@@ -411,6 +431,7 @@ impl Reader {
                 self.deck.steps.push(step);
             }
             "CLOAD" => {
+                let imaginary = load_part(card)?;
                 let mut loads = Vec::new();
                 for l in lines(card) {
                     let target = self.node_target(card, l, scope)?;
@@ -420,12 +441,14 @@ impl Reader {
                         target,
                         dof,
                         value,
+                        imaginary,
                         origin: card.origin.clone(),
                     });
                 }
                 self.step_mut(card)?.cloads.extend(loads);
             }
             "DLOAD" => {
+                let imaginary = load_part(card)?;
                 let mut loads = Vec::new();
                 for l in lines(card) {
                     let elements = self.element_target(card, l, scope)?;
@@ -448,12 +471,14 @@ impl Reader {
                         elements,
                         face,
                         pressure,
+                        imaginary,
                         origin: card.origin.clone(),
                     });
                 }
                 self.step_mut(card)?.dloads.extend(loads);
             }
             "DSLOAD" => {
+                let imaginary = load_part(card)?;
                 let mut loads = Vec::new();
                 for l in lines(card) {
                     let surface = scope.name(&l.fields[0]);
@@ -480,6 +505,7 @@ impl Reader {
                     loads.push(DsLoad {
                         surface,
                         pressure,
+                        imaginary,
                         origin: card.origin.clone(),
                     });
                 }

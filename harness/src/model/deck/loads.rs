@@ -1,17 +1,22 @@
 //! A step's loads as nodal forces (force units, global axes, full DOFs): `*CLOAD`
-//! forces, `*DLOAD` Pn and `*DSLOAD` P pressures (positive into the face).
+//! forces, `*DLOAD` Pn and `*DSLOAD` P pressures (positive into the face), their real and
+//! imaginary (`IMAGINARY`) parts apart.
 
 use crate::fe::elements::face::{add_pressure, MeshFace};
 use crate::input::deck::job::DeckJob;
 use crate::input::deck::summary::faces;
 use crate::input::deck::{DeckError, DeckErrorKind as K, ElementTarget, Step};
 
-/// The nodal forces of step `st` over `n_dofs` full DOFs.
-pub fn step_loads(job: &DeckJob, st: &Step, n_dofs: usize) -> Result<Vec<f64>, DeckError> {
+/// The nodal forces of step `st` over `n_dofs` full DOFs: (real parts, imaginary parts).
+pub type PartLoads = (Vec<f64>, Vec<f64>);
+
+/// [`PartLoads`] of step `st`.
+pub fn step_loads(job: &DeckJob, st: &Step, n_dofs: usize) -> Result<PartLoads, DeckError> {
     let d = &job.deck;
-    let mut f = vec![0.0; n_dofs];
+    let (mut re, mut im) = (vec![0.0; n_dofs], vec![0.0; n_dofs]);
     let x: Vec<[f64; 3]> = d.nodes.iter().map(|n| n.x).collect();
     for l in &st.cloads {
+        let f = if l.imaginary { &mut im } else { &mut re };
         for id in job.target_nodes(&l.target) {
             f[3 * d.node_index[&id] + (l.dof as usize - 1)] += l.value;
         }
@@ -32,13 +37,15 @@ pub fn step_loads(job: &DeckJob, st: &Step, n_dofs: usize) -> Result<Vec<f64>, D
                     format!("element {id} ({}) has no face P{}", e.kind, l.face + 1),
                 )
             })?;
-            add_pressure(&x, &face, l.pressure, &mut f);
+            let f = if l.imaginary { &mut im } else { &mut re };
+            add_pressure(&x, &face, l.pressure, f);
         }
     }
     for l in &st.dsloads {
         for face in faces(d, &l.surface, &l.origin, "*DSLOAD")? {
-            add_pressure(&x, &face, l.pressure, &mut f);
+            let f = if l.imaginary { &mut im } else { &mut re };
+            add_pressure(&x, &face, l.pressure, f);
         }
     }
-    Ok(f)
+    Ok((re, im))
 }

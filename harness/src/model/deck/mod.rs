@@ -222,21 +222,20 @@ pub fn build(scene: &Scene, job: &DeckJob) -> Result<Problem, BuildError> {
 
     // Preload (the static step) and excitation (the steady-state step's loads).
     let n = model.n_dofs();
-    let pre = match job.preload {
+    // (A static step's imaginary loads are refused by the deck job's step check.)
+    let (pre, _) = match job.preload {
         Some(i) => loads::step_loads(job, &deck.steps[i], n)?,
-        None => vec![0.0; n],
+        None => (vec![0.0; n], vec![0.0; n]),
     };
-    let exc = match job.dynamics {
+    let (exc_re, exc_im) = match job.dynamics {
         Some(i) => loads::step_loads(job, &deck.steps[i], n)?,
-        None => vec![0.0; n],
+        None => (vec![0.0; n], vec![0.0; n]),
     };
     model.loads = pre.clone();
     let preload = sys.dofs.restrict(&pre);
-    let excitation = sys
-        .dofs
-        .restrict(&exc)
-        .into_iter()
-        .map(|v| Complex::new(v, 0.0))
+    let excitation = (sys.dofs.restrict(&exc_re).into_iter())
+        .zip(sys.dofs.restrict(&exc_im))
+        .map(|(re, im)| Complex::new(re, im))
         .collect();
 
     let outputs = scene
