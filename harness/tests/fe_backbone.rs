@@ -241,13 +241,19 @@ fn the_exported_deck_gives_the_scene_backbone() {
     let scene = Scene::parse("three-beams-coarse.toml", &text()).unwrap();
     let (_, a) = reduced(&scene);
     let (_, b) = reduced(&deck);
-    assert_eq!(a.lumped.system.elements.len(), b.lumped.system.elements.len());
+    assert_eq!(
+        a.lumped.system.elements.len(),
+        b.lumped.system.elements.len()
+    );
     let qs = q_stick(&a.lumped);
     let q = log_space(0.1 * qs, 10.0 * qs, 9);
     let fa = first_order::backbone(&a.lumped.system, 1, &q).unwrap();
     let fb = first_order::backbone(&b.lumped.system, 1, &q).unwrap();
     for (x, y) in fa.iter().zip(&fb) {
-        let (dw, dz) = (y.omega / x.omega - 1.0, y.damping_ratio / x.damping_ratio - 1.0);
+        let (dw, dz) = (
+            y.omega / x.omega - 1.0,
+            y.damping_ratio / x.damping_ratio - 1.0,
+        );
         assert!(dw.abs() < 1e-8 && dz.abs() < 1e-6, "{dw:e} {dz:e}");
     }
 }
