@@ -97,7 +97,8 @@ install: lib bin shim
 	install -m 644 include/jointlin.h $(BUILD)/shim/jointlin.mod \
 		$(BUILD)/shim/jointlin_abaqus.mod $(DEST)/include/
 	install -m 644 fortran-shim/jointlin.f90 fortran-shim/jointlin_abaqus.f90 \
-		fortran-shim/uinter.f fortran-shim/uexternaldb.f fortran-shim/agree_nompi.f90 \
+		fortran-shim/uinter.f fortran-shim/uexternaldb.f fortran-shim/urdfil.f \
+		fortran-shim/agree_nompi.f90 \
 		fortran-shim/agree_mpi.f90 fortran-shim/abaqus_standin.f \
 		fortran-shim/abaqus_standin_mpi.f90 fortran-shim/shim_check.f90 \
 		fortran-shim/ABA_PARAM.INC fortran-shim/README.md \

@@ -30,7 +30,7 @@ module jointlin
 
   ! ---- constants (#define in jointlin.h) ----
   integer(c_int32_t), parameter :: JOINTLIN_ABI_VERSION_MAJOR = 0
-  integer(c_int32_t), parameter :: JOINTLIN_ABI_VERSION_MINOR = 4
+  integer(c_int32_t), parameter :: JOINTLIN_ABI_VERSION_MINOR = 5
   integer(c_int32_t), parameter :: JOINTLIN_OK = 0
   integer(c_int32_t), parameter :: JOINTLIN_ERR_NULL = 1
   integer(c_int32_t), parameter :: JOINTLIN_ERR_NON_FINITE = 2
@@ -331,6 +331,17 @@ module jointlin
        real(c_double), intent(in) :: amp(2)
        integer(c_int32_t) :: jointlin_store_report
      end function jointlin_store_report
+
+     function jointlin_store_report_node(store, node, kinc, amp, reported) &
+          bind(C, name='jointlin_store_report_node')
+       import :: c_int32_t, c_double, c_ptr
+       type(c_ptr), value :: store
+       integer(c_int32_t), value :: node
+       integer(c_int32_t), value :: kinc
+       real(c_double), intent(in) :: amp(2)
+       integer(c_int32_t), intent(out) :: reported
+       integer(c_int32_t) :: jointlin_store_report_node
+     end function jointlin_store_report_node
 
      function jointlin_store_next_action(store, action, pass) &
           bind(C, name='jointlin_store_next_action')

@@ -53,7 +53,8 @@ module jointlin_abaqus
   use jointlin
   implicit none
   private
-  public :: jl_store, jl_open, jl_close, jl_check, jl_error_text, jl_report, jl_after_pass
+  public :: jl_store, jl_open, jl_close, jl_check, jl_error_text, jl_report, &
+       jl_contact_record, jl_after_pass
   public :: jl_agree, jl_rank
 
   !> The store shared by UINTER and UEXTERNALDB (c_null_ptr until LOP 0 created it).
@@ -207,6 +208,37 @@ contains
     real(c_double), intent(in) :: amp(2)
     call jl_check(jointlin_store_report(handle, point, int(kinc, c_int32_t), amp), 'report')
   end subroutine jl_report
+
+  !> One contact output record of the results file (URDFIL): for record key 1521 (CDISP:
+  !> separation, then the relative tangential displacements in the master surface's local
+  !> 1- and 2-directions; in a steady-state dynamics step the real parts followed by the
+  !> imaginary parts) of slave node `node`, reports the amplitudes |Re + i Im| of the
+  !> tangential components for increment `kinc` to the node's store point. Other keys and
+  !> real-only (static) CDISP records are left alone; a node UINTER never saw has no point
+  !> and is skipped. `nattr` attributes in `attr` (record length − 2).
+  subroutine jl_contact_record(key, node, kinc, nattr, attr)
+    integer, intent(in) :: key, node, kinc, nattr
+    real(c_double), intent(in) :: attr(*)
+    real(c_double) :: amp(2)
+    integer(c_int32_t) :: reported
+    character(len=120) :: what
+    if (key /= 1521 .or. .not. c_associated(handle)) return
+    select case (nattr)
+    case (2, 3) ! real only: not a steady-state dynamics increment
+       return
+    case (4) ! 2D: separation, slip 1; then their imaginary parts
+       amp = [hypot(attr(2), attr(4)), 0d0]
+    case (6) ! 3D: separation, slip 1, slip 2; then their imaginary parts
+       amp = [hypot(attr(2), attr(5)), hypot(attr(3), attr(6))]
+    case default
+       write (what, '(a,i0,a,i0,a)') 'URDFIL: contact output record 1521 (CDISP) of node ', &
+            node, ' has ', nattr, ' attributes, not 2, 3, 4 or 6'
+       call jl_stop(trim(what))
+    end select
+    write (what, '(a,i0,a,i0)') 'URDFIL: report of node ', node, ' in increment ', kinc
+    call jl_check(jointlin_store_report_node(handle, int(node, c_int32_t), &
+         int(kinc, c_int32_t), amp, reported), trim(what))
+  end subroutine jl_contact_record
 
   !> Before LOP 3, with several ranks: the ranks agree on the increments to re-run (module
   !> header). Through MPI: {len, -len} and then the pass summaries reduced by maximum over

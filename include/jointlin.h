@@ -26,7 +26,7 @@
 /**
  * Minor version of the C ABI: additions that keep existing callers working.
  */
-#define JOINTLIN_ABI_VERSION_MINOR 4
+#define JOINTLIN_ABI_VERSION_MINOR 5
 
 /**
  * Success.
@@ -994,6 +994,24 @@ int32_t jointlin_store_report(const struct jointlin_store *store,
                               int64_t point,
                               int32_t kinc,
                               const double *amp);
+
+/**
+ * jointlin_store_report for the point registered for host node `node` (the NODE of its
+ * jointlin_uinter calls), for hosts that know their results per node, such as an Abaqus
+ * URDFIL reading the contact output of an increment. Writes 1 to `*reported` if it
+ * reported, 0 if no point has that node (a slave node UINTER never saw: nothing to do).
+ *
+ * Errors: those of jointlin_store_report, and JOINTLIN_ERR_UNKNOWN_POINT when several
+ * points (one per interaction) have that node.
+ *
+ * # Safety
+ * `store` a live handle; `amp` points to 2 readable doubles; `reported` writable.
+ */
+int32_t jointlin_store_report_node(const struct jointlin_store *store,
+                                   int32_t node,
+                                   int32_t kinc,
+                                   const double *amp,
+                                   int32_t *reported);
 
 /**
  * Writes the next action (JOINTLIN_ACTION_*) to `*action` and to `*pass` the number of the

@@ -358,6 +358,39 @@ fn fortran_sweep_with_the_exported_abaqus_configuration() {
     );
 }
 
+/// The Fortran sweep host reporting as an Abaqus job does: it writes each increment's
+/// contact output (node header 1504, CDISP 1521 with real and imaginary parts) to the
+/// stand-in results file and calls the shim's URDFIL, which reads it through the stand-in
+/// POSFIL and DBFILE and reports per node (jointlin_store_report_node). The iteration is
+/// the one of direct jl_report calls, record for record, over separate jobs with restarts.
+/// A CDISP record of 5 attributes stops the analysis with a message naming it.
+#[test]
+fn fortran_sweep_reporting_through_urdfil_matches_the_rust_store() {
+    let p = programs();
+    let mut cmd = command(p.fortran.join("sweep"), true, false);
+    cmd.current_dir(scratch("fortran-sweep-urdfil"))
+        .arg("urdfil");
+    let got = parse(&run_ok(&mut cmd).stdout);
+    check_sweep(
+        "Fortran sweep through URDFIL",
+        &got,
+        KincNumbering::Sequential,
+    );
+
+    let mut cmd = command(p.fortran.join("sweep"), true, false);
+    cmd.current_dir(scratch("fortran-sweep-urdfil-corrupt"))
+        .arg("urdfil-corrupt");
+    let out = cmd.output().unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(3), "{err}");
+    assert!(
+        err.contains(
+            "STDB_ABQERR -3: jointlin URDFIL: contact output record 1521 (CDISP) of node 1 has 5 attributes"
+        ),
+        "{err}"
+    );
+}
+
 #[test]
 fn hosts_link_the_shared_library_with_an_rpath() {
     let p = programs();

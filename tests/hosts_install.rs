@@ -434,7 +434,7 @@ fn abaqus_user_library_links_and_loads_with_the_env_file_alone() {
     );
     let nm = run_ok(Command::new("nm").arg("-D").arg("--defined-only").arg(&lib));
     let symbols = text(&nm);
-    for s in ["uinter_", "uexternaldb_"] {
+    for s in ["uinter_", "uexternaldb_", "urdfil_"] {
         assert!(
             symbols.lines().any(|l| l.ends_with(&format!(" T {s}"))),
             "{s} not in the user library:\n{symbols}"

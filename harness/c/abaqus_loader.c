@@ -5,7 +5,8 @@
  *   abaqus_loader <user library>
  *
  * It defines the utility routines Abaqus provides to user subroutines and the jointlin
- * shim calls (STDB_ABQERR, GETRANK, GETNUMCPUS; Fortran names: lower case, one trailing
+ * shim calls (STDB_ABQERR, GETRANK, GETNUMCPUS, and POSFIL, DBFILE for URDFIL, here
+ * an empty results file; Fortran names: lower case, one trailing
  * underscore, hidden CHARACTER lengths last), loads the user library with
  * dlopen(RTLD_NOW) -- so every undefined symbol of the library must resolve at once, from
  * this program or from the libraries the user library names, as inside Abaqus -- and
@@ -36,6 +37,18 @@ void stdb_abqerr_(const int *lop, const char *string, const int *intv, const dou
 /* One process: rank 0 of 1 (what Abaqus returns outside MPI mode). */
 void getrank_(int *rank) { *rank = 0; }
 void getnumcpus_(int *n) { *n = 1; }
+/* The results file has no increment: POSFIL does not find one, DBFILE is at its end. */
+void posfil_(const int *nstep, const int *ninc, double *array, int *jrcd) {
+    (void)nstep;
+    (void)ninc;
+    (void)array;
+    *jrcd = 1;
+}
+void dbfile_(const int *lop, double *array, int *jrcd) {
+    (void)lop;
+    (void)array;
+    *jrcd = 1;
+}
 
 typedef void uexternaldb_fn(const int *lop, const int *lrestart, const double *time,
                             const double *dtime, const int *kstep, const int *kinc);

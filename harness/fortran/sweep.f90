@@ -4,7 +4,12 @@
 ! (jl_close frees it; the next LOP 0 re-creates it from the configuration and restores
 ! it), and the next pass's increments come from the action file, as a driver script
 ! would read them. Increments are numbered 1..m in every job (kinc_numbering =
-! sequential); records print the sweep increment number. Same records as the C host:
+! sequential); records print the sweep increment number. With the argument `urdfil` the
+! host reports its amplitudes as an Abaqus job does: it writes the increment's contact
+! output records (1504 node header, 1521 CDISP with real and imaginary parts) to the
+! stand-in results file and calls the shim's URDFIL, which reads them through the stand-in
+! POSFIL and DBFILE; `urdfil-corrupt` writes a CDISP record of 5 attributes, which URDFIL
+! must refuse. Same records as the C host:
 !   preload id p
 !   inc pass kinc point estimate kstar dstar amplitude
 !   stats pass kind run converged evaluations not_reported
@@ -16,7 +21,7 @@ program sweep
   use jointlin_abaqus, only: jl_store, jl_report, jl_close, jl_check
   use host_data
   implicit none
-  external :: uinter, uexternaldb
+  external :: uinter, uexternaldb, urdfil
 
   integer, parameter :: ndir = 2, mcrd = 3, npred = 1, npoints = 2, ninc = 3
   real(c_double) :: stress(ndir, npoints) = 0, ddsddr(ndir, ndir, npoints) = 0
@@ -31,6 +36,10 @@ program sweep
   type(jointlin_point_status) :: ps
   integer :: list(ninc), count, action, pass, i, j, kinc
   integer(c_int64_t) :: id, n
+  character(len=16) :: mode
+  integer :: lstop, lovrwrt
+
+  call get_command_argument(1, mode)
 
   do j = 1, npoints
      props(:, j) = block_props(0d0)
@@ -65,10 +74,14 @@ program sweep
         z12 = cmplx(-kc, 0d0, c_double_complex)
         det = z11 * z22 - z12 * z12
         x = [force * z22 / det, -z12 * force / det]
+        if (mode(1:6) == 'urdfil') then
+           call write_results_file(i, x, mode == 'urdfil-corrupt')
+           call urdfil(lstop, lovrwrt, 2, i, 0d0, time)
+        end if
         do j = 1, npoints
            id = int(statev(1, j), c_int64_t)
            amp = [abs(x(j)), 0d0]
-           call jl_report(id, i, amp)
+           if (mode(1:6) /= 'urdfil') call jl_report(id, i, amp)
            call jl_check(jointlin_store_point_status(jl_store(), id, int(kinc, c_int32_t), ps), &
                 'point status')
            call record('inc', [real(pass, c_double), real(kinc, c_double), real(id, c_double), &
@@ -111,9 +124,30 @@ contains
          flux, ddfddt, ddsddt, ddfddr, statev(:, j), sed, sfd(j), spd, svd, scd, &
          pnewdt(j), rdisp(:, j), drdisp(:, j), temp, dtemp, predef, dpred, time, 0d0, &
          freqr, ciname, secname, mainname, props(:, j), coords(:, j), alocaldir, drot, &
-         area, chrlngth, 0, ndir, nstatv, npred, nprops, mcrd, kstep, kinc, 0, linper, &
+         area, chrlngth, j, ndir, nstatv, npred, nprops, mcrd, kstep, kinc, 0, linper, &
          lopenclose(j), lstate, lsdi, lprint)
   end subroutine call_uinter
+
+  !> The stand-in results file of step 2, increment `kinc` (format: abaqus_standin.f):
+  !> per point its node header (node j, 3 components) and CDISP record: separation 0,
+  !> slip x(j) in the local 1-direction, 0 in the 2-direction, real parts then imaginary.
+  subroutine write_results_file(kinc, x, corrupt)
+    integer, intent(in) :: kinc
+    complex(c_double_complex), intent(in) :: x(:)
+    logical, intent(in) :: corrupt
+    integer :: u, j
+    open (newunit=u, file='jointlin-standin.fil', status='replace', action='write')
+    write (u, '(a,i0)') '2000 2 2 ', kinc
+    do j = 1, size(x)
+       write (u, '(a,i0,a)') '1504 2 ', j, ' 3'
+       if (corrupt) then
+          write (u, '(a,5es25.17)') '1521 0', 0d0, x(j)%re, 0d0, 0d0, x(j)%im
+       else
+          write (u, '(a,6es25.17)') '1521 0', 0d0, x(j)%re, 0d0, 0d0, x(j)%im, 0d0
+       end if
+    end do
+    close (u)
+  end subroutine write_results_file
 
   !> Reads what UEXTERNALDB wrote at LOP 3: "action NAME", "pass N", "increments k...".
   subroutine read_action_file(path, action, pass, list, count)

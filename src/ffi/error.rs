@@ -70,7 +70,7 @@ impl From<StoreError> for FfiError {
         let code = match e {
             StoreError::NonFinite(_) => JOINTLIN_ERR_NON_FINITE,
             StoreError::OutOfRange(_) => JOINTLIN_ERR_OUT_OF_RANGE,
-            StoreError::UnknownPoint(_) => JOINTLIN_ERR_UNKNOWN_POINT,
+            StoreError::UnknownPoint(_) | StoreError::Node { .. } => JOINTLIN_ERR_UNKNOWN_POINT,
             StoreError::Sequence(_) => JOINTLIN_ERR_SEQUENCE,
             StoreError::Io(_) => JOINTLIN_ERR_IO,
             StoreError::Poisoned => JOINTLIN_ERR_PANIC,

@@ -380,6 +380,42 @@ pub unsafe extern "C" fn jointlin_store_report(
     })
 }
 
+/// jointlin_store_report for the point registered for host node `node` (the NODE of its
+/// jointlin_uinter calls), for hosts that know their results per node, such as an Abaqus
+/// URDFIL reading the contact output of an increment. Writes 1 to `*reported` if it
+/// reported, 0 if no point has that node (a slave node UINTER never saw: nothing to do).
+///
+/// Errors: those of jointlin_store_report, and JOINTLIN_ERR_UNKNOWN_POINT when several
+/// points (one per interaction) have that node.
+///
+/// # Safety
+/// `store` a live handle; `amp` points to 2 readable doubles; `reported` writable.
+#[no_mangle]
+pub unsafe extern "C" fn jointlin_store_report_node(
+    store: *const jointlin_store,
+    node: i32,
+    kinc: i32,
+    amp: *const f64,
+    reported: *mut i32,
+) -> i32 {
+    boundary("jointlin_store_report_node", || {
+        // SAFETY: checked by the helpers.
+        let s = unsafe { store_ref(store) }?;
+        let a: [f64; 2] = unsafe { load_finite(amp, 2, "amp") }?;
+        check_ptr(reported, "reported")?;
+        let done = match s.point_of_node(node)? {
+            Some(point) => {
+                s.report(point, kinc, a)?;
+                1
+            }
+            None => 0,
+        };
+        // SAFETY: checked.
+        unsafe { put(reported, done) };
+        Ok(())
+    })
+}
+
 /// Writes the next action (JOINTLIN_ACTION_*) to `*action` and to `*pass` the number of the
 /// pass it would run (for DONE and FAILED: the last pass run; while RUNNING: the running
 /// pass). For RUN_PASS, RUN_FINAL and FAILED, jointlin_store_rerun_increments lists the

@@ -36,6 +36,10 @@ pub enum StoreError {
     /// A point id that was never registered.
     #[error("unknown contact point id {0}")]
     UnknownPoint(i64),
+    /// A host node with several registered points (one per interaction): a report by
+    /// node cannot tell which point it means.
+    #[error("node {node}: {points} contact points (a report by node needs one)")]
+    Node { node: i32, points: usize },
     /// A call that does not fit the LOP sequence (e.g. an estimate outside an increment).
     #[error("call out of sequence: {0}")]
     Sequence(String),
@@ -264,6 +268,21 @@ impl State {
 struct Registry {
     ids: HashMap<PointKey, i64>,
     keys: Vec<PointKey>,
+    /// Point ids per host node (several where interactions share a node).
+    by_node: HashMap<i32, Vec<i64>>,
+}
+
+impl Registry {
+    /// Adds `key` as point `id` (the next one); false if the key is already registered.
+    fn add(&mut self, key: PointKey, id: i64) -> bool {
+        if self.ids.contains_key(&key) {
+            return false;
+        }
+        self.by_node.entry(key.node).or_default().push(id);
+        self.keys.push(key.clone());
+        self.ids.insert(key, id);
+        true
+    }
 }
 
 /// The iteration store. `Sync`: share it between host threads by reference.
@@ -332,9 +351,24 @@ impl Store {
             return Ok(id); // registered by another thread in between
         }
         let id = reg.keys.len() as i64 + 1;
-        reg.keys.push(key.clone());
-        reg.ids.insert(key, id);
+        reg.add(key, id);
         Ok(id)
+    }
+
+    /// The id of the point registered for host node `node` (the NODE of its UINTER
+    /// call), for hosts that know their results per node (an Abaqus URDFIL reading
+    /// contact output); None if no point has that node (e.g. a slave node never in
+    /// contact), [`StoreError::Node`] if several have.
+    pub fn point_of_node(&self, node: i32) -> Result<Option<i64>, StoreError> {
+        let reg = self.registry.read().map_err(|_| StoreError::Poisoned)?;
+        match reg.by_node.get(&node).map(Vec::as_slice) {
+            None | Some(&[]) => Ok(None),
+            Some(&[id]) => Ok(Some(id)),
+            Some(ids) => Err(StoreError::Node {
+                node,
+                points: ids.len(),
+            }),
+        }
     }
 
     /// `hint` when it is the id of `key` (e.g. the id a host kept in STATEV), else the key's

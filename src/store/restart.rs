@@ -303,10 +303,9 @@ pub(super) fn parse(text: &str, fp: &Fingerprint) -> Result<(Registry, State), S
             .map(|_| u64::from_str_radix(t.word("coordinate")?, 16).map_err(|_| bad("coordinate")))
             .collect::<Result<Vec<u64>, _>>()?;
         let key = PointKey { name, node, coords };
-        if reg.ids.insert(key.clone(), i as i64 + 1).is_some() {
+        if !reg.add(key, i as i64 + 1) {
             return Err(bad(&format!("point {} listed twice", i + 1)));
         }
-        reg.keys.push(key);
     }
     t.tag("records")?;
     let n: usize = t.int("records")?;

@@ -71,18 +71,23 @@ pub fn main(a: Args) -> ExitCode {
         }
     };
     if let Some(r) = &reduction {
-        let fu = frequency_unit(&scene.spec.units).1;
+        let unit = frequency_unit(&scene.spec.units);
+        let fu = &unit.text;
+        let last = |f: &[f64]| {
+            f.last()
+                .map_or("–".into(), |&f| format!("{:.9}", unit.show(f)))
+        };
         eprintln!(
             "reduced: {} closed contact points ({} open, no joint), {} joints, {} interior modes; \
-             mode {}: stuck {:.9} {fu} (full model {:.9} {fu}), sliding {:.9} {fu}{}",
+             mode {}: stuck {} {fu} (full model {} {fu}), sliding {} {fu}{}",
             r.closed,
             r.open,
             r.lumped.elements.len(),
             r.modes,
             a.mode,
-            r.stuck.last().copied().unwrap_or(f64::NAN),
-            r.stuck_full.last().copied().unwrap_or(f64::NAN),
-            r.sliding.last().copied().unwrap_or(f64::NAN),
+            last(&r.stuck),
+            last(&r.stuck_full),
+            last(&r.sliding),
             if r.converged {
                 String::new()
             } else {
@@ -218,13 +223,14 @@ fn write(
             json!({
                 "modal_amplitude": r.point.modal_amplitude,
                 "omega": r.point.omega,
-                "frequency": report::frequency(r.point.omega),
+                "frequency": report::frequency(r.point.omega, units),
                 "damping_ratio": r.point.damping_ratio,
                 "outputs": names.iter().zip(&r.outputs).map(|(n, v)| json!({"name": n, "amplitude": v})).collect::<Vec<_>>(),
                 "elements": l.elements.iter().zip(r.point.element_amplitudes.iter().zip(&r.point.energy_per_cycle)).map(|(n, (amp, e))| json!({"name": n, "amplitude": amp, "energy_per_cycle": e})).collect::<Vec<_>>(),
             })
         })
         .collect();
+    let fu = frequency_unit(units);
     let run = json!({
         "command": "backbone",
         "scene": {"file": scene.file, "spec": scene.spec, "text": scene.text},
@@ -232,19 +238,22 @@ fn write(
         "mode": a.mode,
         "method": method,
         "dofs": l.dofs,
-        "reduction": reduction.map(|r| json!({
-            "closed_points": r.closed,
-            "open_points": r.open,
-            "joints": r.lumped.elements.len(),
-            "interior_modes": r.modes,
-            "stuck_frequencies": r.stuck,
-            "stuck_frequencies_full_model": r.stuck_full,
-            "sliding_frequencies": r.sliding,
-            "sliding_frequencies_half_modes": r.sliding_previous,
-            "converged": r.converged,
-            "tolerance": fe::MODE_TOL,
-        })),
-        "frequency_unit": frequency_unit(units).1,
+        "reduction": reduction.map(|r| {
+            let show = |f: &[f64]| f.iter().map(|&f| fu.show(f)).collect::<Vec<_>>();
+            json!({
+                "closed_points": r.closed,
+                "open_points": r.open,
+                "joints": r.lumped.elements.len(),
+                "interior_modes": r.modes,
+                "stuck_frequencies": show(&r.stuck),
+                "stuck_frequencies_full_model": show(&r.stuck_full),
+                "sliding_frequencies": show(&r.sliding),
+                "sliding_frequencies_half_modes": show(&r.sliding_previous),
+                "converged": r.converged,
+                "tolerance": fe::MODE_TOL,
+            })
+        }),
+        "frequency_unit": fu.text,
         "rows": json_rows,
     });
     let text = serde_json::to_string_pretty(&run).map_err(|e| e.to_string())?;

@@ -145,7 +145,8 @@ fn print_forecast(s: &Scene, p: &Problem) {
     let freqs = s.frequencies();
     let Some(&f0) = freqs.first() else { return };
     let it = &s.spec.iteration;
-    let (_, unit) = frequency_unit(&s.spec.units);
+    let fu = frequency_unit(&s.spec.units);
+    let unit = &fu.text;
     match cost::measure(p, 2.0 * std::f64::consts::PI * f0) {
         Ok(m) => {
             let f = cost::forecast(
@@ -161,7 +162,7 @@ fn print_forecast(s: &Scene, p: &Problem) {
                 "time forecast: one factorization of the dynamic stiffness {} s, one solve {} s (measured here at {} {unit}); {} frequencies in mode {:?}: {}–{} factorizations, {}–{} solves, about {}–{} s with the plots' reference sweep (--no-plots halves it), plus the static step",
                 sig_n(m.factorization, 2),
                 sig_n(m.solve, 2),
-                sig(f0),
+                sig(fu.show(f0)),
                 freqs.len(),
                 it.mode,
                 f.factorizations[0],
@@ -174,7 +175,7 @@ fn print_forecast(s: &Scene, p: &Problem) {
         }
         Err(e) => println!(
             "time forecast: none (the dynamic stiffness at {} {unit}: {e})",
-            sig(f0)
+            sig(fu.show(f0))
         ),
     }
 }
@@ -196,7 +197,8 @@ const SUMMARY_MODES: usize = 50;
 /// highest frequency, as `jointlin modes` computes them; a model whose modes cannot be
 /// computed says why (the run may still work: it never needs them).
 fn print_modes(s: &Scene) {
-    let (_, unit) = frequency_unit(&s.spec.units);
+    let fu = frequency_unit(&s.spec.units);
+    let unit = &fu.text;
     let count = ModeCount::Band {
         factor: 1.0,
         min: 1,
@@ -211,12 +213,12 @@ fn print_modes(s: &Scene) {
                 .frequencies_hz()
                 .into_iter()
                 .filter(|&f| f <= top)
-                .map(|f| sig_n(f, 5))
+                .map(|f| sig_n(fu.show(f), 5))
                 .collect();
             let more = if m.band.complete { "" } else { "at least " };
             println!(
                 "stuck modes below the sweep's top {} {unit}: {more}{}{}{}",
-                sig(top),
+                sig(fu.show(top)),
                 below.len(),
                 if below.is_empty() { "" } else { " — " },
                 below.join(", ")

@@ -8,6 +8,7 @@ use jointlin_harness::input::scene::units::frequency_unit;
 use jointlin_harness::report::modes::ModeTable;
 use jointlin_harness::solve::modal_stuck::{stuck_modes, ModeCount};
 use jointlin_harness::util::atomic;
+use jointlin_harness::util::csv_table::CsvTable;
 use jointlin_harness::util::number::sig;
 
 use super::load_scene;
@@ -58,20 +59,21 @@ pub fn main(a: Args) -> ExitCode {
         eprintln!("warning: {w}");
     }
     let units = &s.spec.units;
-    let (_, fu) = frequency_unit(units);
+    let unit = frequency_unit(units);
+    let fu = &unit.text;
     let f = modes.band.modes.frequencies_hz();
     let top = f.last().copied().unwrap_or(0.0);
     match (modes.limit, modes.band.complete) {
         (Some(limit), true) => eprintln!(
             "{} mode(s): every one below {} {fu} (1.5 × the sweep's highest frequency), at least 6 (or every DOF)",
             f.len(),
-            sig(limit)
+            sig(unit.show(limit))
         ),
         (Some(limit), false) => eprintln!(
             "warning: the {} lowest modes end at {} {fu}, below the limit {} {fu}: pass --count for more",
             f.len(),
-            sig(top),
-            sig(limit)
+            sig(unit.show(top)),
+            sig(unit.show(limit))
         ),
         (None, _) => eprintln!("{} mode(s), as asked (or every DOF)", f.len()),
     }
@@ -114,7 +116,8 @@ fn lumped_modes(a: &Args, s: &jointlin_harness::input::scene::Scene) -> ExitCode
             return ExitCode::from(2);
         }
     };
-    let (column, fu) = frequency_unit(&s.spec.units);
+    let unit = frequency_unit(&s.spec.units);
+    let (column, fu) = (&unit.column, &unit.text);
     let limit = 1.5 * s.frequencies().last().copied().unwrap_or(0.0);
     let n = match a.count {
         Some(n) => n.min(f.len()),
@@ -124,22 +127,25 @@ fn lumped_modes(a: &Args, s: &jointlin_harness::input::scene::Scene) -> ExitCode
         "{n} of {} mode(s) of the lumped system, every joint stuck (k_T0){}",
         f.len(),
         if a.count.is_none() {
-            format!(": every one below {} {fu}, at least 6", sig(limit))
+            format!(
+                ": every one below {} {fu}, at least 6",
+                sig(unit.show(limit))
+            )
         } else {
             String::new()
         }
     );
     let mut md = format!("| mode | frequency ({fu}) |\n|---:|---:|\n");
-    let mut csv = format!("mode,{column}\n");
+    let mut csv = CsvTable::new(["mode", column]);
     for (i, x) in f.iter().take(n).enumerate() {
-        md.push_str(&format!("| {} | {} |\n", i + 1, sig(*x)));
-        csv.push_str(&format!("{},{x:e}\n", i + 1));
+        md.push_str(&format!("| {} | {} |\n", i + 1, sig(unit.show(*x))));
+        csv.row([(i + 1).to_string(), format!("{:e}", unit.show(*x))]);
     }
     print!("{md}");
     if let Some(dir) = &a.out {
         let written = std::fs::create_dir_all(dir)
             .map_err(|e| format!("{}: {e}", dir.display()))
-            .and_then(|_| atomic::write_text(&dir.join("modes.csv"), &csv));
+            .and_then(|_| atomic::write_text(&dir.join("modes.csv"), &csv.finish()));
         if let Err(e) = written {
             eprintln!("error: cannot write: {e}");
             return ExitCode::from(1);

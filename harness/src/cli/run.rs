@@ -6,6 +6,7 @@ use std::process::ExitCode;
 
 use clap::ValueEnum;
 
+use jointlin_harness::input::scene::units::frequency_unit;
 use jointlin_harness::input::scene::{validate, Mode, Scene};
 use jointlin_harness::model::BuildError;
 use jointlin_harness::report::{self, ReportOptions};
@@ -188,9 +189,14 @@ pub fn main(a: Args) -> ExitCode {
             return ExitCode::from(1);
         }
     }
+    let fu = frequency_unit(&s.spec.units);
     for (i, f) in r.main.freqs.iter().enumerate() {
         if let Some(e) = r.main.failure(i) {
-            eprintln!("warning: {f:e} Hz failed (status failed in results.csv): {e}");
+            eprintln!(
+                "warning: {:e} {} failed (status failed in results.csv): {e}",
+                fu.show(*f),
+                fu.text
+            );
         }
     }
     let failed = r.main.failed.iter().filter(|e| e.is_some()).count();

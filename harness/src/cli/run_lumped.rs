@@ -3,18 +3,18 @@
 //! from `jointlin_linearize` consistent with its amplitude, (3.8), (3.14)), each
 //! frequency started from the previous one's amplitudes; results.csv and run.json.
 
-use std::fmt::Write as _;
 use std::path::Path;
 use std::process::ExitCode;
 
 use nalgebra::Complex;
 use serde_json::json;
 
-use jointlin_harness::input::scene::units::{frequency_column, ColumnUnits};
+use jointlin_harness::input::scene::units::{frequency_unit, ColumnUnits};
 use jointlin_harness::input::scene::Scene;
 use jointlin_harness::mhb::first_order;
 use jointlin_harness::model::lumped;
 use jointlin_harness::util::atomic;
+use jointlin_harness::util::csv_table::CsvTable;
 
 /// Runs the sweep and writes results.csv (frequency, per output amplitude and phase,
 /// per element its relative amplitude, status) and run.json into `out`.
@@ -28,42 +28,45 @@ pub fn main(s: &Scene, out: &Path) -> ExitCode {
     };
     let units = &s.spec.units;
     let len = ColumnUnits::new(units).length;
-    let mut csv = frequency_column(units);
+    let fu = frequency_unit(units);
+    let mut header = vec![fu.column.clone()];
     for (name, _) in &l.outputs {
-        write!(csv, ",{name}_amp_{len},{name}_phase_deg").expect("string");
+        header.push(format!("{name}_amp_{len}"));
+        header.push(format!("{name}_phase_deg"));
     }
     for name in &l.elements {
-        write!(csv, ",{name}_amplitude_{len}").expect("string");
+        header.push(format!("{name}_amplitude_{len}"));
     }
-    csv.push_str(",status\n");
+    header.push("status".into());
+    let mut csv = CsvTable::new(&header);
     let mut a0 = vec![0.0; l.system.elements.len()];
     let freqs = s.frequencies();
     let mut failed = Vec::new();
     for &f in &freqs {
         let omega = 2.0 * std::f64::consts::PI * f;
-        write!(csv, "{f:e}").expect("string");
+        let mut row = vec![format!("{:e}", fu.show(f))];
         match first_order::solve(&l.system, omega, &a0) {
             Ok(x) => {
                 a0 = first_order::element_amplitudes(&l.system, &x);
                 for (_, w) in &l.outputs {
                     let v: Complex<f64> = w.iter().zip(&x).map(|(w, x)| x * *w).sum();
-                    write!(csv, ",{:e},{:e}", v.norm(), v.arg().to_degrees()).expect("string");
+                    row.push(format!("{:e}", v.norm()));
+                    row.push(format!("{:e}", v.arg().to_degrees()));
                 }
-                for a in &a0 {
-                    write!(csv, ",{a:e}").expect("string");
-                }
-                csv.push_str(",converged\n");
+                row.extend(a0.iter().map(|a| format!("{a:e}")));
+                row.push("converged".into());
             }
             Err(e) => {
                 eprintln!("warning: {f:e}: {e}");
                 failed.push(f);
-                csv.push_str(&",".repeat(2 * l.outputs.len() + l.elements.len()));
-                csv.push_str(",failed\n");
+                row.resize(header.len() - 1, String::new());
+                row.push("failed".into());
             }
         }
+        csv.row(&row);
     }
     let results = out.join("results.csv");
-    if let Err(e) = atomic::write_text(&results, &csv) {
+    if let Err(e) = atomic::write_text(&results, &csv.finish()) {
         eprintln!("error: {e}");
         return ExitCode::from(1);
     }

@@ -128,7 +128,21 @@ pub fn write(out: &mut String, scene: &Scene, p: &Problem, names: &Names) {
         }
     }
     output_requests(out, s.outputs.len(), names);
+    contact_file(out, names);
     let _ = writeln!(out, "*END STEP");
+}
+
+/// The contact output URDFIL reads (fortran-shim/urdfil.f): per interface the slaves'
+/// relative displacements CDISP to the results file, each frequency's real and imaginary
+/// parts, so that the job reports its contact amplitudes to the iteration store.
+fn contact_file(out: &mut String, names: &Names) {
+    for name in &names.interfaces {
+        let _ = writeln!(
+            out,
+            "*CONTACT FILE, SLAVE={name}_SLAVE, MASTER={name}_MASTER
+CDISP"
+        );
+    }
 }
 
 /// Displacements of the output node sets: printed to the .dat file and written to the

@@ -7,7 +7,9 @@ use std::path::{Path, PathBuf};
 
 use super::maps::{self, MapKind};
 use super::{plot, LossStudySpec, Sample, StudyResult};
+use crate::input::scene::units::{frequency_unit, ColumnUnits};
 use crate::input::scene::Scene;
+use crate::util::csv_table::CsvTable;
 
 /// Power (reported unit) of a curve at `amplitude` by linear interpolation between its
 /// samples; `None` outside them.
@@ -29,26 +31,35 @@ pub fn torque_unit(scene: &Scene) -> String {
     format!("{}·{}", scene.spec.units.force, scene.spec.units.length)
 }
 
-/// loss.csv text.
-pub fn csv(st: &LossStudySpec, r: &StudyResult) -> String {
-    let mut s = format!(
-        "torque,amplitude,frequency,power_{},excitation_scale,max_amplitude_ratio\n",
-        st.power_unit
-    );
-    for (t, samples) in &r.curves {
+/// loss.csv text: torque (force·length), amplitude of the output at resonance (length),
+/// resonance frequency, power (the study's power unit), excitation scale, max A/δ*.
+pub fn csv(scene: &Scene, st: &LossStudySpec, r: &StudyResult) -> String {
+    let u = ColumnUnits::new(&scene.spec.units);
+    let fu = frequency_unit(&scene.spec.units);
+    let mut t = CsvTable::new([
+        format!("torque_{}", u.energy),
+        format!("amplitude_{}", u.length),
+        fu.column.clone(),
+        format!("power_{}", st.power_unit),
+        "excitation_scale".into(),
+        "max_amplitude_ratio".into(),
+    ]);
+    for (torque, samples) in &r.curves {
         for x in samples {
-            let _ = writeln!(
-                s,
-                "{t:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e}",
-                x.amplitude,
-                x.freq,
-                x.power * st.power_factor,
-                x.scale,
-                x.max_ratio()
+            t.row(
+                [
+                    *torque,
+                    x.amplitude,
+                    fu.show(x.freq),
+                    x.power * st.power_factor,
+                    x.scale,
+                    x.max_ratio(),
+                ]
+                .map(|v| format!("{v:.6e}")),
             );
         }
     }
-    s
+    t.finish()
 }
 
 /// loss.md text: the curves and the comparison with the reference points.
@@ -56,6 +67,7 @@ pub fn markdown(scene: &Scene, st: &LossStudySpec, r: &StudyResult) -> String {
     let au = &st.amplitude_unit;
     let pu = &st.power_unit;
     let tu = torque_unit(scene);
+    let fu = frequency_unit(&scene.spec.units);
     let mut s = String::new();
     let _ = writeln!(
         s,
@@ -64,14 +76,15 @@ pub fn markdown(scene: &Scene, st: &LossStudySpec, r: &StudyResult) -> String {
     );
     let _ = writeln!(
         s,
-        "| torque [{tu}] | resonance | amplitude [{au}] | power [{pu}] | max A/δ* |\n|---:|---:|---:|---:|---:|"
+        "| torque [{tu}] | resonance [{}] | amplitude [{au}] | power [{pu}] | max A/δ* |\n|---:|---:|---:|---:|---:|",
+        fu.text
     );
     for (t, samples) in &r.curves {
         for x in samples {
             let _ = writeln!(
                 s,
                 "| {t} | {:.1} | {:.2} | {:.4} | {:.3} |",
-                x.freq,
+                fu.show(x.freq),
                 x.amplitude / st.amplitude_factor,
                 x.power * st.power_factor,
                 x.max_ratio()
@@ -129,7 +142,7 @@ pub fn write(dir: &Path, scene: &Scene, r: &StudyResult) -> Result<Vec<PathBuf>,
         out.push(p);
         Ok(())
     };
-    put("loss.csv", csv(st, r))?;
+    put("loss.csv", csv(scene, st, r))?;
     put("loss.md", markdown(scene, st, r))?;
     let p = dir.join("loss.svg");
     crate::util::atomic::with_temp(&p, |t| {

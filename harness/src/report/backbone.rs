@@ -8,7 +8,7 @@ use plotters::prelude::*;
 
 use crate::backbone::BackbonePoint;
 use crate::input::scene::schema::Units;
-use crate::input::scene::units::{frequency_column, frequency_unit};
+use crate::input::scene::units::frequency_unit;
 
 /// One row of the report: the point and its outputs' first-harmonic amplitudes.
 #[derive(Debug, Clone)]
@@ -18,15 +18,18 @@ pub struct Row {
     pub outputs: Vec<f64>,
 }
 
-/// Frequency (1/time) of ω (rad/time).
-pub fn frequency(omega: f64) -> f64 {
-    omega / (2.0 * std::f64::consts::PI)
+/// The frequency of ω (rad/time) as the scene shows it ([`frequency_unit`]).
+pub fn frequency(omega: f64, units: &Units) -> f64 {
+    frequency_unit(units).show(omega / (2.0 * std::f64::consts::PI))
 }
 
 /// backbone.csv: `modal_amplitude` (length·mass^½), `frequency_<unit>`, `damping_ratio`,
 /// `<output>_amp_<length>`, `<element>_energy_<force>_<length>` (per cycle).
 pub fn csv(units: &Units, outputs: &[String], elements: &[String], rows: &[Row]) -> String {
-    let mut s = format!("modal_amplitude,{},damping_ratio", frequency_column(units));
+    let mut s = format!(
+        "modal_amplitude,{},damping_ratio",
+        frequency_unit(units).column
+    );
     for o in outputs {
         let _ = write!(s, ",{o}_amp_{}", units.length);
     }
@@ -40,7 +43,7 @@ pub fn csv(units: &Units, outputs: &[String], elements: &[String], rows: &[Row])
             s,
             "{:.10e},{:.10e},{:.10e}",
             p.modal_amplitude,
-            frequency(p.omega),
+            frequency(p.omega, units),
             p.damping_ratio
         );
         for a in &r.outputs {
@@ -75,7 +78,7 @@ pub fn svg(
     };
     let pts: Vec<(f64, f64, f64)> = rows
         .iter()
-        .map(|r| (x(r), frequency(r.point.omega), r.point.damping_ratio))
+        .map(|r| (x(r), frequency(r.point.omega, units), r.point.damping_ratio))
         .filter(|p| p.0 > 0.0 && p.0.is_finite() && p.1.is_finite() && p.2.is_finite())
         .collect();
     if pts.is_empty() {
@@ -99,7 +102,7 @@ pub fn svg(
     root.fill(&WHITE).map_err(err)?;
     let root = root.titled(title, ("sans-serif", 20)).map_err(err)?;
     let panels = root.split_evenly((2, 1));
-    let unit = frequency_unit(units).1;
+    let unit = frequency_unit(units).text;
     let (fl, fh) = pad(f0, f1);
     let (zl, zh) = pad(z0.min(0.0), z1);
     let series = [

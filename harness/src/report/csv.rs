@@ -10,79 +10,88 @@
 //! solve failed at that frequency, its message in run.json `failed_frequencies`; the
 //! other fields of a singular or failed row are empty).
 
-use std::fmt::Write as _;
-
 use crate::capi::{
     JOINTLIN_REGIME_MICROSLIP, JOINTLIN_REGIME_OPEN, JOINTLIN_REGIME_SLIDING, JOINTLIN_REGIME_STICK,
 };
-use crate::input::scene::units::{frequency_column, ColumnUnits};
+use crate::input::scene::units::{frequency_unit, ColumnUnits};
 use crate::input::scene::Units;
 use crate::model::Problem;
 use crate::solve::sweep::SweepResult;
 
+use crate::util::csv_table::CsvTable;
+
 /// results.csv text.
 pub fn results(p: &Problem, r: &SweepResult, units: &Units) -> String {
     let u = ColumnUnits::new(units);
-    let mut s = frequency_column(units);
+    let fu = frequency_unit(units);
+    let mut header = vec![fu.column.clone()];
     for o in &p.outputs {
-        let _ = write!(s, ",{0}_amp_{1},{0}_phase_deg", o.name, u.length);
+        header.push(format!("{}_amp_{}", o.name, u.length));
+        header.push(format!("{}_phase_deg", o.name));
     }
-    let _ = writeln!(s, ",dissipated_power_{},status", u.power);
+    header.push(format!("dissipated_power_{}", u.power));
+    header.push("status".into());
+    let mut t = CsvTable::new(&header);
     for (i, f) in r.freqs.iter().enumerate() {
-        let _ = write!(s, "{f:.10e}");
+        let mut row = vec![format!("{:.10e}", fu.show(*f))];
         if r.is_singular(i) || r.failure(i).is_some() {
             // No response computed: empty fields, never inf or NaN.
-            s.push_str(&",".repeat(2 * r.outputs[i].len() + 1));
-            s.push_str(if r.is_singular(i) {
-                ",singular\n"
-            } else {
-                ",failed\n"
-            });
+            row.resize(header.len() - 1, String::new());
+            row.push(
+                if r.is_singular(i) {
+                    "singular"
+                } else {
+                    "failed"
+                }
+                .into(),
+            );
+            t.row(&row);
             continue;
         }
         for v in &r.outputs[i] {
-            let _ = write!(s, ",{:.10e},{:.6}", v.norm(), v.arg().to_degrees());
+            row.push(format!("{:.10e}", v.norm()));
+            row.push(format!("{:.6}", v.arg().to_degrees()));
         }
-        let status = if r.converged[i] {
-            "converged"
-        } else {
-            "not_converged"
-        };
-        let _ = writeln!(s, ",{:.10e},{status}", r.power[i]);
+        row.push(format!("{:.10e}", r.power[i]));
+        row.push(
+            if r.converged[i] {
+                "converged"
+            } else {
+                "not_converged"
+            }
+            .into(),
+        );
+        t.row(&row);
     }
-    s
+    t.finish()
 }
 
 /// harmonics.csv text (harmonic balance): the frequency, then per output and harmonic
 /// h = 0..H `<name>_h<h>_amp_<length>` (h = 0 the mean deviation from the static state).
 pub fn harmonics(p: &Problem, r: &SweepResult, units: &Units) -> String {
     let length = ColumnUnits::new(units).length;
-    let mut s = frequency_column(units);
     let nh = r
         .harmonics
         .first()
         .and_then(|o| o.first())
         .map_or(0, Vec::len);
+    let fu = frequency_unit(units);
+    let mut header = vec![fu.column.clone()];
     for o in &p.outputs {
-        for h in 0..nh {
-            let _ = write!(s, ",{}_h{h}_amp_{length}", o.name);
-        }
+        header.extend((0..nh).map(|h| format!("{}_h{h}_amp_{length}", o.name)));
     }
-    s.push('\n');
+    let mut t = CsvTable::new(&header);
     for (i, (f, outs)) in r.freqs.iter().zip(&r.harmonics).enumerate() {
-        let _ = write!(s, "{f:.10e}");
+        let mut row = vec![format!("{:.10e}", fu.show(*f))];
         if r.is_singular(i) {
             // No response computed: empty fields, as in results.csv.
-            s.push_str(&",".repeat(outs.len() * nh));
-            s.push('\n');
-            continue;
+            row.resize(header.len(), String::new());
+        } else {
+            row.extend(outs.iter().flatten().map(|v| format!("{:.10e}", v.norm())));
         }
-        for v in outs.iter().flatten() {
-            let _ = write!(s, ",{:.10e}", v.norm());
-        }
-        s.push('\n');
+        t.row(&row);
     }
-    s
+    t.finish()
 }
 
 /// Regime name.
@@ -112,52 +121,68 @@ pub fn points(
 ) -> String {
     let u = ColumnUnits::new(units);
     let (l, k, d) = (&u.length, &u.stiffness_per_area, &u.damping_per_area);
-    let mut s = format!(
-        "{},point,interface,x_{l},y_{l},z_{l},closed,pressure_{},amp_t1_{l},amp_t2_{l},k_star_t1_{k},k_star_t2_{k},d_star_t1_{d},d_star_t2_{d},energy_per_cycle_{},ratio_t1,ratio_t2",
-        frequency_column(units),
-        u.pressure,
-        u.energy,
-    );
-    s.push_str(if regimes {
-        ",regime_t1,regime_t2\n"
-    } else {
-        "\n"
-    });
+    let fu = frequency_unit(units);
+    let mut header = vec![fu.column.clone()];
+    header.extend([
+        "point".to_string(),
+        "interface".into(),
+        format!("x_{l}"),
+        format!("y_{l}"),
+        format!("z_{l}"),
+        "closed".into(),
+        format!("pressure_{}", u.pressure),
+        format!("amp_t1_{l}"),
+        format!("amp_t2_{l}"),
+        format!("k_star_t1_{k}"),
+        format!("k_star_t2_{k}"),
+        format!("d_star_t1_{d}"),
+        format!("d_star_t2_{d}"),
+        format!("energy_per_cycle_{}", u.energy),
+        "ratio_t1".into(),
+        "ratio_t2".into(),
+    ]);
+    if regimes {
+        header.push("regime_t1".into());
+        header.push("regime_t2".into());
+    }
+    let mut t = CsvTable::new(&header);
     for (fi, f) in r.freqs.iter().enumerate() {
         for (i, c) in p.contacts.iter().enumerate() {
             let q = &r.points[fi][i];
             let x = c.position;
-            let _ = write!(
-                s,
-                "{f:.10e},{i},{},{},{},{},{},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e}",
-                p.interfaces[c.interface].name,
-                x[0],
-                x[1],
-                x[2],
-                u8::from(closed[i]),
-                pressure[i],
-                q.amplitude[0],
-                q.amplitude[1],
-                q.k_star[0],
-                q.k_star[1],
-                q.d_star[0],
-                q.d_star[1],
-                q.energy,
-                q.ratio[0],
-                q.ratio[1],
+            let mut row = vec![
+                format!("{:.10e}", fu.show(*f)),
+                i.to_string(),
+                p.interfaces[c.interface].name.clone(),
+                x[0].to_string(),
+                x[1].to_string(),
+                x[2].to_string(),
+                u8::from(closed[i]).to_string(),
+            ];
+            row.extend(
+                [
+                    pressure[i],
+                    q.amplitude[0],
+                    q.amplitude[1],
+                    q.k_star[0],
+                    q.k_star[1],
+                    q.d_star[0],
+                    q.d_star[1],
+                    q.energy,
+                    q.ratio[0],
+                    q.ratio[1],
+                ]
+                .iter()
+                .map(|v| format!("{v:.6e}")),
             );
             if regimes {
-                let _ = write!(
-                    s,
-                    ",{},{}",
-                    regime_name(q.regime[0]),
-                    regime_name(q.regime[1])
-                );
+                row.push(regime_name(q.regime[0]).into());
+                row.push(regime_name(q.regime[1]).into());
             }
-            s.push('\n');
+            t.row(&row);
         }
     }
-    s
+    t.finish()
 }
 
 /// Points per regime (worst of the two directions) per frequency.
@@ -182,8 +207,16 @@ pub fn regime_counts(r: &SweepResult, closed: &[bool]) -> Vec<[usize; 4]> {
 /// stick_slip.csv: the frequency, open, stick, microslip, sliding (point counts, worst
 /// direction), then max and median A/δ* over the closed points.
 pub fn stick_slip(r: &SweepResult, closed: &[bool], units: &Units) -> String {
-    let mut s = frequency_column(units);
-    s.push_str(",open,stick,microslip,sliding,max_ratio,median_ratio\n");
+    let fu = frequency_unit(units);
+    let mut t = CsvTable::new([
+        fu.column.as_str(),
+        "open",
+        "stick",
+        "microslip",
+        "sliding",
+        "max_ratio",
+        "median_ratio",
+    ]);
     for ((f, c), pts) in r.freqs.iter().zip(regime_counts(r, closed)).zip(&r.points) {
         let mut ratios: Vec<f64> = pts
             .iter()
@@ -194,11 +227,11 @@ pub fn stick_slip(r: &SweepResult, closed: &[bool], units: &Units) -> String {
         ratios.sort_by(f64::total_cmp);
         let max = ratios.last().copied().unwrap_or(0.0);
         let median = ratios.get(ratios.len() / 2).copied().unwrap_or(0.0);
-        let _ = writeln!(
-            s,
-            "{f:.10e},{},{},{},{},{max:.6e},{median:.6e}",
-            c[0], c[1], c[2], c[3]
-        );
+        let mut row = vec![format!("{:.10e}", fu.show(*f))];
+        row.extend(c.iter().map(usize::to_string));
+        row.push(format!("{max:.6e}"));
+        row.push(format!("{median:.6e}"));
+        t.row(&row);
     }
-    s
+    t.finish()
 }

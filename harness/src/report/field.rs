@@ -20,12 +20,8 @@ use crate::util::number::sig;
 
 /// The file name of the field at `f` (1/time): `field_1174.500_Hz.vtu`.
 pub fn file_name(f: f64, units: &Units) -> String {
-    let (col, _) = frequency_unit(units);
-    format!(
-        "field_{}_{}.vtu",
-        sig(f),
-        col.trim_start_matches("frequency_")
-    )
+    let fu = frequency_unit(units);
+    format!("field_{}_{}.vtu", sig(fu.show(f)), fu.suffix())
 }
 
 /// Every kept field of `r` (the `[field_output]` sweep) as (file name, `.vtu` text).

@@ -11,6 +11,7 @@ use crate::input::scene::Units;
 use crate::report::vtu::{unstructured_grid, CellType, PointField};
 use crate::solve::modal_stuck::StuckModes;
 use crate::solve::mode_labels::{Character, Kind, ModeGeometry};
+use crate::util::csv_table::CsvTable;
 use crate::util::number::sig;
 
 /// An eigenvalue at most this fraction of the table's largest is a rigid-body mode's
@@ -44,8 +45,11 @@ impl<'a> ModeTable<'a> {
         }
     }
 
+    /// The modes' frequencies as the scene shows them ([`frequency_unit`]).
     fn frequencies(&self) -> Vec<f64> {
-        self.modes.band.modes.frequencies_hz()
+        let fu = frequency_unit(self.units);
+        let f = self.modes.band.modes.frequencies_hz();
+        f.into_iter().map(|f| fu.show(f)).collect()
     }
 
     /// The label of mode `i`: `rigid_body` when its eigenvalue is round-off beside the
@@ -64,7 +68,7 @@ impl<'a> ModeTable<'a> {
     /// Markdown table: mode, frequency, label, dominant direction, kind shares (%),
     /// effective masses.
     pub fn markdown(&self) -> String {
-        let (_, fu) = frequency_unit(self.units);
+        let fu = frequency_unit(self.units).text;
         let mu = &self.units.mass;
         let mut s = format!(
             "| mode | frequency ({fu}) | label | dominant | longitudinal % | bending % | torsion % | section % | m_eff,x ({mu}) | m_eff,y ({mu}) | m_eff,z ({mu}) |\n|---:|---:|---|:---:|---:|---:|---:|---:|---:|---:|---:|\n"
@@ -94,34 +98,42 @@ impl<'a> ModeTable<'a> {
     /// kind shares (fractions; empty for lumped masses), effective masses and inertias
     /// per direction, the eigen-residual; 7 significant digits.
     pub fn csv(&self) -> String {
-        let (fcol, _) = frequency_unit(self.units);
+        let fcol = frequency_unit(self.units).column;
         let (m, l) = (&self.units.mass, &self.units.length);
-        let mut s = format!("mode,{fcol},label,dominant,share_longitudinal,share_bending,share_torsion,share_section");
-        for d in ['x', 'y', 'z'] {
-            let _ = write!(s, ",effective_mass_{d}_{m}");
+        let mut header: Vec<String> = ["mode", fcol.as_str(), "label", "dominant"]
+            .iter()
+            .map(|h| h.to_string())
+            .collect();
+        for kind in ["longitudinal", "bending", "torsion", "section"] {
+            header.push(format!("share_{kind}"));
         }
         for d in ['x', 'y', 'z'] {
-            let _ = write!(s, ",effective_inertia_{d}_{m}_{l}2");
+            header.push(format!("effective_mass_{d}_{m}"));
         }
-        s.push_str(",relative_residual\n");
+        for d in ['x', 'y', 'z'] {
+            header.push(format!("effective_inertia_{d}_{m}_{l}2"));
+        }
+        header.push("relative_residual".into());
+        let mut t = CsvTable::new(&header);
         let modes = &self.modes.band.modes;
         for (i, (f, c)) in self.frequencies().iter().zip(&self.characters).enumerate() {
             // Frequency in the shortest round-trip form: a sweep can hold it exactly.
-            let _ = write!(s, "{},{f},{},{}", i + 1, self.label(i), c.dominant_name());
-            for v in shares(c) {
-                let _ = write!(s, ",{}", v.map_or(String::new(), sig));
-            }
+            let mut row = vec![
+                (i + 1).to_string(),
+                f.to_string(),
+                self.label(i),
+                c.dominant_name().to_string(),
+            ];
+            row.extend(shares(c).map(|v| v.map_or(String::new(), sig)));
             let values = c
                 .effective_mass
                 .iter()
                 .chain(&c.effective_inertia)
                 .chain(std::iter::once(&modes.residuals[i]));
-            for v in values {
-                let _ = write!(s, ",{}", sig(*v));
-            }
-            s.push('\n');
+            row.extend(values.map(|v| sig(*v)));
+            t.row(&row);
         }
-        s
+        t.finish()
     }
 
     /// modes.vtu: the mesh (hexahedra, and a vertex per node outside every element:
@@ -131,8 +143,8 @@ impl<'a> ModeTable<'a> {
     pub fn vtu(&self) -> String {
         let p = &self.modes.problem;
         let model = &p.model;
-        let (fcol, _) = frequency_unit(self.units);
-        let unit = fcol.trim_start_matches("frequency_");
+        let fu = frequency_unit(self.units);
+        let unit = fu.suffix();
         let shapes: Vec<Vec<f64>> = self
             .modes
             .band

@@ -4,6 +4,7 @@
 
 use plotters::prelude::*;
 
+use crate::input::scene::units::frequency_unit;
 use crate::model::Problem;
 use crate::solve::sweep::SweepResult;
 use crate::util::ticks::{at_least_a_decade, log_tick};
@@ -29,8 +30,9 @@ pub fn frf(
     let root = SVGBackend::new(path, (900, 560)).into_drawing_area();
     root.fill(&WHITE).map_err(err)?;
     let main = curves.first().ok_or("no sweep")?.0;
-    let f0 = *main.freqs.first().ok_or("no frequencies")?;
-    let f1 = *main.freqs.last().ok_or("no frequencies")?;
+    let fu = frequency_unit(units);
+    let f0 = fu.show(*main.freqs.first().ok_or("no frequencies")?);
+    let f1 = fu.show(*main.freqs.last().ok_or("no frequencies")?);
     let mut ymin = f64::INFINITY;
     let mut ymax = 0.0f64;
     for (r, _) in curves {
@@ -82,7 +84,7 @@ pub fn frf(
                 .zip(&r.outputs)
                 .enumerate()
                 .filter(|(i, _)| !r.is_singular(*i) && r.failure(*i).is_none())
-                .map(|(_, (f, v))| (*f, v[k].norm().max(ymin)))
+                .map(|(_, (f, v))| (fu.show(*f), v[k].norm().max(ymin)))
                 .collect();
             let style = color.stroke_width(width);
             let drawn = if pts.len() <= MARKED_POINTS {
@@ -126,12 +128,13 @@ pub fn frf(
 /// Curves of at most this many frequencies are drawn as markers, not lines.
 const MARKED_POINTS: usize = 3;
 
-/// "frequency [Hz]" for seconds, else "frequency [1/<time>]".
+/// "frequency [Hz]", "frequency [1/<time>]" or "angular frequency [rad/<time>]".
 fn freq_label(units: &crate::input::scene::Units) -> String {
-    if units.time == "s" {
-        "frequency [Hz]".into()
+    let fu = frequency_unit(units);
+    if fu.factor == 1.0 {
+        format!("frequency [{}]", fu.text)
     } else {
-        format!("frequency [1/{}]", units.time)
+        format!("angular frequency [{}]", fu.text)
     }
 }
 
@@ -235,7 +238,9 @@ pub fn stick_slip(
         })
         .x_label_formatter(&|v: &f64| {
             let i = (*v as usize).min(freqs.len().saturating_sub(1));
-            freqs.get(i).map_or(String::new(), |f| format!("{f:.0}"))
+            freqs.get(i).map_or(String::new(), |f| {
+                format!("{:.0}", frequency_unit(units).show(*f))
+            })
         })
         .draw()
         .map_err(err)?;

@@ -5,7 +5,6 @@
 //! previous end state (a slow sweep, which follows a branch as a physical sweep would);
 //! with `start = "linear"` every frequency starts from the stuck linear steady state.
 
-use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -18,11 +17,12 @@ use super::rk4::{max_frequency, stable_steps_per_cycle, SceneRk4};
 use super::settings::AUTO_RK4_MAX_DOFS;
 use super::{Forcing, Integrator, Start, State, Stepper, TimeError, TimeSettings, C64};
 use crate::fe::csc::Csc;
-use crate::input::scene::units::{frequency_column, ColumnUnits};
+use crate::input::scene::units::{frequency_unit, ColumnUnits};
 use crate::input::scene::{Scene, Units};
 use crate::model::{build, Problem};
 use crate::solve::static_step::{self, StaticState};
 use crate::solve::umfpack::{to_complex, Symbolic};
+use crate::util::csv_table::CsvTable;
 
 /// The time-domain result at one frequency.
 #[derive(Debug, Clone, Serialize)]
@@ -318,51 +318,64 @@ pub fn sweep(
 /// <name>_half_range_mm ((max − min)/2), <name>_max_mm, <name>_min_mm;
 /// dissipated_power_N_mm_per_s (Σ energy per cycle × f); energy_per_cycle_N_mm;
 /// energy_trapezoid_N_mm (check); integrator, steps_per_cycle, cycles, steady, distance
-/// (relative), seconds (wall clock).
+/// (relative), wall_time_s (wall clock).
 pub fn results_csv(p: &Problem, r: &[FreqResult], units: &Units) -> String {
     let u = ColumnUnits::new(units);
-    let mut s = frequency_column(units);
+    let l = &u.length;
+    let fu = frequency_unit(units);
+    let mut header = vec![fu.column.clone()];
     for o in &p.outputs {
-        let _ = write!(
-            s,
-            ",{0}_amp_{1},{0}_phase_deg,{0}_half_range_{1},{0}_max_{1},{0}_min_{1}",
-            o.name, u.length
-        );
+        let n = &o.name;
+        header.extend([
+            format!("{n}_amp_{l}"),
+            format!("{n}_phase_deg"),
+            format!("{n}_half_range_{l}"),
+            format!("{n}_max_{l}"),
+            format!("{n}_min_{l}"),
+        ]);
     }
-    let _ = writeln!(
-        s,
-        ",dissipated_power_{},energy_per_cycle_{e},energy_trapezoid_{e},integrator,steps_per_cycle,cycles,steady,distance,seconds",
-        u.power,
-        e = u.energy
+    header.extend([
+        format!("dissipated_power_{}", u.power),
+        format!("energy_per_cycle_{}", u.energy),
+        format!("energy_trapezoid_{}", u.energy),
+    ]);
+    header.extend(
+        [
+            "integrator",
+            "steps_per_cycle",
+            "cycles",
+            "steady",
+            "distance",
+            "wall_time_s",
+        ]
+        .map(String::from),
     );
+    let mut t = CsvTable::new(&header);
     for x in r {
-        let _ = write!(s, "{:.10e}", x.freq);
+        let mut row = vec![format!("{:.10e}", fu.show(x.freq))];
         for o in &x.last.outputs {
-            let _ = write!(
-                s,
-                ",{:.10e},{:.6},{:.10e},{:.10e},{:.10e}",
-                o.amplitude,
-                o.phase_deg,
-                o.half_range(),
-                o.max,
-                o.min
-            );
+            row.extend([
+                format!("{:.10e}", o.amplitude),
+                format!("{:.6}", o.phase_deg),
+                format!("{:.10e}", o.half_range()),
+                format!("{:.10e}", o.max),
+                format!("{:.10e}", o.min),
+            ]);
         }
-        let _ = writeln!(
-            s,
-            ",{:.10e},{:.10e},{:.10e},{},{},{},{},{:.3e},{:.3}",
-            x.last.energy * x.freq,
-            x.last.energy,
-            x.last.energy_trapezoid,
-            x.integrator,
-            x.steps_per_cycle,
-            x.cycles,
-            x.steady,
-            x.distance,
-            x.seconds
-        );
+        row.extend([
+            format!("{:.10e}", x.last.energy * x.freq),
+            format!("{:.10e}", x.last.energy),
+            format!("{:.10e}", x.last.energy_trapezoid),
+            x.integrator.to_string(),
+            x.steps_per_cycle.to_string(),
+            x.cycles.to_string(),
+            x.steady.to_string(),
+            format!("{:.3e}", x.distance),
+            format!("{:.3}", x.seconds),
+        ]);
+        t.row(&row);
     }
-    s
+    t.finish()
 }
 
 /// points_time.csv (e.g. N, mm, s): frequency_Hz, point, interface, x_mm, y_mm, z_mm,
@@ -370,27 +383,30 @@ pub fn results_csv(p: &Problem, r: &[FreqResult], units: &Units) -> String {
 pub fn points_csv(p: &Problem, r: &[FreqResult], units: &Units) -> String {
     let u = ColumnUnits::new(units);
     let l = &u.length;
-    let mut s = format!(
-        "{},point,interface,x_{l},y_{l},z_{l},energy_per_cycle_{}\n",
-        frequency_column(units),
-        u.energy
-    );
+    let fu = frequency_unit(units);
+    let mut t = CsvTable::new([
+        fu.column.clone(),
+        "point".into(),
+        "interface".into(),
+        format!("x_{l}"),
+        format!("y_{l}"),
+        format!("z_{l}"),
+        format!("energy_per_cycle_{}", u.energy),
+    ]);
     for x in r {
         for (i, (c, e)) in p.contacts.iter().zip(&x.last.point_energy).enumerate() {
-            let _ = writeln!(
-                s,
-                "{:.10e},{},{},{},{},{},{:.10e}",
-                x.freq,
-                i,
-                p.interfaces[c.interface].name,
-                c.position[0],
-                c.position[1],
-                c.position[2],
-                e
-            );
+            t.row([
+                format!("{:.10e}", fu.show(x.freq)),
+                i.to_string(),
+                p.interfaces[c.interface].name.clone(),
+                c.position[0].to_string(),
+                c.position[1].to_string(),
+                c.position[2].to_string(),
+                format!("{e:.10e}"),
+            ]);
         }
     }
-    s
+    t.finish()
 }
 
 /// Writes results_time.csv, points_time.csv and run_time.json into `dir`.

@@ -30,12 +30,14 @@ use std::time::Instant;
 use serde::Serialize;
 
 use crate::capi::{set_quadrature, Quadrature};
-use crate::input::scene::{Mode, Scene};
+use crate::input::scene::units::{frequency_unit, ColumnUnits};
+use crate::input::scene::{Mode, Scene, Units};
 use crate::mhb::default_samples;
 use crate::run::{run, Extras};
 use crate::time::scene_run::{integrator_for, run_scene, FreqResult};
 use crate::time::{Integrator, Start, TimeSettings};
 use crate::util::atomic;
+use crate::util::csv_table::CsvTable;
 
 /// The harmonic-balance rungs.
 pub const HARMONICS: [usize; 4] = [1, 3, 7, 15];
@@ -70,6 +72,8 @@ pub struct Tradeoff {
     /// Frequency (1/time).
     pub freq: f64,
     pub output: String,
+    /// The scene's units (column headers and table headings).
+    pub units: Units,
     pub rungs: Vec<Rung>,
     /// Summary lines (speed ratios).
     pub summary: Vec<String>,
@@ -336,6 +340,7 @@ pub fn study(scene: &Scene, freq: Option<f64>, log: &dyn Fn(&str)) -> Result<Tra
         scene: scene.file.clone(),
         freq: f,
         output: base.spec.outputs[0].name.clone(),
+        units: base.spec.units.clone(),
         rungs,
         summary,
     })
@@ -400,32 +405,52 @@ fn ratios(rungs: &[Rung]) -> Vec<String> {
 
 /// tradeoff.csv.
 pub fn csv(t: &Tradeoff) -> String {
-    let mut s = String::from("family,label,frequency_domain,seconds,amplitude,amplitude_error,energy_per_cycle,energy_error,converged\n");
+    let u = ColumnUnits::new(&t.units);
+    let mut table = CsvTable::new([
+        "family".to_string(),
+        "label".into(),
+        "frequency_domain".into(),
+        "wall_time_s".into(),
+        format!("amplitude_{}", u.length),
+        "amplitude_error".into(),
+        format!("energy_per_cycle_{}", u.energy),
+        "energy_error".into(),
+        "converged".into(),
+    ]);
     for r in &t.rungs {
-        let _ = writeln!(
-            s,
-            "{},\"{}\",{},{:.6e},{:.10e},{:.3e},{:.10e},{:.3e},{}",
-            r.family,
-            r.label,
-            r.frequency_domain,
-            r.seconds,
-            r.amplitude,
-            r.amplitude_error,
-            r.energy,
-            r.energy_error,
-            r.converged
-        );
+        table.row([
+            r.family.to_string(),
+            r.label.clone(),
+            r.frequency_domain.to_string(),
+            format!("{:.6e}", r.seconds),
+            format!("{:.10e}", r.amplitude),
+            format!("{:.3e}", r.amplitude_error),
+            format!("{:.10e}", r.energy),
+            format!("{:.3e}", r.energy_error),
+            r.converged.to_string(),
+        ]);
     }
-    s
+    table.finish()
 }
 
 /// tradeoff.md.
 pub fn markdown(t: &Tradeoff) -> String {
-    let mut s = format!(
-        "`{}` at f = {:.6} (1/time). Errors are relative to the reference time-domain run (last row): **amplitude** = first-harmonic amplitude of `{}`, **energy** = total joint energy dissipated per cycle.\n\n",
-        t.scene, t.freq, t.output
+    let fu = frequency_unit(&t.units);
+    let (length, energy) = (
+        &t.units.length,
+        format!("{}·{}", t.units.force, t.units.length),
     );
-    s.push_str("| rung | wall time [s] | amplitude | amplitude error | energy per cycle | energy error | converged |\n|---|---:|---:|---:|---:|---:|---|\n");
+    let mut s = format!(
+        "`{}` at {:.6} {}. Errors are relative to the reference time-domain run (last row): **amplitude** = first-harmonic amplitude of `{}`, **energy** = total joint energy dissipated per cycle.\n\n",
+        t.scene,
+        fu.show(t.freq),
+        fu.text,
+        t.output
+    );
+    let _ = writeln!(
+        s,
+        "| rung | wall time [s] | amplitude [{length}] | amplitude error | energy per cycle [{energy}] | energy error | converged |\n|---|---:|---:|---:|---:|---:|---|"
+    );
     for r in &t.rungs {
         let _ = writeln!(
             s,

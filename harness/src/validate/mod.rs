@@ -32,6 +32,7 @@ use std::path::{Path, PathBuf};
 use serde::Serialize;
 
 use crate::util::atomic;
+use crate::util::csv_table::CsvTable;
 
 /// One compared quantity.
 #[derive(Debug, Clone, Serialize)]
@@ -174,24 +175,32 @@ fn pct(v: Option<f64>) -> String {
 
 /// validation.csv.
 pub fn csv(rep: &Report) -> String {
-    let mut s = String::from("case,parameter,quantity,frequency_domain,time_domain,error,time_domain_half_range,error_half_range,note\n");
+    let mut t = CsvTable::new([
+        "case",
+        "parameter",
+        "quantity",
+        "frequency_domain",
+        "time_domain",
+        "error",
+        "time_domain_half_range",
+        "error_half_range",
+        "note",
+    ]);
     for r in &rep.rows {
         let o = |v: Option<f64>| v.map_or_else(String::new, |x| format!("{x:.8e}"));
-        let _ = writeln!(
-            s,
-            "{},\"{}\",\"{}\",{},{:.8e},{},{},{},\"{}\"",
-            r.case,
-            r.parameter,
-            r.quantity,
+        t.row([
+            r.case.clone(),
+            r.parameter.clone(),
+            r.quantity.clone(),
             o(r.frequency_domain),
-            r.time_domain,
+            format!("{:.8e}", r.time_domain),
             o(r.error),
             o(r.time_domain_half_range),
             o(r.error_half_range),
-            r.note.replace('"', "'")
-        );
+            r.note.clone(),
+        ]);
     }
-    s
+    t.finish()
 }
 
 /// validation.md: one table per case, then its notes.

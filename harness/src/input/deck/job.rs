@@ -54,6 +54,7 @@ impl DeckJob {
             force: "deck force".into(),
             time: "deck time".into(),
             mass: "deck mass".into(),
+            frequency: None,
         });
         let (mut preload, mut frequency, mut dynamics) = (None, None, None);
         for (i, st) in deck.steps.iter().enumerate() {
@@ -333,6 +334,7 @@ pub fn stated_units(file: &str, text: &str) -> Result<Option<Units>, DeckError> 
             force,
             time,
             mass,
+            frequency: None,
         }));
     }
     Ok(None)

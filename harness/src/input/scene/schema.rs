@@ -98,4 +98,9 @@ pub struct Units {
     pub force: String,
     pub time: String,
     pub mass: String,
+    /// How outputs show frequencies: `"Hz"` (time in s) or `"1/<time>"`, cycles per time
+    /// unit (the default), or `"rad/<time>"`, angular frequency ω = 2πf. Display only:
+    /// `[sweep]` and `[[refine]]` frequencies stay in cycles per time unit.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub frequency: Option<String>,
 }

@@ -4,17 +4,70 @@
 
 use crate::input::scene::schema::Units;
 
-/// The frequency unit: (column name, text), ("frequency_Hz", "Hz") for seconds, else
-/// ("frequency_per_<time>", "1/<time>").
-pub fn frequency_unit(units: &Units) -> (String, String) {
-    if units.time == "s" {
-        ("frequency_Hz".into(), "Hz".into())
-    } else {
-        (
-            format!("frequency_per_{}", column_word(&units.time)),
-            format!("1/{}", units.time),
-        )
+/// How outputs show frequencies (`[units] frequency`).
+#[derive(Debug, Clone, PartialEq)]
+pub struct FrequencyUnit {
+    /// Column name, e.g. `frequency_Hz`, `frequency_per_ms`, `angular_frequency_rad_per_s`.
+    pub column: String,
+    /// Text for labels and headings, e.g. `Hz`, `1/ms`, `rad/s`.
+    pub text: String,
+    /// Shown value per frequency in cycles per time unit: 1, or 2π for angular.
+    pub factor: f64,
+}
+
+impl FrequencyUnit {
+    /// A frequency f (cycles per time unit) as shown.
+    pub fn show(&self, f: f64) -> f64 {
+        f * self.factor
     }
+
+    /// The unit part of the column name for file and field names: `Hz`, `per_ms`,
+    /// `rad_per_s`.
+    pub fn suffix(&self) -> &str {
+        self.column
+            .rsplit("frequency_")
+            .next()
+            .unwrap_or(&self.column)
+    }
+}
+
+/// The frequency unit outputs use: cycles per time unit (`Hz` for seconds), or angular
+/// (`rad/<time>`) when `[units] frequency` says so.
+pub fn frequency_unit(units: &Units) -> FrequencyUnit {
+    let t = column_word(&units.time);
+    if units.frequency.as_deref() == Some(&angular_text(units)) {
+        FrequencyUnit {
+            column: format!("angular_frequency_rad_per_{t}"),
+            text: angular_text(units),
+            factor: 2.0 * std::f64::consts::PI,
+        }
+    } else if units.time == "s" {
+        FrequencyUnit {
+            column: "frequency_Hz".into(),
+            text: "Hz".into(),
+            factor: 1.0,
+        }
+    } else {
+        FrequencyUnit {
+            column: format!("frequency_per_{t}"),
+            text: format!("1/{}", units.time),
+            factor: 1.0,
+        }
+    }
+}
+
+/// The accepted spellings of `[units] frequency` for these units: the cycles unit
+/// (`Hz` for seconds, always `1/<time>`) and the angular one (`rad/<time>`).
+pub fn frequency_spellings(units: &Units) -> Vec<String> {
+    let mut v = vec![format!("1/{}", units.time), angular_text(units)];
+    if units.time == "s" {
+        v.insert(0, "Hz".into());
+    }
+    v
+}
+
+fn angular_text(units: &Units) -> String {
+    format!("rad/{}", units.time)
 }
 
 /// A unit name as part of a column name: white space becomes `-` (a deck without a
@@ -25,7 +78,7 @@ fn column_word(unit: &str) -> String {
 
 /// The frequency column's name (`frequency_Hz` or `frequency_per_<time>`).
 pub fn frequency_column(units: &Units) -> String {
-    frequency_unit(units).0
+    frequency_unit(units).column
 }
 
 /// Column suffixes of the derived quantities of a run's tables.
@@ -74,19 +127,40 @@ mod tests {
             force: force.into(),
             time: time.into(),
             mass: "t".into(),
+            frequency: None,
         }
     }
 
     #[test]
     fn frequency_follows_the_time_unit() {
-        assert_eq!(
+        let (hz, per_ms) = (
             frequency_unit(&units("mm", "N", "s")),
-            ("frequency_Hz".into(), "Hz".into())
+            frequency_unit(&units("mm", "N", "ms")),
         );
         assert_eq!(
-            frequency_unit(&units("mm", "N", "ms")),
-            ("frequency_per_ms".into(), "1/ms".into())
+            (hz.column.as_str(), hz.text.as_str()),
+            ("frequency_Hz", "Hz")
         );
+        assert_eq!(
+            (per_ms.column.as_str(), per_ms.text.as_str()),
+            ("frequency_per_ms", "1/ms")
+        );
+        assert_eq!((hz.factor, hz.suffix()), (1.0, "Hz"));
+        assert_eq!(per_ms.suffix(), "per_ms");
+    }
+
+    #[test]
+    fn a_declared_angular_unit_shows_two_pi_f() {
+        let mut u = units("mm", "N", "ms");
+        u.frequency = Some("rad/ms".into());
+        let w = frequency_unit(&u);
+        assert_eq!(w.column, "angular_frequency_rad_per_ms");
+        assert_eq!((w.text.as_str(), w.suffix()), ("rad/ms", "rad_per_ms"));
+        assert_eq!(w.show(1.0), 2.0 * std::f64::consts::PI);
+        assert_eq!(frequency_spellings(&u), ["1/ms", "rad/ms"]);
+        // Cycles spelled out keep the default.
+        u.frequency = Some("1/ms".into());
+        assert_eq!(frequency_unit(&u).factor, 1.0);
     }
 
     #[test]

@@ -14,6 +14,7 @@ use std::collections::{BTreeMap, BTreeSet};
 
 use super::error::KeyPath;
 use super::schema::*;
+use super::units::frequency_spellings;
 
 /// A failed check: where and why.
 pub type Problem = (KeyPath, String);
@@ -150,6 +151,15 @@ fn units(c: &mut Checker, s: &SceneFile) {
     ] {
         if v.trim().is_empty() {
             c.fail(u.key(k), "unit name must not be empty");
+        }
+    }
+    if let Some(f) = &s.units.frequency {
+        let ok = frequency_spellings(&s.units);
+        if !ok.contains(f) {
+            c.fail(
+                u.key("frequency"),
+                format!("frequency unit \"{f}\": one of {}", ok.join(", ")),
+            );
         }
     }
 }
