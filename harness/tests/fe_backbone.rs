@@ -225,3 +225,35 @@ fn h1_epmc_is_the_first_order_backbone_where_damping_is_small() {
     // ≤ 1.70 ζ² in ζ); the AFT's 1024 samples add ≤ 1e-4 relative.
     assert!(ew < 1.0 && ez < 1.5, "ω {ew} ζ {ez}");
 }
+
+#[test]
+fn the_exported_deck_gives_the_scene_backbone() {
+    // examples/abaqus/three-beams is `jointlin export` of three-beams-coarse, node for
+    // node: read as a deck (contact pairs through the deck's surfaces) it must reduce to
+    // the same system and trace the same backbone.
+    let deck = format!(
+        "{}/../examples/abaqus/three-beams/three-beams.inp",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let deck = jointlin_harness::input::load(std::path::Path::new(&deck))
+        .unwrap()
+        .into_scene();
+    let scene = Scene::parse("three-beams-coarse.toml", &text()).unwrap();
+    let (_, a) = reduced(&scene);
+    let (_, b) = reduced(&deck);
+    assert_eq!(
+        a.lumped.system.elements.len(),
+        b.lumped.system.elements.len()
+    );
+    let qs = q_stick(&a.lumped);
+    let q = log_space(0.1 * qs, 10.0 * qs, 9);
+    let fa = first_order::backbone(&a.lumped.system, 1, &q).unwrap();
+    let fb = first_order::backbone(&b.lumped.system, 1, &q).unwrap();
+    for (x, y) in fa.iter().zip(&fb) {
+        let (dw, dz) = (
+            y.omega / x.omega - 1.0,
+            y.damping_ratio / x.damping_ratio - 1.0,
+        );
+        assert!(dw.abs() < 1e-8 && dz.abs() < 1e-6, "{dw:e} {dz:e}");
+    }
+}

@@ -39,6 +39,11 @@ use crate::solve::umfpack::{to_complex, Symbolic};
 /// Convergence of the reduction: the sliding frequencies up to the traced mode change by
 /// less than this fraction of its stuck frequency when the interior modes double.
 pub const MODE_TOL: f64 = 1e-6;
+/// Most joints (contact directions): the reduced model is dense, and the first-order
+/// backbone factors it several times per amplitude (n³: 400 joints, about ten minutes
+/// for the default 60 amplitudes). The bolted-lap deck's 720 did not finish its
+/// reduction in five minutes.
+pub const MAX_JOINTS: usize = 400;
 /// Interior modes at the start of the doubling (at least twice the mode number).
 const MIN_MODES: usize = 8;
 /// Most interior modes (the dense systems downstream grow as their cube).
@@ -153,6 +158,12 @@ pub fn reduce(p: &Problem, effects: &Effects, mode: usize) -> Result<Reduced, St
         names.push(format!("spring{}_cubic", sp.spring));
     }
     let nb = rows.len();
+    if nb > MAX_JOINTS {
+        return Err(format!(
+            "{nb} joints (two per closed contact point): backbones of FE scenes take at most \
+             {MAX_JOINTS}, the reduced model is dense"
+        ));
+    }
     if nb == 0 {
         return Err("no contact point is closed after the preload: nothing to trace".into());
     }
