@@ -58,14 +58,6 @@ fn status_messages_exist_for_every_code() {
     );
 }
 
-fn last_error() -> String {
-    let mut buf = [0 as std::ffi::c_char; 256];
-    unsafe { jointlin_last_error(buf.as_mut_ptr(), buf.len()) };
-    unsafe { CStr::from_ptr(buf.as_ptr()) }
-        .to_string_lossy()
-        .into_owned()
-}
-
 #[test]
 fn linearize_cubic_rejects_hard_inputs_without_writing() {
     let sentinel = jointlin_cubic_linearization {

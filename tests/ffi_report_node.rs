@@ -8,16 +8,7 @@ mod ffi_common;
 use ffi_common::*;
 use jointlin::ffi::error::*;
 use jointlin::ffi::store::*;
-use std::ffi::CStr;
 use std::ptr::{null, null_mut};
-
-fn last_error() -> String {
-    let mut buf = [0 as std::ffi::c_char; 256];
-    unsafe { jointlin_last_error(buf.as_mut_ptr(), buf.len()) };
-    unsafe { CStr::from_ptr(buf.as_ptr()) }
-        .to_string_lossy()
-        .into_owned()
-}
 
 /// Registers a point of interaction `name` at `node`, returning its id.
 fn register(store: *const jointlin_store, name: &[u8], node: i32, x: f64) -> i64 {

@@ -3,6 +3,7 @@
 
 #![allow(dead_code)]
 
+use jointlin::ffi::error::jointlin_last_error;
 use jointlin::ffi::store::*;
 use jointlin::ffi::uinter::*;
 
@@ -204,4 +205,13 @@ pub fn uexternaldb(
             kinc,
         )
     }
+}
+
+/// The calling thread's last error message (jointlin_last_error).
+pub fn last_error() -> String {
+    let mut buf = [0 as std::ffi::c_char; 256];
+    unsafe { jointlin_last_error(buf.as_mut_ptr(), buf.len()) };
+    unsafe { std::ffi::CStr::from_ptr(buf.as_ptr()) }
+        .to_string_lossy()
+        .into_owned()
 }

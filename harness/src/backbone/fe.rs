@@ -28,7 +28,7 @@ use crate::capi::Tangential;
 use crate::fe::csc::Csc;
 use crate::input::scene::schema::Effects;
 use crate::mhb::{Element, Law, System};
-use crate::model::lumped::Lumped;
+use crate::model::lumped::{undamped_frequencies as frequencies, Lumped};
 use crate::model::Problem;
 use crate::solve::contact::tangential;
 use crate::solve::modal::{lowest_modes, ModalOptions};
@@ -84,26 +84,6 @@ fn mul_cols(a: &Csc<f64>, x: &DMatrix<f64>) -> DMatrix<f64> {
         y.column_mut(c).copy_from_slice(&col);
     }
     y
-}
-
-/// Undamped frequencies (1/time, ascending) of (K, M), M positive definite.
-fn frequencies(k: &DMatrix<f64>, m: &DMatrix<f64>) -> Result<Vec<f64>, String> {
-    let l = m
-        .clone()
-        .cholesky()
-        .ok_or("the reduced mass matrix is not positive definite")?
-        .l();
-    let li = l
-        .try_inverse()
-        .ok_or("the reduced mass matrix is singular")?;
-    let a = &li * k * li.transpose();
-    let mut f: Vec<f64> = ((&a + a.transpose()) * 0.5)
-        .symmetric_eigenvalues()
-        .iter()
-        .map(|w2| w2.max(0.0).sqrt() / (2.0 * std::f64::consts::PI))
-        .collect();
-    f.sort_by(f64::total_cmp);
-    Ok(f)
 }
 
 /// Reduces the FE problem `p` for a backbone of mode `mode` (1-based). `effects`:

@@ -49,21 +49,7 @@ impl Lumped {
                 }
             }
         }
-        let l = sys
-            .m
-            .clone()
-            .cholesky()
-            .ok_or("the mass matrix is not positive definite")?
-            .l();
-        let li = l.try_inverse().ok_or("the mass matrix is singular")?;
-        let a = &li * k * li.transpose();
-        let mut f: Vec<f64> = ((&a + a.transpose()) * 0.5)
-            .symmetric_eigenvalues()
-            .iter()
-            .map(|w2| w2.max(0.0).sqrt() / (2.0 * std::f64::consts::PI))
-            .collect();
-        f.sort_by(f64::total_cmp);
-        Ok(f)
+        undamped_frequencies(&k, &sys.m)
     }
 }
 
@@ -302,4 +288,23 @@ pub fn build(scene: &Scene) -> Result<Lumped, String> {
         elements: names,
         outputs,
     })
+}
+
+/// Undamped frequencies (1/time, ascending) of (K, M), M positive definite: the
+/// eigenvalues of L⁻¹KL⁻ᵀ with M = LLᵀ.
+pub fn undamped_frequencies(k: &DMatrix<f64>, m: &DMatrix<f64>) -> Result<Vec<f64>, String> {
+    let l = m
+        .clone()
+        .cholesky()
+        .ok_or("the mass matrix is not positive definite")?
+        .l();
+    let li = l.try_inverse().ok_or("the mass matrix is singular")?;
+    let a = &li * k * li.transpose();
+    let mut f: Vec<f64> = ((&a + a.transpose()) * 0.5)
+        .symmetric_eigenvalues()
+        .iter()
+        .map(|w2| w2.max(0.0).sqrt() / (2.0 * std::f64::consts::PI))
+        .collect();
+    f.sort_by(f64::total_cmp);
+    Ok(f)
 }
