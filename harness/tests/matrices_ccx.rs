@@ -25,6 +25,10 @@ fn ccx_here() -> bool {
     true
 }
 
+fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("..")
+}
+
 fn tmp(name: &str) -> PathBuf {
     std::env::temp_dir().join(format!("jointlin-{name}-{}", std::process::id()))
 }
@@ -44,6 +48,31 @@ fn scene_text(extra: &str, load_point: &str) -> String {
          [sweep]\nf_min = 300.0\nf_max = 2000.0\ncount = 10\n\
          [[outputs]]\nname = \"tip_z\"\nbody = \"beam.{load_point}\"\ndirection = [0.0, 0.0, 1.0]\n"
     )
+}
+
+/// `got` equals `want` word for word, numbers to 1e-9 of `want`'s largest.
+fn same_numbers(name: &str, got: &str, want: &str) {
+    let words = |t: &str| -> Vec<String> {
+        t.split(|c: char| c.is_whitespace() || c == ',')
+            .filter(|w| !w.is_empty())
+            .map(String::from)
+            .collect()
+    };
+    let (g, w) = (words(got), words(want));
+    assert_eq!(g.len(), w.len(), "{name}: word count");
+    let scale = w
+        .iter()
+        .filter_map(|x| x.parse::<f64>().ok())
+        .fold(0.0f64, |m, v| m.max(v.abs()));
+    for (a, b) in g.iter().zip(&w) {
+        match (a.parse::<f64>(), b.parse::<f64>()) {
+            (Ok(x), Ok(y)) => assert!(
+                (x - y).abs() <= 1e-9 * scale,
+                "{name}: {x} vs committed {y} (scale {scale})"
+            ),
+            _ => assert_eq!(a, b, "{name}"),
+        }
+    }
 }
 
 fn write_scene(dir: &Path, text: &str) -> Scene {
@@ -115,6 +144,18 @@ fn craig_bampton_with_joint_against_full_with_spring() {
                  law = \"mindlin\"\nmu = 0.3\nnormal_force = 10.0\nk_t0 = 1000.0\n";
     let cb_scene = write_scene(&cbdir, &scene_text(joint, "tip"));
     let cb_f = frequencies(&cb_scene);
+    // scenes/beam-cb/ is this reduction as `--example beam_cb` writes it: the same text,
+    // numbers to 1e-9 of the matrix's largest entry (ccx and the eigen-solver may move
+    // the last digits between machines).
+    let committed = root().join("scenes/beam-cb");
+    for (name, text) in [
+        ("K.mtx", &cb.stiffness),
+        ("M.mtx", &cb.mass),
+        ("dofs.csv", &cb.dofs),
+    ] {
+        let want = std::fs::read_to_string(committed.join(name)).unwrap();
+        same_numbers(name, text, &want);
+    }
     // The first-order forced response (k*, d* of the joint consistent with its
     // amplitude, jointlin_linearize) converges at every frequency of the sweep.
     let l = lumped::build(&cb_scene).unwrap();
