@@ -128,6 +128,12 @@ fn run_sweeps_the_reduced_model_first_order() {
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let csv = std::fs::read_to_string(out.join("results.csv")).unwrap();
     assert!(out.join("run.json").exists());
+    // The FRF plot: both outputs, the scene's frequency unit.
+    let svg = std::fs::read_to_string(out.join("frf.svg")).unwrap();
+    assert!(
+        svg.contains("tip_z") && svg.contains("frequency [Hz]"),
+        "frf.svg"
+    );
     let _ = std::fs::remove_dir_all(&out);
     let mut lines = csv.lines();
     assert_eq!(

@@ -103,7 +103,7 @@ pub fn main(a: Args) -> ExitCode {
             );
             return ExitCode::from(2);
         }
-        return super::run_lumped::main(&s, &a.out);
+        return super::run_lumped::main(&s, &a.out, !a.no_plots);
     }
     let pb = progress_bar(a.quiet);
     let r = run(

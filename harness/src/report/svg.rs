@@ -27,18 +27,47 @@ pub fn frf(
     p: &Problem,
     curves: &[(&SweepResult, &str)],
 ) -> Res {
+    let names: Vec<String> = p.outputs.iter().map(|o| o.name.clone()).collect();
+    let curves: Vec<FrfCurve> = curves
+        .iter()
+        .map(|(r, label)| FrfCurve {
+            label: label.to_string(),
+            // Singular and failed frequencies have no response: left out of the curve.
+            points: (0..r.freqs.len())
+                .filter(|&i| !r.is_singular(i) && r.failure(i).is_none())
+                .map(|i| (r.freqs[i], r.outputs[i].iter().map(|v| v.norm()).collect()))
+                .collect(),
+        })
+        .collect();
+    frf_curves(path, title, units, &names, &curves)
+}
+
+/// One curve of [`frf_curves`]: its legend label and, per solved frequency (1/time), the
+/// amplitude of every output (length).
+pub struct FrfCurve {
+    pub label: String,
+    pub points: Vec<(f64, Vec<f64>)>,
+}
+
+/// [`frf`] from plain data: `names` of the outputs, the curves' amplitudes.
+pub fn frf_curves(
+    path: &std::path::Path,
+    title: &str,
+    units: &crate::input::scene::Units,
+    names: &[String],
+    curves: &[FrfCurve],
+) -> Res {
     let root = SVGBackend::new(path, (900, 560)).into_drawing_area();
     root.fill(&WHITE).map_err(err)?;
-    let main = curves.first().ok_or("no sweep")?.0;
+    let main = curves.first().ok_or("no sweep")?;
     let fu = frequency_unit(units);
-    let f0 = fu.show(*main.freqs.first().ok_or("no frequencies")?);
-    let f1 = fu.show(*main.freqs.last().ok_or("no frequencies")?);
+    let f0 = fu.show(main.points.first().ok_or("no frequencies")?.0);
+    let f1 = fu.show(main.points.last().ok_or("no frequencies")?.0);
     let mut ymin = f64::INFINITY;
     let mut ymax = 0.0f64;
-    for (r, _) in curves {
-        for row in &r.outputs {
-            for v in row {
-                let a = v.norm();
+    for c in curves {
+        for (_, row) in &c.points {
+            for &a in row {
                 if a > 0.0 {
                     ymin = ymin.min(a);
                     ymax = ymax.max(a);
@@ -72,19 +101,15 @@ pub fn frf(
         .x_label_formatter(&|v: &f64| format!("{}", (v * 1e3).round() / 1e3))
         .draw()
         .map_err(err)?;
-    for (k, o) in p.outputs.iter().enumerate() {
-        for (c, (r, label)) in curves.iter().enumerate() {
+    for (k, name) in names.iter().enumerate() {
+        for (c, curve) in curves.iter().enumerate() {
             // One colour per output and curve; the first curve drawn thicker.
             let color = Palette99::pick(k + 4 * c).to_rgba();
             let width = if c == 0 { 2 } else { 1 };
-            // Singular and failed frequencies have no response: left out of the curve.
-            let pts: Vec<(f64, f64)> = r
-                .freqs
+            let pts: Vec<(f64, f64)> = curve
+                .points
                 .iter()
-                .zip(&r.outputs)
-                .enumerate()
-                .filter(|(i, _)| !r.is_singular(*i) && r.failure(*i).is_none())
-                .map(|(_, (f, v))| (fu.show(*f), v[k].norm().max(ymin)))
+                .map(|(f, a)| (fu.show(*f), a[k].max(ymin)))
                 .collect();
             let style = color.stroke_width(width);
             let drawn = if pts.len() <= MARKED_POINTS {
@@ -111,7 +136,7 @@ pub fn frf(
             };
             drawn
                 .map_err(err)?
-                .label(format!("{} {label}", o.name).trim_end().to_string())
+                .label(format!("{name} {}", curve.label).trim_end().to_string())
                 .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], style));
         }
     }
