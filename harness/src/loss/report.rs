@@ -187,3 +187,38 @@ pub fn write(dir: &Path, scene: &Scene, r: &StudyResult) -> Result<Vec<PathBuf>,
     }
     Ok(out)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// loss.csv and loss.md carry the scene's units (knife-coarse: N, mm, s; W, µm).
+    #[test]
+    fn tables_carry_the_scene_units() {
+        let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes/knife-coarse.toml");
+        let scene = Scene::load(&path).unwrap();
+        let st = scene.spec.loss_study.clone().unwrap();
+        let sample = Sample {
+            freq: 31700.0,
+            scale: 1.0,
+            amplitude: 2e-3,
+            power: 1.0,
+            points: Vec::new(),
+        };
+        let r = StudyResult {
+            curves: vec![(1500.0, vec![sample])],
+            solves: 1,
+            maps: None,
+        };
+        let head = csv(&scene, &st, &r).lines().next().unwrap().to_string();
+        assert_eq!(
+            head,
+            "torque_N_mm,amplitude_mm,frequency_Hz,power_W,excitation_scale,max_amplitude_ratio"
+        );
+        let md = markdown(&scene, &st, &r);
+        assert!(
+            md.contains("| torque [N·mm] | resonance [Hz] | amplitude [µm] | power [W] |"),
+            "{md}"
+        );
+    }
+}

@@ -518,4 +518,34 @@ mod tests {
         assert!(s[0].contains("200× slower"), "{}", s[0]);
         assert!(s[1].contains("1000×"), "{}", s[1]);
     }
+
+    /// tradeoff.csv and tradeoff.md carry the scene's units (here m, kN, ms, angular).
+    #[test]
+    fn tables_carry_the_scene_units() {
+        let t = Tradeoff {
+            scene: "s.toml".into(),
+            freq: 1.0,
+            output: "tip".into(),
+            units: Units {
+                length: "m".into(),
+                force: "kN".into(),
+                time: "ms".into(),
+                mass: "t".into(),
+                frequency: Some("rad/ms".into()),
+            },
+            rungs: vec![rung("default", 0.01, 1e-3, 2e-2, true)],
+            summary: Vec::new(),
+        };
+        let head = csv(&t).lines().next().unwrap().to_string();
+        assert_eq!(
+            head,
+            "family,label,frequency_domain,wall_time_s,amplitude_m,amplitude_error,energy_per_cycle_kN_m,energy_error,converged"
+        );
+        let md = markdown(&t);
+        assert!(md.contains("at 6.283185 rad/ms"), "{md}");
+        assert!(
+            md.contains("amplitude [m]") && md.contains("energy per cycle [kN·m]"),
+            "{md}"
+        );
+    }
 }
