@@ -18,17 +18,19 @@ declare -A commands=(
   [backbone_fe_h7]="cargo run --release -q -p jointlin-harness --bin jointlin -- backbone scenes/three-beams-coarse.toml --harmonics 7 --amplitudes 3e-6,3e-2,25 --out harness/assets/backbone-three-beams-h7 2>&1"
   [three_beams_frf]="cargo run --release -q -p jointlin-harness --bin jointlin -- run scenes/three-beams.toml --out out/three-beams --quiet"
   [duffing_frf]="cargo run --release -q -p jointlin-harness --bin jointlin -- run scenes/duffing.toml --out out/duffing --quiet"
-  [bolted_lap_frf]="cargo run --release -q -p jointlin-harness --bin jointlin -- run examples/deck/bolted-lap.inp --out out/bolted-lap --quiet"
+  [bolted_lap_frf]="cargo run --release -q -p jointlin-harness --bin jointlin -- run scenes/bolted-lap.toml --out out/bolted-lap --quiet"
   [deck_stack]="cargo run --release -q -p jointlin-harness --example deck_stack"
 )
-# Plots a block's command writes that the documents show: "from to" pairs. A name with a
+# Plots a block's command writes that the documents show: "from to" pairs, several
+# separated by ";"; a "from" may be a glob matching one file (a name with the peak's
+# frequency in it). A name with a
 # plot and no block in the documents (e.g. three_beams_frf) only makes its plot.
 declare -A plots=(
   [tradeoff_beams]="out/tradeoff-beams/tradeoff.svg docs/accuracy-three-beams.svg"
   [tradeoff_block]="out/tradeoff-block/tradeoff.svg docs/accuracy-block.svg"
   [three_beams_frf]="out/three-beams/frf.svg harness/assets/three-beams-frf.svg"
   [duffing_frf]="out/duffing/frf.svg harness/assets/duffing-frf.svg"
-  [bolted_lap_frf]="out/bolted-lap/frf.svg harness/assets/bolted-lap-frf.svg"
+  [bolted_lap_frf]="out/bolted-lap/frf.svg harness/assets/bolted-lap-frf.svg; out/bolted-lap/contact_ratio_*.svg harness/assets/bolted-lap-contact-ratio.svg; out/bolted-lap/contact_energy_*.svg harness/assets/bolted-lap-contact-energy.svg"
 )
 # Blocks whose command may stop part way and say so (exit status 1 with what it reached
 # written): the block shows the message and the exit status instead of ending the script.
@@ -36,6 +38,21 @@ may_stop=" backbone_fe_h7 "
 # Blocks whose command prints Markdown (the others are shown as terminal output).
 markdown=" accuracy_table knife knife_mesh tradeoff_beams tradeoff_block backbone_cost deck_stack "
 files=(README.md docs/accuracy.md)
+# Copies each "from to" pair of a plots entry; a glob must match exactly one file.
+copy_plots() {
+  local pair from to matches
+  IFS=';' read -ra pairs <<< "$1"
+  for pair in "${pairs[@]}"; do
+    read -r from to <<< "$pair"
+    # shellcheck disable=SC2206
+    matches=($from)
+    if [ ${#matches[@]} -ne 1 ] || [ ! -f "${matches[0]}" ]; then
+      echo "error: $from matches ${#matches[@]} files, not one" >&2
+      exit 1
+    fi
+    cp "${matches[0]}" "$to"
+  done
+}
 names=("$@")
 [ ${#names[@]} -gt 0 ] || names=("${!commands[@]}")
 for name in "${names[@]}"; do
@@ -48,8 +65,7 @@ for name in "${names[@]}"; do
     [ -n "${plots[$name]:-}" ] || continue
     echo "== $name (plot only): ${commands[$name]}"
     eval "${commands[$name]}" > /dev/null
-    read -r from to <<< "${plots[$name]}"
-    cp "$from" "$to"
+    copy_plots "${plots[$name]}"
     continue
   fi
   echo "== $name: ${commands[$name]}"
@@ -68,7 +84,6 @@ for name in "${names[@]}"; do
   done
   rm -f "$out"
   if [ -n "${plots[$name]:-}" ]; then
-    read -r from to <<< "${plots[$name]}"
-    cp "$from" "$to"
+    copy_plots "${plots[$name]}"
   fi
 done

@@ -260,3 +260,62 @@ fn decks_a_run_cannot_honour_are_named_errors_with_their_line() {
     );
     let _ = std::fs::remove_dir_all(&d);
 }
+
+/// A scene with `model` and `[field_output]`: the peak of the deck's output gets its
+/// field and, with plots, its contact maps in the interface's plane; without any output
+/// (no `[[outputs]]`, no `*NODE PRINT`) `peaks` is an error at its key.
+#[test]
+fn field_output_of_a_scene_with_model_uses_the_deck_outputs() {
+    let d = dir("field");
+    std::fs::write(d.join("stack.inp"), contact_deck()).unwrap();
+    let units = "[units]\nlength = \"mm\"\nforce = \"N\"\ntime = \"s\"\nmass = \"t\"\n";
+    let scene = d.join("fields.toml");
+    std::fs::write(
+        &scene,
+        format!("model = \"stack.inp\"\n{units}[field_output]\npeaks = 1\n"),
+    )
+    .unwrap();
+    let out = d.join("out");
+    let (code, log) = jointlin(&[
+        "run",
+        scene.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--quiet",
+    ]);
+    assert_eq!(code, 0, "{log}");
+    // Below the resonance the amplitude rises: the peak is the top end, 400 Hz.
+    for name in [
+        "field_400.0000_Hz.vtu",
+        "contact_ratio_400.0000_Hz.svg",
+        "contact_energy_400.0000_Hz.svg",
+    ] {
+        assert!(out.join(name).is_file(), "{name}: {log}");
+    }
+    let map = std::fs::read_to_string(out.join("contact_ratio_400.0000_Hz.svg")).unwrap();
+    assert!(
+        map.contains("x [mm]") && map.contains("y [mm]"),
+        "the plates' plane"
+    );
+    // Two interfaces of the three-layer stack: a panel each.
+    assert_eq!(map.matches("colour A/δ*").count(), 2);
+    let bare = d.join("bare.inp");
+    std::fs::write(
+        &bare,
+        contact_deck().replace("*NODE PRINT, NSET=TIP\nU\n", ""),
+    )
+    .unwrap();
+    let scene = d.join("no-output.toml");
+    std::fs::write(
+        &scene,
+        format!("model = \"bare.inp\"\n{units}[field_output]\npeaks = 1\n"),
+    )
+    .unwrap();
+    let (code, log) = jointlin(&["check", scene.to_str().unwrap()]);
+    assert_eq!(code, 2, "{log}");
+    assert!(
+        log.contains("field_output.peaks") && log.contains("*NODE OUTPUT/*NODE PRINT"),
+        "{log}"
+    );
+    let _ = std::fs::remove_dir_all(&d);
+}

@@ -174,3 +174,60 @@ fn field_output_rules_are_checked_at_their_keys() {
         "{log}"
     );
 }
+
+/// With plots, each field frequency gets its contact maps: one circle per contact point
+/// in the energy map, one more ring per sliding point in the A/δ* map, axes in the
+/// interface's plane with the scene's length unit.
+#[test]
+fn contact_maps_at_the_field_frequencies() {
+    // 0.5 N at the tip: the beams' ends slide at the first resonance.
+    let p = scene("maps", "\n[field_output]\npeaks = 1\n");
+    let text = std::fs::read_to_string(&p).unwrap();
+    let louder = text.replacen("\namplitude = 0.05 ", "\namplitude = 0.5 ", 1);
+    assert_ne!(text, louder);
+    std::fs::write(&p, louder).unwrap();
+    let out = p.parent().unwrap().join("out");
+    let (ok, log) = jointlin(&[
+        "run",
+        "--quiet",
+        "--out",
+        out.to_str().unwrap(),
+        p.to_str().unwrap(),
+    ]);
+    assert!(ok, "{log}");
+    // "…: 1234 free DOFs, 90 contact points (72 closed), mode Fast"
+    let points: usize = log
+        .split(" contact points")
+        .next()
+        .and_then(|h| h.rsplit(' ').next())
+        .and_then(|n| n.parse().ok())
+        .expect("the contact point count in the log");
+    let field = std::fs::read_dir(&out)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .find(|n| n.starts_with("field_"))
+        .expect("a field file");
+    let tag = &field["field_".len()..field.len() - ".vtu".len()];
+    let energy = std::fs::read_to_string(out.join(format!("contact_energy_{tag}.svg"))).unwrap();
+    let ratio = std::fs::read_to_string(out.join(format!("contact_ratio_{tag}.svg"))).unwrap();
+    assert_eq!(energy.matches("<circle").count(), points, "energy map");
+    let rings = ratio.matches("<circle").count() - points;
+    let sliding = arrays(&out.join(&field))["contact_amplitude_ratio"]
+        .iter()
+        .filter(|&&r| r > 1.0)
+        .count();
+    // A ring per sliding point; the field's per-node ratio counts both nodes of each
+    // (the beams share no contact node).
+    assert!(
+        rings > 0 && 2 * rings == sliding,
+        "{rings} rings, {sliding} sliding nodes"
+    );
+    for svg in [&energy, &ratio] {
+        assert!(svg.contains("x [mm]") && svg.contains("y [mm]"));
+        assert!(
+            svg.contains(&tag.replace('_', " ")),
+            "the frequency in the title"
+        );
+    }
+    assert!(energy.contains("N·mm/mm²"), "the energy density unit");
+}

@@ -11,7 +11,8 @@
 use std::path::Path;
 
 use jointlin_harness::input::scene::{RegionSpec, Scene};
-use jointlin_harness::loss::{self, maps, mesh, Sample};
+use jointlin_harness::loss::{self, mesh, Sample};
+use jointlin_harness::report::contact_map as maps;
 
 /// Trend amplitude (mm): 3 µm.
 const A: f64 = 0.003;

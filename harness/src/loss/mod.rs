@@ -11,7 +11,6 @@
 //! of the structure: 0.5 for a half model).
 
 pub mod level;
-pub mod maps;
 pub mod mesh;
 pub mod plot;
 pub mod report;

@@ -5,10 +5,10 @@
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
-use super::maps::{self, MapKind};
 use super::{plot, LossStudySpec, Sample, StudyResult};
 use crate::input::scene::units::{frequency_unit, ColumnUnits};
 use crate::input::scene::Scene;
+use crate::report::contact_map::{self as maps, MapKind};
 use crate::util::csv_table::CsvTable;
 
 /// Power (reported unit) of a curve at `amplitude` by linear interpolation between its
@@ -176,7 +176,7 @@ pub fn write(dir: &Path, scene: &Scene, r: &StudyResult) -> Result<Vec<PathBuf>,
                 maps::svg(
                     t,
                     &format!("{title}, {what}"),
-                    &scene.spec.units.length,
+                    &scene.spec.units,
                     &op.problem,
                     &vals,
                     kind,

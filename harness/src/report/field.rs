@@ -8,14 +8,22 @@
 //!   as the C API numbers it (JOINTLIN_REGIME_OPEN 0, STICK 1, MICROSLIP 2, SLIDING 3);
 //!   −1 where the node is no contact point's;
 //! - `contact_amplitude_ratio`: the larger A/δ* of its two directions (0 where none).
+//!
+//! With plots, each such frequency also gets its contact maps
+//! (`contact_ratio_<frequency>_<unit>.svg`, `contact_energy_<frequency>_<unit>.svg`).
 
+use std::path::{Path, PathBuf};
+
+use super::contact_map::{self, MapKind};
 use super::modes::cells;
 use super::vtu::{unstructured_grid, PointField};
 use crate::capi::JOINTLIN_REGIME_OPEN;
 use crate::input::scene::units::{frequency_unit, ColumnUnits};
-use crate::input::scene::Units;
+use crate::input::scene::{Scene, Units};
 use crate::model::Problem;
+use crate::run::RunResult;
 use crate::solve::sweep::{PointFreq, SweepResult, C64};
+use crate::util::atomic;
 use crate::util::number::sig;
 
 /// The file name of the field at `f` (1/time): `field_1174.500_Hz.vtu`.
@@ -99,4 +107,51 @@ fn vtu(p: &Problem, x: &[C64], points: &[PointFreq], closed: &[bool], units: &Un
         },
     ];
     unstructured_grid(&p.model.nodes, &cells(&p.model), &fields)
+}
+
+/// The contact maps (A/δ* and dissipated energy density per contact point, as
+/// [`contact_map::svg`] draws them) of every kept field frequency of `fields`; none
+/// for a model without contact points. Returns the files written.
+pub fn contact_maps(
+    dir: &Path,
+    scene: &Scene,
+    r: &RunResult,
+    fields: &SweepResult,
+) -> Result<Vec<PathBuf>, String> {
+    let p = &r.problem;
+    let mut out = Vec::new();
+    if p.contacts.is_empty() {
+        return Ok(out);
+    }
+    let units = &scene.spec.units;
+    let fu = frequency_unit(units);
+    for (f, _) in &fields.fields {
+        let Some(points) = fields
+            .freqs
+            .iter()
+            .position(|v| v == f)
+            .and_then(|i| fields.points.get(i))
+        else {
+            continue;
+        };
+        let vals = contact_map::values(p, &r.stat.pressure, points);
+        let at = format!("{} {}", sig(fu.show(*f)), fu.text);
+        let tag = format!("{}_{}", sig(fu.show(*f)), fu.suffix());
+        for (name, kind, what) in [
+            ("ratio", MapKind::Ratio, "stick/slip A/δ*"),
+            (
+                "energy",
+                MapKind::EnergyDensity,
+                "dissipated energy density",
+            ),
+        ] {
+            let path = dir.join(format!("contact_{name}_{tag}.svg"));
+            let title = format!("{what} at {at}");
+            atomic::with_temp(&path, |t| {
+                contact_map::svg(t, &title, units, p, &vals, kind)
+            })?;
+            out.push(path);
+        }
+    }
+    Ok(out)
 }

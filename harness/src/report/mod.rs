@@ -1,6 +1,7 @@
 //! Reports of a run: CSV tables, run.json and SVG plots. Reports read results only.
 
 pub mod backbone;
+pub mod contact_map;
 pub mod csv;
 pub mod field;
 pub mod modes;
@@ -169,6 +170,11 @@ pub fn write_all(
         let p = dir.join("passes.svg");
         atomic::with_temp(&p, |t| svg::passes(t, &r.main))?;
         out.push(p);
+        if let Some(fields) = &r.fields {
+            for p in field::contact_maps(dir, scene, r, fields)? {
+                out.push(p);
+            }
+        }
         if eff.stick_slip_map {
             let p = dir.join("stick_slip.svg");
             atomic::with_temp(&p, |t| {

@@ -119,6 +119,20 @@ pub fn attach(scene: &mut Scene, path: &Path) -> Result<(), InputError> {
     if scene.spec.outputs.is_empty() {
         scene.spec.outputs = job.outputs();
     }
+    let peaks = scene
+        .spec
+        .field_output
+        .as_ref()
+        .is_some_and(|f| f.peaks > 0);
+    if peaks && scene.spec.outputs.is_empty() {
+        return Err(at_path(
+            &scene.file,
+            &scene.text,
+            &KeyPath::root().key("field_output").key("peaks"),
+            "needs an output: the peaks are the first output's, and neither the scene's [[outputs]] nor the deck's *NODE OUTPUT/*NODE PRINT names one".into(),
+        )
+        .into());
+    }
     scene.deck = Some(Arc::new(job));
     Ok(())
 }

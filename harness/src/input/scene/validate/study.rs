@@ -229,7 +229,8 @@ pub(super) fn field_output(c: &mut Checker, s: &SceneFile) {
             format!("at most {MAX_FIELD_PEAKS} (one solve and one file each)"),
         );
     }
-    if fo.peaks > 0 && s.outputs.is_empty() {
+    // With `model`, the deck's node outputs may be the outputs (checked on attaching).
+    if fo.peaks > 0 && s.outputs.is_empty() && s.model.is_none() {
         c.fail(
             root.key("peaks"),
             "needs an [[outputs]] entry: the peaks are the first output's",

@@ -10,6 +10,7 @@ use std::path::Path;
 use plotters::prelude::*;
 
 use crate::fe::mesh::Face;
+use crate::input::scene::Units;
 use crate::model::Problem;
 use crate::solve::sweep::PointFreq;
 
@@ -149,33 +150,71 @@ pub enum MapKind {
     EnergyDensity,
 }
 
-/// SVG map: one panel per interface (x across, y up), a circle per closed point.
+/// The two global axes a panel of interface `interface` is drawn in: the pair left when
+/// the axis closest to the interface's mean normal is dropped (z-normal: x across, y up).
+fn panel_axes(p: &Problem, interface: usize) -> (usize, usize) {
+    let mut n = [0.0f64; 3];
+    for c in p.contacts.iter().filter(|c| c.interface == interface) {
+        for (k, v) in n.iter_mut().enumerate() {
+            *v += c.frame[(k, 0)];
+        }
+    }
+    let drop = (0..3)
+        .max_by(|&a, &b| n[a].abs().total_cmp(&n[b].abs()))
+        .unwrap_or(2);
+    match drop {
+        0 => (1, 2),
+        1 => (0, 2),
+        _ => (0, 1),
+    }
+}
+
+const AXIS_NAMES: [&str; 3] = ["x", "y", "z"];
+
+/// SVG map: one panel per interface in the plane of its face (the two global axes
+/// across it), a circle per contact point; grey dots are open points.
 pub fn svg(
     path: &Path,
     title: &str,
-    length_unit: &str,
+    units: &Units,
     p: &Problem,
     vals: &[PointValues],
     kind: MapKind,
 ) -> Result<(), String> {
+    let length_unit = units.length.as_str();
     let n = p.interfaces.len().max(1);
-    let root = SVGBackend::new(path, (900, 40 + 260 * n as u32)).into_drawing_area();
+    let panels: Vec<_> = (0..n)
+        .map(|k| {
+            let (a, b) = panel_axes(p, k);
+            let (mut x0, mut x1, mut y0, mut y1) = (
+                f64::INFINITY,
+                f64::NEG_INFINITY,
+                f64::INFINITY,
+                f64::NEG_INFINITY,
+            );
+            for c in p.contacts.iter().filter(|c| c.interface == k) {
+                x0 = x0.min(c.position[a]);
+                x1 = x1.max(c.position[a]);
+                y0 = y0.min(c.position[b]);
+                y1 = y1.max(c.position[b]);
+            }
+            if x0 > x1 {
+                (x0, x1, y0, y1) = (0.0, 1.0, 0.0, 1.0);
+            }
+            let pad = 0.05 * (x1 - x0).max(y1 - y0).max(1e-9);
+            (a, b, x0 - pad, x1 + pad, y0 - pad, y1 + pad)
+        })
+        .collect();
+    // Panel height from the flattest face's aspect, so a square face stays square.
+    let aspect = panels
+        .iter()
+        .map(|&(_, _, x0, x1, y0, y1)| (y1 - y0) / (x1 - x0))
+        .fold(0.0, f64::max);
+    let panel_h = (760.0 * aspect + 90.0).clamp(220.0, 800.0) as u32;
+    let root = SVGBackend::new(path, (900, 40 + panel_h * n as u32)).into_drawing_area();
     root.fill(&WHITE).map_err(err)?;
     let root = root.titled(title, ("sans-serif", 18)).map_err(err)?;
-    let panels = root.split_evenly((n, 1));
-    let (mut x0, mut x1, mut y0, mut y1) = (
-        f64::INFINITY,
-        f64::NEG_INFINITY,
-        f64::INFINITY,
-        f64::NEG_INFINITY,
-    );
-    for c in &p.contacts {
-        x0 = x0.min(c.position[0]);
-        x1 = x1.max(c.position[0]);
-        y0 = y0.min(c.position[1]);
-        y1 = y1.max(c.position[1]);
-    }
-    let pad = 0.05 * (x1 - x0).max(y1 - y0).max(1e-9);
+    let areas = root.split_evenly((n, 1));
     let vmax = vals
         .iter()
         .map(|v| match kind {
@@ -189,7 +228,8 @@ pub fn svg(
         .map(|v| v.energy_density)
         .fold(0.0, f64::max)
         .max(f64::MIN_POSITIVE);
-    for (k, area) in panels.iter().enumerate() {
+    for (k, area) in areas.iter().enumerate() {
+        let (a, b, x0, x1, y0, y1) = panels[k];
         let name = p.interfaces.get(k).map_or("", |i| i.name.as_str());
         let caption = match kind {
             MapKind::Ratio => format!(
@@ -197,8 +237,8 @@ pub fn svg(
                 vmax
             ),
             MapKind::EnergyDensity => format!(
-                "{name}: dissipated energy density per cycle (max {:.3e} force/{length_unit})",
-                emax
+                "{name}: dissipated energy density per cycle (max {:.3e} {}·{length_unit}/{length_unit}²)",
+                emax, units.force
             ),
         };
         let mut chart = ChartBuilder::on(area)
@@ -206,15 +246,16 @@ pub fn svg(
             .margin(10)
             .x_label_area_size(30)
             .y_label_area_size(45)
-            .build_cartesian_2d(x0 - pad..x1 + pad, y0 - pad..y1 + pad)
+            .build_cartesian_2d(x0..x1, y0..y1)
             .map_err(err)?;
         chart
             .configure_mesh()
             .disable_mesh()
-            .x_desc(format!("x [{length_unit}]"))
-            .y_desc(format!("y [{length_unit}]"))
+            .x_desc(format!("{} [{length_unit}]", AXIS_NAMES[a]))
+            .y_desc(format!("{} [{length_unit}]", AXIS_NAMES[b]))
             .draw()
             .map_err(err)?;
+        let at = |i: usize| (p.contacts[i].position[a], p.contacts[i].position[b]);
         let pts: Vec<(usize, &PointValues)> = p
             .contacts
             .iter()
@@ -222,35 +263,29 @@ pub fn svg(
             .filter(|(_, c)| c.interface == k)
             .map(|(i, _)| (i, &vals[i]))
             .collect();
-        // Open points: small grey dots.
         chart
-            .draw_series(pts.iter().filter(|(_, v)| v.pressure <= 0.0).map(|(i, _)| {
-                let c = &p.contacts[*i];
-                Circle::new(
-                    (c.position[0], c.position[1]),
-                    2,
-                    RGBColor(190, 190, 190).filled(),
-                )
-            }))
+            .draw_series(
+                pts.iter()
+                    .filter(|(_, v)| v.pressure <= 0.0)
+                    .map(|(i, _)| Circle::new(at(*i), 2, RGBColor(190, 190, 190).filled())),
+            )
             .map_err(err)?;
         chart
             .draw_series(pts.iter().filter(|(_, v)| v.pressure > 0.0).map(|(i, v)| {
-                let c = &p.contacts[*i];
                 let (t, size) = match kind {
                     MapKind::Ratio => (v.ratio.min(1.0), v.amplitude / vmax),
                     MapKind::EnergyDensity => (v.energy_density / emax, v.energy_density / emax),
                 };
                 let r = (3.0 + 11.0 * size.max(0.0).sqrt()) as i32;
                 let color = RGBColor((255.0 * t) as u8, 40, (255.0 * (1.0 - t)) as u8);
-                Circle::new((c.position[0], c.position[1]), r, color.mix(0.85).filled())
+                Circle::new(at(*i), r, color.mix(0.85).filled())
             }))
             .map_err(err)?;
         if kind == MapKind::Ratio {
             chart
                 .draw_series(pts.iter().filter(|(_, v)| v.ratio > 1.0).map(|(i, v)| {
-                    let c = &p.contacts[*i];
                     let r = (3.0 + 11.0 * (v.amplitude / vmax).sqrt()) as i32 + 1;
-                    Circle::new((c.position[0], c.position[1]), r, BLACK.stroke_width(2))
+                    Circle::new(at(*i), r, BLACK.stroke_width(2))
                 }))
                 .map_err(err)?;
         }
