@@ -1,6 +1,7 @@
 //! Names shared by the inputs and the C-API layer: the contact laws, unloading rules and
 //! iteration schemes a scene (or any other input) chooses and [`crate::capi`] maps onto
-//! the library's constants. They live here, below both, so neither imports the other.
+//! the library's constants, and [`ContactLaw`], an interface's law as every input gives
+//! it. They live here, below both, so neither imports the other.
 
 use serde::{Deserialize, Serialize};
 
@@ -48,4 +49,24 @@ pub enum SchemeName {
     /// Secant on ln a with bracketing (library default).
     #[default]
     Secant,
+}
+
+/// The contact law of an interface in stress form (per unit area), as a scene's
+/// `[[interfaces]]` and a deck's USER surface interaction give it and the model builds
+/// its contact points from.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ContactLaw {
+    pub law: LawName,
+    pub rule: RuleName,
+    /// Friction coefficient μ ≥ 0.
+    pub mu: f64,
+    /// Full-stick tangential stiffness per area k_T0/A (force/length³).
+    pub k_t0_per_area: f64,
+    pub normal_law: NormalLawName,
+    /// Linear normal stiffness per area (force/length³), for [`NormalLawName::Linear`].
+    pub normal_stiffness_per_area: Option<f64>,
+    /// Hertz effective radius r* (length), for [`NormalLawName::Hertz`].
+    pub hertz_radius: Option<f64>,
+    /// Hertz effective modulus E* (force/length², (2.31)), for [`NormalLawName::Hertz`].
+    pub hertz_e_star: Option<f64>,
 }

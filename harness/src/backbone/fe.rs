@@ -127,9 +127,11 @@ pub fn reduce(p: &Problem, effects: &Effects, mode: usize) -> Result<Reduced, St
             names.push(format!("{}.{i}.t{d}", itf.name));
         }
         let [b1, b2] = &setup.unit_blocks[j];
-        p.sys
-            .pairs
-            .add(&mut ks.values, c.pair, &((b1 + b2) * itf.k_t0_per_area));
+        p.sys.pairs.add(
+            &mut ks.values,
+            c.pair,
+            &((b1 + b2) * itf.contact.k_t0_per_area),
+        );
     }
     for sp in &p.cubic_springs {
         rows.push(&sp.row);

@@ -169,14 +169,7 @@ pub fn build(scene: &Scene) -> Result<Problem, BuildError> {
         let [lo, hi] = &f.between;
         interfaces.push(Interface {
             name: f.name.clone(),
-            law: f.law,
-            rule: f.rule,
-            mu: f.mu,
-            k_t0_per_area: f.k_t0_per_area,
-            normal_law: f.normal_law,
-            normal_stiffness_per_area: f.normal_stiffness_per_area,
-            hertz_radius: f.hertz_radius,
-            hertz_e_star: f.hertz_e_star,
+            contact: f.contact_law(),
             initial_gap: f.initial_gap,
         });
         if lo == GROUND {

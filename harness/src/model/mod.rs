@@ -32,7 +32,7 @@ use crate::fe::contact_pairs::PairError;
 use crate::fe::csc::Csc;
 use crate::fe::mesh::{MeshError, Model};
 use crate::input::Input;
-use crate::names::{LawName, NormalLawName, RuleName};
+use crate::names::ContactLaw;
 
 /// Errors building a problem from a (valid) scene: mesh-level inconsistencies.
 #[derive(Debug, Error)]
@@ -66,23 +66,12 @@ pub enum BuildError {
     Other(String),
 }
 
-/// Contact data of one interface (stress form: per unit area).
+/// One interface: its name, contact law and initial gap.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Interface {
     pub name: String,
-    pub law: LawName,
-    pub rule: RuleName,
-    /// Friction coefficient μ.
-    pub mu: f64,
-    /// k_T0 per area (force/length³).
-    pub k_t0_per_area: f64,
-    pub normal_law: NormalLawName,
-    /// Linear normal stiffness per area (force/length³), if given.
-    pub normal_stiffness_per_area: Option<f64>,
-    /// Hertz effective radius r* (length).
-    pub hertz_radius: Option<f64>,
-    /// Hertz effective modulus E* (force/length²).
-    pub hertz_e_star: Option<f64>,
+    /// The law in stress form (per unit area).
+    pub contact: ContactLaw,
     /// Initial normal gap g₀ (length): overclosure h = −δ_n − g₀.
     pub initial_gap: f64,
 }

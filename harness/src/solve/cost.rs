@@ -50,8 +50,11 @@ pub fn measure(p: &Problem, omega: f64) -> Result<Measured, UmfpackError> {
         let itf = &p.interfaces[c.interface];
         // A stuck closed joint; the normal stiffness of the constant law where the
         // scene has one, else k_T0 (only the pattern's fill and pivots matter here).
-        let kn = itf.normal_stiffness_per_area.unwrap_or(itf.k_t0_per_area);
-        let kt = itf.k_t0_per_area;
+        let kn = itf
+            .contact
+            .normal_stiffness_per_area
+            .unwrap_or(itf.contact.k_t0_per_area);
+        let kt = itf.contact.k_t0_per_area;
         let local = Matrix3::from_diagonal(&Vector3::new(kn, kt, kt)) * c.area;
         p.sys
             .pairs

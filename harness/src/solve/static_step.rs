@@ -300,8 +300,8 @@ pub fn solve(p: &Problem, nonlinear: bool) -> Result<StaticState, StaticError> {
                 let kn = normal_stiffness(i);
                 Matrix3::from_diagonal(&nalgebra::Vector3::new(
                     kn,
-                    i.k_t0_per_area,
-                    i.k_t0_per_area,
+                    i.contact.k_t0_per_area,
+                    i.contact.k_t0_per_area,
                 )) * c.area
             })
             .collect();

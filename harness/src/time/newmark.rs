@@ -58,7 +58,7 @@ pub fn stuck_blocks(p: &Problem, stat: &StaticState) -> Vec<Matrix3<f64>> {
             if !stat.closed[i] {
                 return Matrix3::zeros();
             }
-            let kt = p.interfaces[c.interface].k_t0_per_area;
+            let kt = p.interfaces[c.interface].contact.k_t0_per_area;
             Matrix3::from_diagonal(&nalgebra::Vector3::new(stat.normal_stiffness[i], kt, kt))
                 * c.area
         })

@@ -2,8 +2,6 @@
 //! per beam) at frequencies around both bending resonances: the frequency-domain output
 //! amplitude and joint energy per cycle against Newmark.
 
-use std::path::Path;
-
 use super::{Report, Row};
 use crate::input::scene::Scene;
 use crate::model::build;
@@ -15,9 +13,10 @@ use crate::time::{Integrator, Start, TimeSettings};
 /// Elements per beam (x, y, z) of the coarse mesh.
 pub const COARSE: [usize; 3] = [6, 2, 1];
 
-/// scenes/three-beams.toml with the coarse mesh and the given frequencies.
-pub fn coarse_scene(scenes: &Path, freqs: &[f64]) -> Result<Scene, String> {
-    let mut s = Scene::load(&scenes.join("three-beams.toml")).map_err(|e| e.to_string())?;
+/// `three_beams` (scenes/three-beams.toml) with the coarse mesh and the given
+/// frequencies.
+pub fn coarse_scene(three_beams: &Scene, freqs: &[f64]) -> Result<Scene, String> {
+    let mut s = three_beams.clone();
     for b in &mut s.spec.bodies {
         b.divisions = Some(COARSE);
     }
@@ -58,12 +57,12 @@ pub fn settings() -> TimeSettings {
 
 /// The two resonance frequencies of the coarse model's frequency-domain response at the
 /// first output (a log sweep, then a fine band around each of the two largest peaks).
-pub fn peaks(scenes: &Path) -> Result<[f64; 2], String> {
+pub fn peaks(three_beams: &Scene) -> Result<[f64; 2], String> {
     let coarse: Vec<f64> = (0..=100)
         .map(|i| 600.0 * (15000.0f64 / 600.0).powf(i as f64 / 100.0))
         .collect();
     let amp = |freqs: &[f64]| -> Result<Vec<f64>, String> {
-        let s = coarse_scene(scenes, freqs)?;
+        let s = coarse_scene(three_beams, freqs)?;
         let r = run(&s, Extras::default(), &|_, _, _| {}).map_err(|e| e.to_string())?;
         Ok(r.main.outputs.iter().map(|o| o[0].norm()).collect())
     };
@@ -92,12 +91,12 @@ pub fn peaks(scenes: &Path) -> Result<[f64; 2], String> {
 }
 
 /// The case.
-pub fn coarse(scenes: &Path, rep: &mut Report, log: &dyn Fn(&str)) -> Result<(), String> {
+pub fn coarse(three_beams: &Scene, rep: &mut Report, log: &dyn Fn(&str)) -> Result<(), String> {
     let case = "three beams (coarse)";
     log(&format!("{case}: locating the peaks"));
-    let [f1, f2] = peaks(scenes)?;
+    let [f1, f2] = peaks(three_beams)?;
     let freqs = vec![0.99 * f1, f1, 1.01 * f1, 0.997 * f2, f2, 1.003 * f2];
-    let scene = coarse_scene(scenes, &freqs)?;
+    let scene = coarse_scene(three_beams, &freqs)?;
     let t = std::time::Instant::now();
     let fd = run(&scene, Extras::default(), &|_, _, _| {}).map_err(|e| e.to_string())?;
     let fd_seconds = t.elapsed().as_secs_f64();

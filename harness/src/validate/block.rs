@@ -1,7 +1,5 @@
 //! The block on a plane (thesis 4.2, Appendix C, model.md §8): stick and slip.
 
-use std::path::Path;
-
 use super::{Report, Row};
 use crate::input::scene::Scene;
 use crate::run::{run, Extras};
@@ -84,12 +82,12 @@ fn rows(case: &str, param: String, fd: &Fd, td: &FreqResult, note: String, rep: 
 }
 
 /// Block stick: F̂ 0.40–0.55 N at ω = 1.3 rad/s, ω 0.1–20 rad/s at F̂ = 0.5 N.
-pub fn stick(scenes: &Path, rep: &mut Report, log: &dyn Fn(&str)) -> Result<(), String> {
-    let base = Scene::load(&scenes.join("block-stick.toml")).map_err(|e| e.to_string())?;
+/// `base` is scenes/block-stick.toml.
+pub fn stick(base: &Scene, rep: &mut Report, log: &dyn Fn(&str)) -> Result<(), String> {
     let case = "block stick";
     for force in [0.40, 0.45, 0.50, 0.55] {
         log(&format!("{case}: F = {force} N"));
-        let (fd, td) = both(&at(&base, force, 1.3))?;
+        let (fd, td) = both(&at(base, force, 1.3))?;
         let note = if force == 0.5 {
             "thesis: linearized 4.267e-4 vs nonlinear mean 4.401e-4 mm (−3.1 %)".into()
         } else {
@@ -106,7 +104,7 @@ pub fn stick(scenes: &Path, rep: &mut Report, log: &dyn Fn(&str)) -> Result<(), 
     }
     for omega in [0.1, 0.3, 1.0, 3.0, 10.0, 20.0] {
         log(&format!("{case}: ω = {omega} rad/s"));
-        let (fd, td) = both(&at(&base, 0.5, omega))?;
+        let (fd, td) = both(&at(base, 0.5, omega))?;
         rows(
             case,
             format!("F = 0.50 N, ω = {omega} rad/s"),
@@ -133,13 +131,13 @@ pub fn stick(scenes: &Path, rep: &mut Report, log: &dyn Fn(&str)) -> Result<(), 
 }
 
 /// Block slip: F̂ 0.70–0.82 N at ω = 1.3 rad/s.
-pub fn slip(scenes: &Path, rep: &mut Report, log: &dyn Fn(&str)) -> Result<(), String> {
-    let base = Scene::load(&scenes.join("block-slip.toml")).map_err(|e| e.to_string())?;
+/// `base` is scenes/block-slip.toml.
+pub fn slip(base: &Scene, rep: &mut Report, log: &dyn Fn(&str)) -> Result<(), String> {
     let case = "block slip";
     let sliding_limit = 4.0 * FRICTION_LIMIT / std::f64::consts::PI;
     for force in [0.70, 0.73, 0.76, 0.79, 0.82] {
         log(&format!("{case}: F = {force} N"));
-        let (fd, td) = both(&at(&base, force, 1.3))?;
+        let (fd, td) = both(&at(base, force, 1.3))?;
         let o = td.last.outputs[0];
         let note = if force < sliding_limit {
             format!(

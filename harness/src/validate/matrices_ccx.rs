@@ -10,6 +10,9 @@ use std::path::Path;
 
 use nalgebra::DMatrix;
 
+use super::mesh_cards::mesh_cards;
+use crate::fe::elements::box_mesh::box_mesh;
+use crate::fe::elements::ElementKind;
 use crate::input::matrices::{ccx, dofs, mtx, MatrixModel};
 use crate::model::craig_bampton;
 
@@ -32,44 +35,12 @@ pub fn mid_node() -> usize {
 }
 
 /// The beam deck with `step` (the lines from `*STEP` to `*END STEP`); units N, mm, s, t.
+/// Node ids follow [`node_id`] (the mesh's node order).
 pub fn deck(step: &str) -> String {
-    let [nx, ny, nz] = DIVISIONS;
-    let mut s = String::from("*HEADING\nsteel cantilever 100 x 10 x 5 mm, C3D8\n*NODE\n");
-    for k in 0..=nz {
-        for j in 0..=ny {
-            for i in 0..=nx {
-                let x = [i, j, k]
-                    .iter()
-                    .zip(DIVISIONS.iter().zip(SIZE))
-                    .map(|(&g, (&d, l))| l * g as f64 / d as f64)
-                    .collect::<Vec<_>>();
-                writeln!(s, "{}, {}, {}, {}", node_id(i, j, k), x[0], x[1], x[2]).expect("string");
-            }
-        }
-    }
-    s.push_str("*ELEMENT, TYPE=C3D8, ELSET=EALL\n");
-    let mut e = 1;
-    for k in 0..nz {
-        for j in 0..ny {
-            for i in 0..nx {
-                let n = |a: usize, b: usize, c: usize| node_id(i + a, j + b, k + c);
-                writeln!(
-                    s,
-                    "{e}, {}, {}, {}, {}, {}, {}, {}, {}",
-                    n(0, 0, 0),
-                    n(1, 0, 0),
-                    n(1, 1, 0),
-                    n(0, 1, 0),
-                    n(0, 0, 1),
-                    n(1, 0, 1),
-                    n(1, 1, 1),
-                    n(0, 1, 1)
-                )
-                .expect("string");
-                e += 1;
-            }
-        }
-    }
+    let [_, ny, nz] = DIVISIONS;
+    let m = box_mesh(ElementKind::C3D8, SIZE, DIVISIONS, 0.0, 0);
+    let mut s = String::from("*HEADING\nsteel cantilever 100 x 10 x 5 mm, C3D8\n");
+    mesh_cards(&mut s, &m, "EALL", (0, 0), [0.0; 3]);
     s.push_str("*NSET, NSET=ROOT\n");
     for k in 0..=nz {
         for j in 0..=ny {

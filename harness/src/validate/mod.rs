@@ -23,6 +23,7 @@ pub mod ccx;
 pub mod deck_ccx;
 pub mod duffing;
 pub mod matrices_ccx;
+mod mesh_cards;
 pub mod softening;
 pub mod stack_deck;
 
@@ -31,6 +32,7 @@ use std::path::{Path, PathBuf};
 
 use serde::Serialize;
 
+use crate::input::scene::Scene;
 use crate::util::atomic;
 use crate::util::csv_table::CsvTable;
 
@@ -143,15 +145,35 @@ pub struct Report {
     pub notes: Vec<(String, String)>,
 }
 
-/// Runs the cases; `scenes` is the directory holding block-stick.toml, block-slip.toml
-/// and three-beams.toml. `log` receives progress lines.
-pub fn run(scenes: &Path, cases: Cases, log: &dyn Fn(&str)) -> Result<Report, String> {
+/// The shipped scenes the cases start from, each read by the caller through the input
+/// path (`input::load`); a case whose scene is `None` is not run.
+#[derive(Debug, Default)]
+pub struct CaseScenes {
+    /// scenes/block-stick.toml.
+    pub block_stick: Option<Scene>,
+    /// scenes/block-slip.toml.
+    pub block_slip: Option<Scene>,
+    /// scenes/three-beams.toml.
+    pub three_beams: Option<Scene>,
+}
+
+/// Runs the selected cases (those that need a scene: with it in `scenes`). `log`
+/// receives progress lines.
+pub fn run(scenes: &CaseScenes, cases: Cases, log: &dyn Fn(&str)) -> Result<Report, String> {
     let mut rep = Report::default();
+    fn need<'a>(s: &'a Option<Scene>, file: &str) -> Result<&'a Scene, String> {
+        s.as_ref()
+            .ok_or_else(|| format!("the case needs scenes/{file}, which was not given"))
+    }
     if cases.block_stick {
-        block::stick(scenes, &mut rep, log)?;
+        block::stick(
+            need(&scenes.block_stick, "block-stick.toml")?,
+            &mut rep,
+            log,
+        )?;
     }
     if cases.block_slip {
-        block::slip(scenes, &mut rep, log)?;
+        block::slip(need(&scenes.block_slip, "block-slip.toml")?, &mut rep, log)?;
     }
     if cases.duffing {
         duffing::sweep(&mut rep, log)?;
@@ -160,7 +182,11 @@ pub fn run(scenes: &Path, cases: Cases, log: &dyn Fn(&str)) -> Result<Report, St
         softening::sweep(&mut rep, log)?;
     }
     if cases.three_beams {
-        beams::coarse(scenes, &mut rep, log)?;
+        beams::coarse(
+            need(&scenes.three_beams, "three-beams.toml")?,
+            &mut rep,
+            log,
+        )?;
     }
     Ok(rep)
 }

@@ -10,6 +10,8 @@ use std::fmt::Write as _;
 use crate::fe::elements::box_mesh::box_mesh;
 use crate::fe::elements::ElementKind;
 
+use super::mesh_cards::mesh_cards;
+
 /// Plate length, width, thickness (mm).
 pub const SIZE: [f64; 3] = [100.0, 10.0, 2.0];
 /// Elements (x, y) per layer, bottom to top: different, so the interfaces do not conform.
@@ -49,25 +51,16 @@ pub fn stack_deck(joining: Joining, modes: usize, sweep: Option<(f64, f64, usize
     for (l, cells) in CELLS.iter().take(layers).enumerate() {
         let m = box_mesh(ElementKind::C3D20, SIZE, [cells[0], cells[1], 1], 0.0, 0);
         let z0 = l as f64 * SIZE[2];
-        let _ = writeln!(s, "*NODE");
+        let elset = format!("L{}", l + 1);
+        mesh_cards(&mut s, &m, &elset, (node_base, elem_base), [0.0, 0.0, z0]);
         for (i, p) in m.nodes.iter().enumerate() {
             let id = node_base + i + 1;
-            let _ = writeln!(s, "{id}, {}, {}, {}", p[0], p[1], p[2] + z0);
             if p[0] == 0.0 {
                 clamp.push(id);
             }
             if p[0] == SIZE[0] && p[1] == 0.0 && p[2] == SIZE[2] {
                 tip = id;
             }
-        }
-        let _ = writeln!(s, "*ELEMENT, TYPE=C3D20, ELSET=L{}", l + 1);
-        for (e, conn) in m.elements.iter().enumerate() {
-            let mut line = format!("{}", elem_base + e + 1);
-            for (k, n) in conn.iter().enumerate() {
-                line.push_str(if k == 15 { ",\n" } else { ", " });
-                let _ = write!(line, "{}", node_base + n + 1);
-            }
-            let _ = writeln!(s, "{line}");
         }
         let _ = writeln!(
             s,

@@ -6,8 +6,9 @@
 
 use super::error::{DeckError, DeckErrorKind as K, DeckWarning};
 use super::model::{Deck, FrequencyScale, NodeTarget, Procedure, Step};
-use super::props::{user_law, UserLaw};
+use super::props::user_law;
 use crate::input::scene::{BandSpec, OutputSpec, Spacing, SweepSpec, Units};
+use crate::names::ContactLaw;
 
 /// The comment line that states a deck's units (decks carry none):
 /// `** jointlin units: length=mm force=N time=s mass=t`.
@@ -30,7 +31,7 @@ pub struct DeckJob {
     /// Index of the `*STEADY STATE DYNAMICS` step, if any.
     pub dynamics: Option<usize>,
     /// The contact law of each contact pair (in `deck.contact_pairs` order).
-    pub laws: Vec<UserLaw>,
+    pub laws: Vec<ContactLaw>,
 }
 
 impl DeckJob {

@@ -3,31 +3,14 @@
 //! so the same deck runs in Abaqus with the shim's UINTER.
 
 use super::{ContactPair, DeckError, DeckErrorKind as K, Interaction};
-use crate::names::{LawName, NormalLawName, RuleName};
-
-/// The contact law of a USER interaction (stress form: per unit area).
-#[derive(Debug, Clone, PartialEq)]
-pub struct UserLaw {
-    pub law: LawName,
-    pub rule: RuleName,
-    /// Friction coefficient μ (PROPS 3).
-    pub mu: f64,
-    /// k_T0 per area (force/length³, PROPS 4).
-    pub k_t0_per_area: f64,
-    pub normal_law: NormalLawName,
-    /// k_N per area (force/length³) for the linear law (PROPS 6).
-    pub normal_stiffness_per_area: Option<f64>,
-    /// r* (length) for Hertz (PROPS 7).
-    pub hertz_radius: Option<f64>,
-    /// E* (force/length²) for Hertz (PROPS 6).
-    pub hertz_e_star: Option<f64>,
-}
+use crate::names::{ContactLaw, LawName, NormalLawName, RuleName};
 
 /// PROPS entries a run needs (the shim's NPROPS ≥ 7).
 const MIN_PROPS: usize = 7;
 
-/// The law of contact pair `pair` with interaction `inter` (PROPS 1…12).
-pub fn user_law(pair: &ContactPair, inter: &Interaction) -> Result<UserLaw, DeckError> {
+/// The contact law (stress form: per unit area) of contact pair `pair` with interaction
+/// `inter` (PROPS 1…12).
+pub fn user_law(pair: &ContactPair, inter: &Interaction) -> Result<ContactLaw, DeckError> {
     let err = |m: String| pair.origin.error(K::Unsupported, "*CONTACT PAIR", m);
     if !inter.user || inter.properties.len() < MIN_PROPS {
         return Err(err(format!(
@@ -85,7 +68,7 @@ pub fn user_law(pair: &ContactPair, inter: &Interaction) -> Result<UserLaw, Deck
         ));
     }
     let linear = normal_law == NormalLawName::Linear;
-    Ok(UserLaw {
+    Ok(ContactLaw {
         law,
         rule,
         mu,

@@ -128,14 +128,7 @@ pub fn build(scene: &Scene, job: &DeckJob) -> Result<Problem, BuildError> {
     for (c, l) in deck.contact_pairs.iter().zip(&job.laws) {
         interfaces.push(Interface {
             name: format!("{}/{}", c.slave, c.master),
-            law: l.law,
-            rule: l.rule,
-            mu: l.mu,
-            k_t0_per_area: l.k_t0_per_area,
-            normal_law: l.normal_law,
-            normal_stiffness_per_area: l.normal_stiffness_per_area,
-            hertz_radius: l.hertz_radius,
-            hertz_e_star: l.hertz_e_star,
+            contact: *l,
             initial_gap: 0.0,
         });
         let p = pair_surfaces(deck, &c.slave, &c.master, tol, &c.origin, "*CONTACT PAIR")?;

@@ -24,6 +24,7 @@ use std::time::Instant;
 
 use super::anderson::Anderson;
 use super::bracket::Bracket;
+use super::fast_update::{consistent, next_estimate, predict, updated_product};
 use super::krylov::Gmres;
 use super::posteriori::{self, Claim};
 use super::receptance::Receptance;
@@ -49,11 +50,6 @@ const GMRES_REL: f64 = 1e-4;
 /// FGMRES restart length and most preconditioner applications per contact iteration.
 const GMRES_RESTART: usize = 30;
 const GMRES_MAX: usize = 300;
-/// Largest step of an Anderson iterate beyond the bracket of the current amplitude
-/// and its image, in ln a (one decade). Without it, a stiff joint (k_T0·L/(E·A) = 1e6,
-/// scenes/hard/stiffness-ratio.toml near resonance) extrapolated to A/δ* ≈ 1e16, where
-/// the linearization is no longer representable and the run stopped.
-const MAX_EXTRAPOLATION: f64 = std::f64::consts::LN_10;
 /// Amplitudes below this fraction of the largest one are round-off: handed to the
 /// linearization as exactly 0 (k* = k_T0, d* = 0: the A → 0 limit; k* differs from it by
 /// O(A/δ*)), floored there before taking logs, and equal to each other in the
@@ -219,19 +215,7 @@ pub fn sweep(
         // Predictor: linear extrapolation of ln a over frequency from the last two
         // converged frequencies (the start estimate; the factorized reference stays the
         // previous frequency's converged state).
-        if let [(f2, a2), (f1, a1)] = hist.as_slice() {
-            // At most one decade (MAX_EXTRAPOLATION): a far frequency (7500 Hz → 1e7 Hz
-            // on three-beams-coarse) extrapolated ln a by 2e4 steps to an infinite or
-            // zero amplitude, and the whole sweep stopped.
-            let t = (f - f1) / (f1 - f2);
-            for j in 0..m {
-                if a1[j] > 0.0 && a2[j] > 0.0 {
-                    let step =
-                        (t * (a1[j] / a2[j]).ln()).clamp(-MAX_EXTRAPOLATION, MAX_EXTRAPOLATION);
-                    a[j] = a1[j] * if step.is_finite() { step.exp() } else { 1.0 };
-                }
-            }
-        }
+        predict(&hist, f, &mut a);
         // The factorized reference is the start estimate's own state κ(a₀): the first
         // contact iteration then needs no Krylov step (Δ = 0, û = S₀⁻¹f exactly).
         let mut lin_fresh = false;
@@ -330,24 +314,7 @@ pub fn sweep(
                             .map(|(d, b2)| d.norm() * b2)
                             .sum::<f64>();
                     let stats = gmres.solve(
-                        &mut |xv: &[C64], y: &mut [C64]| {
-                            // y = S₀ x + Σⱼ Bⱼᵀ Δⱼ (Bⱼ x)
-                            y.iter_mut().for_each(|v| *v = C64::new(0.0, 0.0));
-                            let pt = &s0.pattern;
-                            for col in 0..pt.n {
-                                let xc = xv[col];
-                                for k in pt.col_ptr[col] as usize..pt.col_ptr[col + 1] as usize {
-                                    y[pt.row_idx[k] as usize] += s0.values[k] * xc;
-                                }
-                            }
-                            for j in 0..m {
-                                let bx: C64 = row(j).iter().map(|&(i, w)| xv[i] * w).sum();
-                                let dbx = delta[j] * bx;
-                                for &(i, w) in row(j) {
-                                    y[i] += dbx * w;
-                                }
-                            }
-                        },
+                        &mut |xv: &[C64], y: &mut [C64]| updated_product(s0, &delta, &row, xv, y),
                         &mut |xv: &[C64], y: &mut [C64]| num.solve_into(xv, y),
                         &p.excitation,
                         &mut u,
@@ -377,51 +344,16 @@ pub fn sweep(
                 for j in 0..m {
                     a_star[j] = r[j].norm();
                 }
-                // The iterate's own scale (ATOL_REL, or the tolerance when that is tighter), not the start estimate's.
-                let atol = super::ATOL_REL.min(it.tolerance)
-                    * a.iter().chain(&a_star).fold(0.0f64, |x, &y| x.max(y));
                 let floor = ZERO_AMP_REL
                     * a.iter()
                         .chain(&a_star)
                         .fold(f64::MIN_POSITIVE, |x, &y| x.max(y));
-                converged = a.iter().zip(&a_star).all(|(&e, &c)| {
-                    let (e, c) = (e.max(floor), c.max(floor));
-                    (e - c).abs() <= it.tolerance * e.max(c) + atol
-                });
+                converged = consistent(&a, &a_star, floor, it.tolerance);
                 res.time("condensed iterations", t);
                 if converged {
                     break;
                 }
-                // A direction whose computed amplitude is round-off (below the floor) is
-                // not excited: it leaves the update (constant 0 in x and g, so it cannot
-                // tie the Anderson columns to the moving floor) and is handed on as
-                // exactly 0. Kept in, it made the block of block-stick.toml with
-                // k_T0 = 1e12 N/mm³ cycle for 50 iterations around 5e-13 mm.
-                let excited: Vec<bool> = a_star.iter().map(|&v| v >= floor).collect();
-                let log = |v: &f64, e: &bool| if *e { v.max(floor).ln() } else { 0.0 };
-                let xs: Vec<f64> = a.iter().zip(&excited).map(|(v, e)| log(v, e)).collect();
-                let gs: Vec<f64> = a_star
-                    .iter()
-                    .zip(&excited)
-                    .map(|(v, e)| log(v, e))
-                    .collect();
-                a = if m == 1 {
-                    vec![bracket.next(xs[0], gs[0]).exp()]
-                } else {
-                    // Anderson extrapolates; keep each step within a decade of the bracket
-                    // [min(a, a*), max(a, a*)] (MAX_EXTRAPOLATION).
-                    acc.next(&xs, &gs)
-                        .iter()
-                        .zip(xs.iter().zip(&gs))
-                        .map(|(v, (x, g))| {
-                            v.clamp(x.min(*g) - MAX_EXTRAPOLATION, x.max(*g) + MAX_EXTRAPOLATION)
-                                .exp()
-                        })
-                        .collect()
-                };
-                for (v, _) in a.iter_mut().zip(&excited).filter(|(_, e)| !**e) {
-                    *v = 0.0;
-                }
+                a = next_estimate(&a, &a_star, floor, &mut acc, &mut bracket);
                 if a.iter().any(|v| !v.is_finite()) {
                     break;
                 }

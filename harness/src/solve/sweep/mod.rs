@@ -14,6 +14,7 @@
 pub mod anderson;
 pub mod bracket;
 pub mod fast;
+mod fast_update;
 pub mod harmonic;
 pub mod harmonic_check;
 pub mod harmonic_fe;
@@ -298,7 +299,7 @@ impl<'a> Setup<'a> {
             let kt = if effects.tangential_microslip {
                 0.0
             } else {
-                itf.k_t0_per_area
+                itf.contact.k_t0_per_area
             };
             let local = Matrix3::from_diagonal(&Vector3::new(kn, kt, kt)) * c.area;
             problem

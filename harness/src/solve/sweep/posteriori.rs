@@ -248,7 +248,7 @@ mod tests {
         // nearly cancels.
         let f = 1170.0;
         let omega = 2.0 * std::f64::consts::PI * f;
-        let kt = p.interfaces[0].k_t0_per_area;
+        let kt = p.interfaces[0].contact.k_t0_per_area;
         let kappa = vec![[C64::new(kt, 0.0); 2]; setup.active.len()];
         setup.fill(omega, &kappa, &[]);
         let num = setup.factor(f).unwrap().unwrap();

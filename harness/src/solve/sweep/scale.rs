@@ -37,7 +37,12 @@ fn stuck_kappa(setup: &Setup) -> Vec<[C64; 2]> {
     setup
         .active
         .iter()
-        .map(|&i| [C64::new(p.interfaces[p.contacts[i].interface].k_t0_per_area, 0.0); 2])
+        .map(|&i| {
+            [C64::new(
+                p.interfaces[p.contacts[i].interface].contact.k_t0_per_area,
+                0.0,
+            ); 2]
+        })
         .collect()
 }
 

@@ -3,6 +3,7 @@
 use serde::{Deserialize, Serialize};
 
 use super::*;
+use crate::names::ContactLaw;
 
 /// A contact interface between two bodies: the z-max face of the first touches the
 /// z-min face of the second (coincident nodes), or `ground` and a `mass` body.
@@ -46,6 +47,22 @@ pub struct InterfaceSpec {
     /// alone, over its whole area (the thesis's node-based contact).
     #[serde(default)]
     pub area_samples: Option<usize>,
+}
+
+impl InterfaceSpec {
+    /// The interface's contact law (stress form).
+    pub fn contact_law(&self) -> ContactLaw {
+        ContactLaw {
+            law: self.law,
+            rule: self.rule,
+            mu: self.mu,
+            k_t0_per_area: self.k_t0_per_area,
+            normal_law: self.normal_law,
+            normal_stiffness_per_area: self.normal_stiffness_per_area,
+            hertz_radius: self.hertz_radius,
+            hertz_e_star: self.hertz_e_star,
+        }
+    }
 }
 
 /// An axis-aligned region `min ≤ x ≤ max` (length).

@@ -1,0 +1,260 @@
+//! `*NODE`, `*ELEMENT`, `*NSET`/`*ELSET`, `*SURFACE`.
+
+use super::*;
+
+impl Reader {
+    pub(super) fn nodes(&mut self, card: &Card, scope: &Scope) -> Result<(), DeckError> {
+        let mut ids = Vec::new();
+        for l in lines(card) {
+            let f = &l.fields[0];
+            let id = scope
+                .id(f, Members::Nodes, &self.instances)
+                .ok_or_else(|| {
+                    card.error_at(
+                        l.line,
+                        K::Syntax,
+                        format!("node id {:?} is not a positive integer", truncate(f)),
+                    )
+                })?;
+            let mut x = [0.0; 3];
+            for c in 0..3 {
+                x[c] = opt_number(card, l, c + 1, "coordinate", 0.0)? + scope.translation[c];
+            }
+            if self
+                .deck
+                .node_index
+                .insert(id, self.deck.nodes.len())
+                .is_some()
+            {
+                return Err(card.error_at(l.line, K::Duplicate, format!("node {f} defined twice")));
+            }
+            self.deck.nodes.push(Node { id, x });
+            ids.push(id);
+        }
+        if let Some(set) = card.param("NSET") {
+            add_to_set(&mut self.deck.node_sets, scope.name(set), &ids);
+        }
+        Ok(())
+    }
+
+    pub(super) fn elements(&mut self, card: &Card, scope: &Scope) -> Result<(), DeckError> {
+        let ty = card.required("TYPE")?;
+        let kind = ElementKind::from_name(ty).ok_or_else(|| {
+            let names: Vec<&str> = ElementKind::ALL.iter().map(|k| k.name()).collect();
+            let why = if ty.eq_ignore_ascii_case("C3D8R") {
+                " (reduced integration needs hourglass control, which this code does not have)"
+            } else {
+                ""
+            };
+            card.error(
+                K::Unsupported,
+                format!("element type {ty}{why}; supported: {}", names.join(", ")),
+            )
+        })?;
+        let need = kind.node_count() + 1;
+        let mut ids = Vec::new();
+        let mut fields: Vec<String> = Vec::new();
+        let mut first_line = 0;
+        for l in lines(card) {
+            if fields.is_empty() {
+                first_line = l.line;
+            }
+            fields.extend(l.fields.iter().filter(|f| !f.is_empty()).cloned());
+            if fields.len() < need {
+                continue;
+            }
+            if fields.len() > need {
+                return Err(card.error_at(
+                    l.line,
+                    K::Syntax,
+                    format!(
+                        "{kind} needs {} nodes, line has {}",
+                        need - 1,
+                        fields.len() - 1
+                    ),
+                ));
+            }
+            let at = |msg: String| card.error_at(first_line, K::Syntax, msg);
+            let id = scope
+                .id(&fields[0], Members::Elements, &self.instances)
+                .ok_or_else(|| {
+                    at(format!(
+                        "element id {:?} is not a positive integer",
+                        truncate(&fields[0])
+                    ))
+                })?;
+            let mut nodes = Vec::with_capacity(need - 1);
+            for f in &fields[1..] {
+                let n = scope
+                    .id(f, Members::Nodes, &self.instances)
+                    .ok_or_else(|| {
+                        at(format!(
+                            "node id {:?} is not a positive integer",
+                            truncate(f)
+                        ))
+                    })?;
+                nodes.push(n);
+            }
+            if self
+                .deck
+                .element_index
+                .insert(id, self.deck.elements.len())
+                .is_some()
+            {
+                return Err(card.error_at(
+                    first_line,
+                    K::Duplicate,
+                    format!("element {} defined twice", fields[0]),
+                ));
+            }
+            let origin = Origin {
+                file: card.origin.file.clone(),
+                line: first_line,
+            };
+            self.deck.elements.push(Element {
+                id,
+                kind,
+                nodes,
+                origin,
+            });
+            ids.push(id);
+            fields.clear();
+        }
+        if !fields.is_empty() {
+            return Err(card.error_at(
+                first_line,
+                K::Syntax,
+                format!(
+                    "{kind} needs {} nodes, got {} (truncated?)",
+                    need - 1,
+                    fields.len() - 1
+                ),
+            ));
+        }
+        if let Some(set) = card.param("ELSET") {
+            add_to_set(&mut self.deck.element_sets, scope.name(set), &ids);
+        }
+        Ok(())
+    }
+
+    pub(super) fn set(&mut self, card: &Card, scope: &Scope) -> Result<(), DeckError> {
+        let (param, kind) = if card.keyword == "NSET" {
+            ("NSET", Members::Nodes)
+        } else {
+            ("ELSET", Members::Elements)
+        };
+        let name = scope.name(card.required(param)?);
+        // INSTANCE=: ids and names of the data lines are that instance's.
+        let inner = match card.param("INSTANCE") {
+            Some(inst) => {
+                let inst = inst.to_ascii_uppercase();
+                let &(n, e) = self.instances.get(&inst).ok_or_else(|| {
+                    card.error(K::Undefined, format!("instance {inst} is not defined"))
+                })?;
+                Scope {
+                    prefix: format!("{inst}."),
+                    node_offset: n,
+                    element_offset: e,
+                    translation: [0.0; 3],
+                }
+            }
+            None => scope.clone(),
+        };
+        let data: Vec<DataLine> = lines(card).cloned().collect();
+        let ids = members(card, &data, kind, &inner, &self.instances, &self.deck)?;
+        let sets = if kind == Members::Nodes {
+            &mut self.deck.node_sets
+        } else {
+            &mut self.deck.element_sets
+        };
+        add_to_set(sets, name, &ids);
+        Ok(())
+    }
+
+    pub(super) fn check_face(
+        &self,
+        card: &Card,
+        line: usize,
+        element: u64,
+        face: usize,
+    ) -> Result<(), DeckError> {
+        let e = &self.deck.elements[self.deck.element_index[&element]];
+        if face >= e.kind.face_count() {
+            return Err(card.error_at(
+                line,
+                K::BadValue,
+                format!(
+                    "element {element} is a {} and has no face {}{}",
+                    e.kind,
+                    if card.keyword == "DLOAD" { "P" } else { "S" },
+                    face + 1
+                ),
+            ));
+        }
+        Ok(())
+    }
+
+    pub(super) fn surface(&mut self, card: &Card, scope: &Scope) -> Result<(), DeckError> {
+        let name = scope.name(card.required("NAME")?);
+        let ty = card.param("TYPE").unwrap_or("ELEMENT").to_ascii_uppercase();
+        let kind = match ty.as_str() {
+            "ELEMENT" => {
+                let mut faces = Vec::new();
+                for l in lines(card) {
+                    let target = self.element_target(card, l, scope)?;
+                    let label = l.fields.get(1).map(String::as_str).unwrap_or("");
+                    let face = face_label(label, 'S').ok_or_else(|| {
+                        card.error_at(
+                            l.line,
+                            K::BadValue,
+                            format!("face label {:?}: expected S1…S6", truncate(label)),
+                        )
+                    })?;
+                    for id in self.element_ids(&target) {
+                        self.check_face(card, l.line, id, face)?;
+                        faces.push((id, face));
+                    }
+                }
+                SurfaceKind::Element(faces)
+            }
+            "NODE" => {
+                let mut nodes = Vec::new();
+                for l in lines(card) {
+                    let area = match l.fields.get(1).map(|s| s.trim()) {
+                        None | Some("") => None,
+                        Some(_) => Some(number(card, l, 1, "area")?),
+                    };
+                    match self.node_target(card, l, scope)? {
+                        NodeTarget::Node(id) => nodes.push((id, area)),
+                        NodeTarget::Set(s) => {
+                            nodes.extend(self.deck.node_sets[&s].iter().map(|&id| (id, area)))
+                        }
+                    }
+                }
+                SurfaceKind::Node(nodes)
+            }
+            other => {
+                return Err(card.error(
+                    K::Unsupported,
+                    format!("TYPE={other}: only ELEMENT and NODE surfaces"),
+                ))
+            }
+        };
+        let empty = match &kind {
+            SurfaceKind::Element(f) => f.is_empty(),
+            SurfaceKind::Node(n) => n.is_empty(),
+        };
+        if empty {
+            return Err(card.error(K::BadValue, format!("surface {name} is empty")));
+        }
+        let s = Surface {
+            name: name.clone(),
+            kind,
+            origin: card.origin.clone(),
+        };
+        if self.deck.surfaces.insert(name.clone(), s).is_some() {
+            return Err(card.error(K::Duplicate, format!("surface {name} defined twice")));
+        }
+        Ok(())
+    }
+}
