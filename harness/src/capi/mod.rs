@@ -136,11 +136,13 @@ fn rule_code(r: RuleName) -> i32 {
 
 mod linearize;
 mod point;
+mod point3d;
 mod store;
 mod uinter;
 
 pub use linearize::*;
 pub use point::*;
+pub use point3d::*;
 pub use store::*;
 pub use uinter::*;
 

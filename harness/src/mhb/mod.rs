@@ -23,6 +23,7 @@
 
 pub mod aft;
 pub mod consistency;
+pub mod contact3d;
 pub mod continuation;
 pub mod first_order;
 

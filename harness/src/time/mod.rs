@@ -21,6 +21,7 @@
 //! convention as the frequency-domain sweep.
 
 pub mod contact;
+pub mod contact3d_reference;
 pub mod mhb_reference;
 pub mod newmark;
 pub mod periodic;
