@@ -12,10 +12,10 @@
 //! g₀ the overclosure at x = 0). Internal forces on the body: +F₁, +F₂ on t₁, t₂ (the
 //! point returns them with the sign of the displacement) and −N on n.
 
-use nalgebra::{Complex, DMatrix, DVector};
+use nalgebra::{DMatrix, DVector};
 
 use super::aft::{AftError, Transforms, CLOSE_TOL, MAX_PERIODS};
-use super::{Hb, MhbError, NewtonOptions, System};
+use super::{linear_coefficients, Hb, MhbError, NewtonOptions, System};
 use crate::capi::{self, Contact3, POINT3D_STATE_LEN};
 
 /// One three-direction point between a body's DOFs and the ground plane.
@@ -155,11 +155,7 @@ impl<'a> Hb3<'a> {
     }
 
     /// Residual and Jacobian at (u, ω), with each point's dissipated energy per period.
-    pub fn eval(
-        &mut self,
-        u: &[f64],
-        omega: f64,
-    ) -> Result<Evaluated3, MhbError> {
+    pub fn eval(&mut self, u: &[f64], omega: f64) -> Result<Evaluated3, MhbError> {
         let ev = self.linear.eval(u, omega)?;
         let (mut r, mut j) = (ev.r, ev.j);
         let m = self.m();
@@ -254,7 +250,7 @@ impl<'a> Hb3<'a> {
     /// n, the normal spring preloaded by k_N·g₀): the start of a solve.
     pub fn stuck_start(&self, omega: f64) -> Vec<f64> {
         let s = &self.sys.linear;
-        let (nd, m) = (s.n(), self.m());
+        let m = self.m();
         let mut k = s.k.clone();
         let mut f0 = DVector::from_column_slice(&s.f0);
         for e in &self.sys.elements {
@@ -264,23 +260,7 @@ impl<'a> Hb3<'a> {
             k[(nn, nn)] += e.contact.k_n;
             f0[nn] += e.contact.k_n * e.gap;
         }
-        let dyn_k = DMatrix::from_fn(nd, nd, |a, b| {
-            Complex::new(k[(a, b)] - omega * omega * s.m[(a, b)], omega * s.d[(a, b)])
-        });
-        let f1 = DVector::from_iterator(nd, s.f1.iter().copied());
-        let x1 = dyn_k.lu().solve(&f1);
-        let x0 = k.lu().solve(&f0);
-        let mut u = vec![0.0; nd * m];
-        for d in 0..nd {
-            if let Some(x0) = &x0 {
-                u[d * m] = x0[d];
-            }
-            if let Some(x1) = &x1 {
-                u[d * m + 1] = x1[d].re;
-                u[d * m + 2] = -x1[d].im;
-            }
-        }
-        u
+        linear_coefficients(s, &k, &f0, omega, m)
     }
 
     /// First-harmonic amplitude of DOF `dof` in `u`.

@@ -61,6 +61,40 @@ impl System {
     }
 }
 
+/// Zeroth and first harmonics (DOF-major, `m` = 2H + 1 coefficients per DOF, higher ones
+/// zero) of the linear system with stiffness `k` in place of `sys.k`: K x̄ = f₀ and
+/// (K − ω²M + iωD) x̂ = f̂ (a singular system leaves its harmonic at zero).
+pub fn linear_coefficients(
+    sys: &System,
+    k: &DMatrix<f64>,
+    f0: &DVector<f64>,
+    omega: f64,
+    m: usize,
+) -> Vec<f64> {
+    use nalgebra::Complex;
+    let n = sys.n();
+    let dyn_k = DMatrix::from_fn(n, n, |a, b| {
+        Complex::new(
+            k[(a, b)] - omega * omega * sys.m[(a, b)],
+            omega * sys.d[(a, b)],
+        )
+    });
+    let f1 = DVector::from_iterator(n, sys.f1.iter().copied());
+    let x1 = dyn_k.lu().solve(&f1);
+    let x0 = k.clone().lu().solve(f0);
+    let mut u = vec![0.0; n * m];
+    for d in 0..n {
+        if let Some(x0) = &x0 {
+            u[d * m] = x0[d];
+        }
+        if let Some(x1) = &x1 {
+            u[d * m + 1] = x1[d].re;
+            u[d * m + 2] = -x1[d].im;
+        }
+    }
+    u
+}
+
 /// Samples per period used unless a caller sets N: 16(H + 1) rounded up to a power of
 /// two, at least 64 (the contact force has kinks, so its spectrum decays like h⁻²; the
 /// sampled force aliases harmonics above N − H onto the retained ones; 16 samples per
@@ -309,8 +343,7 @@ impl<'a> Hb<'a> {
     /// First and zeroth harmonics of the linear system, contact elements removed or
     /// stuck.
     fn linear_response(&self, omega: f64, stuck: bool) -> Vec<f64> {
-        use nalgebra::Complex;
-        let (n, m) = (self.sys.n(), self.tr.ncoef());
+        let m = self.tr.ncoef();
         let s = &self.sys;
         let mut k = s.k.clone();
         if stuck {
@@ -328,23 +361,7 @@ impl<'a> Hb<'a> {
                 }
             }
         }
-        let dyn_k = DMatrix::from_fn(n, n, |a, b| {
-            Complex::new(k[(a, b)] - omega * omega * s.m[(a, b)], omega * s.d[(a, b)])
-        });
-        let f1 = nalgebra::DVector::from_iterator(n, s.f1.iter().copied());
-        let x1 = dyn_k.lu().solve(&f1);
-        let x0 = k.lu().solve(&DVector::from_column_slice(&s.f0));
-        let mut u = vec![0.0; self.size()];
-        for d in 0..n {
-            if let Some(x0) = &x0 {
-                u[d * m] = x0[d];
-            }
-            if let Some(x1) = &x1 {
-                u[d * m + 1] = x1[d].re;
-                u[d * m + 2] = -x1[d].im;
-            }
-        }
-        u
+        linear_coefficients(s, &k, &DVector::from_column_slice(&s.f0), omega, m)
     }
 
     /// First-harmonic amplitude √(a₁² + b₁²) of DOF `dof` in `u`.
