@@ -20,6 +20,7 @@ declare -A commands=(
   [duffing_frf]="cargo run --release -q -p jointlin-harness --bin jointlin -- run scenes/duffing.toml --out out/duffing --quiet"
   [bolted_lap_frf]="rm -rf out/bolted-lap && cargo run --release -q -p jointlin-harness --bin jointlin -- run scenes/bolted-lap.toml --out out/bolted-lap --quiet"
   [deck_stack]="cargo run --release -q -p jointlin-harness --example deck_stack"
+  [deck_bench]="cargo run --release -q -p jointlin-harness --example deck_bench"
 )
 # Plots a block's command writes that the documents show: "from to" pairs, several
 # separated by ";"; a "from" may be a glob matching one file (a name with the peak's
@@ -36,7 +37,7 @@ declare -A plots=(
 # written): the block shows the message and the exit status instead of ending the script.
 may_stop=" backbone_fe_h7 "
 # Blocks whose command prints Markdown (the others are shown as terminal output).
-markdown=" accuracy_table knife knife_mesh tradeoff_beams tradeoff_block backbone_cost deck_stack "
+markdown=" accuracy_table knife knife_mesh tradeoff_beams tradeoff_block backbone_cost deck_stack deck_bench "
 files=(README.md docs/accuracy.md)
 # Copies each "from to" pair of a plots entry; a glob must match exactly one file.
 copy_plots() {
