@@ -96,9 +96,9 @@ pub fn main(a: Args) -> ExitCode {
         || !s.spec.joints.is_empty()
         || s.spec.springs.iter().any(|sp| sp.between.is_some());
     if lumped {
-        if s.spec.iteration.mode != Mode::Fast {
+        if s.spec.iteration.mode == Mode::Thesis {
             eprintln!(
-                "error: {}: a lumped system ([[matrices]], [[joints]]) is swept by the first-order method only: mode \"fast\" (the default); `jointlin backbone --harmonics H` for harmonic balance",
+                "error: {}: a lumped system ([[matrices]], [[joints]]) is swept first order (mode \"fast\", the default) or by harmonic balance (mode \"harmonic_balance\"); the thesis's pass scheme is for FE scenes",
                 s.file
             );
             return ExitCode::from(2);

@@ -1,8 +1,10 @@
 //! `jointlin run` of a lumped scene (mass bodies, `[[matrices]]`, springs, joints): the
 //! thesis's first-order method per frequency (`mhb::first_order`: every joint's k*, d*
-//! from `jointlin_linearize` consistent with its amplitude, (3.8), (3.14)), each
-//! frequency started from the previous one's amplitudes; results.csv, frf.svg and
-//! run.json.
+//! from `jointlin_linearize` consistent with its amplitude, (3.8), (3.14)), or with
+//! `mode = "harmonic_balance"` the multi-harmonic balance at H harmonics (`mhb::Hb`:
+//! the joints marched through `jointlin_point_step` by AFT, Newton), each frequency
+//! started from the previous one's solution (harmonic balance: else from the stuck
+//! linear response); results.csv, frf.svg and run.json.
 
 use std::path::Path;
 use std::process::ExitCode;
@@ -11,8 +13,9 @@ use nalgebra::Complex;
 use serde_json::json;
 
 use jointlin_harness::input::scene::units::{frequency_unit, ColumnUnits};
+use jointlin_harness::input::scene::Mode;
 use jointlin_harness::input::scene::Scene;
-use jointlin_harness::mhb::first_order;
+use jointlin_harness::mhb::{default_samples, first_order, Hb, NewtonOptions};
 use jointlin_harness::model::lumped;
 use jointlin_harness::report::svg::{frf_curves, FrfCurve};
 use jointlin_harness::util::atomic;
@@ -42,19 +45,23 @@ pub fn main(s: &Scene, out: &Path, plots: bool) -> ExitCode {
     }
     header.push("status".into());
     let mut csv = CsvTable::new(&header);
-    let mut a0 = vec![0.0; l.system.elements.len()];
     let freqs = s.frequencies();
     let mut failed = Vec::new();
     let mut curve = FrfCurve {
         label: String::new(),
         points: Vec::new(),
     };
+    let it = &s.spec.iteration;
+    let harmonic = (it.mode == Mode::HarmonicBalance).then(|| {
+        let h = it.harmonics.unwrap_or(1);
+        (h, it.samples.unwrap_or_else(|| default_samples(h)))
+    });
+    let mut sweep = Sweep::new(&l, harmonic);
     for &f in &freqs {
         let omega = 2.0 * std::f64::consts::PI * f;
         let mut row = vec![format!("{:e}", fu.show(f))];
-        match first_order::solve(&l.system, omega, &a0) {
-            Ok(x) => {
-                a0 = first_order::element_amplitudes(&l.system, &x);
+        match sweep.solve(omega) {
+            Ok((x, elements)) => {
                 let mut amps = Vec::new();
                 for (_, w) in &l.outputs {
                     let v: Complex<f64> = w.iter().zip(&x).map(|(w, x)| x * *w).sum();
@@ -63,7 +70,7 @@ pub fn main(s: &Scene, out: &Path, plots: bool) -> ExitCode {
                     amps.push(v.norm());
                 }
                 curve.points.push((f, amps));
-                row.extend(a0.iter().map(|a| format!("{a:e}")));
+                row.extend(elements.iter().map(|a| format!("{a:e}")));
                 row.push("converged".into());
             }
             Err(e) => {
@@ -75,6 +82,12 @@ pub fn main(s: &Scene, out: &Path, plots: bool) -> ExitCode {
         }
         csv.row(&row);
     }
+    let method = match harmonic {
+        None => "first order (jointlin_linearize), lumped system".to_string(),
+        Some((h, n)) => format!(
+            "harmonic balance, H = {h}, {n} samples per period (jointlin_point_step by AFT), lumped system"
+        ),
+    };
     let results = out.join("results.csv");
     if let Err(e) = atomic::write_text(&results, &csv.finish()) {
         eprintln!("error: {e}");
@@ -84,7 +97,10 @@ pub fn main(s: &Scene, out: &Path, plots: bool) -> ExitCode {
     if plots && !curve.points.is_empty() && !l.outputs.is_empty() {
         let names: Vec<String> = l.outputs.iter().map(|(n, _)| n.clone()).collect();
         let p = out.join("frf.svg");
-        let title = format!("{}: first order", s.spec.title);
+        let title = match harmonic {
+            None => format!("{}: first order", s.spec.title),
+            Some((h, _)) => format!("{}: harmonic balance, H = {h}", s.spec.title),
+        };
         match atomic::with_temp(&p, |t| frf_curves(t, &title, units, &names, &[curve])) {
             Ok(()) => written.push(p),
             Err(e) => {
@@ -97,7 +113,7 @@ pub fn main(s: &Scene, out: &Path, plots: bool) -> ExitCode {
         "command": "run",
         "scene": {"file": s.file, "spec": s.spec, "text": s.text},
         "units": units,
-        "method": "first order (jointlin_linearize), lumped system",
+        "method": method,
         "dofs": l.dofs,
         "frequencies": freqs.len(),
         "failed_frequencies": failed,
@@ -122,5 +138,58 @@ pub fn main(s: &Scene, out: &Path, plots: bool) -> ExitCode {
             eprintln!("error: {e}");
             ExitCode::from(1)
         }
+    }
+}
+
+/// The sweep's solver and the last converged state it continues from.
+struct Sweep<'a> {
+    l: &'a lumped::Lumped,
+    /// First order: the last element amplitudes.
+    a0: Vec<f64>,
+    /// Harmonic balance (H, N) and the last converged coefficients.
+    hb: Option<(Hb<'a>, Option<Vec<f64>>)>,
+}
+
+impl<'a> Sweep<'a> {
+    fn new(l: &'a lumped::Lumped, harmonic: Option<(usize, usize)>) -> Self {
+        Sweep {
+            l,
+            a0: vec![0.0; l.system.elements.len()],
+            hb: harmonic.map(|(h, n)| (Hb::new(&l.system, h, n), None)),
+        }
+    }
+
+    /// The first-harmonic complex amplitude of every DOF (x(t) = Re(x̂ e^{iωt})) and the
+    /// first-harmonic amplitude of every element's relative displacement at ω (rad per
+    /// time unit).
+    fn solve(&mut self, omega: f64) -> Result<(Vec<Complex<f64>>, Vec<f64>), String> {
+        let sys = &self.l.system;
+        let Some((hb, last)) = &mut self.hb else {
+            let x = first_order::solve(sys, omega, &self.a0).map_err(|e| e.to_string())?;
+            self.a0 = first_order::element_amplitudes(sys, &x);
+            return Ok((x, self.a0.clone()));
+        };
+        let opt = NewtonOptions::default();
+        // From the last solution, else (or when that fails) from the stuck response.
+        let sol = match last.as_ref().map(|u| hb.solve(u, omega, opt)) {
+            Some(Ok(sol)) => sol,
+            _ => {
+                let start = hb.stuck_start(omega);
+                hb.solve(&start, omega, opt).map_err(|e| {
+                    *last = None;
+                    e.to_string()
+                })?
+            }
+        };
+        let m = 2 * hb.h() + 1;
+        let first = |c: &dyn Fn(usize) -> f64| Complex::new(c(1), -c(2));
+        let x: Vec<Complex<f64>> = (0..sys.n()).map(|d| first(&|c| sol.u[d * m + c])).collect();
+        let elements = sys
+            .elements
+            .iter()
+            .map(|e| first(&|c| sol.u[e.i * m + c] - e.j.map_or(0.0, |j| sol.u[j * m + c])).norm())
+            .collect();
+        *last = Some(sol.u);
+        Ok((x, elements))
     }
 }
