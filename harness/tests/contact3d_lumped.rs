@@ -17,7 +17,7 @@ use nalgebra::{Complex, DMatrix};
 
 use jointlin_harness::capi::{linearize3d, Contact3};
 use jointlin_harness::mhb::contact3d::{solve_ramped, Element3, Hb3, System3};
-use jointlin_harness::mhb::{default_samples, NewtonOptions, System};
+use jointlin_harness::mhb::{default_samples, state_at_zero, NewtonOptions, System};
 use jointlin_harness::names::LawName;
 use jointlin_harness::time::contact3d_reference::steady3;
 
@@ -106,19 +106,9 @@ fn compare(name: &str, law: LawName, f1: [C64; 3], constant_normal: bool) -> Com
     // The load in 10 steps from the stuck start (through separation and sliding).
     let sol = solve_ramped(&sys, H, ns, OMEGA, 10, NewtonOptions::default())
         .unwrap_or_else(|e| panic!("{name}: {e}"));
-    let m = 2 * H + 1;
     // x(0) and v(0) of the harmonic-balance solution: the time domain starts there
     // (with a virgin point) and settles by itself.
-    let x0: Vec<f64> = (0..3)
-        .map(|d| sol.u[d * m] + (1..=H).map(|h| sol.u[d * m + 2 * h - 1]).sum::<f64>())
-        .collect();
-    let v0: Vec<f64> = (0..3)
-        .map(|d| {
-            (1..=H)
-                .map(|h| h as f64 * OMEGA * sol.u[d * m + 2 * h])
-                .sum::<f64>()
-        })
-        .collect();
+    let (x0, v0) = state_at_zero(&sol.u, H, OMEGA);
     let td = steady3::<6>(&sys, OMEGA, &x0, &v0, 4000, 1e-8, 600)
         .unwrap_or_else(|e| panic!("{name}: time domain: {e}"));
     let rel = |a: f64, b: f64| (a - b).abs() / b.abs().max(1e-300);

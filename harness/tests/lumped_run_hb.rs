@@ -10,7 +10,7 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 
 use jointlin_harness::input::scene::Scene;
-use jointlin_harness::mhb::{default_samples, Hb, NewtonOptions};
+use jointlin_harness::mhb::{default_samples, state_at_zero, Hb, NewtonOptions};
 use jointlin_harness::model::lumped;
 use jointlin_harness::time::mhb_reference::steady;
 
@@ -64,17 +64,7 @@ fn harmonic_balance_sweep_matches_the_time_domain() {
         let mut hb = Hb::new(sys, H, default_samples(H));
         let start = hb.stuck_start(omega);
         let sol = hb.solve(&start, omega, NewtonOptions::default()).unwrap();
-        let m = 2 * H + 1;
-        let x0: Vec<f64> = (0..3)
-            .map(|d| sol.u[d * m] + (1..=H).map(|h| sol.u[d * m + 2 * h - 1]).sum::<f64>())
-            .collect();
-        let v0: Vec<f64> = (0..3)
-            .map(|d| {
-                (1..=H)
-                    .map(|h| h as f64 * omega * sol.u[d * m + 2 * h])
-                    .sum::<f64>()
-            })
-            .collect();
+        let (x0, v0) = state_at_zero(&sol.u, H, omega);
         let td = steady::<6>(sys, omega, &x0, &v0, 2048, 1e-9, 20000).unwrap();
         let err = (amp - td.amplitude[m3]).abs() / td.amplitude[m3];
         println!(

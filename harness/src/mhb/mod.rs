@@ -95,6 +95,25 @@ pub fn linear_coefficients(
     u
 }
 
+/// The state (x, ẋ) at t = 0 of a solution `u` with H harmonics (DOF-major, `u.len()` /
+/// (2H + 1) DOFs) at ω: x(0) = c₀ + Σ a_h, ẋ(0) = Σ hω b_h. The start of a time-domain
+/// reference on a balance's solution.
+pub fn state_at_zero(u: &[f64], h: usize, omega: f64) -> (Vec<f64>, Vec<f64>) {
+    let m = 2 * h + 1;
+    let n = u.len() / m;
+    let x = (0..n)
+        .map(|d| u[d * m] + (1..=h).map(|j| u[d * m + 2 * j - 1]).sum::<f64>())
+        .collect();
+    let v = (0..n)
+        .map(|d| {
+            (1..=h)
+                .map(|j| j as f64 * omega * u[d * m + 2 * j])
+                .sum::<f64>()
+        })
+        .collect();
+    (x, v)
+}
+
 /// Samples per period used unless a caller sets N: 16(H + 1) rounded up to a power of
 /// two, at least 64 (the contact force has kinks, so its spectrum decays like h⁻²; the
 /// sampled force aliases harmonics above N − H onto the retained ones; 16 samples per

@@ -16,7 +16,7 @@ use nalgebra::{Complex, DMatrix};
 use super::{Report, Row};
 use crate::capi::{self, Tangential};
 use crate::mhb::continuation::{trace, Branch, Options};
-use crate::mhb::{default_samples, first_order, Element, Hb, Law, MhbError, System};
+use crate::mhb::{default_samples, first_order, state_at_zero, Element, Hb, Law, MhbError, System};
 use crate::names::{LawName, RuleName};
 use crate::time::mhb_reference as reference;
 
@@ -180,10 +180,8 @@ pub fn continuation(
 
 /// Initial state (x, ẋ) at t = 0 of a one-DOF harmonic-balance solution.
 pub fn initial_state(hb: &Hb, u: &[f64], omega: f64) -> ([f64; 1], [f64; 1]) {
-    let h = hb.h();
-    let x = u[0] + (1..=h).map(|j| u[2 * j - 1]).sum::<f64>();
-    let v = (1..=h).map(|j| j as f64 * omega * u[2 * j]).sum::<f64>();
-    ([x], [v])
+    let (x, v) = state_at_zero(&u[..2 * hb.h() + 1], hb.h(), omega);
+    ([x[0]], [v[0]])
 }
 
 /// RK4 reference amplitude (1024 steps per period, periodic to 1e-9) started on a

@@ -51,19 +51,7 @@ fn start(h: usize, x1: &[Complex<f64>]) -> Vec<f64> {
 
 /// Initial state (x, ẋ) at t = 0 from a solution.
 fn initial(hb: &Hb, u: &[f64], omega: f64) -> (Vec<f64>, Vec<f64>) {
-    let m = 2 * hb.h() + 1;
-    let n = u.len() / m;
-    let x = (0..n)
-        .map(|d| u[d * m] + (1..=hb.h()).map(|h| u[d * m + 2 * h - 1]).sum::<f64>())
-        .collect();
-    let v = (0..n)
-        .map(|d| {
-            (1..=hb.h())
-                .map(|h| h as f64 * omega * u[d * m + 2 * h])
-                .sum::<f64>()
-        })
-        .collect();
-    (x, v)
+    super::state_at_zero(u, hb.h(), omega)
 }
 
 mod basics;
