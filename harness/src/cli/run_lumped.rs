@@ -57,11 +57,30 @@ pub fn main(s: &Scene, out: &Path, plots: bool) -> ExitCode {
         (h, it.samples.unwrap_or_else(|| default_samples(h)))
     });
     let mut sweep = Sweep::new(&l, harmonic);
+    // Harmonic balance: harmonics.csv, the amplitude of every harmonic of every output.
+    let mut harmonics_csv = harmonic.map(|(h, _)| {
+        let mut head = vec![fu.column.clone()];
+        for (name, _) in &l.outputs {
+            head.extend((0..=h).map(|k| format!("{name}_h{k}_amp_{len}")));
+        }
+        CsvTable::new(&head)
+    });
     for &f in &freqs {
         let omega = 2.0 * std::f64::consts::PI * f;
         let mut row = vec![format!("{:e}", fu.show(f))];
+        let mut hrow = row.clone();
         match sweep.solve(omega) {
-            Ok((x, elements)) => {
+            Ok((x, elements, coefficients)) => {
+                if let (Some((h, _)), Some(u)) = (harmonic, &coefficients) {
+                    let m = 2 * h + 1;
+                    for (_, w) in &l.outputs {
+                        let c = |k: usize| -> f64 {
+                            w.iter().enumerate().map(|(d, w)| w * u[d * m + k]).sum()
+                        };
+                        hrow.push(format!("{:e}", c(0).abs()));
+                        hrow.extend((1..=h).map(|k| format!("{:e}", c(2 * k - 1).hypot(c(2 * k)))));
+                    }
+                }
                 let mut amps = Vec::new();
                 for (_, w) in &l.outputs {
                     let v: Complex<f64> = w.iter().zip(&x).map(|(w, x)| x * *w).sum();
@@ -81,6 +100,11 @@ pub fn main(s: &Scene, out: &Path, plots: bool) -> ExitCode {
             }
         }
         csv.row(&row);
+        if let (Some(t), Some((h, _))) = (&mut harmonics_csv, harmonic) {
+            // A failed frequency: empty fields, as in results.csv.
+            hrow.resize(1 + l.outputs.len() * (h + 1), String::new());
+            t.row(&hrow);
+        }
     }
     let method = match harmonic {
         None => "first order (jointlin_linearize), lumped system".to_string(),
@@ -94,6 +118,14 @@ pub fn main(s: &Scene, out: &Path, plots: bool) -> ExitCode {
         return ExitCode::from(1);
     }
     let mut written = vec![results];
+    if let Some(t) = harmonics_csv {
+        let p = out.join("harmonics.csv");
+        if let Err(e) = atomic::write_text(&p, &t.finish()) {
+            eprintln!("error: {e}");
+            return ExitCode::from(1);
+        }
+        written.push(p);
+    }
     if plots && !curve.points.is_empty() && !l.outputs.is_empty() {
         let names: Vec<String> = l.outputs.iter().map(|(n, _)| n.clone()).collect();
         let p = out.join("frf.svg");
@@ -141,6 +173,9 @@ pub fn main(s: &Scene, out: &Path, plots: bool) -> ExitCode {
     }
 }
 
+/// One frequency's DOF amplitudes, element amplitudes and (harmonic balance) coefficients.
+type Solved = (Vec<Complex<f64>>, Vec<f64>, Option<Vec<f64>>);
+
 /// The sweep's solver and the last converged state it continues from.
 struct Sweep<'a> {
     l: &'a lumped::Lumped,
@@ -159,15 +194,15 @@ impl<'a> Sweep<'a> {
         }
     }
 
-    /// The first-harmonic complex amplitude of every DOF (x(t) = Re(x̂ e^{iωt})) and the
+    /// The first-harmonic complex amplitude of every DOF (x(t) = Re(x̂ e^{iωt})), the
     /// first-harmonic amplitude of every element's relative displacement at ω (rad per
-    /// time unit).
-    fn solve(&mut self, omega: f64) -> Result<(Vec<Complex<f64>>, Vec<f64>), String> {
+    /// time unit) and, for the harmonic balance, all coefficients (DOF-major).
+    fn solve(&mut self, omega: f64) -> Result<Solved, String> {
         let sys = &self.l.system;
         let Some((hb, last)) = &mut self.hb else {
             let x = first_order::solve(sys, omega, &self.a0).map_err(|e| e.to_string())?;
             self.a0 = first_order::element_amplitudes(sys, &x);
-            return Ok((x, self.a0.clone()));
+            return Ok((x, self.a0.clone(), None));
         };
         let opt = NewtonOptions::default();
         // From the last solution, else (or when that fails) from the stuck response.
@@ -189,7 +224,7 @@ impl<'a> Sweep<'a> {
             .iter()
             .map(|e| first(&|c| sol.u[e.i * m + c] - e.j.map_or(0.0, |j| sol.u[j * m + c])).norm())
             .collect();
-        *last = Some(sol.u);
-        Ok((x, elements))
+        *last = Some(sol.u.clone());
+        Ok((x, elements, Some(sol.u)))
     }
 }
