@@ -18,7 +18,7 @@ declare -A commands=(
   [backbone_fe_h7]="cargo run --release -q -p jointlin-harness --bin jointlin -- backbone scenes/three-beams-coarse.toml --harmonics 7 --amplitudes 3e-6,3e-2,25 --out harness/assets/backbone-three-beams-h7 2>&1"
   [three_beams_frf]="cargo run --release -q -p jointlin-harness --bin jointlin -- run scenes/three-beams.toml --out out/three-beams --quiet"
   [duffing_frf]="cargo run --release -q -p jointlin-harness --bin jointlin -- run scenes/duffing.toml --out out/duffing --quiet"
-  [bolted_lap_frf]="rm -rf out/bolted-lap && cargo run --release -q -p jointlin-harness --bin jointlin -- run scenes/bolted-lap.toml --out out/bolted-lap --quiet"
+  [bolted_lap_frf]="cargo run --release -q -p jointlin-harness --bin jointlin -- run scenes/bolted-lap.toml --out out/bolted-lap --quiet"
   [deck_stack]="cargo run --release -q -p jointlin-harness --example deck_stack"
   [deck_bench]="cargo run --release -q -p jointlin-harness --example deck_bench"
 )

@@ -196,3 +196,46 @@ fn an_interrupt_after_the_marker_keeps_the_complete_run() {
     }
     std::fs::remove_dir_all(&d).unwrap();
 }
+
+/// A second run into the same directory leaves only its own outputs: the first run's
+/// field and contact maps at another frequency, its plots and the reference sweep they
+/// need (the second has `--no-plots`) are gone; a file of the user's stays.
+#[test]
+fn a_second_run_leaves_no_outputs_of_the_first() {
+    let d = scratch("rerun");
+    let base = std::fs::read_to_string(scene("three-beams-coarse.toml")).unwrap();
+    let out = d.join("out");
+    std::fs::create_dir_all(&out).unwrap();
+    std::fs::write(out.join("notes.txt"), "mine").unwrap();
+    for (k, (freq, plots)) in [(1000.0, true), (1100.0, false)].iter().enumerate() {
+        let p = d.join(format!("s{k}.toml"));
+        std::fs::write(
+            &p,
+            format!("{base}\n[field_output]\nfrequencies = [{freq:.1}]\n"),
+        )
+        .unwrap();
+        let mut c = jointlin(&p, &out);
+        if !plots {
+            c.arg("--no-plots");
+        }
+        let o = c.output().unwrap();
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    }
+    let mut names: Vec<String> = std::fs::read_dir(&out)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    assert_eq!(
+        names,
+        [
+            "field_1100.000_Hz.vtu",
+            "notes.txt",
+            "points.csv",
+            "results.csv",
+            "run.json",
+            "stick_slip.csv",
+        ],
+        "{names:?}"
+    );
+}

@@ -112,6 +112,10 @@ pub fn main(s: &Scene, out: &Path, plots: bool) -> ExitCode {
             "harmonic balance, H = {h}, {n} samples per period (jointlin_point_step by AFT), lumped system"
         ),
     };
+    if let Err(e) = jointlin_harness::report::clear_earlier_run(out) {
+        eprintln!("error: {e}");
+        return ExitCode::from(1);
+    }
     let results = out.join("results.csv");
     if let Err(e) = atomic::write_text(&results, &csv.finish()) {
         eprintln!("error: {e}");

@@ -93,9 +93,47 @@ pub fn run_json(scene: &Scene, r: &RunResult) -> serde_json::Value {
     })
 }
 
+/// The files `jointlin run` writes with fixed names; besides them it writes
+/// `field_<f>_<unit>.vtu` and the contact maps `contact_ratio_…`/`contact_energy_…svg`
+/// ([`field`]), named by their frequencies.
+const RUN_FILES: &[&str] = &[
+    "results.csv",
+    "results_down.csv",
+    "harmonics.csv",
+    "results_without_contact_damping.csv",
+    "points.csv",
+    "stick_slip.csv",
+    "frf.svg",
+    "passes.svg",
+    "stick_slip.svg",
+];
+
+/// Removes from `dir` the outputs an earlier `jointlin run` may have left there (its
+/// fixed-name files and its fields and contact maps, whose names carry frequencies this
+/// run may not have), so that after a run the directory holds this run's outputs only.
+/// Other files are left alone.
+pub fn clear_earlier_run(dir: &Path) -> Result<(), String> {
+    let err = |e: std::io::Error| format!("{}: {e}", dir.display());
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return Ok(());
+    };
+    for entry in entries {
+        let entry = entry.map_err(err)?;
+        let name = entry.file_name().to_string_lossy().into_owned();
+        let per_frequency = (name.starts_with("field_") && name.ends_with(".vtu"))
+            || ((name.starts_with("contact_ratio_") || name.starts_with("contact_energy_"))
+                && name.ends_with(".svg"));
+        if per_frequency || RUN_FILES.contains(&name.as_str()) {
+            std::fs::remove_file(entry.path()).map_err(err)?;
+        }
+    }
+    Ok(())
+}
+
 /// Writes every report into `dir` (created if missing); returns the files written. Each
 /// file appears under its name only when complete ([`atomic`]); run.json, last, marks
-/// the set complete, and an earlier run's is removed first.
+/// the set complete, and an earlier run's is removed first, with the earlier run's
+/// other outputs ([`clear_earlier_run`]).
 pub fn write_all(
     dir: &Path,
     scene: &Scene,
@@ -104,6 +142,7 @@ pub fn write_all(
 ) -> Result<Vec<PathBuf>, String> {
     let mut out = Vec::new();
     atomic::prepare(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+    clear_earlier_run(dir)?;
     let eff = scene.spec.effects;
     let units = &scene.spec.units;
     write(
