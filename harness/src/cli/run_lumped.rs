@@ -4,7 +4,8 @@
 //! `mode = "harmonic_balance"` the multi-harmonic balance at H harmonics (`mhb::Hb`:
 //! the joints marched through `jointlin_point_step` by AFT, Newton), each frequency
 //! started from the previous one's solution (harmonic balance: else from the stuck
-//! linear response); results.csv, frf.svg and run.json.
+//! linear response); swept up, down or both as `[sweep] direction` says; results.csv
+//! (results_down.csv), harmonics.csv, frf.svg and run.json.
 
 use std::path::Path;
 use std::process::ExitCode;
@@ -13,17 +14,27 @@ use nalgebra::Complex;
 use serde_json::json;
 
 use jointlin_harness::input::scene::units::{frequency_unit, ColumnUnits};
-use jointlin_harness::input::scene::Mode;
-use jointlin_harness::input::scene::Scene;
+use jointlin_harness::input::scene::{Direction, Mode, Scene, Units};
 use jointlin_harness::mhb::{default_samples, first_order, Hb, NewtonOptions};
 use jointlin_harness::model::lumped;
 use jointlin_harness::report::svg::{frf_curves, FrfCurve};
 use jointlin_harness::util::atomic;
 use jointlin_harness::util::csv_table::CsvTable;
 
+/// One sweep pass: its results.csv and (harmonic balance) harmonics.csv tables, the
+/// FRF curve of the outputs and the frequencies that failed.
+struct Pass {
+    csv: CsvTable,
+    harmonics: Option<CsvTable>,
+    curve: FrfCurve,
+    failed: Vec<f64>,
+}
+
 /// Runs the sweep and writes results.csv (frequency, per output amplitude and phase,
-/// per element its relative amplitude, status), with `plots` frf.svg (the outputs'
-/// amplitudes), and run.json into `out`.
+/// per element its relative amplitude, status; with `[sweep] direction = "up_down"` also
+/// results_down.csv; the rows ascending in frequency whichever way the pass ran), for
+/// the harmonic balance harmonics.csv (every harmonic of every output), with `plots`
+/// frf.svg (the outputs' amplitudes), and run.json into `out`.
 pub fn main(s: &Scene, out: &Path, plots: bool) -> ExitCode {
     let l = match lumped::build(s) {
         Ok(l) => l,
@@ -33,6 +44,109 @@ pub fn main(s: &Scene, out: &Path, plots: bool) -> ExitCode {
         }
     };
     let units = &s.spec.units;
+    let it = &s.spec.iteration;
+    let harmonic = (it.mode == Mode::HarmonicBalance).then(|| {
+        let h = it.harmonics.unwrap_or(1);
+        (h, it.samples.unwrap_or_else(|| default_samples(h)))
+    });
+    let mut up = s.frequencies();
+    up.sort_by(f64::total_cmp);
+    let down: Vec<f64> = up.iter().rev().copied().collect();
+    // (file suffix, curve label, frequencies in solve order) per pass.
+    let passes: Vec<(&str, &str, &[f64])> = match s.spec.sweep.direction {
+        Direction::Up => vec![("", "", &up)],
+        Direction::Down => vec![("", "", &down)],
+        Direction::UpDown => vec![("", "sweep up", &up), ("_down", "sweep down", &down)],
+    };
+    if let Err(e) = jointlin_harness::report::clear_earlier_run(out) {
+        eprintln!("error: {e}");
+        return ExitCode::from(1);
+    }
+    let mut written = Vec::new();
+    let mut curves = Vec::new();
+    let mut failed = Vec::new();
+    for (suffix, label, order) in &passes {
+        let pass = sweep_pass(&l, units, harmonic, order, label);
+        let mut files = vec![(format!("results{suffix}.csv"), pass.csv.finish())];
+        if let Some(t) = pass.harmonics {
+            files.push((format!("harmonics{suffix}.csv"), t.finish()));
+        }
+        for (name, text) in files {
+            let p = out.join(name);
+            if let Err(e) = atomic::write_text(&p, &text) {
+                eprintln!("error: {e}");
+                return ExitCode::from(1);
+            }
+            written.push(p);
+        }
+        curves.push(pass.curve);
+        failed.extend(pass.failed);
+    }
+    let method = match harmonic {
+        None => "first order (jointlin_linearize), lumped system".to_string(),
+        Some((h, n)) => format!(
+            "harmonic balance, H = {h}, {n} samples per period (jointlin_point_step by AFT), lumped system"
+        ),
+    };
+    let has_points = curves.iter().any(|c| !c.points.is_empty());
+    if plots && has_points && !l.outputs.is_empty() {
+        let names: Vec<String> = l.outputs.iter().map(|(n, _)| n.clone()).collect();
+        let p = out.join("frf.svg");
+        let title = match harmonic {
+            None => format!("{}: first order", s.spec.title),
+            Some((h, _)) => format!("{}: harmonic balance, H = {h}", s.spec.title),
+        };
+        match atomic::with_temp(&p, |t| frf_curves(t, &title, units, &names, &curves)) {
+            Ok(()) => written.push(p),
+            Err(e) => {
+                eprintln!("error: {e}");
+                return ExitCode::from(1);
+            }
+        }
+    }
+    let solved = up.len() * passes.len();
+    let run = json!({
+        "command": "run",
+        "scene": {"file": s.file, "spec": s.spec, "text": s.text},
+        "units": units,
+        "method": method,
+        "dofs": l.dofs,
+        "frequencies": up.len(),
+        "sweep_direction": s.spec.sweep.direction,
+        "failed_frequencies": failed,
+    });
+    let text = serde_json::to_string_pretty(&run).expect("json");
+    match atomic::write_marker(out, &text) {
+        Ok(p) => {
+            eprintln!(
+                "{}: lumped system, {} DOFs, {} elements; {} of {} frequencies converged",
+                s.file,
+                l.dofs.len(),
+                l.elements.len(),
+                solved - failed.len(),
+                solved,
+            );
+            for w in written.iter().chain([&p]) {
+                eprintln!("wrote {}", w.display());
+            }
+            ExitCode::SUCCESS
+        }
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::from(1)
+        }
+    }
+}
+
+/// One pass over `order` (each frequency continued from the last), its tables' rows
+/// sorted ascending in frequency.
+fn sweep_pass(
+    l: &lumped::Lumped,
+    units: &Units,
+    harmonic: Option<(usize, usize)>,
+    order: &[f64],
+    label: &str,
+) -> Pass {
     let len = ColumnUnits::new(units).length;
     let fu = frequency_unit(units);
     let mut header = vec![fu.column.clone()];
@@ -44,31 +158,21 @@ pub fn main(s: &Scene, out: &Path, plots: bool) -> ExitCode {
         header.push(format!("{name}_amplitude_{len}"));
     }
     header.push("status".into());
-    let mut csv = CsvTable::new(&header);
-    let freqs = s.frequencies();
-    let mut failed = Vec::new();
-    let mut curve = FrfCurve {
-        label: String::new(),
-        points: Vec::new(),
-    };
-    let it = &s.spec.iteration;
-    let harmonic = (it.mode == Mode::HarmonicBalance).then(|| {
-        let h = it.harmonics.unwrap_or(1);
-        (h, it.samples.unwrap_or_else(|| default_samples(h)))
-    });
-    let mut sweep = Sweep::new(&l, harmonic);
-    // Harmonic balance: harmonics.csv, the amplitude of every harmonic of every output.
-    let mut harmonics_csv = harmonic.map(|(h, _)| {
-        let mut head = vec![fu.column.clone()];
+    let mut hheader = vec![fu.column.clone()];
+    if let Some((h, _)) = harmonic {
         for (name, _) in &l.outputs {
-            head.extend((0..=h).map(|k| format!("{name}_h{k}_amp_{len}")));
+            hheader.extend((0..=h).map(|k| format!("{name}_h{k}_amp_{len}")));
         }
-        CsvTable::new(&head)
-    });
-    for &f in &freqs {
+    }
+    let mut sweep = Sweep::new(l, harmonic);
+    // (frequency, results row, harmonics row, output amplitudes if converged)
+    let mut rows = Vec::with_capacity(order.len());
+    let mut failed = Vec::new();
+    for &f in order {
         let omega = 2.0 * std::f64::consts::PI * f;
         let mut row = vec![format!("{:e}", fu.show(f))];
         let mut hrow = row.clone();
+        let mut amps = None;
         match sweep.solve(omega) {
             Ok((x, elements, coefficients)) => {
                 if let (Some((h, _)), Some(u)) = (harmonic, &coefficients) {
@@ -81,14 +185,14 @@ pub fn main(s: &Scene, out: &Path, plots: bool) -> ExitCode {
                         hrow.extend((1..=h).map(|k| format!("{:e}", c(2 * k - 1).hypot(c(2 * k)))));
                     }
                 }
-                let mut amps = Vec::new();
+                let mut a = Vec::new();
                 for (_, w) in &l.outputs {
                     let v: Complex<f64> = w.iter().zip(&x).map(|(w, x)| x * *w).sum();
                     row.push(format!("{:e}", v.norm()));
                     row.push(format!("{:e}", v.arg().to_degrees()));
-                    amps.push(v.norm());
+                    a.push(v.norm());
                 }
-                curve.points.push((f, amps));
+                amps = Some(a);
                 row.extend(elements.iter().map(|a| format!("{a:e}")));
                 row.push("converged".into());
             }
@@ -99,81 +203,31 @@ pub fn main(s: &Scene, out: &Path, plots: bool) -> ExitCode {
                 row.push("failed".into());
             }
         }
+        // A failed frequency: empty fields, as in results.csv.
+        hrow.resize(hheader.len(), String::new());
+        rows.push((f, row, hrow, amps));
+    }
+    rows.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let mut csv = CsvTable::new(&header);
+    let mut harmonics = harmonic.map(|_| CsvTable::new(&hheader));
+    let mut curve = FrfCurve {
+        label: label.to_string(),
+        points: Vec::new(),
+    };
+    for (f, row, hrow, amps) in rows {
         csv.row(&row);
-        if let (Some(t), Some((h, _))) = (&mut harmonics_csv, harmonic) {
-            // A failed frequency: empty fields, as in results.csv.
-            hrow.resize(1 + l.outputs.len() * (h + 1), String::new());
+        if let Some(t) = &mut harmonics {
             t.row(&hrow);
         }
-    }
-    let method = match harmonic {
-        None => "first order (jointlin_linearize), lumped system".to_string(),
-        Some((h, n)) => format!(
-            "harmonic balance, H = {h}, {n} samples per period (jointlin_point_step by AFT), lumped system"
-        ),
-    };
-    if let Err(e) = jointlin_harness::report::clear_earlier_run(out) {
-        eprintln!("error: {e}");
-        return ExitCode::from(1);
-    }
-    let results = out.join("results.csv");
-    if let Err(e) = atomic::write_text(&results, &csv.finish()) {
-        eprintln!("error: {e}");
-        return ExitCode::from(1);
-    }
-    let mut written = vec![results];
-    if let Some(t) = harmonics_csv {
-        let p = out.join("harmonics.csv");
-        if let Err(e) = atomic::write_text(&p, &t.finish()) {
-            eprintln!("error: {e}");
-            return ExitCode::from(1);
-        }
-        written.push(p);
-    }
-    if plots && !curve.points.is_empty() && !l.outputs.is_empty() {
-        let names: Vec<String> = l.outputs.iter().map(|(n, _)| n.clone()).collect();
-        let p = out.join("frf.svg");
-        let title = match harmonic {
-            None => format!("{}: first order", s.spec.title),
-            Some((h, _)) => format!("{}: harmonic balance, H = {h}", s.spec.title),
-        };
-        match atomic::with_temp(&p, |t| frf_curves(t, &title, units, &names, &[curve])) {
-            Ok(()) => written.push(p),
-            Err(e) => {
-                eprintln!("error: {e}");
-                return ExitCode::from(1);
-            }
+        if let Some(a) = amps {
+            curve.points.push((f, a));
         }
     }
-    let run = json!({
-        "command": "run",
-        "scene": {"file": s.file, "spec": s.spec, "text": s.text},
-        "units": units,
-        "method": method,
-        "dofs": l.dofs,
-        "frequencies": freqs.len(),
-        "failed_frequencies": failed,
-    });
-    let text = serde_json::to_string_pretty(&run).expect("json");
-    match atomic::write_marker(out, &text) {
-        Ok(p) => {
-            eprintln!(
-                "{}: lumped system, {} DOFs, {} elements; {} of {} frequencies converged",
-                s.file,
-                l.dofs.len(),
-                l.elements.len(),
-                freqs.len() - failed.len(),
-                freqs.len(),
-            );
-            for w in written.iter().chain([&p]) {
-                eprintln!("wrote {}", w.display());
-            }
-            ExitCode::SUCCESS
-        }
-        Err(e) => {
-            eprintln!("error: {e}");
-            ExitCode::from(1)
-        }
+    Pass {
+        csv,
+        harmonics,
+        curve,
+        failed,
     }
 }
 
