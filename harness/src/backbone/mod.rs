@@ -8,7 +8,8 @@
 //! - [`first_order`]: the thesis's linearization (k*, d* through `jointlin_linearize`)
 //!   in a complex eigenvalue problem, made consistent with the mode's own amplitudes.
 //! - [`epmc`]: the extended periodic motion concept (Krack 2015) at H harmonics with
-//!   the alternating frequency–time forces of [`crate::mhb::aft`].
+//!   the alternating frequency–time forces of [`crate::mhb::aft`], followed in
+//!   amplitude through turning points.
 //! - [`fe`]: an FE scene reduced onto its contact points' tangential relative
 //!   displacements, one joint per point and direction, as such a system.
 //! - [`ringdown`]: a free decay integrated in time through the C API, the reference
@@ -71,6 +72,11 @@ pub enum BackboneError {
     },
     #[error("EPMC: Newton did not converge at modal amplitude {modal_amplitude:.6e} (|R| = {residual:.3e})")]
     NotConverged { modal_amplitude: f64, residual: f64 },
+    #[error("EPMC: the continuation stopped at modal amplitude {modal_amplitude:.6e}: {reason}")]
+    PathStopped {
+        modal_amplitude: f64,
+        reason: String,
+    },
 }
 
 /// `count` amplitudes from `from` to `to`, equally spaced in log.

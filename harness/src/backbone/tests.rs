@@ -376,3 +376,62 @@ fn bad_inputs_are_named() {
         ));
     }
 }
+
+#[test]
+fn epmc_passes_the_turning_point_where_the_second_joint_slips() {
+    // 4 (regression): at H ≥ 3 the chain's backbone turns back in q where the joint
+    // m₃–m₂ starts to slip (before, the continuation in q stopped at q ≈ 0.46 at
+    // H = 5 and 7). Followed by arclength, the path rises to the turning point, falls
+    // while the second joint begins to slip and rises again on the slipping branch; an
+    // amplitude in between is met three times. The same turning points with 4× and 16×
+    // the samples: a property of the balance, not of the sampling.
+    let sys = chain();
+    let q = log_space(0.3, 0.7, 41);
+    let mut ranges = Vec::new();
+    for n in [128usize, 512, 2048] {
+        let t = epmc::trace(&sys, 1, 7, n, &q).unwrap();
+        assert!(t.stopped.is_none(), "N = {n}: {:?}", t.stopped);
+        let lo = t.turning_points.iter().copied().fold(f64::INFINITY, f64::min);
+        let hi = t.turning_points.iter().copied().fold(0.0, f64::max);
+        eprintln!(
+            "N = {n}: {} points, {} turning points, q in [{lo:.5}, {hi:.5}]",
+            t.points.len(),
+            t.turning_points.len()
+        );
+        assert!(t.turning_points.len() >= 2 && t.turning_points.len() % 2 == 0);
+        ranges.push((lo, hi));
+        // Every amplitude once, those inside [lo, hi] three times.
+        let inside = q.iter().filter(|v| **v > lo && **v < hi).count();
+        assert_eq!(t.points.len(), q.len() + 2 * inside, "N = {n}");
+        if n != 128 {
+            continue;
+        }
+        // The second joint dissipates nothing before the turning point, and does after.
+        let last = &t.points[t.points.len() - 1].point;
+        let turn = t
+            .points
+            .windows(2)
+            .position(|w| w[1].point.modal_amplitude <= w[0].point.modal_amplitude)
+            .unwrap();
+        let j1 = t.points[turn].point.energy_per_cycle[0];
+        let j2 = t.points[turn].point.energy_per_cycle[1];
+        eprintln!("before the turning point: joint energies {j1:.3e}, {j2:.3e}; last {:?}", last.energy_per_cycle);
+        assert!(j1 > 0.0 && j2 < 1e-9 * j1, "{j1:e} {j2:e}");
+        assert!(last.energy_per_cycle[1] > 0.1 * last.energy_per_cycle[0]);
+        // At an amplitude inside, three different damping ratios in path order: the
+        // lower branch damps least.
+        let mid = q.iter().copied().find(|v| *v > lo && *v < hi).unwrap();
+        let z: Vec<f64> = t
+            .points
+            .iter()
+            .filter(|p| p.point.modal_amplitude == mid)
+            .map(|p| p.point.damping_ratio)
+            .collect();
+        eprintln!("q = {mid:.5}: ζ = {z:?}");
+        assert_eq!(z.len(), 3);
+        assert!(z[0] < z[1] && z[1] < z[2], "{z:?}");
+    }
+    for (lo, hi) in &ranges[1..] {
+        assert!((lo / ranges[2].0 - 1.0).abs() < 1e-2 && (hi / ranges[2].1 - 1.0).abs() < 1e-2);
+    }
+}

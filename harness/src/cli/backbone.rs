@@ -132,7 +132,7 @@ pub fn main(a: Args) -> ExitCode {
     let (method, result) = match a.harmonics {
         None => (
             "first order (jointlin_linearize)".to_string(),
-            first_order::backbone(&l.system, a.mode, &q).map(|p| (p, None)),
+            first_order::backbone(&l.system, a.mode, &q).map(|p| (p, Vec::new(), None)),
         ),
         Some(h) => (
             format!("EPMC, H = {h}"),
@@ -142,12 +142,13 @@ pub fn main(a: Args) -> ExitCode {
                         .into_iter()
                         .map(|p| p.point)
                         .collect::<Vec<BackbonePoint>>(),
+                    t.turning_points,
                     t.stopped,
                 )
             }),
         ),
     };
-    let (points, stopped) = match result {
+    let (points, turning, stopped) = match result {
         Ok(p) => p,
         Err(e) => {
             eprintln!("error: {e}");
@@ -155,11 +156,23 @@ pub fn main(a: Args) -> ExitCode {
         }
     };
     eprintln!(
-        "{method}: {} of {} amplitudes in {:.2} s",
+        "{method}: {} points at {} amplitudes in {:.2} s",
         points.len(),
         q.len(),
         started.elapsed().as_secs_f64()
     );
+    if let (Some(lo), Some(hi)) = (
+        turning.iter().copied().reduce(f64::min),
+        turning.iter().copied().reduce(f64::max),
+    ) {
+        eprintln!(
+            "{} turning points of the modal amplitude between {lo:.6e} and {hi:.6e} [{}·{}^½]: \
+             amplitudes in that range appear once per passage (rows in path order)",
+            turning.len(),
+            scene.spec.units.length,
+            scene.spec.units.mass,
+        );
+    }
     let rows: Vec<Row> = points
         .into_iter()
         .map(|p| {
@@ -184,7 +197,15 @@ pub fn main(a: Args) -> ExitCode {
         );
         return ExitCode::from(1);
     }
-    let code = report_written(write(&a, &scene, &l, reduction.as_ref(), &method, &rows));
+    let code = report_written(write(
+        &a,
+        &scene,
+        &l,
+        reduction.as_ref(),
+        &method,
+        &rows,
+        &turning,
+    ));
     match stopped {
         Some(e) => {
             eprintln!(
@@ -204,6 +225,7 @@ fn write(
     reduction: Option<&fe::Reduced>,
     method: &str,
     rows: &[Row],
+    turning: &[f64],
 ) -> Result<Vec<PathBuf>, String> {
     let units = &scene.spec.units;
     let names: Vec<String> = l.outputs.iter().map(|o| o.0.clone()).collect();
@@ -254,6 +276,7 @@ fn write(
             })
         }),
         "frequency_unit": fu.text,
+        "turning_points_modal_amplitude": turning,
         "rows": json_rows,
     });
     let text = serde_json::to_string_pretty(&run).map_err(|e| e.to_string())?;

@@ -1,0 +1,192 @@
+//! The EPMC equations at one modal amplitude and Newton on them.
+//!
+//! Unknowns (ψ, ω, ξ) at modal amplitude q (x = qψ, DOF-major coefficients of
+//! [`crate::mhb::aft`]); equations
+//!
+//!   F = R(qψ, ω)/q − ξ ω M ∂ψ/∂τ-term = 0 (2H + 1 rows per DOF),
+//!   ψ₁ᴴMψ₁ − 1 = 0 (normalization of the first harmonic),
+//!   φ_rᵀM b₁ = 0 (phase: sine part of the first harmonic orthogonal to the stuck mode),
+//!
+//! with R the residual of the free harmonic balance ([`crate::mhb::Hb::eval`]). The
+//! derivative in ln q, for continuation through turning points, is exact:
+//! ∂(R(qψ)/q)/∂ln q = R_x ψ − R/q (zero for a linear system).
+
+use nalgebra::{DMatrix, DVector};
+
+use super::super::BackboneError;
+use crate::mhb::Hb;
+
+/// Newton tolerance on the scaled residual.
+pub const RTOL: f64 = 1e-9;
+/// A Newton step shorter than this (relative to the state) at a residual below
+/// [`FLOOR_RTOL`] ends Newton at the round-off floor of a large system.
+const STAGNATION: f64 = 1e-12;
+const FLOOR_RTOL: f64 = 1e2 * RTOL;
+const MAX_NEWTON: usize = 40;
+/// Full Newton steps that raise |R| (at most tenfold) allowed per solve.
+const MAX_NONMONOTONE: usize = 5;
+
+/// ψ, ω (rad/time), ξ (1/time).
+#[derive(Debug, Clone)]
+pub struct State {
+    pub psi: Vec<f64>,
+    pub omega: f64,
+    pub xi: f64,
+}
+
+/// Residual, Jacobians and energy per element at one state.
+pub struct Evaluated {
+    /// F (dim + 2).
+    pub f: DVector<f64>,
+    /// ∂F/∂(ψ, ω, ξ), square.
+    pub jac: DMatrix<f64>,
+    /// ∂F/∂ln q.
+    pub d_lnq: DVector<f64>,
+    /// Energy dissipated per cycle by each element (force·length).
+    pub dissipated: Vec<f64>,
+}
+
+pub struct Epmc<'a> {
+    pub hb: Hb<'a>,
+    /// M·φ_r (phase condition row).
+    pub m_ref: Vec<f64>,
+    /// Residual scale ω₀² (ψ is mass-normalized).
+    pub scale: f64,
+}
+
+impl Epmc<'_> {
+    /// F and its derivatives at (ψ, ω, ξ) and modal amplitude q.
+    pub fn eval(&mut self, st: &State, q: f64) -> Result<Evaluated, BackboneError> {
+        let s = self.hb.sys;
+        let (n, m) = (s.n(), self.hb.tr.ncoef());
+        let dim = n * m;
+        let x: Vec<f64> = st.psi.iter().map(|v| v * q).collect();
+        let ev = self.hb.eval(&x, st.omega)?;
+        let mut f = DVector::zeros(dim + 2);
+        let mut jac = DMatrix::zeros(dim + 2, dim + 2);
+        let r_q = &ev.r / q;
+        f.rows_mut(0, dim).copy_from(&r_q);
+        let mut d_lnq = DVector::zeros(dim + 2);
+        let psi = DVector::from_column_slice(&st.psi);
+        d_lnq.rows_mut(0, dim).copy_from(&(&ev.j * &psi - &r_q));
+        jac.view_mut((0, 0), (dim, dim)).copy_from(&ev.j);
+        for i in 0..dim {
+            jac[(i, dim)] = ev.r_omega[i] / q;
+        }
+        // The −ξM ẋ term, per harmonic h: [0, −hωξM; hωξM, 0] on (cos, sin).
+        let (w, xi) = (st.omega, st.xi);
+        for h in 1..=self.hb.h() {
+            let hh = h as f64;
+            for a in 0..n {
+                let (ca, sa) = (a * m + 2 * h - 1, a * m + 2 * h);
+                for b in 0..n {
+                    let mab = s.m[(a, b)];
+                    if mab == 0.0 {
+                        continue;
+                    }
+                    let (cb, sb) = (b * m + 2 * h - 1, b * m + 2 * h);
+                    let (pc, ps) = (st.psi[cb], st.psi[sb]);
+                    f[ca] -= hh * w * xi * mab * ps;
+                    f[sa] += hh * w * xi * mab * pc;
+                    jac[(ca, sb)] -= hh * w * xi * mab;
+                    jac[(sa, cb)] += hh * w * xi * mab;
+                    jac[(ca, dim)] -= hh * xi * mab * ps;
+                    jac[(sa, dim)] += hh * xi * mab * pc;
+                    jac[(ca, dim + 1)] -= hh * w * mab * ps;
+                    jac[(sa, dim + 1)] += hh * w * mab * pc;
+                }
+            }
+        }
+        // Normalization ψ₁ᴴMψ₁ = 1 and phase φ_rᵀMb₁ = 0.
+        let mut norm = -1.0;
+        for a in 0..n {
+            for b in 0..n {
+                let mab = s.m[(a, b)];
+                let (ca, sa, cb, sb) = (a * m + 1, a * m + 2, b * m + 1, b * m + 2);
+                norm += mab * (st.psi[ca] * st.psi[cb] + st.psi[sa] * st.psi[sb]);
+                jac[(dim, ca)] += 2.0 * mab * st.psi[cb];
+                jac[(dim, sa)] += 2.0 * mab * st.psi[sb];
+            }
+            jac[(dim + 1, a * m + 2)] = self.m_ref[a];
+        }
+        f[dim] = norm;
+        f[dim + 1] = (0..n).map(|a| self.m_ref[a] * st.psi[a * m + 2]).sum();
+        Ok(Evaluated {
+            f,
+            jac,
+            d_lnq,
+            dissipated: ev.dissipated,
+        })
+    }
+
+    /// The residual measure every convergence test uses: the balance rows over ω₀²,
+    /// the normalization and phase rows as they are.
+    pub fn scaled(&self, f: &DVector<f64>) -> f64 {
+        let dim = f.len() - 2;
+        (f.rows(0, dim).norm() / self.scale).max(f[dim].abs().max(f[dim + 1].abs()))
+    }
+
+    /// Newton at fixed q from `st` (line search, a few non-monotone steps). `Err` holds
+    /// the last scaled residual.
+    pub fn solve(&mut self, mut st: State, q: f64) -> Result<(State, Vec<f64>), f64> {
+        let dim = st.psi.len();
+        let Ok(mut ev) = self.eval(&st, q) else {
+            return Err(f64::INFINITY);
+        };
+        let mut res = self.scaled(&ev.f);
+        let mut nonmonotone = 0;
+        for _ in 0..MAX_NEWTON {
+            if res <= RTOL {
+                return Ok((st, ev.dissipated));
+            }
+            let Some(dy) = ev.jac.clone().lu().solve(&ev.f) else {
+                return Err(res);
+            };
+            let size = st.psi.iter().map(|v| v * v).sum::<f64>().sqrt() + st.omega.abs();
+            if res <= FLOOR_RTOL && dy.norm() <= STAGNATION * size {
+                return Ok((st, ev.dissipated));
+            }
+            let mut lambda = 1.0;
+            let mut accepted = false;
+            let mut full = None;
+            for _ in 0..8 {
+                let trial = State {
+                    psi: (0..dim).map(|i| st.psi[i] - lambda * dy[i]).collect(),
+                    omega: st.omega - lambda * dy[dim],
+                    xi: st.xi - lambda * dy[dim + 1],
+                };
+                if trial.omega > 0.0 {
+                    if let Ok(e2) = self.eval(&trial, q) {
+                        let r2 = self.scaled(&e2.f);
+                        if r2 < res {
+                            (st, ev, res) = (trial, e2, r2);
+                            accepted = true;
+                            break;
+                        }
+                        if lambda == 1.0 && r2 < 10.0 * res {
+                            full = Some((trial, e2, r2));
+                        }
+                    }
+                }
+                lambda *= 0.5;
+            }
+            // The AFT forces of contact elements are piecewise smooth (a sample changes
+            // between sticking and sliding): where no shortened step lowers |R|, a few
+            // full steps that raise it less than tenfold are taken (non-monotone Newton).
+            if !accepted {
+                match full {
+                    Some(fs) if nonmonotone < MAX_NONMONOTONE => {
+                        nonmonotone += 1;
+                        (st, ev, res) = fs;
+                    }
+                    _ => return Err(res),
+                }
+            }
+        }
+        if res <= RTOL {
+            Ok((st, ev.dissipated))
+        } else {
+            Err(res)
+        }
+    }
+}

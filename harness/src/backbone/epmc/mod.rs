@@ -1,0 +1,178 @@
+//! Extended periodic motion concept (Krack, "Nonlinear modal analysis of nonconservative
+//! systems: extension of the periodic motion concept", Computers & Structures 154, 2015):
+//! the free system with an artificial term −ξMẋ,
+//!
+//!   M ẍ + (D − ξM) ẋ + K x + Σ_e Pₑᵀ Fₑ(Pₑ x) = 0,
+//!
+//! has periodic solutions; ξ is the energy the mode loses per cycle. With x = q ψ
+//! (harmonic balance at H harmonics, forces by the AFT of [`crate::mhb::aft`]), the
+//! unknowns (ψ, ω, ξ) solve the equations of [`equations`]: normalization ψ₁ᴴMψ₁ = 1
+//! (first harmonic, so q is the modal amplitude of [`super`]) and phase φ_rᵀMb₁ = 0.
+//! Damping ratio ζ = ξ/(2ω) (Krack 2015, eq. 14). At H = 1 with the loop's own first
+//! harmonic this is the first-order backbone up to the O(ζ²) difference between |λ| and
+//! the frequency of the damping-compensated motion.
+//!
+//! The backbone starts where every contact sticks and is followed in ln q by
+//! pseudo-arclength continuation ([`arclength`]) through turning points; each requested
+//! amplitude is solved where the path crosses it, so past a turning point it appears
+//! again (the points are in path order).
+
+mod arclength;
+mod equations;
+
+use super::first_order::{stick_limit, stuck_mode};
+use super::{BackboneError, BackbonePoint, C64};
+use crate::mhb::{default_samples, Hb, System};
+use arclength::Node;
+use equations::{Epmc, State};
+
+/// An EPMC point: the backbone point and the full solution.
+#[derive(Debug, Clone)]
+pub struct EpmcPoint {
+    pub point: BackbonePoint,
+    /// Artificial damping ξ (1/time).
+    pub xi: f64,
+    /// Coefficients of x = qψ, DOF-major (layout of [`crate::mhb::aft`]).
+    pub u: Vec<f64>,
+}
+
+/// The EPMC backbone of mode `mode` (1-based) at H harmonics (N samples by
+/// [`default_samples`]) at the modal amplitudes `q`.
+pub fn backbone(
+    sys: &System,
+    mode: usize,
+    h: usize,
+    q: &[f64],
+) -> Result<Vec<EpmcPoint>, BackboneError> {
+    backbone_sampled(sys, mode, h.max(1), default_samples(h.max(1)), q)
+}
+
+/// [`backbone`] with N samples per period (at least 2H + 2).
+pub fn backbone_sampled(
+    sys: &System,
+    mode: usize,
+    h: usize,
+    samples: usize,
+    q: &[f64],
+) -> Result<Vec<EpmcPoint>, BackboneError> {
+    let t = trace(sys, mode, h, samples, q)?;
+    match t.stopped {
+        Some(e) => Err(e),
+        None => Ok(t.points),
+    }
+}
+
+/// The points of [`backbone_sampled`] in path order up to where the continuation
+/// stopped, the turning points passed (modal amplitudes where q reverses) and why it
+/// stopped, if it did.
+#[derive(Debug)]
+pub struct Traced {
+    pub points: Vec<EpmcPoint>,
+    pub turning_points: Vec<f64>,
+    pub stopped: Option<BackboneError>,
+}
+
+/// [`backbone_sampled`] keeping the points converged before a failure. Errors that
+/// concern the whole run (no such mode, a bad amplitude) are `Err`.
+pub fn trace(
+    sys: &System,
+    mode: usize,
+    h: usize,
+    samples: usize,
+    q: &[f64],
+) -> Result<Traced, BackboneError> {
+    if let Some(&bad) = q.iter().find(|v| !(v.is_finite() && **v > 0.0)) {
+        return Err(BackboneError::Amplitude(bad));
+    }
+    let n = sys.n();
+    let free = System {
+        f0: vec![0.0; n],
+        f1: vec![C64::new(0.0, 0.0); n],
+        ..sys.clone()
+    };
+    let stuck = stuck_mode(sys, mode)?;
+    let h = h.max(1);
+    let samples = samples.max(2 * h + 2);
+    let m = 2 * h + 1;
+    let mut psi = vec![0.0; n * m];
+    for d in 0..n {
+        psi[d * m + 1] = stuck.shape[d].re;
+        psi[d * m + 2] = -stuck.shape[d].im;
+    }
+    let phi_r: Vec<f64> = stuck.shape.iter().map(|v| v.re).collect();
+    let m_ref: Vec<f64> = (0..n)
+        .map(|a| (0..n).map(|b| sys.m[(a, b)] * phi_r[b]).sum())
+        .collect();
+    let w0 = stuck.omega();
+    let mut ep = Epmc {
+        hb: Hb::new(&free, h, samples),
+        m_ref,
+        scale: (w0 * w0).max(f64::MIN_POSITIVE),
+    };
+    let mut targets: Vec<f64> = q.iter().map(|v| v.ln()).collect();
+    targets.sort_by(f64::total_cmp);
+    targets.dedup();
+    let Some(&first) = targets.first() else {
+        return Ok(Traced {
+            points: Vec::new(),
+            turning_points: Vec::new(),
+            stopped: None,
+        });
+    };
+    // The path starts where every contact still sticks.
+    let lq0 = first.min((0.5 * stick_limit(sys, &stuck.shape)?).ln());
+    let guess = State {
+        psi,
+        omega: w0,
+        xi: 2.0 * stuck.damping_ratio() * w0,
+    };
+    let (st, dissipated) = match ep.solve(guess, lq0.exp()) {
+        Ok(s) => s,
+        Err(residual) => {
+            return Ok(Traced {
+                points: Vec::new(),
+                turning_points: Vec::new(),
+                stopped: Some(BackboneError::NotConverged {
+                    modal_amplitude: lq0.exp(),
+                    residual,
+                }),
+            })
+        }
+    };
+    let mut y = nalgebra::DVector::zeros(n * m + 3);
+    y.rows_mut(0, n * m).copy_from_slice(&st.psi);
+    y[n * m] = st.omega / w0;
+    y[n * m + 1] = st.xi / w0;
+    y[n * m + 2] = lq0;
+    let path = arclength::follow(&mut ep, Node { y, dissipated }, w0, &targets);
+    let points = path
+        .crossings
+        .into_iter()
+        .map(|(lq, st, diss)| point(&ep.hb, sys, &st, lq.exp(), diss))
+        .collect();
+    Ok(Traced {
+        points,
+        turning_points: path.turning_points,
+        stopped: path.stopped,
+    })
+}
+
+fn point(hb: &Hb, sys: &System, st: &State, q: f64, diss: Vec<f64>) -> EpmcPoint {
+    let m = hb.tr.ncoef();
+    let u: Vec<f64> = st.psi.iter().map(|v| v * q).collect();
+    let shape: Vec<C64> = (0..sys.n())
+        .map(|d| C64::new(u[d * m + 1], -u[d * m + 2]))
+        .collect();
+    EpmcPoint {
+        point: BackbonePoint {
+            modal_amplitude: q,
+            omega: st.omega,
+            damping_ratio: st.xi / (2.0 * st.omega),
+            element_amplitudes: super::first_order::relative(sys, &shape),
+            shape,
+            energy_per_cycle: diss,
+        },
+        xi: st.xi,
+        u,
+    }
+}
