@@ -132,7 +132,7 @@ pub fn main(a: Args) -> ExitCode {
     let (method, result) = match a.harmonics {
         None => (
             "first order (jointlin_linearize)".to_string(),
-            first_order::backbone(&l.system, a.mode, &q).map(|p| (p, Vec::new(), None)),
+            first_order::backbone(&l.system, a.mode, &q).map(|p| (p, Path::default(), None)),
         ),
         Some(h) => (
             format!("EPMC, H = {h}"),
@@ -142,13 +142,17 @@ pub fn main(a: Args) -> ExitCode {
                         .into_iter()
                         .map(|p| p.point)
                         .collect::<Vec<BackbonePoint>>(),
-                    t.turning_points,
+                    Path {
+                        turning: t.turning_points,
+                        gaps: t.gaps,
+                        skipped: t.skipped,
+                    },
                     t.stopped,
                 )
             }),
         ),
     };
-    let (points, turning, stopped) = match result {
+    let (points, path, stopped) = match result {
         Ok(p) => p,
         Err(e) => {
             eprintln!("error: {e}");
@@ -161,16 +165,28 @@ pub fn main(a: Args) -> ExitCode {
         q.len(),
         started.elapsed().as_secs_f64()
     );
+    let unit = format!("{}·{}^½", scene.spec.units.length, scene.spec.units.mass);
+    for (from, to) in &path.gaps {
+        eprintln!(
+            "no solution to the tolerance for modal amplitudes between {from:.6e} and {to:.6e} [{unit}]: the path jumped over them"
+        );
+    }
+    if !path.skipped.is_empty() {
+        let list: Vec<String> = path.skipped.iter().map(|q| format!("{q:.6e}")).collect();
+        eprintln!(
+            "requested amplitudes in those ranges, not in the results: {} [{unit}]",
+            list.join(", ")
+        );
+    }
+    let turning = &path.turning;
     if let (Some(lo), Some(hi)) = (
         turning.iter().copied().reduce(f64::min),
         turning.iter().copied().reduce(f64::max),
     ) {
         eprintln!(
-            "{} turning points of the modal amplitude between {lo:.6e} and {hi:.6e} [{}·{}^½]: \
+            "{} turning points of the modal amplitude between {lo:.6e} and {hi:.6e} [{unit}]: \
              amplitudes in that range appear once per passage (rows in path order)",
             turning.len(),
-            scene.spec.units.length,
-            scene.spec.units.mass,
         );
     }
     let rows: Vec<Row> = points
@@ -204,7 +220,7 @@ pub fn main(a: Args) -> ExitCode {
         reduction.as_ref(),
         &method,
         &rows,
-        &turning,
+        &path,
     ));
     match stopped {
         Some(e) => {
@@ -225,7 +241,7 @@ fn write(
     reduction: Option<&fe::Reduced>,
     method: &str,
     rows: &[Row],
-    turning: &[f64],
+    path: &Path,
 ) -> Result<Vec<PathBuf>, String> {
     let units = &scene.spec.units;
     let names: Vec<String> = l.outputs.iter().map(|o| o.0.clone()).collect();
@@ -276,10 +292,20 @@ fn write(
             })
         }),
         "frequency_unit": fu.text,
-        "turning_points_modal_amplitude": turning,
+        "turning_points_modal_amplitude": path.turning,
+        "gaps_modal_amplitude": path.gaps,
+        "skipped_modal_amplitudes": path.skipped,
         "rows": json_rows,
     });
     let text = serde_json::to_string_pretty(&run).map_err(|e| e.to_string())?;
     let run_path = atomic::write_marker(&a.out, &text)?;
     Ok(vec![csv, svg, run_path])
+}
+
+/// What an EPMC path passed besides its points (all modal amplitudes).
+#[derive(Default)]
+struct Path {
+    turning: Vec<f64>,
+    gaps: Vec<(f64, f64)>,
+    skipped: Vec<f64>,
 }

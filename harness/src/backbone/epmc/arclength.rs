@@ -13,15 +13,18 @@
 //! Below [`CORNER_STEP`] a turn of the tangent is accepted: that is a corner of the
 //! piecewise smooth branch. Where even the shortest step fails, the branch ends in a
 //! corner that turns back: the direction beyond it is the kernel of G_y just past the
-//! corner, taken in the orientation that does not return along the old branch.
+//! corner, taken in the orientation that does not return along the old branch; where
+//! that fails too, the balance has no solution to the tolerance over a short range of q
+//! (its sampled forces jump) and the path jumps over it by Newton at fixed q a little
+//! further ([`jump`]), reporting the range.
 //!
 //! The requested amplitudes are solved at fixed q wherever the path crosses them, in
 //! path order: past a turning point an amplitude is met again.
 
 use nalgebra::{DMatrix, DVector};
 
-use super::equations::{Epmc, Evaluated, State, RTOL};
 use super::super::BackboneError;
+use super::equations::{Epmc, Evaluated, State, FLOOR_RTOL, RTOL, STAGNATION};
 
 /// Arclength steps (in y).
 const STEP_START: f64 = 0.02;
@@ -29,13 +32,22 @@ const STEP_MAX: f64 = 0.3;
 const STEP_MIN: f64 = 1e-7;
 /// Below this step a turn of the tangent is a corner, not a jump.
 const CORNER_STEP: f64 = 1e-4;
+/// Points kept to recognize a return along the path.
+const BEHIND: usize = 16;
 /// Steps along one backbone before it counts as lost.
 const MAX_STEPS: usize = 20_000;
-const MAX_CORRECTOR: usize = 10;
+const MAX_CORRECTOR: usize = 20;
+/// Step halvings of the corrector's line search; full steps that raise |F| (at most
+/// tenfold) allowed per correction.
+const LINE_SEARCH: usize = 8;
+const MAX_NONMONOTONE: usize = 3;
 /// cos 45°: the largest turn of the tangent per step above [`CORNER_STEP`].
 const MIN_TURN_COS: f64 = 0.7;
 /// Largest relative change of ω per step above [`CORNER_STEP`].
 const MAX_OMEGA_CHANGE: f64 = 0.2;
+
+/// A requested amplitude solved on the path: ln q, the state, the energy per element.
+pub type Crossing = (f64, State, Vec<f64>);
 
 /// A converged point of the path.
 #[derive(Clone)]
@@ -45,23 +57,33 @@ pub struct Node {
 }
 
 /// What the path found: the solutions at the requested amplitudes in path order (ln q
-/// of each), the turning points (modal amplitudes) and why it stopped early, if it did.
+/// of each), the turning points and gaps (modal amplitudes) and why it stopped early, if
+/// it did.
 pub struct Followed {
-    pub crossings: Vec<(f64, State, Vec<f64>)>,
+    pub crossings: Vec<Crossing>,
     pub turning_points: Vec<f64>,
+    /// Ranges of q jumped over (no solution to the tolerance inside) and the requested
+    /// amplitudes in them.
+    pub gaps: Vec<(f64, f64)>,
+    pub skipped: Vec<f64>,
     pub stopped: Option<BackboneError>,
 }
 
 struct Path<'e, 'a> {
     ep: &'e mut Epmc<'a>,
     w0: f64,
+    /// ‖ψ‖ at the start: ψ enters y as ψ/ψ_s, so every block of y is O(1) (a
+    /// mass-normalized FE shape has entries of order 1/√mass).
+    psi_scale: f64,
     dim: usize,
 }
 
 impl Path<'_, '_> {
     fn to_y(&self, st: &State, lq: f64) -> DVector<f64> {
         let mut y = DVector::zeros(self.dim + 3);
-        y.rows_mut(0, self.dim).copy_from_slice(&st.psi);
+        for (v, p) in y.rows_mut(0, self.dim).iter_mut().zip(&st.psi) {
+            *v = p / self.psi_scale;
+        }
         y[self.dim] = st.omega / self.w0;
         y[self.dim + 1] = st.xi / self.w0;
         y[self.dim + 2] = lq;
@@ -70,7 +92,11 @@ impl Path<'_, '_> {
 
     fn state(&self, y: &DVector<f64>) -> State {
         State {
-            psi: y.rows(0, self.dim).iter().copied().collect(),
+            psi: y
+                .rows(0, self.dim)
+                .iter()
+                .map(|v| v * self.psi_scale)
+                .collect(),
             omega: y[self.dim] * self.w0,
             xi: y[self.dim + 1] * self.w0,
         }
@@ -92,7 +118,8 @@ impl Path<'_, '_> {
     fn bordered(&self, ev: &Evaluated, b: &DVector<f64>) -> DMatrix<f64> {
         let d = self.dim;
         let mut a = DMatrix::zeros(d + 3, d + 3);
-        a.view_mut((0, 0), (d + 2, d)).copy_from(&ev.jac.columns(0, d));
+        a.view_mut((0, 0), (d + 2, d))
+            .copy_from(&(ev.jac.columns(0, d) * self.psi_scale));
         for i in 0..d + 2 {
             a[(i, d)] = ev.jac[(i, d)] * self.w0;
             a[(i, d + 1)] = ev.jac[(i, d + 1)] * self.w0;
@@ -113,28 +140,55 @@ impl Path<'_, '_> {
 
     /// Corrector on the hyperplane through `yp` normal to `t`: the point, its
     /// evaluation and the number of evaluations.
-    fn correct(
-        &mut self,
-        yp: &DVector<f64>,
-        t: &DVector<f64>,
-    ) -> Option<(Node, Evaluated, usize)> {
+    fn correct(&mut self, yp: &DVector<f64>, t: &DVector<f64>) -> Option<(Node, Evaluated, usize)> {
         let mut y = yp.clone();
-        let mut first = None;
+        let mut ev = self.eval(&y)?;
+        let mut res = self.ep.scaled(&ev.f);
+        let mut nonmonotone = 0;
         for it in 1..=MAX_CORRECTOR {
-            let ev = self.eval(&y)?;
-            let res = self.ep.scaled(&ev.f);
-            let mut g = DVector::zeros(self.dim + 3);
-            g.rows_mut(0, self.dim + 2).copy_from(&ev.f);
-            g[self.dim + 2] = t.dot(&(&y - yp));
+            // Any point with F = 0 is on the branch; the hyperplane only makes the
+            // system square.
             if res <= RTOL {
                 let dissipated = ev.dissipated.clone();
                 return Some((Node { y, dissipated }, ev, it));
             }
-            if res > 1e3 * *first.get_or_insert(res) {
-                return None;
-            }
+            let mut g = DVector::zeros(self.dim + 3);
+            g.rows_mut(0, self.dim + 2).copy_from(&ev.f);
+            g[self.dim + 2] = t.dot(&(&y - yp));
             let dy = self.bordered(&ev, t).lu().solve(&g)?;
-            y -= dy;
+            if res <= FLOOR_RTOL && dy.norm() <= STAGNATION * y.norm() {
+                let dissipated = ev.dissipated.clone();
+                return Some((Node { y, dissipated }, ev, it));
+            }
+            // Line search as in the fixed-q Newton (equations.rs): the balance of sampled
+            // stick–slip forces is only piecewise smooth.
+            let mut lambda = 1.0;
+            let mut full = None;
+            let mut accepted = false;
+            for _ in 0..LINE_SEARCH {
+                let trial = &y - lambda * &dy;
+                if let Some(e2) = self.eval(&trial) {
+                    let r2 = self.ep.scaled(&e2.f);
+                    if r2 < res {
+                        (y, ev, res) = (trial, e2, r2);
+                        accepted = true;
+                        break;
+                    }
+                    if lambda == 1.0 && r2 < 10.0 * res {
+                        full = Some((trial, e2, r2));
+                    }
+                }
+                lambda *= 0.5;
+            }
+            if !accepted {
+                match full {
+                    Some(f) if nonmonotone < MAX_NONMONOTONE => {
+                        nonmonotone += 1;
+                        (y, ev, res) = f;
+                    }
+                    _ => return None,
+                }
+            }
         }
         None
     }
@@ -146,20 +200,45 @@ impl Path<'_, '_> {
     }
 }
 
-/// Follows the backbone from `start` (converged at ln q = `lq0`) up to the largest of
-/// `targets` (ln q, ascending, none below `lq0`).
-pub fn follow(ep: &mut Epmc, start: Node, w0: f64, targets: &[f64]) -> Followed {
-    let dim = start.y.len() - 3;
-    let mut p = Path { ep, w0, dim };
+/// Follows the backbone from `start` (ψ, ω, ξ converged at ln q = `lq0`) up to the
+/// largest of `targets` (ln q, ascending, none below `lq0`).
+pub fn follow(
+    ep: &mut Epmc,
+    start: &State,
+    lq0: f64,
+    dissipated: Vec<f64>,
+    w0: f64,
+    targets: &[f64],
+) -> Followed {
+    let dim = start.psi.len();
+    let psi_scale = start
+        .psi
+        .iter()
+        .map(|v| v * v)
+        .sum::<f64>()
+        .sqrt()
+        .max(f64::MIN_POSITIVE);
+    let mut p = Path {
+        ep,
+        w0,
+        psi_scale,
+        dim,
+    };
+    let start = Node {
+        y: p.to_y(start, lq0),
+        dissipated,
+    };
     let lq_end = targets.last().copied().unwrap_or(p.lnq(&start.y));
     let mut out = Followed {
         crossings: Vec::new(),
         turning_points: Vec::new(),
+        gaps: Vec::new(),
+        skipped: Vec::new(),
         stopped: None,
     };
-    let lq0 = p.lnq(&start.y);
     for &l in targets.iter().filter(|l| **l <= lq0) {
-        out.crossings.push((l, p.state(&start.y), start.dissipated.clone()));
+        out.crossings
+            .push((l, p.state(&start.y), start.dissipated.clone()));
     }
     let stop = |q: f64, why: &str| BackboneError::PathStopped {
         modal_amplitude: q,
@@ -176,6 +255,8 @@ pub fn follow(ep: &mut Epmc, start: Node, w0: f64, targets: &[f64]) -> Followed 
         return out;
     };
     let mut node = start;
+    // The last points passed, so that a corner switch does not return along them.
+    let mut behind: Vec<DVector<f64>> = Vec::new();
     let mut step = STEP_START;
     for _ in 0..MAX_STEPS {
         if p.lnq(&node.y) >= lq_end {
@@ -187,7 +268,8 @@ pub fn follow(ep: &mut Epmc, start: Node, w0: f64, targets: &[f64]) -> Followed 
                 step *= 0.5;
                 continue;
             }
-            None => corner(&mut p, &node, &t, targets),
+            None => corner(&mut p, &node, &t, &behind, targets)
+                .or_else(|| jump(&mut p, &node, &t, &behind, targets)),
         };
         let Some(adv) = next else {
             out.stopped = Some(stop(
@@ -204,6 +286,11 @@ pub fn follow(ep: &mut Epmc, start: Node, w0: f64, targets: &[f64]) -> Followed 
             out.turning_points.push(q.exp());
         }
         out.crossings.extend(adv.crossings);
+        if adv.jumped {
+            let (a, b) = (p.lnq(&node.y).exp(), p.lnq(&adv.node.y).exp());
+            out.gaps.push((a.min(b), a.max(b)));
+            out.skipped.extend(adv.skipped.iter().map(|l| l.exp()));
+        }
         if p.lnq(&adv.node.y) < lq0 - 1.0 {
             out.stopped = Some(stop(
                 p.lnq(&adv.node.y).exp(),
@@ -221,13 +308,13 @@ pub fn follow(ep: &mut Epmc, start: Node, w0: f64, targets: &[f64]) -> Followed 
         if adv.switched {
             step = STEP_START.min(step.max(CORNER_STEP));
         }
-        node = adv.node;
+        behind.push(std::mem::replace(&mut node, adv.node).y);
+        if behind.len() > BEHIND {
+            behind.remove(0);
+        }
         t = adv.t;
     }
-    out.stopped = Some(stop(
-        p.lnq(&node.y).exp(),
-        "too many continuation steps",
-    ));
+    out.stopped = Some(stop(p.lnq(&node.y).exp(), "too many continuation steps"));
     out
 }
 
@@ -236,10 +323,14 @@ pub fn follow(ep: &mut Epmc, start: Node, w0: f64, targets: &[f64]) -> Followed 
 struct Advanced {
     node: Node,
     t: DVector<f64>,
-    crossings: Vec<(f64, State, Vec<f64>)>,
+    crossings: Vec<Crossing>,
     corrector_steps: usize,
     /// Reached by the corner switch.
     switched: bool,
+    /// Reached by a jump over a gap ([`jump`]), with the requested amplitudes in the gap
+    /// that have no solution.
+    jumped: bool,
+    skipped: Vec<f64>,
 }
 
 /// One predictor–corrector step of length `step`, or `None` where it is rejected.
@@ -269,6 +360,8 @@ fn advance(
         crossings,
         corrector_steps: its,
         switched: false,
+        jumped: false,
+        skipped: Vec::new(),
     })
 }
 
@@ -276,46 +369,139 @@ fn advance(
 /// from the linear interpolation of the two; `None` if one cannot be solved or its
 /// solution lies farther from the interpolation than the step is long (it belongs to
 /// another part of the branch).
-fn crossings(
+fn crossings(p: &mut Path, a: &Node, b: &Node, targets: &[f64]) -> Option<Vec<Crossing>> {
+    let (found, missed) = crossings_or_missed(p, a, b, targets);
+    missed.is_empty().then_some(found)
+}
+
+/// [`crossings`] keeping the amplitudes that could not be solved near the path apart.
+fn crossings_or_missed(
     p: &mut Path,
     a: &Node,
     b: &Node,
     targets: &[f64],
-) -> Option<Vec<(f64, State, Vec<f64>)>> {
+) -> (Vec<Crossing>, Vec<f64>) {
     let (la, lb) = (p.lnq(&a.y), p.lnq(&b.y));
     let mut hit: Vec<f64> = targets
         .iter()
         .copied()
-        .filter(|&l| if lb > la { la < l && l <= lb } else { lb <= l && l < la })
+        .filter(|&l| {
+            if lb > la {
+                la < l && l <= lb
+            } else {
+                lb <= l && l < la
+            }
+        })
         .collect();
     if lb < la {
         hit.reverse();
     }
     let len = (&b.y - &a.y).norm();
-    let mut out = Vec::with_capacity(hit.len());
+    let (mut found, mut missed) = (Vec::with_capacity(hit.len()), Vec::new());
     for l in hit {
         let f = (l - la) / (lb - la);
         let guess = &a.y + f * (&b.y - &a.y);
-        let (y, diss) = p.at_amplitude(&guess, l)?;
-        if (&y - &guess).norm() > len {
-            return None;
+        match p.at_amplitude(&guess, l) {
+            Some((y, diss)) if (&y - &guess).norm() <= len => {
+                found.push((l, p.state(&y), diss));
+            }
+            _ => missed.push(l),
         }
-        out.push((l, p.state(&y), diss));
     }
-    Some(out)
+    (found, missed)
+}
+
+/// Ln q steps of [`jump`].
+const JUMPS: [f64; 6] = [1e-3, 3e-3, 1e-2, 3e-2, 0.1, 0.3];
+
+/// Past a gap: the balance of sampled forces may have no solution to the tolerance over
+/// a short range of q (Newton's residual stalls above it: a sample's stick–slip state
+/// switches across the range, the forces jump). From `node`, where neither a step nor
+/// the corner switch goes on, Newton at fixed q a little further in the direction of
+/// travel (predicted along the tangent), the nearest that converges, close in ω and not
+/// back on the path; its tangent keeps the orientation.
+fn jump(
+    p: &mut Path,
+    node: &Node,
+    t: &DVector<f64>,
+    behind: &[DVector<f64>],
+    targets: &[f64],
+) -> Option<Advanced> {
+    let dim = p.dim;
+    let dir = t[dim + 2].signum();
+    let ts = t[dim + 2].abs();
+    for dl in JUMPS {
+        let l = p.lnq(&node.y) + dir * dl;
+        // Along the tangent where it rises in q, else from the point itself.
+        let guess = if ts > 1e-3 {
+            &node.y + (dl / ts) * t
+        } else {
+            node.y.clone()
+        };
+        let Some((y, dissipated)) = p.at_amplitude(&guess, l) else {
+            continue;
+        };
+        let omega_change = (y[dim] / node.y[dim] - 1.0).abs();
+        let d = (&y - &node.y).norm();
+        if omega_change > MAX_OMEGA_CHANGE || distance_to_path(&y, behind, &node.y) < d / 3.0 {
+            continue;
+        }
+        let new = Node { y, dissipated };
+        let Some(ev) = p.eval(&new.y) else { continue };
+        let Some(tn) = p.tangent(&ev, t) else {
+            continue;
+        };
+        let (crossings, skipped) = crossings_or_missed(p, node, &new, targets);
+        return Some(Advanced {
+            node: new,
+            t: tn,
+            crossings,
+            corrector_steps: 0,
+            switched: false,
+            jumped: true,
+            skipped,
+        });
+    }
+    None
+}
+
+/// Distance of `y` from the polyline through `pts` and `last`.
+fn distance_to_path(y: &DVector<f64>, pts: &[DVector<f64>], last: &DVector<f64>) -> f64 {
+    let mut best = (y - last).norm();
+    for (i, a) in pts.iter().enumerate() {
+        let b = pts.get(i + 1).unwrap_or(last);
+        let ab = b - a;
+        let l2 = ab.norm_squared();
+        let s = if l2 > 0.0 {
+            ((y - a).dot(&ab) / l2).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
+        best = best.min((y - a - s * ab).norm());
+    }
+    best
 }
 
 /// Past a corner that turns back: from `node` (where even the shortest step failed)
 /// along the kernel of G_y just beyond it, in the orientation that does not run back
-/// along the old branch.
-fn corner(p: &mut Path, node: &Node, t: &DVector<f64>, targets: &[f64]) -> Option<Advanced> {
+/// along the old branch: a candidate within a third of its distance from `node` of the
+/// points passed (`behind`, oldest first) or behind the old tangent is refused.
+fn corner(
+    p: &mut Path,
+    node: &Node,
+    t: &DVector<f64>,
+    behind: &[DVector<f64>],
+    targets: &[f64],
+) -> Option<Advanced> {
     for beyond in [1e-5, 1e-4, 1e-3] {
         let yb = &node.y + beyond * t;
         let Some(ev) = p.eval(&yb) else { continue };
         // Border row: a generic vector (t itself may be orthogonal to the new kernel).
         let mut b = t.clone();
         b[p.dim + 2] += 1.0;
-        let Some(k) = p.tangent(&ev, &b) else { continue };
+        let Some(k) = p.tangent(&ev, &b) else {
+            continue;
+        };
         for sign in [1.0, -1.0] {
             let dir = sign * &k;
             for len in [1e-4, 1e-3, 1e-2] {
@@ -325,7 +511,9 @@ fn corner(p: &mut Path, node: &Node, t: &DVector<f64>, targets: &[f64]) -> Optio
                 };
                 let d = &new.y - &node.y;
                 let dn = d.norm();
-                if dn < 0.3 * len || -d.dot(t) / dn > 0.98 {
+                let back =
+                    -d.dot(t) / dn > 0.98 || distance_to_path(&new.y, behind, &node.y) < dn / 3.0;
+                if dn < 0.3 * len || back {
                     continue;
                 }
                 let Some(tn) = p.tangent(&ev, &(&d / dn)) else {
@@ -340,6 +528,8 @@ fn corner(p: &mut Path, node: &Node, t: &DVector<f64>, targets: &[f64]) -> Optio
                     crossings,
                     corrector_steps: steps,
                     switched: true,
+                    jumped: false,
+                    skipped: Vec::new(),
                 });
             }
         }

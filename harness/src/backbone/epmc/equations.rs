@@ -20,8 +20,8 @@ use crate::mhb::Hb;
 pub const RTOL: f64 = 1e-9;
 /// A Newton step shorter than this (relative to the state) at a residual below
 /// [`FLOOR_RTOL`] ends Newton at the round-off floor of a large system.
-const STAGNATION: f64 = 1e-12;
-const FLOOR_RTOL: f64 = 1e2 * RTOL;
+pub const STAGNATION: f64 = 1e-12;
+pub const FLOOR_RTOL: f64 = 1e2 * RTOL;
 const MAX_NEWTON: usize = 40;
 /// Full Newton steps that raise |R| (at most tenfold) allowed per solve.
 const MAX_NONMONOTONE: usize = 5;

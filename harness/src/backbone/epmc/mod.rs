@@ -23,7 +23,6 @@ mod equations;
 use super::first_order::{stick_limit, stuck_mode};
 use super::{BackboneError, BackbonePoint, C64};
 use crate::mhb::{default_samples, Hb, System};
-use arclength::Node;
 use equations::{Epmc, State};
 
 /// An EPMC point: the backbone point and the full solution.
@@ -56,8 +55,14 @@ pub fn backbone_sampled(
     q: &[f64],
 ) -> Result<Vec<EpmcPoint>, BackboneError> {
     let t = trace(sys, mode, h, samples, q)?;
-    match t.stopped {
-        Some(e) => Err(e),
+    if let Some(e) = t.stopped {
+        return Err(e);
+    }
+    match t.skipped.first() {
+        Some(&q) => Err(BackboneError::PathStopped {
+            modal_amplitude: q,
+            reason: "no solution to the tolerance here (the path jumped over it)".into(),
+        }),
         None => Ok(t.points),
     }
 }
@@ -69,6 +74,10 @@ pub fn backbone_sampled(
 pub struct Traced {
     pub points: Vec<EpmcPoint>,
     pub turning_points: Vec<f64>,
+    /// Ranges of q with no solution to the tolerance that the path jumped over, and the
+    /// requested amplitudes inside them (not in `points`).
+    pub gaps: Vec<(f64, f64)>,
+    pub skipped: Vec<f64>,
     pub stopped: Option<BackboneError>,
 }
 
@@ -116,6 +125,8 @@ pub fn trace(
         return Ok(Traced {
             points: Vec::new(),
             turning_points: Vec::new(),
+            gaps: Vec::new(),
+            skipped: Vec::new(),
             stopped: None,
         });
     };
@@ -132,6 +143,8 @@ pub fn trace(
             return Ok(Traced {
                 points: Vec::new(),
                 turning_points: Vec::new(),
+                gaps: Vec::new(),
+                skipped: Vec::new(),
                 stopped: Some(BackboneError::NotConverged {
                     modal_amplitude: lq0.exp(),
                     residual,
@@ -139,12 +152,7 @@ pub fn trace(
             })
         }
     };
-    let mut y = nalgebra::DVector::zeros(n * m + 3);
-    y.rows_mut(0, n * m).copy_from_slice(&st.psi);
-    y[n * m] = st.omega / w0;
-    y[n * m + 1] = st.xi / w0;
-    y[n * m + 2] = lq0;
-    let path = arclength::follow(&mut ep, Node { y, dissipated }, w0, &targets);
+    let path = arclength::follow(&mut ep, &st, lq0, dissipated, w0, &targets);
     let points = path
         .crossings
         .into_iter()
@@ -153,6 +161,8 @@ pub fn trace(
     Ok(Traced {
         points,
         turning_points: path.turning_points,
+        gaps: path.gaps,
+        skipped: path.skipped,
         stopped: path.stopped,
     })
 }
