@@ -80,6 +80,7 @@ pub fn run(
     progress: &dyn Fn(&str, usize, usize),
 ) -> Result<RunResult, RunError> {
     let calls0 = capi::counts();
+    let steps3_0 = capi::point3d_steps();
     let spec = &scene.spec;
     let eff: Effects = spec.effects;
     let t = Instant::now();
@@ -140,6 +141,7 @@ pub fn run(
     };
     let t_fields = t.elapsed().as_secs_f64();
     let c1 = capi::counts();
+    let steps3 = capi::point3d_steps() - steps3_0;
     let calls = CallCounts {
         linearize: c1.linearize - calls0.linearize,
         linearize_cubic: c1.linearize_cubic - calls0.linearize_cubic,
@@ -218,6 +220,18 @@ pub fn run(
             ),
         },
         EffectLog {
+            name: "normal_load_variation",
+            active: eff.normal_load_variation,
+            seconds: 0.0,
+            work: point3d_work(eff.normal_load_variation, steps3, "each closed point's normal direction in the harmonic balance, N(t) from the normal law"),
+        },
+        EffectLog {
+            name: "coupled_slip",
+            active: eff.coupled_slip,
+            seconds: 0.0,
+            work: point3d_work(eff.coupled_slip, steps3, "both tangential directions of a point under one circular slip limit"),
+        },
+        EffectLog {
             name: "point_energy_output",
             active: eff.point_energy_output,
             seconds: sum(&main, &["point outputs", "reporting and point outputs"]),
@@ -290,4 +304,14 @@ pub fn field_frequencies(fo: &FieldOutputSpec, main: &SweepResult) -> Vec<f64> {
     at.sort_by(f64::total_cmp);
     at.dedup();
     at
+}
+
+/// The log line of a three-direction point effect: what it does and the point's steps
+/// (jointlin_point3d_step, shared by both effects) of the run.
+fn point3d_work(on: bool, steps: u64, what: &str) -> String {
+    if on {
+        format!("{what}: {steps} jointlin_point3d_step calls (both effects together)")
+    } else {
+        "none".into()
+    }
 }

@@ -1,7 +1,7 @@
 //! Harmonic-balance mode of the sweep (`[iteration] mode = "harmonic_balance"`): per
 //! frequency the per-harmonic condensation and Newton of [`super::harmonic_fe`], started from
 //! the previous frequency's solution (from the stuck linear response at the first one and
-//! after a failure; a frequency that does not converge keeps its last iterate, finite,
+//! after a failure; where neither converges, with the load raised in steps; a frequency that does not converge keeps its last iterate, finite,
 //! and is flagged in `converged` like the other modes do). Outputs: first harmonic as in the other modes, all harmonics in
 //! [`SweepResult::harmonics`]; per point the energy per cycle of its closed loops, the
 //! first-harmonic amplitude and the balance's describing function F̂₁/r̂₁ = k* + iωd*.
@@ -13,6 +13,9 @@ use super::{Options, PassRecord, PointFreq, Setup, SweepError, SweepResult, C64}
 use crate::capi;
 use crate::mhb::{default_samples, NewtonOptions};
 use crate::solve::contact::tangential;
+
+/// Load steps of the last attempt at a frequency ([`FeBalance::solve_ramped`]).
+const RAMP_STEPS: usize = 10;
 
 /// Runs the sweep; H and N from the scene (validated: H ≥ 1, N ≥ 2H + 2).
 pub fn sweep(
@@ -76,14 +79,25 @@ pub fn sweep(
         let sol = match hb.solve(&from, newton) {
             Ok(s) if s.converged => s,
             // Not converged (or an AFT failure, e.g. a loop that did not close) from the
-            // previous solution: once more from the stuck response.
-            first if fi > 0 => match (first, hb.solve(&hb.linear_start(), newton)) {
-                (Ok(a), Ok(b)) if !b.converged && a.residual < b.residual => a,
-                (_, Ok(b)) => b,
-                (Ok(a), Err(_)) => a,
-                (Err(e), Err(_)) => per_freq!(Err(balance(e))),
-            },
-            first => per_freq!(first.map_err(balance)),
+            // previous solution: once more from the stuck response, then with the load
+            // raised in steps.
+            first => {
+                let second = if fi > 0 {
+                    hb.solve(&hb.linear_start(), newton)
+                } else {
+                    first
+                };
+                match second {
+                    Ok(s) if s.converged => s,
+                    second => match (second, hb.solve_ramped(RAMP_STEPS, newton)) {
+                        (_, Ok(c)) if c.converged => c,
+                        (Ok(b), Ok(c)) if b.residual < c.residual => b,
+                        (_, Ok(c)) => c,
+                        (Ok(b), Err(_)) => b,
+                        (Err(e), Err(_)) => per_freq!(Err(balance(e))),
+                    },
+                }
+            }
         };
         // The uncondensed check of a converged frequency (harmonic_check.rs); one that
         // fails it is not converged.
@@ -95,7 +109,12 @@ pub fn sweep(
         } else {
             None
         };
-        let energy: Vec<f64> = sol.dissipated.chunks(2).map(|d| d.iter().sum()).collect();
+        // Per point: the energy of its directions (a three-direction point holds its
+        // whole energy on its first one).
+        let mut energy = vec![0.0; active.len()];
+        for (d, e) in hb.dirs.iter().zip(&sol.dissipated) {
+            energy[d.point] += e;
+        }
         if opts.point_results {
             let t = Instant::now();
             let nc = hb.tr.ncoef();
@@ -107,7 +126,11 @@ pub fn sweep(
                     ..Default::default()
                 };
                 for d in 0..2 {
-                    let j = 2 * q + d;
+                    let j = hb
+                        .dirs
+                        .iter()
+                        .position(|x| x.point == q && x.comp == 1 + d)
+                        .expect("every active point has both tangential directions");
                     let amp = sol.r[j * nc + 1].hypot(sol.r[j * nc + 2]);
                     // A/δ* and the regime of the first-harmonic amplitude (library's).
                     let l = per_freq!(capi::linearize(&tg, amp, omega).map_err(SweepError::from));

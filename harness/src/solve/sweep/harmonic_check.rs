@@ -26,14 +26,14 @@ impl FeBalance<'_, '_> {
         let nc = self.tr.ncoef();
         let h_max = (nc - 1) / 2;
         let p = self.setup.problem;
-        let active = self.setup.active.clone();
         let kref: Vec<[C64; 2]> = self
             .tang
             .iter()
             .map(|t| [C64::new(t.k_t0, 0.0); 2])
             .collect();
-        let row = |k: usize| p.contacts[active[k / 2]].rows[1 + k % 2].as_slice();
-        let m = 2 * active.len();
+        let rows = self.rows();
+        let row = |k: usize| rows[k];
+        let m = self.m();
         // Coefficient h of a direction-major real vector as a complex amplitude a − ib.
         let coef = |v: &[f64], k: usize, h: usize| {
             if h == 0 {
@@ -75,9 +75,10 @@ impl FeBalance<'_, '_> {
             res2 += eq.residual * eq.residual;
             load2 += eq.load * eq.load;
             eta = eta.max(eq.backward_error());
-            for (k, bx) in eq.contact.iter().flatten().enumerate() {
+            for k in 0..m {
+                let bx: C64 = row(k).iter().map(|&(i, w)| x[i] * w).sum();
                 let claim = coef(&sol.r, k, h);
-                let bx = if h == 0 { C64::new(bx.re, 0.0) } else { *bx };
+                let bx = if h == 0 { C64::new(bx.re, 0.0) } else { bx };
                 miss2 += (bx - claim).norm_sqr();
             }
         }

@@ -19,17 +19,21 @@
 //! Ĝ applying G_h to each harmonic's (cos, sin) pair as the complex amplitude a − ib, and
 //! r₀, y₀ the stuck linear response to the first-harmonic load. h = 0 is the static
 //! problem around the static step's preloaded state: the zeroth harmonic is the mean
-//! deviation from it; the normal load of every point is held at its static value (normal
-//! contact is not part of the balance). Newton's steps (I + Ĝ Γ) Δ = R, Γ = blockdiag
-//! ∂ĝ_j/∂r_j, are solved by FGMRES preconditioned with I + Ĝ Γ_d, Γ_d the
-//! harmonic-diagonal part of Γ (H + 1 dense LUs of order m or 2m). Cost per frequency:
-//! (H + 1) × (one factorization + m solves) on the mesh, everything else on the m(2H + 1)
-//! contact unknowns.
+//! deviation from it. By default (the thesis's model) the normal load of every point is
+//! held at its static value and each tangential direction is its own point; with
+//! `[effects] normal_load_variation` or `coupled_slip` a point's directions (its normal
+//! one too with the former) are marched together by the library's three-direction point
+//! ([`super::harmonic_fe_point3d`]). Newton's steps (I + Ĝ Γ) Δ = R, Γ = blockdiag
+//! ∂ĝ_p/∂r_p over the points' groups of coupled directions, are solved by FGMRES
+//! preconditioned with I + Ĝ Γ_d, Γ_d the harmonic-diagonal part of Γ (H + 1 dense LUs
+//! of order m or 2m). Cost per frequency: (H + 1) × (one factorization + m solves) on
+//! the mesh, everything else on the m(2H + 1) contact unknowns.
 
 use std::time::Instant;
 
 use nalgebra::DMatrix;
 
+use super::harmonic_fe_point3d::{self as point3d, Point3};
 use crate::capi::Tangential;
 use crate::mhb::aft::{self, Law, Transforms};
 use crate::mhb::{MhbError, NewtonOptions};
@@ -48,6 +52,8 @@ const GMRES_TOL: f64 = 1e-8;
 /// Preconditioner blocks whose smallest LU pivot is below this fraction of the largest
 /// are pseudo-inverted (singular values below this fraction of the largest dropped).
 const PINV_RCOND: f64 = 1e-12;
+/// Halvings in a row of a load step of [`FeBalance::solve_ramped`].
+const RAMP_HALVINGS: usize = 6;
 
 /// Counters and timings of a balance.
 #[derive(Debug, Clone, Default)]
@@ -88,11 +94,31 @@ pub struct FeSolution {
     pub ghat: Vec<f64>,
 }
 
+/// One unknown direction of the balance: a point (index into `Setup::active`) and its
+/// local component (0 normal, 1 and 2 tangential).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Dir {
+    pub point: usize,
+    pub comp: usize,
+}
+
+/// Directions marched together: `len` consecutive ones from `first`, by the
+/// one-direction law (`point3` none, len 1) or the three-direction point.
+#[derive(Debug, Clone, Copy)]
+struct Group {
+    first: usize,
+    len: usize,
+    point3: Option<Point3>,
+    /// Offset of the group's Γ block ((len·(2H+1))² doubles) in `Forces::gamma`.
+    gamma_at: usize,
+}
+
 /// Contact forces at one r.
 struct Forces {
     /// ĝ, direction-major like r.
     ghat: Vec<f64>,
-    /// Γ_j = ∂ĝ_j/∂r_j, (2H+1)² row-major per direction; empty without Jacobian.
+    /// Γ_g = ∂ĝ_g/∂r_g row-major per group (offsets `Group::gamma_at`); empty without
+    /// Jacobian.
     gamma: Vec<f64>,
     dissipated: Vec<f64>,
     describing: Vec<C64>,
@@ -104,7 +130,12 @@ pub struct FeBalance<'s, 'a> {
     pub tr: Transforms,
     pub(super) tang: Vec<Tangential>,
     area: Vec<f64>,
+    /// The unknown directions in the order of r.
+    pub dirs: Vec<Dir>,
+    groups: Vec<Group>,
     rec: Vec<Receptance>,
+    /// Factor on the first-harmonic load (1 but inside [`FeBalance::solve_ramped`]).
+    load: f64,
     pub(super) omega: f64,
     pub stats: Stats,
 }
@@ -113,21 +144,60 @@ impl<'s, 'a> FeBalance<'s, 'a> {
     /// H harmonics, N samples per period.
     pub fn new(setup: &'s mut Setup<'a>, h: usize, n: usize) -> Self {
         let p = setup.problem;
-        let tang = setup
+        let tang: Vec<Tangential> = setup
             .active
             .iter()
             .map(|&i| tangential(&p.interfaces[p.contacts[i].interface], setup.pressure[i]))
             .collect();
-        let area = setup.active.iter().map(|&i| p.contacts[i].area).collect();
-        let m = 2 * setup.active.len();
+        let area: Vec<f64> = setup.active.iter().map(|&i| p.contacts[i].area).collect();
+        let model = setup.point_model;
+        let nc = 2 * h + 1;
+        let (mut dirs, mut groups) = (Vec::new(), Vec::new());
+        let mut gamma_at = 0;
+        for (q, &i) in setup.active.iter().enumerate() {
+            let t: &Tangential = &tang[q];
+            let comps: &[usize] = if model.is_thesis() {
+                &[1, 2]
+            } else {
+                model.components()
+            };
+            let point3 = (!model.is_thesis()).then(|| {
+                let k_n =
+                    crate::solve::contact::normal_stiffness(&p.interfaces[p.contacts[i].interface]);
+                Point3::new(t, k_n, setup.normal_k[i], area[q], model)
+            });
+            // The three-direction point couples its directions; the thesis's points are
+            // one direction each.
+            let sizes: Vec<usize> = if point3.is_some() {
+                vec![comps.len()]
+            } else {
+                vec![1; comps.len()]
+            };
+            let mut first = dirs.len();
+            for len in sizes {
+                groups.push(Group {
+                    first,
+                    len,
+                    point3,
+                    gamma_at,
+                });
+                first += len;
+                gamma_at += (len * nc).pow(2);
+            }
+            dirs.extend(comps.iter().map(|&comp| Dir { point: q, comp }));
+        }
+        let m = dirs.len();
         let nf = p.sys.dofs.n_free();
         FeBalance {
             tr: Transforms::new(n, h),
             tang,
             area,
+            dirs,
+            groups,
             rec: (0..=h)
                 .map(|_| Receptance::new(nf, m, p.outputs.len()))
                 .collect(),
+            load: 1.0,
             omega: 0.0,
             stats: Stats::default(),
             setup,
@@ -136,7 +206,24 @@ impl<'s, 'a> FeBalance<'s, 'a> {
 
     /// Contact directions m.
     pub fn m(&self) -> usize {
-        2 * self.tang.len()
+        self.dirs.len()
+    }
+
+    /// Sparse rows of the directions' relative displacements on the free DOFs.
+    pub(super) fn rows(&self) -> Vec<&'a [(usize, f64)]> {
+        let p: &'a crate::model::Problem = self.setup.problem;
+        self.dirs
+            .iter()
+            .map(|d| p.contacts[self.setup.active[d.point]].rows[d.comp].as_slice())
+            .collect()
+    }
+
+    /// Doubles of Γ over all groups.
+    fn gamma_len(&self) -> usize {
+        let nc = self.tr.ncoef();
+        self.groups
+            .last()
+            .map_or(0, |g| g.gamma_at + (g.len * nc).pow(2))
     }
 
     /// Unknowns m(2H + 1).
@@ -151,8 +238,8 @@ impl<'s, 'a> FeBalance<'s, 'a> {
         let (t, cpu) = (Instant::now(), cpu_seconds());
         self.omega = omega;
         let p = self.setup.problem;
-        let active = self.setup.active.clone();
-        let row = |j: usize| p.contacts[active[j / 2]].rows[1 + j % 2].as_slice();
+        let rows = self.rows();
+        let row = |j: usize| rows[j];
         let kref: Vec<[C64; 2]> = self
             .tang
             .iter()
@@ -219,21 +306,35 @@ impl<'s, 'a> FeBalance<'s, 'a> {
         let mut f = Forces {
             ghat: vec![0.0; m * nc],
             gamma: if jac {
-                vec![0.0; m * nc * nc]
+                vec![0.0; self.gamma_len()]
             } else {
                 Vec::new()
             },
             dissipated: vec![0.0; m],
             describing: vec![C64::new(0.0, 0.0); m],
         };
-        for j in 0..m {
-            let t = self.tang[j / 2];
-            let (a, k0) = (self.area[j / 2], t.k_t0);
-            let dc = &r[j * nc..(j + 1) * nc];
+        for gi in 0..self.groups.len() {
+            let g = self.groups[gi];
+            let span = g.first * nc..(g.first + g.len) * nc;
+            let dc = &r[span.clone()];
+            if let Some(p3) = &g.point3 {
+                let pf = point3d::forces(&mut self.tr, p3, dc, jac)?;
+                f.ghat[span].copy_from_slice(&pf.ghat);
+                if jac {
+                    f.gamma[g.gamma_at..g.gamma_at + pf.gamma.len()].copy_from_slice(&pf.gamma);
+                }
+                // The point's energy on its first direction (points sum their directions).
+                f.dissipated[g.first] = pf.dissipated;
+                f.describing[g.first..g.first + g.len].copy_from_slice(&pf.describing);
+                continue;
+            }
+            let j = g.first;
+            let t = self.tang[self.dirs[j].point];
+            let (a, k0) = (self.area[self.dirs[j].point], t.k_t0);
             let law = Law::Point(t);
             let (force, period) = if jac {
                 let ev = aft::evaluate(&mut self.tr, &law, dc)?;
-                let gam = &mut f.gamma[j * nc * nc..(j + 1) * nc * nc];
+                let gam = &mut f.gamma[g.gamma_at..g.gamma_at + nc * nc];
                 for (g, &e) in gam.iter_mut().zip(&ev.jac) {
                     *g = a * e;
                 }
@@ -256,11 +357,53 @@ impl<'s, 'a> FeBalance<'s, 'a> {
         Ok(f)
     }
 
+    /// Γ entry between coefficient `a` of direction `k` and coefficient `b` of
+    /// direction `j` (zero unless both are in one group).
+    fn gamma_at(
+        &self,
+        gamma: &[f64],
+        group_of: &[usize],
+        k: usize,
+        a: usize,
+        j: usize,
+        b: usize,
+    ) -> f64 {
+        let g = &self.groups[group_of[j]];
+        if group_of[k] != group_of[j] {
+            return 0.0;
+        }
+        let nc = self.tr.ncoef();
+        let len = g.len * nc;
+        gamma[g.gamma_at + ((k - g.first) * nc + a) * len + (j - g.first) * nc + b]
+    }
+
+    /// The group of each direction.
+    fn group_of(&self) -> Vec<usize> {
+        let mut out = vec![0; self.m()];
+        for (gi, g) in self.groups.iter().enumerate() {
+            out[g.first..g.first + g.len].fill(gi);
+        }
+        out
+    }
+
+    /// y = Γ x, group by group.
+    fn apply_gamma(&self, gamma: &[f64], x: &[f64], y: &mut [f64]) {
+        let nc = self.tr.ncoef();
+        for g in &self.groups {
+            let len = g.len * nc;
+            let blk = &gamma[g.gamma_at..g.gamma_at + len * len];
+            let off = g.first * nc;
+            for a in 0..len {
+                y[off + a] = (0..len).map(|b| blk[a * len + b] * x[off + b]).sum();
+            }
+        }
+    }
+
     /// R = r − r₀ + Ĝ ĝ.
     fn residual(&self, r: &[f64], ghat: &[f64]) -> Vec<f64> {
         let mut out = vec![0.0; r.len()];
         self.apply_g(ghat, &mut out);
-        let lin = self.linear_start();
+        let lin: Vec<f64> = self.linear_start().iter().map(|v| v * self.load).collect();
         for ((o, x), l) in out.iter_mut().zip(r).zip(&lin) {
             *o += x - l;
         }
@@ -273,24 +416,38 @@ impl<'s, 'a> FeBalance<'s, 'a> {
     /// mass held only by friction, whose closed loops re-centre (∂F̂₀/∂r₀ = 0), is
     /// undetermined, and Newton then leaves it where it starts.
     fn preconditioner(&self, gamma: &[f64]) -> Vec<DMatrix<f64>> {
-        let (m, nc) = (self.m(), self.tr.ncoef());
-        let gm = |j: usize, a: usize, b: usize| gamma[j * nc * nc + a * nc + b];
+        let m = self.m();
+        let group_of = self.group_of();
+        // Σ over the directions l coupled with j of G[k, l] Γ[(l, a), (j, b)].
+        let members = |j: usize| {
+            let g = &self.groups[group_of[j]];
+            g.first..g.first + g.len
+        };
+        let gm =
+            |l: usize, a: usize, j: usize, b: usize| self.gamma_at(gamma, &group_of, l, a, j, b);
         self.rec
             .iter()
             .enumerate()
             .map(|(h, rec)| {
                 let p = if h == 0 {
                     DMatrix::from_fn(m, m, |k, j| {
-                        f64::from(u8::from(k == j)) + rec.g[k + m * j].re * gm(j, 0, 0)
+                        f64::from(u8::from(k == j))
+                            + members(j)
+                                .map(|l| rec.g[k + m * l].re * gm(l, 0, j, 0))
+                                .sum::<f64>()
                     })
                 } else {
                     let c = [2 * h - 1, 2 * h];
                     DMatrix::from_fn(2 * m, 2 * m, |row, col| {
                         let (k, a, j, b) = (row / 2, row % 2, col / 2, col % 2);
-                        let g = rec.g[k + m * j];
-                        // Real 2×2 block of g acting on (cos, sin): [[gr, gi], [−gi, gr]].
-                        let blk = [[g.re, g.im], [-g.im, g.re]];
-                        let gd = blk[a][0] * gm(j, c[0], c[b]) + blk[a][1] * gm(j, c[1], c[b]);
+                        let gd: f64 = members(j)
+                            .map(|l| {
+                                let g = rec.g[k + m * l];
+                                // Real 2×2 block of g on (cos, sin): [[gr, gi], [−gi, gr]].
+                                let blk = [[g.re, g.im], [-g.im, g.re]];
+                                blk[a][0] * gm(l, c[0], j, c[b]) + blk[a][1] * gm(l, c[1], j, c[b])
+                            })
+                            .sum();
                         f64::from(u8::from(row == col)) + gd
                     })
                 };
@@ -320,10 +477,48 @@ impl<'s, 'a> FeBalance<'s, 'a> {
         out
     }
 
+    /// [`FeBalance::solve`] with the first-harmonic load raised from zero in `steps`
+    /// steps, each from the last converged solution (a step that fails is halved, at
+    /// most [`RAMP_HALVINGS`] times in a row): for loads whose solution Newton does not
+    /// reach from the stuck response (sliding, separation). Not reaching the full load
+    /// returns the full load's Newton from the last converged solution, not converged.
+    pub fn solve_ramped(
+        &mut self,
+        steps: usize,
+        opt: NewtonOptions,
+    ) -> Result<FeSolution, MhbError> {
+        let full = 1.0 / steps.max(1) as f64;
+        let (mut at, mut step, mut halvings) = (0.0f64, full, 0);
+        let mut r = vec![0.0; self.size()];
+        let out = loop {
+            self.load = (at + step).min(1.0);
+            let sol = self.solve(&r, opt);
+            match sol {
+                Ok(s) if s.converged => {
+                    if self.load >= 1.0 {
+                        break Ok(s);
+                    }
+                    (at, r, halvings) = (self.load, s.r, 0);
+                    step = (2.0 * step).min(full);
+                }
+                _ if halvings < RAMP_HALVINGS => {
+                    halvings += 1;
+                    step *= 0.5;
+                }
+                _ => {
+                    self.load = 1.0;
+                    break self.solve(&r, opt);
+                }
+            }
+        };
+        self.load = 1.0;
+        out
+    }
+
     fn newton(&mut self, start: &[f64], opt: NewtonOptions) -> Result<FeSolution, MhbError> {
-        let (m, nc, size) = (self.m(), self.tr.ncoef(), self.size());
+        let (nc, size) = (self.tr.ncoef(), self.size());
         let norm = |v: &[f64]| v.iter().map(|x| x * x).sum::<f64>().sqrt();
-        let scale = norm(&self.linear_start()).max(f64::MIN_POSITIVE);
+        let scale = (self.load * norm(&self.linear_start())).max(f64::MIN_POSITIVE);
         let mut r = start.to_vec();
         let mut f = self.forces(&r, true)?;
         let mut big_r = self.residual(&r, &f.ghat);
@@ -343,12 +538,7 @@ impl<'s, 'a> FeBalance<'s, 'a> {
             let stats = gmres.solve::<MhbError>(
                 &mut |x: &[f64], y: &mut [f64]| {
                     // y = x + Ĝ Γ x
-                    for j in 0..m {
-                        let g = &gamma[j * nc * nc..(j + 1) * nc * nc];
-                        for a in 0..nc {
-                            gv[j * nc + a] = (0..nc).map(|b| g[a * nc + b] * x[j * nc + b]).sum();
-                        }
-                    }
+                    this.apply_gamma(gamma, x, &mut gv);
                     this.apply_g(&gv, y);
                     for (yi, xi) in y.iter_mut().zip(x) {
                         *yi += xi;
@@ -414,7 +604,7 @@ impl<'s, 'a> FeBalance<'s, 'a> {
                     .enumerate()
                     .map(|(h, rec)| {
                         let y0 = if h == 1 {
-                            rec.y0[k]
+                            rec.y0[k] * self.load
                         } else {
                             C64::new(0.0, 0.0)
                         };

@@ -18,6 +18,7 @@ mod fast_update;
 pub mod harmonic;
 pub mod harmonic_check;
 pub mod harmonic_fe;
+pub mod harmonic_fe_point3d;
 pub mod krylov;
 pub mod posteriori;
 pub mod receptance;
@@ -90,6 +91,13 @@ pub enum SweepError {
     CubicInHarmonicBalance,
     #[error("interfaces with `area_samples` are solved in mode fast only (the thesis store and the harmonic balance evaluate each point at its node)")]
     AreaSamplesNeedFastMode,
+    #[error("[effects] normal_load_variation and coupled_slip are computed by the harmonic balance only: set [iteration] mode = \"harmonic_balance\"")]
+    ContactEffectsNeedHarmonicBalance,
+    #[error("[effects] normal_load_variation and coupled_slip use the library's three-direction point: interface {interface:?} needs {needs}")]
+    ContactEffectsLaw {
+        interface: String,
+        needs: &'static str,
+    },
 }
 
 /// What the sweep is asked to do (from the scene's iteration table and effects).
@@ -264,6 +272,11 @@ pub struct Setup<'a> {
     pub unit_blocks: Vec<[Matrix3<f64>; 2]>,
     /// Base pressure per contact point.
     pub pressure: Vec<f64>,
+    /// Normal spring per area of each contact point in `base` (force/length³; 0 open).
+    pub normal_k: Vec<f64>,
+    /// How the harmonic balance models its points (`[effects]` normal_load_variation,
+    /// coupled_slip).
+    pub point_model: harmonic_fe_point3d::PointModel,
     /// Per contact point: (area fraction, normal stress) of its friction samples
     /// (`StaticState::friction_samples`; empty: node-based).
     pub friction_samples: Vec<Vec<(f64, f64)>>,
@@ -286,6 +299,7 @@ impl<'a> Setup<'a> {
         let mut base = problem.sys.k.values.clone();
         let mut active = Vec::new();
         let mut unit_blocks = Vec::new();
+        let mut normal_k = vec![0.0; problem.contacts.len()];
         for (i, c) in problem.contacts.iter().enumerate() {
             if !stat.closed[i] {
                 continue;
@@ -296,6 +310,7 @@ impl<'a> Setup<'a> {
             } else {
                 normal_stiffness(itf)
             };
+            normal_k[i] = kn;
             let kt = if effects.tangential_microslip {
                 0.0
             } else {
@@ -328,6 +343,8 @@ impl<'a> Setup<'a> {
             friction_samples: stat.friction_samples.clone(),
             unit_blocks,
             pressure: stat.pressure.clone(),
+            normal_k,
+            point_model: harmonic_fe_point3d::PointModel::from_effects(effects),
             damping,
             s: problem.sys.complex_zeros(),
         })
@@ -429,6 +446,7 @@ pub fn run(
     if opts.iteration.mode != crate::input::scene::Mode::Fast && problem.has_area_samples() {
         return Err(SweepError::AreaSamplesNeedFastMode);
     }
+    harmonic_fe_point3d::check_effects(problem, &opts.effects, opts.iteration.mode)?;
     let zero_load = scale::is_zero_load(&setup);
     let mut r = match opts.iteration.mode {
         _ if zero_load => scale::zero_load(&mut setup, &order, opts)?,

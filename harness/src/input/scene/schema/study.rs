@@ -175,6 +175,14 @@ pub struct Effects {
     pub point_energy_output: bool,
     /// Regime (stick/microslip/sliding) per point and frequency, stick_slip.csv/svg.
     pub stick_slip_map: bool,
+    /// Harmonic balance only: each closed point's normal direction joins the balance and
+    /// the normal force N(t) follows the normal law within the cycle (load variation,
+    /// separation; slip limit μN(t)), through the library's three-direction point.
+    pub normal_load_variation: bool,
+    /// Harmonic balance only: a point's two tangential directions slip under one
+    /// circular limit ‖t‖ ≤ μN (the library's three-direction point) instead of as two
+    /// independent points.
+    pub coupled_slip: bool,
 }
 
 impl Default for Effects {
@@ -187,6 +195,8 @@ impl Default for Effects {
             material_damping: true,
             point_energy_output: false,
             stick_slip_map: false,
+            normal_load_variation: false,
+            coupled_slip: false,
         }
     }
 }

@@ -1,0 +1,257 @@
+//! The library's three-direction point in the FE harmonic balance
+//! ([`super::harmonic_fe`]; docs/contact3d.md), switched per scene by `[effects]`:
+//!
+//! - `normal_load_variation`: the point's normal relative displacement r_n joins the
+//!   balance; the overclosure h(t) = h₀ − r_n(t) (h = −δ_n − g₀, model.md §2) is marched
+//!   with the tangential displacements, so N(t) follows the normal law within the cycle,
+//!   the point may separate and the slip limit is μN(t);
+//! - `coupled_slip`: the two tangential directions slip under one circular limit
+//!   ‖t‖ ≤ μN (radial return of the Jenkins cells, docs/contact3d.md §2) instead of as
+//!   two independent points; without it (and with `normal_load_variation`) each
+//!   tangential direction is marched as its own point (u₁, 0, h) and (0, u₂, h), so only
+//!   the normal load is shared.
+//!
+//! Forces in stress form (the C API's force form with per-area data), beyond the
+//! reference springs of the condensation: tangential ĝ_t = A(t(t) − k_T0 r_t); normal,
+//! as an internal force along δ_n, ĝ_n = A(−(N(t) − N₀) − k_N r_n) with N₀ = k_N h₀ the
+//! static step's pressure: zero while the point stays closed, since then
+//! N − N₀ = −k_N r_n. The Jacobian of a point's force coefficients is a forward
+//! difference of the whole marched map, as in [`crate::mhb::contact3d`].
+
+use crate::capi::{Contact3, Tangential};
+use crate::input::scene::{Effects, Mode};
+use crate::mhb::aft::Transforms;
+use crate::mhb::contact3d::march3;
+use crate::mhb::MhbError;
+use crate::model::Problem;
+use crate::names::{NormalLawName, RuleName};
+
+use super::{SweepError, C64};
+
+/// Mindlin–Masing cells of the three-direction point (docs/contact3d.md §2: energy of
+/// the straight-path loop within 0.27 % of the continuous law; Jenkins has one cell).
+const MINDLIN_CELLS: i32 = 128;
+
+/// Which of the two effects are on.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct PointModel {
+    pub normal_load_variation: bool,
+    pub coupled_slip: bool,
+}
+
+impl PointModel {
+    pub fn from_effects(e: &Effects) -> Self {
+        PointModel {
+            normal_load_variation: e.normal_load_variation,
+            coupled_slip: e.coupled_slip,
+        }
+    }
+
+    /// The thesis's model: two independent tangential points at constant normal load.
+    pub fn is_thesis(&self) -> bool {
+        !(self.normal_load_variation || self.coupled_slip)
+    }
+
+    /// Local components of a point in the balance, in order: (n,) t₁, t₂.
+    pub fn components(&self) -> &'static [usize] {
+        if self.normal_load_variation {
+            &[0, 1, 2]
+        } else {
+            &[1, 2]
+        }
+    }
+}
+
+/// The scene may ask for the effects only where they are computed: the harmonic balance,
+/// interfaces with Masing's rule (the three-direction point's) and, for the normal load
+/// variation, a linear normal law (the point's stress form).
+pub fn check_effects(problem: &Problem, effects: &Effects, mode: Mode) -> Result<(), SweepError> {
+    let model = PointModel::from_effects(effects);
+    if model.is_thesis() {
+        return Ok(());
+    }
+    if mode != Mode::HarmonicBalance {
+        return Err(SweepError::ContactEffectsNeedHarmonicBalance);
+    }
+    for itf in &problem.interfaces {
+        let law = |needs| SweepError::ContactEffectsLaw {
+            interface: itf.name.clone(),
+            needs,
+        };
+        if itf.contact.rule != RuleName::Masing {
+            return Err(law(
+                "rule = \"masing\" (the point unloads by Masing's rule)",
+            ));
+        }
+        if model.normal_load_variation && itf.contact.normal_law != NormalLawName::Linear {
+            return Err(law("normal_law = \"linear\" for normal_load_variation"));
+        }
+    }
+    Ok(())
+}
+
+/// One point of the balance with the three-direction law (stress form).
+#[derive(Debug, Clone, Copy)]
+pub struct Point3 {
+    pub contact: Contact3,
+    /// Static overclosure h₀ = N₀/k_N (length).
+    pub h0: f64,
+    /// Tributary area (length²).
+    pub area: f64,
+    /// Normal reference stiffness per area in the condensed S_h (force/length³).
+    pub k_ref_n: f64,
+    pub model: PointModel,
+}
+
+impl Point3 {
+    /// The point for tangential data `t` (pressure N₀ = t.normal), normal stiffness k_N
+    /// per area of the law and `k_ref_n` of the condensation.
+    pub fn new(t: &Tangential, k_n: f64, k_ref_n: f64, area: f64, model: PointModel) -> Self {
+        let cells = if t.law == crate::names::LawName::Mindlin {
+            MINDLIN_CELLS
+        } else {
+            0
+        };
+        Point3 {
+            contact: Contact3 {
+                law: t.law,
+                cells,
+                mu: t.mu,
+                k_t0: t.k_t0,
+                k_n,
+            },
+            h0: t.normal / k_n,
+            area,
+            k_ref_n,
+            model,
+        }
+    }
+
+    fn len(&self) -> usize {
+        self.model.components().len()
+    }
+}
+
+/// A point's forces beyond the reference springs, direction by direction in the order
+/// of [`PointModel::components`].
+pub struct PointForces {
+    /// ĝ (len·(2H+1)).
+    pub ghat: Vec<f64>,
+    /// ∂ĝ/∂r row-major ((len·(2H+1))²); empty without Jacobian.
+    pub gamma: Vec<f64>,
+    /// Energy dissipated per cycle (force·length), the whole point.
+    pub dissipated: f64,
+    /// First-harmonic stress over displacement per direction.
+    pub describing: Vec<C64>,
+}
+
+/// The point's stress coefficients (t₁, t₂ or −(N − N₀) per direction) and dissipation
+/// (per area) at the direction coefficients `dc`.
+fn stresses(tr: &mut Transforms, p: &Point3, dc: &[f64]) -> Result<(Vec<f64>, f64), MhbError> {
+    let (n, nc) = (tr.n, tr.ncoef());
+    let comps = p.model.components();
+    let mut samples = [vec![0.0; n], vec![0.0; n], vec![p.h0; n]];
+    let mut x = vec![0.0; n];
+    for (d, &c) in comps.iter().enumerate() {
+        tr.synthesize(&dc[d * nc..(d + 1) * nc], &mut x);
+        match c {
+            0 => samples[2]
+                .iter_mut()
+                .zip(&x)
+                .for_each(|(h, r)| *h = p.h0 - r),
+            _ => samples[c - 1].clone_from(&x),
+        }
+    }
+    let path = |a: bool, b: bool| -> Vec<[f64; 3]> {
+        (0..n)
+            .map(|k| {
+                [
+                    if a { samples[0][k] } else { 0.0 },
+                    if b { samples[1][k] } else { 0.0 },
+                    samples[2][k],
+                ]
+            })
+            .collect()
+    };
+    // Coupled: one point; else one point per tangential direction, sharing h.
+    let (first, second) = if p.model.coupled_slip {
+        (march3(&p.contact, &path(true, true))?, None)
+    } else {
+        (
+            march3(&p.contact, &path(true, false))?,
+            Some(march3(&p.contact, &path(false, true))?),
+        )
+    };
+    let n0 = p.contact.k_n * p.h0;
+    let mut out = vec![0.0; comps.len() * nc];
+    for (d, &c) in comps.iter().enumerate() {
+        let series: Vec<f64> = match (c, &second) {
+            (0, _) => first.force[2].iter().map(|v| -(v - n0)).collect(),
+            (2, Some(s)) => s.force[1].clone(),
+            _ => first.force[c - 1].clone(),
+        };
+        tr.analyse(&series, &mut out[d * nc..(d + 1) * nc]);
+    }
+    let dissipated = first.dissipated + second.map_or(0.0, |s| s.dissipated);
+    Ok((out, dissipated))
+}
+
+/// ĝ of point `p` at its direction coefficients `dc` (and Γ when `jac`).
+pub fn forces(
+    tr: &mut Transforms,
+    p: &Point3,
+    dc: &[f64],
+    jac: bool,
+) -> Result<PointForces, MhbError> {
+    let nc = tr.ncoef();
+    let len = p.len() * nc;
+    let comps = p.model.components();
+    let k_ref = |d: usize| {
+        if comps[d] == 0 {
+            p.k_ref_n
+        } else {
+            p.contact.k_t0
+        }
+    };
+    let (s, diss) = stresses(tr, p, dc)?;
+    let ghat: Vec<f64> = (0..len)
+        .map(|i| p.area * (s[i] - k_ref(i / nc) * dc[i]))
+        .collect();
+    let describing = (0..p.len())
+        .map(|d| {
+            let r1 = C64::new(dc[d * nc + 1], -dc[d * nc + 2]);
+            if r1.norm() > 0.0 {
+                C64::new(s[d * nc + 1], -s[d * nc + 2]) / r1
+            } else {
+                C64::new(0.0, 0.0)
+            }
+        })
+        .collect();
+    let mut gamma = Vec::new();
+    if jac {
+        // Forward differences: step 1e-7 of the larger of max|r| and the stick
+        // displacement μN₀/k_T0.
+        let scale = dc.iter().fold(
+            p.contact.mu * p.contact.k_n * p.h0 / p.contact.k_t0,
+            |a, v| a.max(v.abs()),
+        );
+        let eps = 1e-7 * scale.max(f64::MIN_POSITIVE);
+        gamma = vec![0.0; len * len];
+        let mut cp = dc.to_vec();
+        for col in 0..len {
+            cp[col] = dc[col] + eps;
+            let (sp, _) = stresses(tr, p, &cp)?;
+            cp[col] = dc[col];
+            for row in 0..len {
+                gamma[row * len + col] = p.area * (sp[row] - s[row]) / eps;
+            }
+            gamma[col * len + col] -= p.area * k_ref(col / nc);
+        }
+    }
+    Ok(PointForces {
+        ghat,
+        gamma,
+        dissipated: p.area * diss,
+        describing,
+    })
+}

@@ -1,0 +1,249 @@
+//! The three-direction point in the FE harmonic balance (`[effects]
+//! normal_load_variation`, `coupled_slip`; `solve::sweep::harmonic_fe_point3d`) on a
+//! scene of the point mass of `contact3d_lumped.rs`: a 1 kg mass body on a ground
+//! interface (k_T0 = 1000 N/m, k_N = 1e4 N/m on 1 m², μ = 0.5, Masing), grounded
+//! springs 100 N/m in x, y and 2500 N/m in z with dashpots 2, 2 and 20 N·s/m, pressed by
+//! 10 N, driven at ω = 20 rad/s. The FE balance condenses onto the point's normal and
+//! tangential directions and must give the lumped balance's periodic solution
+//! (`mhb::contact3d`, itself checked against the time domain there), and the time
+//! domain's. With the effects off nothing of the three-direction point is called.
+
+use nalgebra::{Complex, DMatrix, DVector};
+
+use jointlin_harness::capi::{self, Contact3};
+use jointlin_harness::input::scene::Scene;
+use jointlin_harness::mhb::contact3d::{solve_ramped, Element3, Hb3, System3};
+use jointlin_harness::mhb::{default_samples, state_at_zero, NewtonOptions, System};
+use jointlin_harness::names::LawName;
+use jointlin_harness::run::{run, Extras, RunResult};
+use jointlin_harness::time::contact3d_reference::steady3;
+
+type C64 = Complex<f64>;
+
+const OMEGA: f64 = 20.0;
+const H: usize = 7;
+
+/// The scene with harmonic force components `f` (N: amplitude and phase in degrees per
+/// axis x, y, z) and the two switches.
+fn scene(f: [(f64, f64); 3], normal_load_variation: bool, coupled_slip: bool) -> Scene {
+    let mut text = format!(
+        r#"title = "point mass on a plane"
+[units]
+length = "m"
+force = "N"
+time = "s"
+mass = "kg"
+
+[[bodies]]
+name = "block"
+kind = "mass"
+position = [0.0, 0.0, 0.0]
+mass = 1.0
+
+[[interfaces]]
+name = "plane"
+between = ["ground", "block"]
+law = "jenkins"
+rule = "masing"
+mu = 0.5
+area = 1.0
+k_t0_per_area = 1000.0
+normal_law = "linear"
+normal_stiffness_per_area = 1.0e4
+
+[[springs]]
+body = "block"
+direction = [1.0, 0.0, 0.0]
+stiffness = 100.0
+damping = 2.0
+
+[[springs]]
+body = "block"
+direction = [0.0, 1.0, 0.0]
+stiffness = 100.0
+damping = 2.0
+
+[[springs]]
+body = "block"
+direction = [0.0, 0.0, 1.0]
+stiffness = 2500.0
+damping = 20.0
+
+[[preload]]
+kind = "force"
+body = "block"
+force = [0.0, 0.0, -10.0]
+
+[sweep]
+f_min = {f}
+f_max = {f}
+count = 1
+
+[iteration]
+mode = "harmonic_balance"
+harmonics = {H}
+tolerance = 1e-10
+max_passes = 60
+
+[effects]
+normal_load_variation = {normal_load_variation}
+coupled_slip = {coupled_slip}
+"#,
+        f = OMEGA / (2.0 * std::f64::consts::PI)
+    );
+    for (axis, (name, (amp, phase))) in ["x", "y", "z"].iter().zip(f).enumerate() {
+        let mut d = [0.0; 3];
+        d[axis] = 1.0;
+        text += &format!("\n[[outputs]]\nname = \"{name}\"\nbody = \"block\"\ndirection = {d:?}\n");
+        if amp != 0.0 {
+            text += &format!(
+                "\n[[excitation]]\nkind = \"point\"\nbody = \"block\"\ndirection = {d:?}\namplitude = {amp}\nphase_deg = {phase}\n"
+            );
+        }
+    }
+    Scene::parse("point-mass.toml", &text).unwrap()
+}
+
+/// The same system as a lumped one (contact3d_lumped.rs), f̂ = A e^{iφ}.
+fn lumped(f: [(f64, f64); 3]) -> System3 {
+    let f1 = f
+        .iter()
+        .map(|(a, p)| C64::from_polar(*a, p.to_radians()))
+        .collect();
+    System3 {
+        linear: System {
+            m: DMatrix::identity(3, 3),
+            d: DMatrix::from_diagonal(&DVector::from_vec(vec![2.0, 2.0, 20.0])),
+            k: DMatrix::from_diagonal(&DVector::from_vec(vec![100.0, 100.0, 2500.0])),
+            f0: vec![0.0, 0.0, -10.0],
+            f1,
+            elements: Vec::new(),
+        },
+        elements: vec![Element3 {
+            dofs: [0, 1, 2],
+            contact: Contact3 {
+                law: LawName::Jenkins,
+                cells: 0,
+                mu: 0.5,
+                k_t0: 1000.0,
+                k_n: 1e4,
+            },
+            gap: 0.0,
+        }],
+    }
+}
+
+fn fe(s: &Scene) -> RunResult {
+    run(s, Extras::default(), &|_, _, _| {}).unwrap()
+}
+
+/// FE first-harmonic amplitudes (x, y, z) and energy per cycle against the lumped
+/// balance and the time domain; returns the largest relative differences.
+fn compare(name: &str, f: [(f64, f64); 3]) -> (f64, f64) {
+    let r = fe(&scene(f, true, true));
+    assert!(r.main.converged[0], "{name}: FE balance not converged");
+    let amp: Vec<f64> = r.main.outputs[0].iter().map(|z| z.norm()).collect();
+    let energy = r.main.power[0] / (OMEGA / (2.0 * std::f64::consts::PI));
+    let sys = lumped(f);
+    let ns = default_samples(H);
+    let hb = Hb3::new(&sys, H, ns);
+    let sol = solve_ramped(&sys, H, ns, OMEGA, 10, NewtonOptions::default()).unwrap();
+    let (x0, v0) = state_at_zero(&sol.u, H, OMEGA);
+    let td = steady3::<6>(&sys, OMEGA, &x0, &v0, 4000, 1e-8, 600).unwrap();
+    let floor = 1e-6 * amp.iter().fold(0.0f64, |m, v| m.max(*v));
+    let rel = |a: f64, b: f64, fl: f64| (a - b).abs() / b.abs().max(fl);
+    let (mut to_hb, mut to_td) = (0.0f64, 0.0f64);
+    for (k, a) in amp.iter().enumerate() {
+        to_hb = to_hb.max(rel(*a, hb.amplitude(&sol.u, k), floor));
+        to_td = to_td.max(rel(*a, td.amplitude[k], floor));
+    }
+    to_hb = to_hb.max(rel(energy, sol.dissipated[0], 1e-300));
+    to_td = to_td.max(rel(energy, td.energy, 1e-300));
+    println!(
+        "{name}: FE amplitudes {:.5e} {:.5e} {:.5e} m, energy {:.5e} J; against the lumped balance {to_hb:.1e}, against the time domain {to_td:.1e}",
+        amp[0], amp[1], amp[2], energy
+    );
+    (to_hb, to_td)
+}
+
+#[test]
+fn fe_balance_with_both_effects_is_the_lumped_point_mass() {
+    // Sliding under an oblique force, partial separation (12 N normal on the 8 N the
+    // contact carries), a circular path (4 N along x, 4 N along y a quarter period
+    // later).
+    for (name, f) in [
+        ("sliding", [(8.0, 0.0), (2.0, 0.0), (1.0, 0.0)]),
+        ("separation", [(5.0, 0.0), (0.0, 0.0), (12.0, 0.0)]),
+        ("circle", [(4.0, 0.0), (4.0, -90.0), (0.0, 0.0)]),
+    ] {
+        let (to_hb, to_td) = compare(name, f);
+        assert!(to_hb < 1e-6, "{name}: {to_hb:e}");
+        assert!(to_td < 1e-2, "{name}: {to_td:e}");
+    }
+}
+
+#[test]
+fn each_effect_changes_what_it_should() {
+    // Circle at constant normal load: coupled slip matters, the normal variation not
+    // (no normal force); the thesis's two independent points dissipate differently.
+    let f = [(4.0, 0.0), (4.0, -90.0), (0.0, 0.0)];
+    let energy = |r: &RunResult| r.main.power[0];
+    let thesis = fe(&scene(f, false, false));
+    let coupled = fe(&scene(f, false, true));
+    let both = fe(&scene(f, true, true));
+    let (e0, e1, e2) = (energy(&thesis), energy(&coupled), energy(&both));
+    println!("circle: power thesis {e0:.5e}, coupled slip {e1:.5e}, both {e2:.5e} W");
+    assert!((e1 / e2 - 1.0).abs() < 1e-6, "{e1} {e2}");
+    assert!((e1 / e0 - 1.0).abs() > 0.05, "{e0} {e1}");
+    // 2.5 N tangential sticks at the constant load (the contact carries ~3.6 N of it
+    // against μN = 4 N); 7 N normal a quarter period later on the 8 N the contact
+    // carries: with the normal load varying no constant offset of the tangential force
+    // keeps it inside ±μN(t), the point slips every cycle. (In phase, the point would
+    // shake down: slip in the first cycles, then stay elastic with a mean tangential
+    // force.)
+    let f = [(2.5, 0.0), (0.0, 0.0), (7.0, 90.0)];
+    let thesis = fe(&scene(f, false, false));
+    let varying = fe(&scene(f, true, false));
+    println!(
+        "normal 7 N at 90°: power thesis {:.5e}, normal load variation {:.5e} W",
+        energy(&thesis),
+        energy(&varying)
+    );
+    assert!(energy(&thesis) < 1e-9 * energy(&varying));
+}
+
+#[test]
+fn switched_off_the_three_direction_point_is_not_called() {
+    let f = [(8.0, 0.0), (2.0, 0.0), (1.0, 0.0)];
+    let (p3, p1) = (capi::point3d_steps(), capi::point_steps());
+    fe(&scene(f, false, false));
+    assert_eq!(
+        capi::point3d_steps(),
+        p3,
+        "effects off: no three-direction steps"
+    );
+    assert!(capi::point_steps() > p1);
+    let (p3, p1) = (capi::point3d_steps(), capi::point_steps());
+    fe(&scene(f, true, true));
+    assert!(capi::point3d_steps() > p3);
+    assert_eq!(
+        capi::point_steps(),
+        p1,
+        "effects on: the point is marched in 3D only"
+    );
+}
+
+#[test]
+fn the_effects_are_refused_where_they_are_not_computed() {
+    let f = [(8.0, 0.0), (2.0, 0.0), (1.0, 0.0)];
+    let mut s = scene(f, false, true);
+    s.spec.iteration.mode = jointlin_harness::input::scene::Mode::Fast;
+    let e = run(&s, Extras::default(), &|_, _, _| {}).err().unwrap();
+    assert!(e.to_string().contains("harmonic_balance"), "{e}");
+    let text = scene(f, true, false)
+        .text
+        .replace("rule = \"masing\"", "rule = \"thesis\"");
+    let s = Scene::parse("point-mass.toml", &text).unwrap();
+    let e = run(&s, Extras::default(), &|_, _, _| {}).err().unwrap();
+    assert!(e.to_string().contains("masing"), "{e}");
+}
