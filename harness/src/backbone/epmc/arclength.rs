@@ -24,7 +24,7 @@
 use nalgebra::{DMatrix, DVector};
 
 use super::super::BackboneError;
-use super::equations::{Epmc, Evaluated, State, FLOOR_RTOL, RTOL, STAGNATION};
+use super::equations::{damped_step, Epmc, Evaluated, State, FLOOR_RTOL, RTOL, STAGNATION};
 
 /// Arclength steps (in y).
 const STEP_START: f64 = 0.02;
@@ -37,9 +37,7 @@ const BEHIND: usize = 16;
 /// Steps along one backbone before it counts as lost.
 const MAX_STEPS: usize = 20_000;
 const MAX_CORRECTOR: usize = 20;
-/// Step halvings of the corrector's line search; full steps that raise |F| (at most
-/// tenfold) allowed per correction.
-const LINE_SEARCH: usize = 8;
+/// Full steps that raise |F| (at most tenfold) allowed per correction.
 const MAX_NONMONOTONE: usize = 3;
 /// cos 45°: the largest turn of the tangent per step above [`CORNER_STEP`].
 const MIN_TURN_COS: f64 = 0.7;
@@ -160,34 +158,21 @@ impl Path<'_, '_> {
                 let dissipated = ev.dissipated.clone();
                 return Some((Node { y, dissipated }, ev, it));
             }
-            // Line search as in the fixed-q Newton (equations.rs): the balance of sampled
-            // stick–slip forces is only piecewise smooth.
-            let mut lambda = 1.0;
-            let mut full = None;
-            let mut accepted = false;
-            for _ in 0..LINE_SEARCH {
-                let trial = &y - lambda * &dy;
-                if let Some(e2) = self.eval(&trial) {
-                    let r2 = self.ep.scaled(&e2.f);
-                    if r2 < res {
-                        (y, ev, res) = (trial, e2, r2);
-                        accepted = true;
-                        break;
-                    }
-                    if lambda == 1.0 && r2 < 10.0 * res {
-                        full = Some((trial, e2, r2));
-                    }
-                }
-                lambda *= 0.5;
-            }
-            if !accepted {
-                match full {
-                    Some(f) if nonmonotone < MAX_NONMONOTONE => {
-                        nonmonotone += 1;
-                        (y, ev, res) = f;
-                    }
-                    _ => return None,
-                }
+            let path = &mut *self;
+            let step = damped_step(
+                res,
+                &mut nonmonotone,
+                MAX_NONMONOTONE,
+                |lambda| &y - lambda * &dy,
+                |trial| {
+                    let e2 = path.eval(trial)?;
+                    let r2 = path.ep.scaled(&e2.f);
+                    Some((e2, r2))
+                },
+            );
+            match step {
+                Some(next) => (y, ev, res) = next,
+                None => return None,
             }
         }
         None

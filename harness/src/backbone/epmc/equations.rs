@@ -146,41 +146,24 @@ impl Epmc<'_> {
             if res <= FLOOR_RTOL && dy.norm() <= STAGNATION * size {
                 return Ok((st, ev.dissipated));
             }
-            let mut lambda = 1.0;
-            let mut accepted = false;
-            let mut full = None;
-            for _ in 0..8 {
-                let trial = State {
+            let step = damped_step(
+                res,
+                &mut nonmonotone,
+                MAX_NONMONOTONE,
+                |lambda| State {
                     psi: (0..dim).map(|i| st.psi[i] - lambda * dy[i]).collect(),
                     omega: st.omega - lambda * dy[dim],
                     xi: st.xi - lambda * dy[dim + 1],
-                };
-                if trial.omega > 0.0 {
-                    if let Ok(e2) = self.eval(&trial, q) {
-                        let r2 = self.scaled(&e2.f);
-                        if r2 < res {
-                            (st, ev, res) = (trial, e2, r2);
-                            accepted = true;
-                            break;
-                        }
-                        if lambda == 1.0 && r2 < 10.0 * res {
-                            full = Some((trial, e2, r2));
-                        }
-                    }
-                }
-                lambda *= 0.5;
-            }
-            // The AFT forces of contact elements are piecewise smooth (a sample changes
-            // between sticking and sliding): where no shortened step lowers |R|, a few
-            // full steps that raise it less than tenfold are taken (non-monotone Newton).
-            if !accepted {
-                match full {
-                    Some(fs) if nonmonotone < MAX_NONMONOTONE => {
-                        nonmonotone += 1;
-                        (st, ev, res) = fs;
-                    }
-                    _ => return Err(res),
-                }
+                },
+                |trial| {
+                    let e2 = (trial.omega > 0.0).then(|| self.eval(trial, q).ok())??;
+                    let r2 = self.scaled(&e2.f);
+                    Some((e2, r2))
+                },
+            );
+            match step {
+                Some(next) => (st, ev, res) = next,
+                None => return Err(res),
             }
         }
         if res <= RTOL {
@@ -189,4 +172,39 @@ impl Epmc<'_> {
             Err(res)
         }
     }
+}
+
+/// Halvings of a Newton step in [`damped_step`].
+const LINE_SEARCH: usize = 8;
+
+/// One damped Newton step from residual `res`: the first of the steps λ = 1, ½, … (at
+/// most [`LINE_SEARCH`] halvings; `trial(λ)` the point, `eval` its evaluation and
+/// residual) that lowers the residual. The contact forces of the AFT are piecewise
+/// smooth (a sample changes between sticking and sliding): where no shortened step
+/// lowers it, the full step is taken if it raises the residual less than tenfold, at most
+/// `max_nonmonotone` times per solve (counted in `nonmonotone`). `None`: no step.
+pub fn damped_step<S, E>(
+    res: f64,
+    nonmonotone: &mut usize,
+    max_nonmonotone: usize,
+    trial: impl Fn(f64) -> S,
+    mut eval: impl FnMut(&S) -> Option<(E, f64)>,
+) -> Option<(S, E, f64)> {
+    let mut lambda = 1.0;
+    let mut full = None;
+    for _ in 0..LINE_SEARCH {
+        let t = trial(lambda);
+        if let Some((e, r)) = eval(&t) {
+            if r < res {
+                return Some((t, e, r));
+            }
+            if lambda == 1.0 && r < 10.0 * res {
+                full = Some((t, e, r));
+            }
+        }
+        lambda *= 0.5;
+    }
+    let f = full.filter(|_| *nonmonotone < max_nonmonotone)?;
+    *nonmonotone += 1;
+    Some(f)
 }
