@@ -247,3 +247,17 @@ fn the_effects_are_refused_where_they_are_not_computed() {
     let e = run(&s, Extras::default(), &|_, _, _| {}).err().unwrap();
     assert!(e.to_string().contains("masing"), "{e}");
 }
+
+#[test]
+fn no_excitation_is_no_motion_with_the_effects_on() {
+    // Hard input: zero harmonic load (no [[excitation]]) with both effects: the exact
+    // answer, zero amplitude and no dissipation, not a NaN or a failed balance.
+    let text = scene([(1.0, 0.0), (0.0, 0.0), (0.0, 0.0)], true, true)
+        .text
+        .replace("amplitude = 1\n", "amplitude = 0.0\n");
+    assert!(text.contains("amplitude = 0.0"));
+    let r = fe(&Scene::parse("point-mass.toml", &text).unwrap());
+    assert!(r.main.converged[0]);
+    assert!(r.main.outputs[0].iter().all(|z| z.norm() == 0.0));
+    assert_eq!(r.main.power[0], 0.0);
+}
