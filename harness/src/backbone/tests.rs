@@ -450,3 +450,29 @@ fn epmc_passes_the_turning_point_where_the_second_joint_slips() {
         assert!((lo / ranges[2].0 - 1.0).abs() < 1e-2 && (hi / ranges[2].1 - 1.0).abs() < 1e-2);
     }
 }
+
+#[test]
+fn amplitude_stepping_follows_the_arclength_path_where_it_does_not_turn() {
+    // The fallback where the arclength path stops (stepping in q alone) must land on the
+    // same backbone where the backbone does not turn back: one DOF at H = 5 across the
+    // whole stick–slip transition, the 3-DOF chain at H = 3 before its second joint slips.
+    for (sys, h, to) in [(single_dof(), 5, 300.0), (chain(), 3, 3.0)] {
+        let qs = q_stick(&sys);
+        let q = log_space(0.6 * qs, to * qs, 15);
+        let arc = epmc::backbone(&sys, 1, h, &q).unwrap();
+        let step =
+            epmc::amplitude_stepping(&sys, 1, h, crate::mhb::default_samples(h), &q).unwrap();
+        assert_eq!(arc.len(), step.len());
+        for (a, b) in arc.iter().zip(&step) {
+            let (a, b) = (&a.point, &b.point);
+            assert!((a.modal_amplitude / b.modal_amplitude - 1.0).abs() < 1e-14);
+            let ew = (b.omega / a.omega - 1.0).abs();
+            let ez = (b.damping_ratio - a.damping_ratio).abs() / a.damping_ratio;
+            assert!(
+                ew < 1e-8 && ez < 1e-6,
+                "q = {}: ω {ew:e}, ζ {ez:e}",
+                a.modal_amplitude
+            );
+        }
+    }
+}

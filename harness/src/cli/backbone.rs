@@ -146,6 +146,7 @@ pub fn main(a: Args) -> ExitCode {
                         turning: t.turning_points,
                         gaps: t.gaps,
                         skipped: t.skipped,
+                        fixed_q: t.fixed_q,
                     },
                     t.stopped,
                 )
@@ -176,6 +177,11 @@ pub fn main(a: Args) -> ExitCode {
         eprintln!(
             "requested amplitudes in those ranges, not in the results: {} [{unit}]",
             list.join(", ")
+        );
+    }
+    for (from, to) in &path.fixed_q {
+        eprintln!(
+            "the arclength path stopped: continued in the modal amplitude alone from {from:.6e} to {to:.6e} [{unit}] (turning points in that range not followed)"
         );
     }
     let turning = &path.turning;
@@ -295,6 +301,7 @@ fn write(
         "turning_points_modal_amplitude": path.turning,
         "gaps_modal_amplitude": path.gaps,
         "skipped_modal_amplitudes": path.skipped,
+        "fixed_amplitude_steps_modal_amplitude": path.fixed_q,
         "rows": json_rows,
     });
     let text = serde_json::to_string_pretty(&run).map_err(|e| e.to_string())?;
@@ -308,4 +315,6 @@ struct Path {
     turning: Vec<f64>,
     gaps: Vec<(f64, f64)>,
     skipped: Vec<f64>,
+    /// Ranges continued in the modal amplitude alone (from, to).
+    fixed_q: Vec<(f64, f64)>,
 }

@@ -65,6 +65,10 @@ pub struct Followed {
     pub gaps: Vec<(f64, f64)>,
     pub skipped: Vec<f64>,
     pub stopped: Option<BackboneError>,
+    /// The last point of the path (where it ended or stopped).
+    pub end: Crossing,
+    /// The largest ln q the path reached.
+    pub farthest: f64,
 }
 
 struct Path<'e, 'a> {
@@ -220,6 +224,8 @@ pub fn follow(
         gaps: Vec::new(),
         skipped: Vec::new(),
         stopped: None,
+        end: (lq0, p.state(&start.y), start.dissipated.clone()),
+        farthest: lq0,
     };
     for &l in targets.iter().filter(|l| **l <= lq0) {
         out.crossings
@@ -293,6 +299,12 @@ pub fn follow(
         if adv.switched {
             step = STEP_START.min(step.max(CORNER_STEP));
         }
+        out.farthest = out.farthest.max(p.lnq(&adv.node.y));
+        out.end = (
+            p.lnq(&adv.node.y),
+            p.state(&adv.node.y),
+            adv.node.dissipated.clone(),
+        );
         behind.push(std::mem::replace(&mut node, adv.node).y);
         if behind.len() > BEHIND {
             behind.remove(0);

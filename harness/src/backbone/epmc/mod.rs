@@ -19,6 +19,7 @@
 
 mod arclength;
 mod equations;
+mod stepping;
 
 use super::first_order::{stick_limit, stuck_mode};
 use super::{BackboneError, BackbonePoint, C64};
@@ -78,6 +79,9 @@ pub struct Traced {
     /// requested amplitudes inside them (not in `points`).
     pub gaps: Vec<(f64, f64)>,
     pub skipped: Vec<f64>,
+    /// Ranges of q (from, to) continued in q alone where the arclength path stopped
+    /// ([`stepping`]): turning points in them are not followed.
+    pub fixed_q: Vec<(f64, f64)>,
     pub stopped: Option<BackboneError>,
 }
 
@@ -93,12 +97,115 @@ pub fn trace(
     if let Some(&bad) = q.iter().find(|v| !(v.is_finite() && **v > 0.0)) {
         return Err(BackboneError::Amplitude(bad));
     }
+    let free = unforced(sys);
+    let (mut ep, guess, w0, lq_stuck) = setup(&free, sys, mode, h, samples)?;
+    let mut targets: Vec<f64> = q.iter().map(|v| v.ln()).collect();
+    targets.sort_by(f64::total_cmp);
+    targets.dedup();
+    let Some(&first) = targets.first() else {
+        return Ok(Traced {
+            points: Vec::new(),
+            turning_points: Vec::new(),
+            gaps: Vec::new(),
+            skipped: Vec::new(),
+            fixed_q: Vec::new(),
+            stopped: None,
+        });
+    };
+    // The path starts where every contact still sticks.
+    let lq0 = first.min(lq_stuck);
+    let (st, dissipated) = match ep.solve(guess, lq0.exp()) {
+        Ok(s) => s,
+        Err(residual) => {
+            return Ok(Traced {
+                points: Vec::new(),
+                turning_points: Vec::new(),
+                gaps: Vec::new(),
+                skipped: Vec::new(),
+                fixed_q: Vec::new(),
+                stopped: Some(BackboneError::NotConverged {
+                    modal_amplitude: lq0.exp(),
+                    residual,
+                }),
+            })
+        }
+    };
+    let mut out = Traced {
+        points: Vec::new(),
+        turning_points: Vec::new(),
+        gaps: Vec::new(),
+        skipped: Vec::new(),
+        fixed_q: Vec::new(),
+        stopped: None,
+    };
+    let mut crossings = Vec::new();
+    let mut resume = (lq0, st, dissipated);
+    // Every round either reaches farther in q or ends.
+    for _ in 0..targets.len() + 1 {
+        let path = arclength::follow(&mut ep, &resume.1, resume.0, resume.2, w0, &targets);
+        crossings.extend(path.crossings);
+        out.turning_points.extend(path.turning_points);
+        out.gaps.extend(path.gaps);
+        out.skipped.extend(path.skipped);
+        let Some(why) = path.stopped else { break };
+        // Where the path stops, step in q alone to the amplitudes beyond the farthest
+        // reached, from the path's end or else from the largest amplitude solved.
+        let rest: Vec<f64> = targets
+            .iter()
+            .copied()
+            .filter(|l| *l > path.farthest)
+            .collect();
+        let mut starts = vec![path.end];
+        if let Some(c) = crossings.iter().max_by(|a, b| a.0.total_cmp(&b.0)) {
+            starts.push(c.clone());
+        }
+        let stepped = starts
+            .into_iter()
+            .map(|s| (s.0, stepping::toward(&mut ep, s, &rest)))
+            .find(|(from, s)| s.last.0 > path.farthest.max(*from));
+        let Some((from, stepped)) = stepped else {
+            out.stopped = Some(why);
+            break;
+        };
+        out.fixed_q.push((from.exp(), stepped.last.0.exp()));
+        crossings.extend(stepped.crossings);
+        if stepped.failed.is_none() {
+            break;
+        }
+        resume = stepped.last;
+        targets.retain(|l| *l > resume.0);
+        if targets.is_empty() {
+            break;
+        }
+    }
+    out.points = crossings
+        .into_iter()
+        .map(|(lq, st, diss)| point(&ep.hb, sys, &st, lq.exp(), diss))
+        .collect();
+    Ok(out)
+}
+
+/// The system without its loads (the EPMC motion is free).
+fn unforced(sys: &System) -> System {
     let n = sys.n();
-    let free = System {
+    System {
         f0: vec![0.0; n],
         f1: vec![C64::new(0.0, 0.0); n],
         ..sys.clone()
-    };
+    }
+}
+
+/// The EPMC equations of mode `mode` of `free` (the unforced `sys`) at H harmonics and N
+/// samples, the stuck mode as the first guess, its ω₀ (rad/time) and the ln q where
+/// every contact still sticks (half the first slip limit).
+fn setup<'a>(
+    free: &'a System,
+    sys: &System,
+    mode: usize,
+    h: usize,
+    samples: usize,
+) -> Result<(Epmc<'a>, State, f64, f64), BackboneError> {
+    let n = sys.n();
     let stuck = stuck_mode(sys, mode)?;
     let h = h.max(1);
     let samples = samples.max(2 * h + 2);
@@ -113,58 +220,50 @@ pub fn trace(
         .map(|a| (0..n).map(|b| sys.m[(a, b)] * phi_r[b]).sum())
         .collect();
     let w0 = stuck.omega();
-    let mut ep = Epmc {
-        hb: Hb::new(&free, h, samples),
+    let ep = Epmc {
+        hb: Hb::new(free, h, samples),
         m_ref,
         scale: (w0 * w0).max(f64::MIN_POSITIVE),
     };
-    let mut targets: Vec<f64> = q.iter().map(|v| v.ln()).collect();
-    targets.sort_by(f64::total_cmp);
-    targets.dedup();
-    let Some(&first) = targets.first() else {
-        return Ok(Traced {
-            points: Vec::new(),
-            turning_points: Vec::new(),
-            gaps: Vec::new(),
-            skipped: Vec::new(),
-            stopped: None,
-        });
-    };
-    // The path starts where every contact still sticks.
-    let lq0 = first.min((0.5 * stick_limit(sys, &stuck.shape)?).ln());
     let guess = State {
         psi,
         omega: w0,
         xi: 2.0 * stuck.damping_ratio() * w0,
     };
-    let (st, dissipated) = match ep.solve(guess, lq0.exp()) {
-        Ok(s) => s,
-        Err(residual) => {
-            return Ok(Traced {
-                points: Vec::new(),
-                turning_points: Vec::new(),
-                gaps: Vec::new(),
-                skipped: Vec::new(),
-                stopped: Some(BackboneError::NotConverged {
-                    modal_amplitude: lq0.exp(),
-                    residual,
-                }),
-            })
-        }
-    };
-    let path = arclength::follow(&mut ep, &st, lq0, dissipated, w0, &targets);
-    let points = path
-        .crossings
+    let lq_stuck = (0.5 * stick_limit(sys, &stuck.shape)?).ln();
+    Ok((ep, guess, w0, lq_stuck))
+}
+
+/// The backbone at `q` (ascending) by [`stepping`] alone from the stuck start, to
+/// compare with the arclength path where both apply.
+#[cfg(test)]
+pub fn amplitude_stepping(
+    sys: &System,
+    mode: usize,
+    h: usize,
+    samples: usize,
+    q: &[f64],
+) -> Result<Vec<EpmcPoint>, BackboneError> {
+    let free = unforced(sys);
+    let (mut ep, guess, _, lq0) = setup(&free, sys, mode, h, samples)?;
+    let (st, diss) =
+        ep.solve(guess, lq0.exp())
+            .map_err(|residual| BackboneError::NotConverged {
+                modal_amplitude: lq0.exp(),
+                residual,
+            })?;
+    let targets: Vec<f64> = q.iter().map(|v| v.ln()).collect();
+    let s = stepping::toward(&mut ep, (lq0, st, diss), &targets);
+    if let Some(residual) = s.failed {
+        return Err(BackboneError::NotConverged {
+            modal_amplitude: s.last.0.exp(),
+            residual,
+        });
+    }
+    Ok(s.crossings
         .into_iter()
         .map(|(lq, st, diss)| point(&ep.hb, sys, &st, lq.exp(), diss))
-        .collect();
-    Ok(Traced {
-        points,
-        turning_points: path.turning_points,
-        gaps: path.gaps,
-        skipped: path.skipped,
-        stopped: path.stopped,
-    })
+        .collect())
 }
 
 fn point(hb: &Hb, sys: &System, st: &State, q: f64, diss: Vec<f64>) -> EpmcPoint {
