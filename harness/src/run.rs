@@ -114,6 +114,7 @@ pub fn run(
         && !problem.contacts.is_empty()
     {
         let mut o = opts;
+        o.effects = o.effects.first_order();
         o.effects.contact_damping = false;
         o.point_results = false;
         o.iteration.mode = Mode::Fast;
@@ -129,6 +130,7 @@ pub fn run(
         Some(fo) => {
             let at = field_frequencies(fo, &main);
             let mut o = opts;
+            o.effects = o.effects.first_order();
             o.iteration.mode = Mode::Fast;
             o.keep_fields = true;
             o.point_results = true;

@@ -261,3 +261,20 @@ fn no_excitation_is_no_motion_with_the_effects_on() {
     assert!(r.main.outputs[0].iter().all(|z| z.norm() == 0.0));
     assert_eq!(r.main.power[0], 0.0);
 }
+
+#[test]
+fn a_run_with_the_effects_on_also_writes_its_reference_sweep() {
+    // `jointlin run` adds the fast sweep without contact damping for the FRF plot; that
+    // sweep is first order and runs the thesis's point model, not the effects (which it
+    // would refuse).
+    let f = [(8.0, 0.0), (2.0, 0.0), (1.0, 0.0)];
+    let extras = Extras {
+        reference_without_damping: true,
+        ..Extras::default()
+    };
+    let r = run(&scene(f, true, true), extras, &|_, _, _| {}).unwrap();
+    let reference = r.reference.expect("reference sweep");
+    assert!(r.main.converged[0] && reference.converged[0]);
+    // Without d* the sliding mass moves more than with the dissipating contact.
+    assert!(reference.outputs[0][0].norm() > r.main.outputs[0][0].norm());
+}

@@ -185,6 +185,18 @@ pub struct Effects {
     pub coupled_slip: bool,
 }
 
+impl Effects {
+    /// These effects for a first-order (fast) sweep: the harmonic-balance-only effects
+    /// off (the reference and field sweeps of a run use the thesis's point model).
+    pub fn first_order(self) -> Self {
+        Effects {
+            normal_load_variation: false,
+            coupled_slip: false,
+            ..self
+        }
+    }
+}
+
 impl Default for Effects {
     fn default() -> Self {
         Effects {
