@@ -32,6 +32,7 @@ use std::sync::Arc;
 use realfft::num_complex::Complex;
 use realfft::{ComplexToReal, RealFftPlanner, RealToComplex};
 
+use super::aitken::Aitken;
 use crate::capi::{self, CapiError, Tangential, POINT_STATE_LEN};
 use crate::names::LawName;
 
@@ -51,9 +52,6 @@ const CLOSE_FLOOR: f64 = 1e-2;
 /// its closed loop geometrically (ratio ≈ 1 − A/δ* per period), which the Aitken jump
 /// (module docs) shortcuts; without it A/δ* = 0.3 needed ~70 periods.
 pub const MAX_PERIODS: usize = 200;
-/// Aitken extrapolation of the period-end state when consecutive periods' differences
-/// shrink by a ratio q below this (a contraction that is not yet round-off).
-const AITKEN_MAX_RATIO: f64 = 0.999_999;
 
 /// FFT plans and scratch for N samples.
 pub struct Transforms {
@@ -166,10 +164,7 @@ pub fn march(law: &Law, delta: &[f64]) -> Result<Period, AftError> {
                 ..Period::default()
             };
             let floor = CLOSE_FLOOR * t.mu * t.normal.abs();
-            // Period-end states and force differences of the last two periods since the
-            // last extrapolation (Aitken, module docs).
-            let mut ends: Vec<[f64; POINT_STATE_LEN]> = Vec::new();
-            let mut diffs: Vec<f64> = Vec::new();
+            let mut aitken = Aitken::new(0..POINT_STATE_LEN);
             for p in 1..=MAX_PERIODS {
                 let mut diss = 0.0;
                 for k in 0..n {
@@ -188,38 +183,21 @@ pub fn march(law: &Law, delta: &[f64]) -> Result<Period, AftError> {
                 cur.dissipated = diss;
                 cur.periods = p;
                 prev.copy_from_slice(&cur.force);
-                if ends.is_empty() {
-                    ends.push(state);
+                // The first period, and the first after a jump, starts the record.
+                if aitken.starting() {
+                    aitken.first(&state);
                     continue;
                 }
                 if diff <= CLOSE_TOL * scale {
                     return Ok(cur);
                 }
-                ends.push(state);
-                diffs.push(diff);
-                if let [d1, d2] = diffs[..] {
-                    // Geometric drift F_p = F_∞ + c q^p: jump the state to its limit.
-                    let q = d2 / d1;
-                    let mut jumped = false;
-                    if q < AITKEN_MAX_RATIO {
-                        let w = q / (1.0 - q);
-                        let (s1, s2) = (ends[1], ends[2]);
-                        let mut x = state;
-                        for (x, (a, b)) in x.iter_mut().zip(s1.iter().zip(&s2)) {
-                            *x = b + (b - a) * w;
-                        }
-                        // The state is the library's: if it rejects the extrapolated one
-                        // (a discrete slot changed between the periods), march on plainly
-                        // and try again after the next two periods.
-                        if capi::point_step(t, &x, delta[0], &mut next).is_ok() {
-                            state = x;
-                            jumped = true;
-                        }
-                    }
-                    ends.clear();
-                    diffs.clear();
-                    if !jumped {
-                        ends.push(state);
+                if let Some(x) = aitken.after(&state, diff) {
+                    // The state is the library's: if it rejects the extrapolated one
+                    // (a discrete slot changed between the periods), march on plainly
+                    // and try again after the next two periods.
+                    match <[f64; POINT_STATE_LEN]>::try_from(x.as_slice()) {
+                        Ok(x) if capi::point_step(t, &x, delta[0], &mut next).is_ok() => state = x,
+                        _ => aitken.rejected(&state),
                     }
                 }
             }

@@ -22,6 +22,7 @@
 //! `jointlin mhb` (`bench::mhb_chain`, `bench::mhb_fe`).
 
 pub mod aft;
+mod aitken;
 pub mod consistency;
 pub mod contact3d;
 pub mod continuation;
