@@ -15,6 +15,7 @@ declare -A commands=(
   [backbone_plot]="cargo run --release -q -p jointlin-harness --bin jointlin -- backbone scenes/jenkins-chain.toml --out harness/assets/backbone-chain 2>&1"
   [backbone_chain_h7]="cargo run --release -q -p jointlin-harness --bin jointlin -- backbone scenes/jenkins-chain.toml --harmonics 7 --amplitudes 0.02,20,300 --out harness/assets/backbone-chain-h7 2>&1"
   [backbone_cost]="cargo run --release -q -p jointlin-harness --bin jointlin -- mhb --backbones --scene scenes/three-beams-coarse.toml,scenes/three-beams.toml"
+  [contact_effects]="cargo run --release -q -p jointlin-harness --bin jointlin -- effects scenes/three-beams-oblique.toml --out harness/assets/contact-effects"
   [backbone_fe]="cargo run --release -q -p jointlin-harness --bin jointlin -- backbone scenes/three-beams-coarse.toml --out harness/assets/backbone-three-beams 2>&1"
   [backbone_fe_h7]="cargo run --release -q -p jointlin-harness --bin jointlin -- backbone scenes/three-beams-coarse.toml --harmonics 7 --amplitudes 3e-6,3e-2,25 --out harness/assets/backbone-three-beams-h7 2>&1"
   [three_beams_frf]="cargo run --release -q -p jointlin-harness --bin jointlin -- run scenes/three-beams.toml --out out/three-beams --quiet"
@@ -38,7 +39,7 @@ declare -A plots=(
 # written): the block shows the message and the exit status instead of ending the script.
 may_stop=" backbone_fe_h7 "
 # Blocks whose command prints Markdown (the others are shown as terminal output).
-markdown=" accuracy_table knife knife_mesh tradeoff_beams tradeoff_block backbone_cost deck_stack deck_bench "
+markdown=" contact_effects accuracy_table knife knife_mesh tradeoff_beams tradeoff_block backbone_cost deck_stack deck_bench "
 files=(README.md docs/accuracy.md)
 # Copies each "from to" pair of a plots entry; a glob must match exactly one file.
 copy_plots() {

@@ -26,6 +26,7 @@
 pub mod backbone;
 pub mod bench;
 pub mod capi;
+pub mod effects;
 pub mod export;
 pub mod fe;
 pub mod input;

@@ -278,3 +278,28 @@ fn a_run_with_the_effects_on_also_writes_its_reference_sweep() {
     // Without d* the sliding mass moves more than with the dissipating contact.
     assert!(reference.outputs[0][0].norm() > r.main.outputs[0][0].norm());
 }
+
+#[test]
+fn the_effects_study_runs_each_point_model() {
+    // `jointlin effects` on the circle: the scene's own switches are replaced by the four
+    // variants; the thesis's model never calls the three-direction point, the others
+    // do; coupled slip changes the loss, the normal variation does not (no normal force
+    // on the circle), as in each_effect_changes_what_it_should.
+    let s = scene([(4.0, 0.0), (4.0, -90.0), (0.0, 0.0)], true, false);
+    let t = jointlin_harness::effects::study(&s, &|_| {}).unwrap();
+    let v = &t.variants;
+    assert_eq!(v.len(), 4);
+    assert!(!v[0].coupled_slip && !v[0].normal_load_variation && v[0].point3d_steps == 0);
+    assert!(v[1..]
+        .iter()
+        .all(|v| v.point3d_steps > 0 && v.converged == 1));
+    let p: Vec<f64> = v.iter().map(|v| v.power_at_peak).collect();
+    println!("circle: power per variant {p:?} W");
+    assert!((p[1] / p[0] - 1.0).abs() > 0.05);
+    assert!((p[2] / p[0] - 1.0).abs() < 1e-6 && (p[3] / p[1] - 1.0).abs() < 1e-6);
+    let md = jointlin_harness::effects::markdown(&t);
+    assert!(
+        md.contains("| coupled slip |") && md.contains("power at peak [N·m/s]"),
+        "{md}"
+    );
+}

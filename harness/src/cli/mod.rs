@@ -5,6 +5,7 @@
 mod backbone;
 mod bench;
 mod check;
+mod effects;
 mod export;
 mod loss;
 mod matrices;
@@ -97,6 +98,11 @@ pub enum Command {
     /// accurate time-domain run vs wall time. Writes tradeoff.csv, tradeoff.md and the
     /// Pareto plot tradeoff.svg; prints the frequency- vs time-domain speed ratio.
     Tradeoff(tradeoff::Args),
+    /// The contact point models beyond the thesis on one harmonic-balance scene: its sweep
+    /// with the thesis's model, with `coupled_slip`, with `normal_load_variation` and with
+    /// both (docs/contact3d.md): peak, power, three-direction steps and wall time of each.
+    /// Writes effects.csv, effects.md and the FRFs effects.svg.
+    Effects(effects::Args),
     /// Joint power loss against the amplitude of an output at resonance, one curve per
     /// screw torque (the scene's [loss_study] table; thesis Fig. 5.41–5.45): per torque
     /// the static step, the resonance (the scene's sweep, then a golden-section search),
@@ -181,6 +187,7 @@ pub fn dispatch(command: Command) -> ExitCode {
         Command::Run(a) => run::main(a),
         Command::Validate(a) => validate::main(a),
         Command::Tradeoff(a) => tradeoff::main(a),
+        Command::Effects(a) => effects::main(a),
         Command::Loss(a) => loss::main(a),
         Command::Check(a) => check::main(a),
         Command::Export(a) => export::main(a),

@@ -1,0 +1,171 @@
+//! `jointlin effects SCENE`: what the contact effects beyond the thesis change and cost
+//! on one scene (docs/contact3d.md §6). The scene's harmonic-balance sweep is run four
+//! times: the thesis's point model (two independent tangential directions at the static
+//! normal load), with `coupled_slip`, with `normal_load_variation` and with both; per
+//! variant the response peak of the first output, the dissipated power there and at its
+//! largest, the three-direction point's steps and the wall time.
+
+mod report;
+
+pub use report::{csv, markdown, write};
+
+use std::time::Instant;
+
+use crate::capi;
+use crate::input::scene::{Effects, Mode, Scene, Units};
+use crate::run::{run, Extras, RunError};
+use crate::solve::sweep::SweepResult;
+
+/// One variant of the point model and what it gave.
+pub struct Variant {
+    pub label: &'static str,
+    pub normal_load_variation: bool,
+    pub coupled_slip: bool,
+    /// Frequency of the first output's largest amplitude (1/time) and that amplitude
+    /// (length), from the parabola through the largest solved amplitude and its solved
+    /// neighbours (the grid's point where it is at an end); `None` when none was solved.
+    pub peak: Option<(f64, f64)>,
+    /// Dissipated power at the peak and its largest over the sweep (force·length/time).
+    pub power_at_peak: f64,
+    pub power_max: f64,
+    pub converged: usize,
+    pub frequencies: usize,
+    /// `jointlin_point3d_step` calls of the variant.
+    pub point3d_steps: u64,
+    pub seconds: f64,
+    pub sweep: SweepResult,
+}
+
+/// The study: the scene's name, units, first output's name and the four variants.
+pub struct EffectsStudy {
+    pub scene: String,
+    pub units: Units,
+    pub output: String,
+    pub variants: Vec<Variant>,
+}
+
+/// Why the study cannot run.
+#[derive(Debug, thiserror::Error)]
+pub enum EffectsError {
+    #[error("the effects are computed by the harmonic balance: set [iteration] mode = \"harmonic_balance\" in the scene")]
+    NotHarmonicBalance,
+    #[error("the model has no outputs: the peak is that of the first output")]
+    NoOutput,
+    #[error("{label}: {source}")]
+    Run {
+        label: &'static str,
+        source: RunError,
+    },
+}
+
+/// The four variants in order: label, normal_load_variation, coupled_slip.
+const VARIANTS: [(&str, bool, bool); 4] = [
+    ("thesis: independent directions, static N", false, false),
+    ("coupled slip", false, true),
+    ("normal load variation", true, false),
+    ("both", true, true),
+];
+
+/// Runs the scene's sweep with each variant (the scene's own `[effects]` choice of the
+/// two switches is replaced; everything else is the scene's). `progress` gets a line per
+/// variant.
+pub fn study(scene: &Scene, progress: &dyn Fn(&str)) -> Result<EffectsStudy, EffectsError> {
+    if scene.spec.iteration.mode != Mode::HarmonicBalance {
+        return Err(EffectsError::NotHarmonicBalance);
+    }
+    let mut output = None;
+    let mut variants = Vec::with_capacity(VARIANTS.len());
+    for (label, normal, coupled) in VARIANTS {
+        progress(&format!("{label} …"));
+        let mut s = scene.clone();
+        s.spec.effects = Effects {
+            normal_load_variation: normal,
+            coupled_slip: coupled,
+            ..s.spec.effects
+        };
+        let steps0 = capi::point3d_steps();
+        let t = Instant::now();
+        let r = run(&s, Extras::default(), &|_, _, _| {})
+            .map_err(|source| EffectsError::Run { label, source })?;
+        let seconds = t.elapsed().as_secs_f64();
+        let first = r.problem.outputs.first().ok_or(EffectsError::NoOutput)?;
+        output.get_or_insert_with(|| first.name.clone());
+        variants.push(variant(label, normal, coupled, r.main, seconds, steps0));
+    }
+    Ok(EffectsStudy {
+        scene: scene.file.clone(),
+        units: scene.spec.units.clone(),
+        output: output.unwrap_or_default(),
+        variants,
+    })
+}
+
+fn variant(
+    label: &'static str,
+    normal_load_variation: bool,
+    coupled_slip: bool,
+    sweep: SweepResult,
+    seconds: f64,
+    steps0: u64,
+) -> Variant {
+    let solved: Vec<usize> = (0..sweep.freqs.len())
+        .filter(|&i| sweep.converged[i] && sweep.failure(i).is_none())
+        .collect();
+    let amp = |i: usize| sweep.outputs[i][0].norm();
+    let at_peak = solved
+        .iter()
+        .copied()
+        .max_by(|&a, &b| amp(a).total_cmp(&amp(b)));
+    let power_max = solved
+        .iter()
+        .map(|&i| sweep.power[i])
+        .fold(0.0f64, f64::max);
+    Variant {
+        label,
+        normal_load_variation,
+        coupled_slip,
+        peak: at_peak.map(|i| {
+            let k = solved.iter().position(|&j| j == i).unwrap_or(0);
+            match (k.checked_sub(1).map(|k| solved[k]), solved.get(k + 1)) {
+                (Some(a), Some(&b)) => vertex(
+                    [sweep.freqs[a], sweep.freqs[i], sweep.freqs[b]],
+                    [amp(a), amp(i), amp(b)],
+                ),
+                _ => (sweep.freqs[i], amp(i)),
+            }
+        }),
+        power_at_peak: at_peak.map_or(0.0, |i| sweep.power[i]),
+        power_max,
+        converged: solved.len(),
+        frequencies: sweep.freqs.len(),
+        point3d_steps: capi::point3d_steps() - steps0,
+        seconds,
+        sweep,
+    }
+}
+
+/// Vertex (x, y) of the parabola through three points with the largest y in the middle.
+fn vertex(x: [f64; 3], y: [f64; 3]) -> (f64, f64) {
+    let (d1, d2) = ((y[1] - y[0]) / (x[1] - x[0]), (y[2] - y[1]) / (x[2] - x[1]));
+    let c = (d2 - d1) / (x[2] - x[0]);
+    if c.is_nan() || c >= 0.0 {
+        return (x[1], y[1]);
+    }
+    // y = y₁ + b (x − x₁) + c (x − x₁)², b the slope at x₁.
+    let b = d1 + c * (x[1] - x[0]);
+    let dx = (-b / (2.0 * c)).clamp(x[0] - x[1], x[2] - x[1]);
+    (x[1] + dx, y[1] + b * dx + c * dx * dx)
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn the_vertex_of_a_sampled_parabola_is_exact() {
+        let y = |x: f64| 3.0 - 0.5 * (x - 1.3).powi(2);
+        let (x, v) = super::vertex([0.5, 1.0, 2.5], [y(0.5), y(1.0), y(2.5)]);
+        assert!(
+            (x - 1.3).abs() < 1e-12 && (v - 3.0).abs() < 1e-12,
+            "{x} {v}"
+        );
+    }
+}
