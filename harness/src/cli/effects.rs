@@ -5,7 +5,7 @@ use std::process::ExitCode;
 
 use jointlin_harness::effects::{markdown, study, write};
 
-use super::{load_scene, report_written};
+use super::study_main;
 
 // The command's help is the doc comment of `Command::Effects`.
 #[derive(clap::Args)]
@@ -17,17 +17,11 @@ pub struct Args {
 }
 
 pub fn main(a: Args) -> ExitCode {
-    let s = match load_scene(&a.scene) {
-        Ok(s) => s,
-        Err(code) => return code,
-    };
-    let t = match study(&s, &|l| eprintln!("{l}")) {
-        Ok(t) => t,
-        Err(e) => {
-            eprintln!("error: {e}");
-            return ExitCode::from(1);
-        }
-    };
-    print!("{}", markdown(&t));
-    report_written(write(&a.out, &t))
+    study_main(
+        &a.scene,
+        &a.out,
+        |s| study(s, &|l| eprintln!("{l}")),
+        markdown,
+        write,
+    )
 }

@@ -212,6 +212,30 @@ fn load_scene(path: &Path) -> Result<Scene, ExitCode> {
     }
 }
 
+/// A study command: loads the scene, runs `study` on it, prints its Markdown and writes
+/// its files into `out`; exit code 2 for a bad scene, 1 for a failed study or write.
+fn study_main<T, E: std::fmt::Display>(
+    scene: &Path,
+    out: &Path,
+    study: impl FnOnce(&Scene) -> Result<T, E>,
+    markdown: impl FnOnce(&T) -> String,
+    write: impl FnOnce(&Path, &T) -> Result<Vec<PathBuf>, String>,
+) -> ExitCode {
+    let s = match load_scene(scene) {
+        Ok(s) => s,
+        Err(code) => return code,
+    };
+    let t = match study(&s) {
+        Ok(t) => t,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return ExitCode::from(1);
+        }
+    };
+    print!("{}", markdown(&t));
+    report_written(write(out, &t))
+}
+
 /// Runs `work` under a progress bar of `steps` steps (each message it reports is one
 /// step); an error is printed and becomes exit code 1.
 fn with_progress<T, E: std::fmt::Display>(

@@ -5,7 +5,7 @@ use std::process::ExitCode;
 
 use jointlin_harness::tradeoff::{markdown, study, write};
 
-use super::{load_scene, report_written};
+use super::study_main;
 
 // The command's help is the doc comment of `Command::Tradeoff`.
 #[derive(clap::Args)]
@@ -20,17 +20,11 @@ pub struct Args {
 }
 
 pub fn main(a: Args) -> ExitCode {
-    let s = match load_scene(&a.scene) {
-        Ok(s) => s,
-        Err(code) => return code,
-    };
-    let t = match study(&s, a.freq, &|l| eprintln!("{l}")) {
-        Ok(t) => t,
-        Err(e) => {
-            eprintln!("error: {e}");
-            return ExitCode::from(1);
-        }
-    };
-    print!("{}", markdown(&t));
-    report_written(write(&a.out, &t))
+    study_main(
+        &a.scene,
+        &a.out,
+        |s| study(s, a.freq, &|l| eprintln!("{l}")),
+        markdown,
+        write,
+    )
 }

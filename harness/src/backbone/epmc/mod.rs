@@ -85,6 +85,20 @@ pub struct Traced {
     pub stopped: Option<BackboneError>,
 }
 
+impl Traced {
+    /// No points, and why (`None`: nothing was asked).
+    fn empty(stopped: Option<BackboneError>) -> Self {
+        Traced {
+            points: Vec::new(),
+            turning_points: Vec::new(),
+            gaps: Vec::new(),
+            skipped: Vec::new(),
+            fixed_q: Vec::new(),
+            stopped,
+        }
+    }
+}
+
 /// [`backbone_sampled`] keeping the points converged before a failure. Errors that
 /// concern the whole run (no such mode, a bad amplitude) are `Err`.
 pub fn trace(
@@ -103,41 +117,20 @@ pub fn trace(
     targets.sort_by(f64::total_cmp);
     targets.dedup();
     let Some(&first) = targets.first() else {
-        return Ok(Traced {
-            points: Vec::new(),
-            turning_points: Vec::new(),
-            gaps: Vec::new(),
-            skipped: Vec::new(),
-            fixed_q: Vec::new(),
-            stopped: None,
-        });
+        return Ok(Traced::empty(None));
     };
     // The path starts where every contact still sticks.
     let lq0 = first.min(lq_stuck);
     let (st, dissipated) = match ep.solve(guess, lq0.exp()) {
         Ok(s) => s,
         Err(residual) => {
-            return Ok(Traced {
-                points: Vec::new(),
-                turning_points: Vec::new(),
-                gaps: Vec::new(),
-                skipped: Vec::new(),
-                fixed_q: Vec::new(),
-                stopped: Some(BackboneError::NotConverged {
-                    modal_amplitude: lq0.exp(),
-                    residual,
-                }),
-            })
+            return Ok(Traced::empty(Some(BackboneError::NotConverged {
+                modal_amplitude: lq0.exp(),
+                residual,
+            })))
         }
     };
-    let mut out = Traced {
-        points: Vec::new(),
-        turning_points: Vec::new(),
-        gaps: Vec::new(),
-        skipped: Vec::new(),
-        fixed_q: Vec::new(),
-        stopped: None,
-    };
+    let mut out = Traced::empty(None);
     let mut crossings = Vec::new();
     let mut resume = (lq0, st, dissipated);
     // Every round either reaches farther in q or ends.
