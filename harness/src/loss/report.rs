@@ -11,14 +11,18 @@ use crate::input::scene::Scene;
 use crate::report::contact_map::{self as maps, MapKind};
 use crate::util::csv_table::CsvTable;
 
-/// Power (reported unit) of a curve at `amplitude` by linear interpolation between its
-/// samples; `None` outside them.
+/// Power (reported unit) of a curve at `amplitude`: a sample's own (to 1e-9 relative), or
+/// by linear interpolation between its samples; `None` outside them.
 pub fn interpolate(samples: &[Sample], amplitude: f64, power_factor: f64) -> Option<f64> {
     let mut pts: Vec<(f64, f64)> = samples
         .iter()
         .map(|s| (s.amplitude, s.power * power_factor))
         .collect();
     pts.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let at = |a: f64| (amplitude - a).abs() <= 1e-9 * a.abs();
+    if let Some(&(_, p)) = pts.iter().find(|(a, _)| at(*a)) {
+        return Some(p);
+    }
     pts.windows(2).find_map(|w| {
         let ((a0, p0), (a1, p1)) = (w[0], w[1]);
         (amplitude >= a0 * (1.0 - 1e-9) && amplitude <= a1 * (1.0 + 1e-9))
@@ -220,5 +224,29 @@ mod tests {
             md.contains("| torque [N·mm] | resonance [Hz] | amplitude [µm] | power [W] |"),
             "{md}"
         );
+    }
+
+    fn sample(amplitude: f64, power: f64) -> Sample {
+        Sample {
+            freq: 1.0,
+            scale: 1.0,
+            amplitude,
+            power,
+            points: Vec::new(),
+        }
+    }
+
+    #[test]
+    fn a_reference_at_a_sampled_amplitude_needs_no_neighbour() {
+        // One amplitude in the study, and the reference exactly there.
+        assert_eq!(
+            interpolate(&[sample(0.012, 3.0)], 0.012, 1e-3),
+            Some(3.0e-3)
+        );
+        let two = [sample(0.01, 1.0), sample(0.02, 3.0)];
+        assert!((interpolate(&two, 0.015, 1.0).unwrap() - 2.0).abs() < 1e-12);
+        assert_eq!(interpolate(&two, 0.02, 1.0), Some(3.0));
+        assert_eq!(interpolate(&two, 0.03, 1.0), None);
+        assert_eq!(interpolate(&[sample(0.012, 3.0)], 0.013, 1.0), None);
     }
 }
