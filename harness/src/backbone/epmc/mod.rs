@@ -15,7 +15,8 @@
 //! The backbone starts where every contact sticks and is followed in ln q by
 //! pseudo-arclength continuation ([`arclength`]) through turning points; each requested
 //! amplitude is solved where the path crosses it, so past a turning point it appears
-//! again (the points are in path order).
+//! again (the points are in path order). Where the path stops, the remaining amplitudes
+//! are approached in q alone ([`stepping`]) and the path resumes from there.
 
 mod arclength;
 mod equations;
