@@ -1,15 +1,17 @@
 //! The EPMC backbone continued in the modal amplitude alone, where the arclength path
 //! ([`super::arclength`]) stops: each requested ln q is solved by Newton at fixed q from
-//! the previous solution (a secant predictor in ln q after two points); where Newton
-//! fails the interval is halved in ln q, at most [`MAX_HALVINGS`] times. This does not
-//! follow turning points — it steps over a rough range of the sampled stick–slip balance
-//! on whichever branch Newton finds — so the range it covers is reported.
+//! the previous solution (a secant predictor in ln q after two points). The step in ln q
+//! adapts: it is halved where Newton fails and doubled after each success, and the
+//! stepping stops after [`MAX_HALVINGS`] failures in a row, so a range where no nearby
+//! solution exists costs a bounded number of solves. This does not follow turning
+//! points — it steps over a rough range of the sampled stick–slip balance on whichever
+//! branch Newton finds — so the range it covers is reported.
 
 use super::arclength::Crossing;
 use super::equations::{Epmc, State};
 
-/// Interval halvings in ln q before a requested amplitude counts as not reached.
-pub const MAX_HALVINGS: usize = 10;
+/// Failed solves in a row (each halving the step in ln q) before the stepping stops.
+pub const MAX_HALVINGS: usize = 5;
 
 /// What the stepping reached: the requested amplitudes solved (ascending), the last
 /// converged point and the scaled residual where it stopped, if it did.
@@ -26,35 +28,36 @@ pub fn toward(ep: &mut Epmc, start: Crossing, targets: &[f64]) -> Stepped {
     let mut recent: Vec<(f64, State)> = vec![(start.0, start.1.clone())];
     let mut last = start;
     let mut crossings = Vec::with_capacity(targets.len());
+    // The step in ln q; unbounded until the first failure.
+    let mut step = f64::INFINITY;
+    let mut failures = 0;
     for &target in targets {
-        let mut halvings = 0;
-        loop {
-            let lq = last.0 + (target - last.0) * 0.5f64.powi(halvings as i32);
+        while last.0 < target {
+            let lq = (last.0 + step).min(target);
             match ep.solve(predict(&recent, lq), lq.exp()) {
                 Ok((st, diss)) => {
                     recent.push((lq, st.clone()));
                     if recent.len() > 2 {
                         recent.remove(0);
                     }
+                    step = 2.0 * (lq - last.0);
+                    failures = 0;
                     last = (lq, st, diss);
-                    if halvings == 0 {
-                        crossings.push(last.clone());
-                        break;
-                    }
-                    halvings = 0;
                 }
                 Err(res) => {
-                    halvings += 1;
-                    if halvings > MAX_HALVINGS {
+                    failures += 1;
+                    if failures > MAX_HALVINGS {
                         return Stepped {
                             crossings,
                             last,
                             failed: Some(res),
                         };
                     }
+                    step = 0.5 * (lq - last.0);
                 }
             }
         }
+        crossings.push(last.clone());
     }
     Stepped {
         crossings,
