@@ -242,8 +242,9 @@ fn mesh_study_row_one_is_the_scene_itself() {
 
 /// The graded scene (knife-graded.toml, for the mesh study) meshes the same part: its
 /// slab interfaces cover each 12 × 3 mm contact face of the half model exactly once
-/// (areas summed over the slabs, round-off 1e-12), like knife-coarse's, the screw acts
-/// at x = 72 on both, and its finest elements (0.05 mm) sit in the bands across the
+/// (areas summed over the slabs, round-off 1e-12), like knife-coarse's, the screw's
+/// loads are centred at x = 72 on both, and its finest elements (0.05 mm) sit in the
+/// bands across the
 /// patch edges at 3 N·m, which the coarse scene's pressure puts between 69.3–69.9 and
 /// 76.1–76.8 mm.
 #[test]
@@ -263,8 +264,9 @@ fn graded_scene_meshes_the_same_contact_faces() {
             approx::assert_relative_eq!(area, 36.0, max_relative = 1e-12);
         }
         let screw = &p.screws[0];
-        for n in screw.nodes {
-            approx::assert_relative_eq!(p.model.nodes[n][0], 72.0, max_relative = 1e-12);
+        for end in [&screw.head, &screw.nut] {
+            let x: f64 = end.iter().map(|&(n, w)| w * p.model.nodes[n][0]).sum();
+            approx::assert_relative_eq!(x, 72.0, max_relative = 1e-12);
         }
     }
     let p = build(&graded).unwrap();

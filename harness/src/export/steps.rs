@@ -87,9 +87,14 @@ pub fn write(out: &mut String, scene: &Scene, p: &Problem, names: &Names) {
             num(built.preload),
             num(sc.torque)
         );
-        let [head, nut] = built.nodes;
-        cload(out, head, [0, 1, 2].map(|c| built.applied * d[c]));
-        cload(out, nut, [0, 1, 2].map(|c| -(built.applied * d[c])));
+        for (&(n, w), sign) in built
+            .head
+            .iter()
+            .map(|x| (x, 1.0))
+            .chain(built.nut.iter().map(|x| (x, -1.0)))
+        {
+            cload(out, n, [0, 1, 2].map(|c| sign * built.applied * w * d[c]));
+        }
     }
     output_requests(out, s.outputs.len(), names);
     let _ = writeln!(out, "*END STEP");

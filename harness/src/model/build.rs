@@ -5,12 +5,13 @@ use std::collections::BTreeMap;
 
 use nalgebra::{Complex, Matrix3, Vector3};
 
+use super::screw_load::{self, Spread};
 use super::subgrid::{coupling_pairs, face_samples, AreaSample};
 use super::{BuildError, ContactPoint, CubicSpring, Interface, Output, Problem, Screw};
 use crate::fe::assembly::{assemble, element_free_dofs, element_matrices, System};
 use crate::fe::contact_pairs::{contact_quads, find_pairs_where};
 use crate::fe::csc::Csc;
-use crate::fe::mesh::{BoxSpec, Face, Material, Model};
+use crate::fe::mesh::{Body, BoxSpec, Face, Material, Model};
 use crate::fe::surface::{add_pressure, nodal_areas};
 use crate::fe::ties::find_ties;
 use crate::input::scene::validate::GROUND;
@@ -67,6 +68,21 @@ fn nearest(model: &Model, body: BodyRef, p: Option<[f64; 3]>) -> usize {
                 })
                 .expect("a box has nodes")
         }
+    }
+}
+
+/// How a screw end's force is spread (radii from the scene's diameters).
+fn screw_spread(end: &ScrewEnd) -> Spread {
+    match (end.bearing, end.thread) {
+        (Some([inner, outer]), _) => Spread::Ring {
+            inner: 0.5 * inner,
+            outer: 0.5 * outer,
+        },
+        (None, Some(t)) => Spread::Thread {
+            radius: 0.5 * t.diameter,
+            length: t.length,
+        },
+        (None, None) => Spread::Node,
     }
 }
 
@@ -358,18 +374,41 @@ pub fn build(scene: &Scene) -> Result<Problem, BuildError> {
         })?;
         let applied = preload * sc.share;
         let d = unit(sc.direction);
-        let head = nearest(&model, body(&sc.head.body), Some(sc.head.at));
-        let nut = nearest(&model, body(&sc.nut.body), Some(sc.nut.at));
+        let spread = |end: &ScrewEnd, axis: Vector3<f64>| {
+            let names = end.body.names();
+            if let [one] = names[..] {
+                if let r @ BodyRef::Mass { .. } = body(one) {
+                    return Ok(vec![(nearest(&model, r, Some(end.at)), 1.0)]);
+                }
+            }
+            let boxes: Vec<Body> = names
+                .iter()
+                .map(|n| match body(n) {
+                    BodyRef::Box(b) => model.bodies[b],
+                    BodyRef::Mass { .. } => unreachable!("validated: a mass body alone"),
+                })
+                .collect();
+            screw_load::weights(&model, &boxes, end.at, axis.into(), screw_spread(end))
+                .map_err(|e| BuildError::Other(format!("screw `{}`: {e}", sc.name)))
+        };
         // The head is pulled towards the nut and the nut side towards the head.
-        for c in 0..3 {
-            pre[3 * head + c] += applied * d[c];
-            pre[3 * nut + c] -= applied * d[c];
+        let head = spread(&sc.head, d)?;
+        let nut = spread(&sc.nut, -d)?;
+        for (&(n, w), sign) in head
+            .iter()
+            .map(|x| (x, 1.0))
+            .chain(nut.iter().map(|x| (x, -1.0)))
+        {
+            for c in 0..3 {
+                pre[3 * n + c] += sign * applied * w * d[c];
+            }
         }
         screws.push(Screw {
             name: sc.name.clone(),
             preload,
             applied,
-            nodes: [head, nut],
+            head,
+            nut,
         });
     }
     let preload = sys.dofs.restrict(&pre);

@@ -11,6 +11,7 @@ pub mod craig_bampton;
 pub mod deck;
 mod locate;
 pub mod lumped;
+pub mod screw_load;
 pub mod subgrid;
 
 pub use build::{build, mesh_face, PAIR_TOL};
@@ -155,8 +156,10 @@ pub struct Screw {
     pub preload: f64,
     /// Force applied in this model: preload × share (force).
     pub applied: f64,
-    /// `[head, nut]` node ids.
-    pub nodes: [usize; 2],
+    /// Nodes of the head side and their shares of the force (summing to 1).
+    pub head: Vec<(usize, f64)>,
+    /// Nodes of the nut (thread) side and their shares of the force (summing to 1).
+    pub nut: Vec<(usize, f64)>,
 }
 
 /// Everything the static and steady-state steps need.

@@ -125,3 +125,41 @@ fn sampled_points_keep_the_force_balance_on_a_partly_closed_face() {
         s_node.newton_iterations, s.newton_iterations
     );
 }
+
+/// The knife's screw spread over its head's bearing ring and its engaged thread
+/// (`bearing`, `thread`): the static step converges (the open points' stand-in in the
+/// Newton matrix once made it converge only linearly, 0.885 per iteration, and stop at
+/// 60 iterations), and the screw's force is what the jaws' bending and the contact
+/// carry: the blade is held by contact alone, so both faces carry the same force.
+#[test]
+fn a_screw_spread_over_its_bearing_ring_and_thread_preloads_the_knife() {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes/knife-coarse.toml");
+    let mut scene = Scene::load(&path).unwrap();
+    let sc = &mut scene.spec.screws[0];
+    sc.head.bearing = Some([3.4, 6.0]);
+    sc.nut.thread = Some(crate::input::scene::ThreadSpec {
+        diameter: 2.675,
+        length: 4.095,
+    });
+    let p = build(&scene).unwrap();
+    assert!(p.screws[0].head.len() > 1 && p.screws[0].nut.len() > 1);
+    let s = solve(&p, true).unwrap();
+    assert!(s.residual <= RESIDUAL_TOL, "{}", s.residual);
+    assert!(s.newton_iterations < 30, "{}", s.newton_iterations);
+    let carried = |iface: usize| -> f64 {
+        p.contacts
+            .iter()
+            .zip(&s.pressure)
+            .filter(|(c, _)| c.interface == iface)
+            .map(|(c, pr)| c.area * pr)
+            .sum()
+    };
+    let (lower, upper) = (carried(0), carried(1));
+    approx::assert_relative_eq!(lower, upper, max_relative = 1e-6);
+    // Less than the applied force (the jaws bend across the play), most of it.
+    let applied = p.screws[0].applied;
+    assert!(
+        lower < applied && lower > 0.5 * applied,
+        "{lower} of {applied}"
+    );
+}

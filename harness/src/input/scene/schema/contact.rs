@@ -88,18 +88,57 @@ pub struct TieSpec {
     pub between: [String; 2],
 }
 
-/// A body and a point on it (length): the body's nearest node.
+/// One end of a screw: the body it loads and a point on the screw axis there (length).
+/// Without `bearing` or `thread` the force acts at the body's node nearest `at`.
 #[derive(Debug, Clone, Deserialize, Serialize, PartialEq)]
 #[serde(deny_unknown_fields)]
-pub struct BodyPoint {
-    pub body: String,
+pub struct ScrewEnd {
+    /// The body, or several tied boxes the ring or the thread crosses.
+    pub body: BodyNames,
     pub at: [f64; 3],
+    /// Inner and outer diameter of a bearing ring (length): the force as a uniform
+    /// pressure on the body's element faces in the plane through `at` normal to the
+    /// axis, between these radii (a head or a nut on its bearing face).
+    #[serde(default)]
+    pub bearing: Option<[f64; 2]>,
+    /// An engaged thread: the force as a uniform force per volume in the cylinder of
+    /// this diameter around the axis, from `at` over `length` towards the other end
+    /// (a screw in a threaded hole).
+    #[serde(default)]
+    pub thread: Option<ThreadSpec>,
+}
+
+/// One body's name or several.
+#[derive(Debug, Clone, Deserialize, Serialize, PartialEq)]
+#[serde(untagged)]
+pub enum BodyNames {
+    One(String),
+    Many(Vec<String>),
+}
+
+impl BodyNames {
+    /// The names, in the scene's order.
+    pub fn names(&self) -> Vec<&str> {
+        match self {
+            BodyNames::One(n) => vec![n.as_str()],
+            BodyNames::Many(v) => v.iter().map(String::as_str).collect(),
+        }
+    }
+}
+
+/// The engaged part of a thread (length).
+#[derive(Debug, Clone, Copy, Deserialize, Serialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct ThreadSpec {
+    pub diameter: f64,
+    pub length: f64,
 }
 
 /// A screw tightened to `torque`, replaced in the preload step by two equal and
-/// opposite point forces: on the head side along `direction` (towards the nut side)
-/// and on the nut (thread) side against it. Preload from the torque by the standard
-/// screw formula F = T / (0.16·P + 0.58·d₂·μ_G + D_Km/2·μ_K) (VDI 2230).
+/// opposite forces: on the head side along `direction` (towards the nut side) and on
+/// the nut (thread) side against it, each at a node, over a bearing ring or over the
+/// engaged thread ([`ScrewEnd`]). Preload from the torque by the standard screw formula
+/// F = T / (0.16·P + 0.58·d₂·μ_G + D_Km/2·μ_K) (VDI 2230).
 #[derive(Debug, Clone, Deserialize, Serialize, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub struct ScrewSpec {
@@ -119,8 +158,8 @@ pub struct ScrewSpec {
     /// Share of the screw in the model (0.5 for a screw cut by a symmetry plane).
     #[serde(default = "one")]
     pub share: f64,
-    pub head: BodyPoint,
-    pub nut: BodyPoint,
+    pub head: ScrewEnd,
+    pub nut: ScrewEnd,
     /// Screw axis from the head towards the nut (normalized on use).
     pub direction: [f64; 3],
 }

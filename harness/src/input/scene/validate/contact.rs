@@ -167,10 +167,58 @@ pub(super) fn screws(c: &mut Checker, s: &SceneFile) {
                 format!("must be in (0, 1], got {}", sc.share),
             );
         }
-        for (k, bp) in [("head", &sc.head), ("nut", &sc.nut)] {
-            c.body(p.key(k).key("body"), &bp.body);
-            c.vec3(p.key(k).key("at"), &bp.at);
+        for (k, end) in [("head", &sc.head), ("nut", &sc.nut)] {
+            screw_end(c, p.key(k), end);
         }
         c.direction(p.key("direction"), &sc.direction);
+    }
+}
+
+/// One end of a screw: its body, point and how its force is spread.
+fn screw_end(c: &mut Checker, p: KeyPath, end: &ScrewEnd) {
+    let names = end.body.names();
+    let kinds: Vec<_> = names
+        .iter()
+        .enumerate()
+        .map(|(i, n)| {
+            let path = match end.body {
+                BodyNames::One(_) => p.key("body"),
+                BodyNames::Many(_) => p.key("body").index(i),
+            };
+            c.body(path, n)
+        })
+        .collect();
+    if names.is_empty() {
+        c.fail(p.key("body"), "name at least one body");
+    }
+    let mass = kinds.contains(&Some(BodyKind::Mass));
+    if mass && names.len() > 1 {
+        c.fail(p.key("body"), "a mass body is one node: name it alone");
+    }
+    c.vec3(p.key("at"), &end.at);
+    let spread = end.bearing.is_some() || end.thread.is_some();
+    if end.bearing.is_some() && end.thread.is_some() {
+        c.fail(p.clone(), "give `bearing` or `thread`, not both");
+    }
+    if spread && mass {
+        c.fail(
+            p.key("body"),
+            "a mass body has one node: `bearing` and `thread` need a box",
+        );
+    }
+    if let Some([inner, outer]) = end.bearing {
+        let b = p.key("bearing");
+        c.non_negative(b.index(0), inner);
+        c.positive(b.index(1), outer);
+        if inner.is_finite() && outer.is_finite() && inner >= outer {
+            c.fail(
+                b,
+                format!("the inner diameter {inner} must be below the outer {outer}"),
+            );
+        }
+    }
+    if let Some(t) = end.thread {
+        c.positive(p.key("thread").key("diameter"), t.diameter);
+        c.positive(p.key("thread").key("length"), t.length);
     }
 }
