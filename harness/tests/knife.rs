@@ -393,6 +393,16 @@ fn bad_knife_scenes_name_file_line_and_key() {
             "between = [\"blade_in\", \"blade\"]",
             "ties[9].between[1]",
         ),
+        (
+            "head = { body = \"jaw_high\", at = [72.0, 0.0, 4.3875] }",
+            "head = { body = \"jaw_high\", at = [72.0, 0.0, 4.3875], bearing = [6.0, 3.4] }",
+            "screws[0].head.bearing",
+        ),
+        (
+            "[loss_study]\n",
+            "[loss_study]\ncalibration = { parameters = [\"k_t0\", \"mu\"], points = [0] }\n",
+            "loss_study.calibration.points",
+        ),
     ] {
         // `@` marks the first occurrence after the [loss_study] header.
         let bad = if from.ends_with('@') {
@@ -432,5 +442,39 @@ fn loss_levels_at_three_and_four_microns_converge_at_2500_nmm() {
     for (sample, a) in r.curves[0].1.iter().zip([0.003, 0.004]) {
         let e = (sample.amplitude / a).ln().abs();
         assert!(e <= tol, "{a} mm: |ln(a/target)| = {e}");
+    }
+}
+
+/// `jointlin loss --calibrate` with two parameters on two reference points: reference
+/// powers made by the model itself with k_T0 × 1.3 and μ × 0.8 (at 3000 and 1500 N·mm,
+/// 8 µm, where the coarse scene's points slip and stick in different shares, so the two
+/// parameters act differently) are fitted back from the scene's own values: both factors
+/// to 2 %, both powers to the calibration's 0.2 %.
+#[test]
+fn a_two_parameter_calibration_recovers_the_factors_that_made_its_references() {
+    use jointlin_harness::input::scene::{CalibratedParameter as P, CalibrationSpec};
+    use jointlin_harness::loss::calibrate::{calibrate, scaled};
+    let truth = [(P::KT0, 1.3), (P::Mu, 0.8)];
+    let made = scaled(&coarse(), &truth);
+    let mut s = coarse();
+    let st = s.spec.loss_study.as_mut().unwrap();
+    st.reference.truncate(2);
+    for (r, torque) in st.reference.iter_mut().zip([3000.0, 1500.0]) {
+        r.torque = torque;
+        r.amplitude = 0.008;
+        r.power = loss::power_at(&made, torque, 0.008).unwrap().0.power * st.power_factor;
+    }
+    st.calibration = Some(CalibrationSpec {
+        parameters: vec![P::KT0, P::Mu],
+        points: vec![0, 1],
+    });
+    let cal = calibrate(&s, &|_| {}).unwrap();
+    for (&(p, got), (q, want)) in cal.factors.iter().zip(truth) {
+        assert_eq!(p, q);
+        approx::assert_relative_eq!(got, want, max_relative = 0.02);
+    }
+    let st = s.spec.loss_study.as_ref().unwrap();
+    for (p, r) in cal.powers.iter().zip(&st.reference) {
+        approx::assert_relative_eq!(*p, r.power, max_relative = 2.5e-3);
     }
 }

@@ -4,8 +4,8 @@
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
-use jointlin_harness::input::scene::Scene;
-use jointlin_harness::loss::{self, mesh};
+use jointlin_harness::input::scene::{CalibratedParameter, LossStudySpec, Scene};
+use jointlin_harness::loss::{self, mesh, LossError};
 use jointlin_harness::util::atomic;
 
 use super::{load_scene, report_written, with_progress};
@@ -17,8 +17,10 @@ pub struct Args {
     /// Output directory (created if missing).
     #[arg(long)]
     out: PathBuf,
-    /// Instead: find the factor on every interface's k_T0 that matches the first
-    /// reference point, print it, and write nothing.
+    /// Instead: fit the `[loss_study] calibration` (factors on every interface's
+    /// k_t0_per_area and/or mu at as many reference points; default k_T0 at the first),
+    /// print the fitted values and the model at every reference point (the others are
+    /// predictions), and write nothing.
     #[arg(long)]
     calibrate: bool,
     /// Instead: a mesh study at the first reference point's torque (its amplitude
@@ -50,18 +52,8 @@ pub fn main(a: Args) -> ExitCode {
         return ExitCode::from(2);
     };
     if a.calibrate {
-        return match loss::calibrate_k_t0(&s, &|l| eprintln!("{l}")) {
-            Ok((factor, p)) => {
-                for i in &s.spec.interfaces {
-                    println!(
-                        "{}: k_t0_per_area = {:.6e} (× {factor:.5}); P = {p:.4} {}",
-                        i.name,
-                        i.k_t0_per_area * factor,
-                        st.power_unit
-                    );
-                }
-                ExitCode::SUCCESS
-            }
+        return match calibrate(&s, &st) {
+            Ok(()) => ExitCode::SUCCESS,
             Err(e) => {
                 eprintln!("error: {e}");
                 ExitCode::from(1)
@@ -132,4 +124,53 @@ fn mesh_study(
         Ok(vec![a, b])
     };
     report_written(write())
+}
+
+/// `--calibrate`: fits the study's calibration, prints the fitted values per interface,
+/// the calibration points and the predictions at the other reference points.
+fn calibrate(s: &Scene, st: &LossStudySpec) -> Result<(), LossError> {
+    let cal = loss::calibrate::calibrate(s, &|l| eprintln!("{l}"))?;
+    let fitted = loss::calibrate::scaled(s, &cal.factors);
+    for (i, f) in s.spec.interfaces.iter().zip(&fitted.spec.interfaces) {
+        let values: Vec<String> = cal
+            .factors
+            .iter()
+            .map(|&(p, factor)| {
+                let (was, is) = match p {
+                    CalibratedParameter::KT0 => (i.k_t0_per_area, f.k_t0_per_area),
+                    CalibratedParameter::Mu => (i.mu, f.mu),
+                };
+                format!("{} = {is:.6e} (× {factor:.5} of {was:.6e})", p.key())
+            })
+            .collect();
+        println!("{}: {}", i.name, values.join(", "));
+    }
+    let used: Vec<usize> = st
+        .calibration
+        .as_ref()
+        .map_or(vec![0], |c| c.points.clone());
+    let (au, pu) = (&st.amplitude_unit, &st.power_unit);
+    for (k, r) in st.reference.iter().enumerate() {
+        let power = match used.iter().position(|&u| u == k) {
+            Some(j) => cal.powers[j],
+            None => loss::power_at(&fitted, r.torque, r.amplitude)?.0.power * st.power_factor,
+        };
+        let dev = 100.0 * (power / r.power - 1.0);
+        let role = if used.contains(&k) {
+            "calibrated".to_string()
+        } else {
+            match r.source_deviation_percent {
+                Some(sd) => format!("predicted; the source's own deviation {sd} %"),
+                None => "predicted".to_string(),
+            }
+        };
+        println!(
+            "torque {} [{}], {:.1} {au}: reference {:.4} {pu}, model {power:.4} {pu} ({dev:+.1} %), {role}",
+            r.torque,
+            loss::report::torque_unit(s),
+            r.amplitude / st.amplitude_factor,
+            r.power
+        );
+    }
+    Ok(())
 }

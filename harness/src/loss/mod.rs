@@ -10,6 +10,7 @@
 //! (E_cycle per point from the library's linearization, `share` the modelled fraction
 //! of the structure: 0.5 for a half model).
 
+pub mod calibrate;
 pub mod level;
 pub mod mesh;
 pub mod plot;
@@ -38,7 +39,7 @@ pub enum LossError {
     Sweep(#[from] SweepError),
     #[error("{what} did not converge at {} Hz", crate::util::number::sig(*freq))]
     NotConverged { what: &'static str, freq: f64 },
-    #[error("k_T0 calibration did not reach the reference in {0} steps")]
+    #[error("the calibration did not reach its reference points in {0} steps")]
     Calibration(usize),
 }
 
@@ -46,10 +47,6 @@ pub enum LossError {
 /// sweep step of 250 Hz below 0.1 Hz, far inside the joint-damped half-power width).
 const GOLDEN_STEPS: usize = 16;
 pub use level::LEVEL_TOL;
-/// Most secant steps of the k_T0 calibration (6 reached 0.2 % on the knife).
-const CALIBRATION_STEPS: usize = 12;
-/// The calibration stops at |ln(P/P_ref)| below this (0.2 %).
-const CALIBRATION_TOL: f64 = 2e-3;
 
 /// One solved operating point.
 #[derive(Debug, Clone)]
@@ -360,47 +357,4 @@ pub fn powers_at(
     let mut op = Operating::new(&sc, &st.output, st.model_share)?;
     let s = each_at_resonance(&mut op, &scene.frequencies(), amplitudes)?;
     Ok((s, op))
-}
-
-/// Calibration of k_T0 (all interfaces scaled by one factor) so that the power at the
-/// study's first reference point matches it: secant steps on ln P(ln k_T0). Returns the
-/// factor and the power (reported unit) reached.
-pub fn calibrate_k_t0(scene: &Scene, progress: &dyn Fn(&str)) -> Result<(f64, f64), LossError> {
-    let st = scene.spec.loss_study.as_ref().ok_or(LossError::NoStudy)?;
-    let target = st
-        .reference
-        .first()
-        .ok_or_else(|| LossError::Spec("calibration needs a reference point".into()))?;
-    let eval = |factor: f64| -> Result<f64, LossError> {
-        let mut sc = scene.clone();
-        for i in &mut sc.spec.interfaces {
-            i.k_t0_per_area *= factor;
-        }
-        let (s, _) = power_at(&sc, target.torque, target.amplitude)?;
-        Ok(s.power * st.power_factor)
-    };
-    let mut x = 0.0f64; // ln factor
-    let mut p = eval(1.0)?;
-    progress(&format!("k_T0 × 1: P = {p:.4} {}", st.power_unit));
-    let mut prev: Option<(f64, f64)> = None;
-    for _ in 0..CALIBRATION_STEPS {
-        let err = (p / target.power).ln();
-        if err.abs() < CALIBRATION_TOL {
-            return Ok((x.exp(), p));
-        }
-        let slope = match prev {
-            Some((px, pe)) if (x - px).abs() > 1e-9 => (err - pe) / (x - px),
-            _ => -1.0,
-        };
-        let slope = if slope.abs() < 0.05 { -1.0 } else { slope };
-        prev = Some((x, err));
-        x -= (err / slope).clamp(-3.0, 3.0);
-        p = eval(x.exp())?;
-        progress(&format!(
-            "k_T0 × {:.5}: P = {p:.4} {}",
-            x.exp(),
-            st.power_unit
-        ));
-    }
-    Err(LossError::Calibration(CALIBRATION_STEPS))
 }

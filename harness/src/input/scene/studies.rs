@@ -30,10 +30,43 @@ pub struct LossStudySpec {
     pub amplitude_unit: String,
     pub amplitude_factor: f64,
     /// Measured (or published) points to compare with: torque, amplitude (scene units),
-    /// power (reported unit). The first one is the calibration target of
+    /// power (reported unit). Without `calibration`, the first one is the target of
     /// `jointlin loss --calibrate`.
     #[serde(default)]
     pub reference: Vec<ReferencePoint>,
+    /// What `jointlin loss --calibrate` fits, and to which reference points.
+    #[serde(default)]
+    pub calibration: Option<CalibrationSpec>,
+}
+
+/// Contact parameters fitted to reference points: one factor per parameter on every
+/// interface, as many parameters as points (a square system).
+#[derive(Debug, Clone, Deserialize, Serialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct CalibrationSpec {
+    pub parameters: Vec<CalibratedParameter>,
+    /// Indices into `reference` (0 = the first point).
+    pub points: Vec<usize>,
+}
+
+/// A contact parameter a calibration may scale.
+#[derive(Debug, Clone, Copy, Deserialize, Serialize, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub enum CalibratedParameter {
+    /// The tangential stiffness per area `k_t0_per_area`.
+    KT0,
+    /// The friction coefficient `mu`.
+    Mu,
+}
+
+impl CalibratedParameter {
+    /// The scene key it scales.
+    pub fn key(self) -> &'static str {
+        match self {
+            CalibratedParameter::KT0 => "k_t0_per_area",
+            CalibratedParameter::Mu => "mu",
+        }
+    }
 }
 
 fn one() -> f64 {

@@ -131,6 +131,41 @@ pub(super) fn loss_study(c: &mut Checker, s: &SceneFile) {
             c.positive(rp.key("amplitude"), r.amplitude);
             c.positive(rp.key("power"), r.power);
         }
+        if let Some(cal) = &st.calibration {
+            calibration(c, p.key("calibration"), cal, st.reference.len());
+        }
+    }
+}
+
+/// A square calibration: distinct parameters, as many distinct reference points.
+fn calibration(c: &mut Checker, p: KeyPath, cal: &CalibrationSpec, references: usize) {
+    if cal.parameters.is_empty() {
+        c.fail(p.key("parameters"), "name at least one of \"k_t0\", \"mu\"");
+    }
+    let distinct = |v: Vec<usize>| v.iter().collect::<BTreeSet<_>>().len() == v.len();
+    if !distinct(cal.parameters.iter().map(|x| *x as usize).collect()) {
+        c.fail(p.key("parameters"), "each parameter once");
+    }
+    if !distinct(cal.points.clone()) {
+        c.fail(p.key("points"), "each reference point once");
+    }
+    if cal.points.len() != cal.parameters.len() {
+        c.fail(
+            p.key("points"),
+            format!(
+                "{} parameters need as many reference points, got {}",
+                cal.parameters.len(),
+                cal.points.len()
+            ),
+        );
+    }
+    for (i, &k) in cal.points.iter().enumerate() {
+        if k >= references {
+            c.fail(
+                p.key("points").index(i),
+                format!("the study has {references} reference points (indices from 0)"),
+            );
+        }
     }
 }
 
