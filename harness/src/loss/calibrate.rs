@@ -21,6 +21,9 @@ const FD_STEP: f64 = 0.05;
 const MAX_STEP: f64 = 2.0;
 /// Halvings of a step whose model does not converge.
 const HALVINGS: usize = 4;
+/// Largest factor (either way) on a parameter: beyond it the fit is not a calibration
+/// of the scene's values but a different model, and stops.
+const MAX_FACTOR: f64 = 20.0;
 
 /// A converged calibration: each parameter's factor and the power (reported unit)
 /// reached at each calibration point.
@@ -113,6 +116,13 @@ pub fn calibrate(scene: &Scene, progress: &dyn Fn(&str)) -> Result<Calibration, 
         // A step whose model does not converge (a contact iteration at some trial
         // parameters) is halved, at most HALVINGS times.
         let mut step = step.map(|v| v.clamp(-MAX_STEP, MAX_STEP));
+        if let Some(j) = (0..n).find(|&j| (x[j] + step[j]).abs() > MAX_FACTOR.ln()) {
+            return Err(LossError::Spec(format!(
+                "the calibration would scale {} by {:.3} (d ln P / d ln factor = {jac}): no fit within a factor {MAX_FACTOR} of the scene's values; fit fewer parameters or points that tell them apart",
+                params[j].key(),
+                (x[j] + step[j]).exp()
+            )));
+        }
         let mut tried = 0;
         let (x_new, e_new, p_new) = loop {
             let x_new = &x + &step;

@@ -11,15 +11,17 @@ use crate::input::scene::Scene;
 use crate::report::contact_map::{self as maps, MapKind};
 use crate::util::csv_table::CsvTable;
 
-/// Power (reported unit) of a curve at `amplitude`: a sample's own (to 1e-9 relative), or
-/// by linear interpolation between its samples; `None` outside them.
+/// Power (reported unit) of a curve at `amplitude`: a sample's own (reached within the
+/// level search's tolerance), or by linear interpolation between its samples; `None`
+/// outside them.
 pub fn interpolate(samples: &[Sample], amplitude: f64, power_factor: f64) -> Option<f64> {
     let mut pts: Vec<(f64, f64)> = samples
         .iter()
         .map(|s| (s.amplitude, s.power * power_factor))
         .collect();
     pts.sort_by(|a, b| a.0.total_cmp(&b.0));
-    let at = |a: f64| (amplitude - a).abs() <= 1e-9 * a.abs();
+    // A sample reached its target to the level's tolerance, not exactly.
+    let at = |a: f64| (amplitude - a).abs() <= 2.0 * super::LEVEL_TOL * a.abs();
     if let Some(&(_, p)) = pts.iter().find(|(a, _)| at(*a)) {
         return Some(p);
     }
@@ -241,6 +243,12 @@ mod tests {
         // One amplitude in the study, and the reference exactly there.
         assert_eq!(
             interpolate(&[sample(0.012, 3.0)], 0.012, 1e-3),
+            Some(3.0e-3)
+        );
+        // As reached by the level search: within its tolerance of the target.
+        let reached = 0.012 * (1.0 + 0.9 * super::super::LEVEL_TOL);
+        assert_eq!(
+            interpolate(&[sample(reached, 3.0)], 0.012, 1e-3),
             Some(3.0e-3)
         );
         let two = [sample(0.01, 1.0), sample(0.02, 3.0)];

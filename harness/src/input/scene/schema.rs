@@ -53,7 +53,8 @@ pub struct SceneFile {
     pub ties: Vec<TieSpec>,
     #[serde(default)]
     pub preload: Vec<PreloadSpec>,
-    /// Screws replaced by two point forces from their tightening torque.
+    /// Screws replaced by two opposite forces from their tightening torque (at nodes,
+    /// over a bearing ring or over the engaged thread).
     #[serde(default)]
     pub screws: Vec<ScrewSpec>,
     #[serde(default)]
