@@ -123,12 +123,37 @@ fn smaller_l_shaped_contact_face_dissipates_more() {
     assert!((far / full - 1.0).abs() < 0.3, "{far} vs {full}");
 }
 
+/// The thesis's torque trend (Fig. 5.41–5.45: lower torque, more loss) at all four
+/// torques and at 4, 8 and 12 µm on scenes/knife.toml (the screw on its bearing ring
+/// and thread, its hole out of the contact faces, the contact law area-sampled):
+/// strictly decreasing with the torque at each amplitude. knife-coarse cannot show it:
+/// its 30 points do not resolve the patch the spread screw closes (its loss then rises
+/// with the torque), so it keeps the point forces for the other trends.
 #[test]
-fn lower_torque_dissipates_more() {
-    let s = coarse();
-    let hi = power(&s, 3000.0).power;
-    let lo = power(&s, 1500.0).power;
-    assert!(lo > hi, "{lo} vs {hi}");
+fn lower_torque_dissipates_more_at_every_torque_and_amplitude() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes/knife.toml");
+    let s = Scene::load(&path).unwrap();
+    let amplitudes = [0.004, 0.008, 0.012];
+    let torques = [1500.0, 2000.0, 2500.0, 3000.0];
+    let curves: Vec<Vec<f64>> = torques
+        .iter()
+        .map(|&t| {
+            let (samples, _) = loss::powers_at(&s, t, &amplitudes).unwrap();
+            samples.iter().map(|x| x.power).collect()
+        })
+        .collect();
+    for (k, a) in amplitudes.iter().enumerate() {
+        for (pair, t) in curves.windows(2).zip(torques.windows(2)) {
+            assert!(
+                pair[0][k] > pair[1][k],
+                "at {a} mm: {} N·mm/s at {} N·mm, {} at {}",
+                pair[0][k],
+                t[0],
+                pair[1][k],
+                t[1]
+            );
+        }
+    }
 }
 
 #[test]
