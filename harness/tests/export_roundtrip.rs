@@ -188,8 +188,9 @@ fn phased_loads_travel_as_real_and_imaginary_parts() {
     let _ = std::fs::remove_dir_all(&d);
 }
 
-/// Ten tied boxes and a screw's preload: the coarse knife with its slot's
-/// play closed (a deck has no initial gap: that is a named error, tested below).
+/// Ten tied boxes and a screw's preload spread over its head's bearing ring and its
+/// thread (one `*CLOAD` line per loaded node): the coarse knife with its slot's play
+/// closed (a deck has no initial gap: that is a named error, tested below).
 #[test]
 fn tied_knife_deck_gives_the_scene_s_results() {
     let text = std::fs::read_to_string(root().join("scenes/knife-coarse.toml")).unwrap();
@@ -197,13 +198,18 @@ fn tied_knife_deck_gives_the_scene_s_results() {
         .lines()
         .map(|l| {
             if l.starts_with("initial_gap") {
-                "initial_gap = 0.0"
+                "initial_gap = 0.0".to_string()
+            } else if l.starts_with("head = ") {
+                l.replace(" }", ", bearing = [3.4, 6.0] }")
+            } else if l.starts_with("nut = ") {
+                l.replace(" }", ", thread = { diameter = 2.675, length = 4.095 } }")
             } else {
-                l
+                l.to_string()
             }
         })
         .collect::<Vec<_>>()
         .join("\n");
+    assert!(closed.contains("bearing = [3.4, 6.0] }") && closed.contains("length = 4.095 } }"));
     assert_ne!(closed.trim(), text.trim(), "the knife has a gap to close");
     let d = dir("knife-scene");
     let scene = d.join("knife-closed.toml");
