@@ -10,7 +10,7 @@
 
 use std::collections::BTreeMap;
 
-use nalgebra::Vector3;
+use nalgebra::{Matrix3, Vector3};
 
 use crate::fe::hex8::{shape, CORNERS};
 use crate::fe::mesh::{Body, Model};
@@ -99,6 +99,11 @@ fn nearest_node(model: &Model, bodies: &[Body], p: Vector3<f64>) -> usize {
         .expect("a box has nodes")
 }
 
+/// ∂x/∂ξ_q at a natural point with shape-function derivatives `dn`.
+fn tangent(dn: &[[f64; 3]; 8], x: &[Vector3<f64>], q: usize) -> Vector3<f64> {
+    (0..8).map(|i| dn[i][q] * x[i]).sum()
+}
+
 /// Distance of `x` from the axis and its position along it, from `at`.
 fn cylindrical(x: Vector3<f64>, at: Vector3<f64>, axis: Vector3<f64>) -> (f64, f64) {
     let d = x - at;
@@ -139,9 +144,7 @@ fn ring_element(
                     if r < inner || r > outer {
                         continue;
                     }
-                    let tu: Vector3<f64> = (0..8).map(|i| dn[i][u] * x[i]).sum();
-                    let tv: Vector3<f64> = (0..8).map(|i| dn[i][v] * x[i]).sum();
-                    let da = tu.cross(&tv).norm() * h * h;
+                    let da = tangent(&dn, &x, u).cross(&tangent(&dn, &x, v)).norm() * h * h;
                     // The other face's nodes have Nᵢ = 0 here.
                     for i in (0..8).filter(|&i| n[i] > 0.0) {
                         *acc.entry(el.nodes[i]).or_default() += n[i] * da;
@@ -187,12 +190,7 @@ fn thread_element(
                 if r > radius || s < 0.0 || s > length {
                     continue;
                 }
-                let mut j = nalgebra::Matrix3::zeros();
-                for i in 0..8 {
-                    for q in 0..3 {
-                        j.set_column(q, &(j.column(q) + dn[i][q] * x[i]));
-                    }
-                }
+                let j = Matrix3::from_columns(&[0, 1, 2].map(|q| tangent(&dn, &x, q)));
                 let dv = j.determinant().abs() * h * h * h;
                 for i in 0..8 {
                     *acc.entry(el.nodes[i]).or_default() += n[i] * dv;
