@@ -22,7 +22,8 @@ const MAX_STEP: f64 = 2.0;
 /// Halvings of a step whose model does not converge.
 const HALVINGS: usize = 4;
 /// Largest factor (either way) on a parameter: beyond it the fit is not a calibration
-/// of the scene's values but a different model, and stops.
+/// of the scene's values but a different model; steps are shortened to stay inside,
+/// and the fit stops where one would have to leave.
 const MAX_FACTOR: f64 = 20.0;
 
 /// A converged calibration: each parameter's factor and the power (reported unit)
@@ -116,12 +117,21 @@ pub fn calibrate(scene: &Scene, progress: &dyn Fn(&str)) -> Result<Calibration, 
         // A step whose model does not converge (a contact iteration at some trial
         // parameters) is halved, at most HALVINGS times.
         let mut step = step.map(|v| v.clamp(-MAX_STEP, MAX_STEP));
-        if let Some(j) = (0..n).find(|&j| (x[j] + step[j]).abs() > MAX_FACTOR.ln()) {
-            return Err(LossError::Spec(format!(
-                "the calibration would scale {} by {:.3} (d ln P / d ln factor = {jac}): no fit within a factor {MAX_FACTOR} of the scene's values; fit fewer parameters or points that tell them apart",
-                params[j].key(),
-                (x[j] + step[j]).exp()
-            )));
+        // Shortened to stay within MAX_FACTOR; a step that cannot (a factor already at
+        // the bound and pushed further out) ends the fit.
+        let bound = MAX_FACTOR.ln();
+        let room = (0..n)
+            .filter(|&j| (x[j] + step[j]).abs() > bound)
+            .map(|j| ((bound * step[j].signum() - x[j]) / step[j], j))
+            .min_by(|a, b| a.0.total_cmp(&b.0));
+        if let Some((fraction, j)) = room {
+            if fraction < 1e-6 {
+                return Err(LossError::Spec(format!(
+                    "the calibration would scale {} beyond a factor {MAX_FACTOR} of the scene's value (d ln P / d ln factor = {jac}): no fit within that range; fit fewer parameters or points that tell them apart",
+                    params[j].key()
+                )));
+            }
+            step *= fraction;
         }
         let mut tried = 0;
         let (x_new, e_new, p_new) = loop {
