@@ -63,7 +63,7 @@ pub fn weights(
             }
             if acc.is_empty() {
                 return Err(format!(
-                    "no element face of the body lies in the plane through {:?} normal to the axis within the ring {inner}…{outer} (diameters {}…{})",
+                    "no sample of the element faces in the plane through {:?} normal to the axis falls within the ring (diameters {}…{}): no face lies there, or the ring is narrower than the sampling (1/{FACE_SAMPLES} of an element)",
                     at.as_slice(),
                     2.0 * inner,
                     2.0 * outer

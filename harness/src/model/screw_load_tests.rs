@@ -108,7 +108,7 @@ fn a_region_that_misses_the_body_is_an_error_and_a_node_is_one_node() {
     };
     // The plane z = 1.3 holds no element face (layers at 0, 0.5, 1, 1.5, 2).
     let e = weights(&m, &[body], [2.0, 2.0, 1.3], [0.0, 0.0, -1.0], ring).unwrap_err();
-    assert!(e.contains("no element face"), "{e}");
+    assert!(e.contains("no sample of the element faces"), "{e}");
     let thread = Spread::Thread {
         radius: 0.5,
         length: 1.0,
