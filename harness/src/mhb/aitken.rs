@@ -2,8 +2,11 @@
 //! [`super::aft`]): where consecutive periods' force differences shrink geometrically,
 //! F_p = F_∞ + c q^p, the period-end state is jumped to its limit
 //! s_∞ = s_p + (s_p − s_{p−1}) q/(1 − q) over the slots that drift (the history
-//! variables), q the ratio of the last two force differences. The closure test after the
-//! jump is the caller's, so a jump is verified, never assumed.
+//! variables), q the ratio of the last two force differences. Where the slots relax
+//! independently at rates of their own (the parallel cells of a three-direction point,
+//! each forgetting its sideways position at a rate set by its own slip limit),
+//! [`Aitken::per_slot`] takes each slot's own ratio of its last two changes instead. The
+//! closure test after the jump is the caller's, so a jump is verified, never assumed.
 
 use std::ops::Range;
 
@@ -15,16 +18,30 @@ const MAX_RATIO: f64 = 0.999_999;
 pub struct Aitken {
     /// The state slots to extrapolate.
     slots: Range<usize>,
+    /// Each slot its own ratio (else the force differences' ratio for all).
+    own_ratio: bool,
     ends: Vec<Vec<f64>>,
     diffs: Vec<f64>,
 }
 
 impl Aitken {
+    /// One ratio for all `slots`: that of the force differences.
     pub fn new(slots: Range<usize>) -> Self {
         Aitken {
             slots,
+            own_ratio: false,
             ends: Vec::with_capacity(3),
             diffs: Vec::with_capacity(2),
+        }
+    }
+
+    /// Each of `slots` extrapolated with the ratio of its own last two changes (Aitken's
+    /// Δ² per slot); a slot that did not change, or whose changes do not contract, is
+    /// left where it is.
+    pub fn per_slot(slots: Range<usize>) -> Self {
+        Aitken {
+            own_ratio: true,
+            ..Aitken::new(slots)
         }
     }
 
@@ -49,16 +66,28 @@ impl Aitken {
         let [d1, d2] = self.diffs[..] else {
             return None;
         };
-        let q = d2 / d1;
-        let jump = (q < MAX_RATIO).then(|| {
-            let w = q / (1.0 - q);
-            let (s1, s2) = (&self.ends[1], &self.ends[2]);
+        let (s0, s1, s2) = (&self.ends[0], &self.ends[1], &self.ends[2]);
+        let jump = if self.own_ratio {
             let mut x = state.to_vec();
             for i in self.slots.clone() {
-                x[i] = s2[i] + (s2[i] - s1[i]) * w;
+                let (c1, c2) = (s1[i] - s0[i], s2[i] - s1[i]);
+                let q = c2 / c1;
+                if q.is_finite() && q.abs() < MAX_RATIO {
+                    x[i] = s2[i] + c2 * q / (1.0 - q);
+                }
             }
-            x
-        });
+            Some(x)
+        } else {
+            let q = d2 / d1;
+            (q < MAX_RATIO).then(|| {
+                let w = q / (1.0 - q);
+                let mut x = state.to_vec();
+                for i in self.slots.clone() {
+                    x[i] = s2[i] + (s2[i] - s1[i]) * w;
+                }
+                x
+            })
+        };
         self.ends.clear();
         self.diffs.clear();
         if jump.is_none() {
