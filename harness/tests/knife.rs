@@ -212,7 +212,26 @@ fn edge_points_slip_more_than_interior_points() {
 #[test]
 #[ignore = "five meshes of 37k–71k DOFs: about two hours on two cores"]
 fn refining_the_mesh_changes_the_loss_by_less_than_two_percent() {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes/knife-graded.toml");
+    refining_changes_the_loss_by_less_than_two_percent("knife-graded.toml");
+}
+
+/// The same for the screw spread over its ring and thread (knife.toml, graded toward the
+/// patch edges of every torque, k_T0 calibrated there); README "Ultrasonic knife" gives
+/// the measured changes (`jointlin loss scenes/knife.toml --mesh-study 1,2 --refine
+/// x:jaw_,blade_in --refine x:bar_ --refine y --refine z --sampled-only`).
+#[test]
+#[ignore = "five meshes of 30k–58k DOFs: more than an hour on two cores"]
+fn the_spread_screw_model_changes_by_less_than_two_percent_on_refining() {
+    refining_changes_the_loss_by_less_than_two_percent("knife.toml");
+}
+
+/// Each of x in the slot, x of the bar, y and z doubled on its own changes the
+/// area-sampled loss at the scene's first reference point (and a quarter of its
+/// amplitude) by less than 2 %.
+fn refining_changes_the_loss_by_less_than_two_percent(scene: &str) {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../scenes")
+        .join(scene);
     let s = Scene::load(&path).unwrap();
     let refinements: Vec<mesh::Refinement> = ["x:jaw_,blade_in", "x:bar_", "y", "z"]
         .iter()
@@ -315,14 +334,20 @@ fn graded_scene_meshes_the_same_contact_faces() {
 
 /// knife.toml (graded) and knife-fast.toml (uniform) mesh the same model: per contact
 /// face 12 × 3 mm less the screw's hole (3 × 2 mm of faces) = 30 mm² of contact, summed
-/// over the slabs; the screw's head ring and thread loads centred on its axis (x = 72) on
-/// both, with the preload's resultant; knife.toml's finest elements (0.070 and 0.071 mm) fill
-/// the two bands 69.1–70.5 and 76.4–77.4 mm that hold the patch's edges at every torque.
+/// over the slabs; the screw's head ring and thread loads centred on its axis (x = 72,
+/// to the sampling's resolution) on both, with the preload's resultant; knife.toml's
+/// finest elements (0.070 and 0.071 mm) fill the two bands 69.1–70.5 and 76.4–77.4 mm
+/// that hold the patch's edges at every torque.
 #[test]
 fn graded_knife_meshes_the_fast_knifes_model() {
     use jointlin_harness::model::build;
     let scene = |f: &str| {
-        Scene::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes").join(f)).unwrap()
+        Scene::load(
+            &Path::new(env!("CARGO_MANIFEST_DIR"))
+                .join("../scenes")
+                .join(f),
+        )
+        .unwrap()
     };
     let (graded, fast) = (scene("knife.toml"), scene("knife-fast.toml"));
     for s in [&graded, &fast] {
@@ -338,9 +363,15 @@ fn graded_knife_meshes_the_fast_knifes_model() {
         }
         let screw = &p.screws[0];
         for end in [&screw.head, &screw.nut] {
+            // Midpoint sampling of the ring and the cylinder on the elements: centred to
+            // well below a micrometre (0.4 µm on the graded mesh).
             let x: f64 = end.iter().map(|&(n, w)| w * p.model.nodes[n][0]).sum();
-            approx::assert_relative_eq!(x, 72.0, max_relative = 1e-12);
-            approx::assert_relative_eq!(end.iter().map(|e| e.1).sum::<f64>(), 1.0, max_relative = 1e-12);
+            assert!((x - 72.0).abs() < 1e-3, "{x}");
+            approx::assert_relative_eq!(
+                end.iter().map(|e| e.1).sum::<f64>(),
+                1.0,
+                max_relative = 1e-12
+            );
         }
     }
     let p = build(&graded).unwrap();
