@@ -299,21 +299,7 @@ fn graded_scene_meshes_the_same_contact_faces() {
     let graded = Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes/knife-graded.toml");
     let graded = Scene::load(&graded).unwrap();
     for s in [coarse(), graded.clone()] {
-        let p = build(&s).unwrap();
-        for face in ["face1", "face2"] {
-            let area: f64 = p
-                .contacts
-                .iter()
-                .filter(|c| p.interfaces[c.interface].name.starts_with(face))
-                .map(|c| c.area)
-                .sum();
-            approx::assert_relative_eq!(area, 36.0, max_relative = 1e-12);
-        }
-        let screw = &p.screws[0];
-        for end in [&screw.head, &screw.nut] {
-            let x: f64 = end.iter().map(|&(n, w)| w * p.model.nodes[n][0]).sum();
-            approx::assert_relative_eq!(x, 72.0, max_relative = 1e-12);
-        }
+        faces_and_screw_are(&s, 36.0, 1e-12);
     }
     let p = build(&graded).unwrap();
     let xs: Vec<f64> = {
@@ -351,28 +337,9 @@ fn graded_knife_meshes_the_fast_knifes_model() {
     };
     let (graded, fast) = (scene("knife.toml"), scene("knife-fast.toml"));
     for s in [&graded, &fast] {
-        let p = build(s).unwrap();
-        for face in ["face1", "face2"] {
-            let area: f64 = p
-                .contacts
-                .iter()
-                .filter(|c| p.interfaces[c.interface].name.starts_with(face))
-                .map(|c| c.area)
-                .sum();
-            approx::assert_relative_eq!(area, 30.0, max_relative = 1e-12);
-        }
-        let screw = &p.screws[0];
-        for end in [&screw.head, &screw.nut] {
-            // Midpoint sampling of the ring and the cylinder on the elements: centred to
-            // well below a micrometre (0.4 µm on the graded mesh).
-            let x: f64 = end.iter().map(|&(n, w)| w * p.model.nodes[n][0]).sum();
-            assert!((x - 72.0).abs() < 1e-3, "{x}");
-            approx::assert_relative_eq!(
-                end.iter().map(|e| e.1).sum::<f64>(),
-                1.0,
-                max_relative = 1e-12
-            );
-        }
+        // Midpoint sampling of the ring and the cylinder on the elements: centred to well
+        // below a micrometre (0.4 µm on the graded mesh).
+        faces_and_screw_are(s, 30.0, 1e-3);
     }
     let p = build(&graded).unwrap();
     let mut xs: Vec<f64> = p.model.nodes.iter().map(|x| x[0]).collect();
@@ -391,6 +358,32 @@ fn graded_knife_meshes_the_fast_knifes_model() {
         }
         approx::assert_relative_eq!(inside[0], band.0, max_relative = 1e-12);
         approx::assert_relative_eq!(*inside.last().unwrap(), band.1, max_relative = 1e-12);
+    }
+}
+
+/// Each contact face (the interfaces named face1…, face2…) has `area` (mm², to 1e-12),
+/// and each end of the screw carries shares summing to 1 centred at x = 72 mm (within
+/// `dx` mm).
+fn faces_and_screw_are(s: &Scene, area: f64, dx: f64) {
+    let p = jointlin_harness::model::build(s).unwrap();
+    for face in ["face1", "face2"] {
+        let a: f64 = p
+            .contacts
+            .iter()
+            .filter(|c| p.interfaces[c.interface].name.starts_with(face))
+            .map(|c| c.area)
+            .sum();
+        approx::assert_relative_eq!(a, area, max_relative = 1e-12);
+    }
+    let screw = &p.screws[0];
+    for end in [&screw.head, &screw.nut] {
+        let x: f64 = end.iter().map(|&(n, w)| w * p.model.nodes[n][0]).sum();
+        assert!((x - 72.0).abs() <= dx, "{x}");
+        approx::assert_relative_eq!(
+            end.iter().map(|e| e.1).sum::<f64>(),
+            1.0,
+            max_relative = 1e-12
+        );
     }
 }
 

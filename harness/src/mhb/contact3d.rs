@@ -360,6 +360,23 @@ mod tests {
         f
     }
 
+    /// `n` samples of the ellipse (a cos ωt, b sin ωt) at overclosure 1.
+    fn ellipse(a: f64, b: f64, n: usize) -> Vec<[f64; 3]> {
+        (0..n)
+            .map(|k| {
+                let t = 2.0 * std::f64::consts::PI * k as f64 / n as f64;
+                [a * t.cos(), b * t.sin(), 1.0]
+            })
+            .collect()
+    }
+
+    /// Largest difference of two periods' forces.
+    fn largest_difference(f: &[Vec<f64>; 3], g: &[Vec<f64>; 3]) -> f64 {
+        (0..3)
+            .flat_map(|i| f[i].iter().zip(&g[i]).map(|(x, y)| (x - y).abs()))
+            .fold(0.0f64, f64::max)
+    }
+
     #[test]
     fn a_slowly_closing_coupled_loop_is_extrapolated_to_the_same_loop() {
         // Jenkins (x = μN/k_T0 = 1) on ellipses just beyond the stick circle: the slider
@@ -376,22 +393,10 @@ mod tests {
         };
         let n = 256;
         for (a, b) in [(1.01, 0.05), (1.02, 0.5)] {
-            let disp: Vec<[f64; 3]> = (0..n)
-                .map(|k| {
-                    let t = 2.0 * std::f64::consts::PI * k as f64 / n as f64;
-                    [a * t.cos(), b * t.sin(), 1.0]
-                })
-                .collect();
+            let disp = ellipse(a, b, n);
             let fast = march3(&c, &disp).unwrap();
             let slow = plain(&c, &disp, 3000);
-            let diff = (0..3)
-                .flat_map(|i| {
-                    fast.force[i]
-                        .iter()
-                        .zip(&slow[i])
-                        .map(|(x, y)| (x - y).abs())
-                })
-                .fold(0.0f64, f64::max);
+            let diff = largest_difference(&fast.force, &slow);
             eprintln!(
                 "A = ({a}, {b}): closed in {} periods, {diff:.1e} μN from 3000 plain periods",
                 fast.periods
@@ -421,24 +426,12 @@ mod tests {
         };
         let n = 256;
         for (a, b) in [(1.0, 0.02), (1.6, 0.01)] {
-            let disp: Vec<[f64; 3]> = (0..n)
-                .map(|k| {
-                    let t = 2.0 * std::f64::consts::PI * k as f64 / n as f64;
-                    [a * t.cos(), b * t.sin(), 1.0]
-                })
-                .collect();
+            let disp = ellipse(a, b, n);
             let fast = march3(&c, &disp).unwrap();
             let one_ratio = march_with(&c, &disp, Aitken::new(SLIDER_SLOTS..POINT3D_STATE_LEN))
                 .map_or(MAX_PERIODS, |p| p.periods);
             let slow = plain(&c, &disp, 3000);
-            let diff = (0..3)
-                .flat_map(|i| {
-                    fast.force[i]
-                        .iter()
-                        .zip(&slow[i])
-                        .map(|(x, y)| (x - y).abs())
-                })
-                .fold(0.0f64, f64::max);
+            let diff = largest_difference(&fast.force, &slow);
             eprintln!(
                 "A = ({a}, {b}): closed in {} periods ({one_ratio} with one ratio), {diff:.1e} μN from 3000 plain periods",
                 fast.periods
