@@ -18,10 +18,10 @@
 //! N − N₀ = −k_N r_n. The Jacobian of a point's force coefficients is a forward
 //! difference of the whole marched map, as in [`crate::mhb::contact3d`].
 
-use crate::capi::{Contact3, Tangential};
+use crate::capi::{Contact3, Tangential, POINT3D_STATE_LEN};
 use crate::input::scene::{Effects, Mode};
 use crate::mhb::aft::Transforms;
-use crate::mhb::contact3d::march3;
+use crate::mhb::contact3d::{march3_from, Period3};
 use crate::mhb::MhbError;
 use crate::model::Problem;
 use crate::names::{NormalLawName, RuleName};
@@ -145,9 +145,28 @@ pub struct PointForces {
     pub describing: Vec<C64>,
 }
 
-/// The point's stress coefficients (t₁, t₂ or −(N − N₀) per direction) and dissipation
-/// (per area) at the direction coefficients `dc`.
-fn stresses(tr: &mut Transforms, p: &Point3, dc: &[f64]) -> Result<(Vec<f64>, f64), MhbError> {
+/// Where the marches of a point start: virgin, or the closed states of a nearby path's
+/// marches (the forward-difference columns: docs of [`march3_from`]).
+#[derive(Clone, Copy)]
+enum Start<'a> {
+    Virgin,
+    Near(&'a Marched),
+}
+
+/// A point's closed marches: one coupled, or one per tangential direction.
+struct Marched {
+    first: Period3,
+    second: Option<Period3>,
+}
+
+/// The point's stress coefficients (t₁, t₂ or −(N − N₀) per direction), dissipation (per
+/// area) and closed marches at the direction coefficients `dc`.
+fn stresses(
+    tr: &mut Transforms,
+    p: &Point3,
+    dc: &[f64],
+    start: Start,
+) -> Result<(Vec<f64>, f64, Marched), MhbError> {
     let (n, nc) = (tr.n, tr.ncoef());
     let comps = p.model.components();
     let mut samples = [vec![0.0; n], vec![0.0; n], vec![p.h0; n]];
@@ -173,13 +192,21 @@ fn stresses(tr: &mut Transforms, p: &Point3, dc: &[f64]) -> Result<(Vec<f64>, f6
             })
             .collect()
     };
+    let virgin = [0.0; POINT3D_STATE_LEN];
+    let (start1, start2) = match start {
+        Start::Virgin => (&virgin, &virgin),
+        Start::Near(m) => (
+            &m.first.state,
+            m.second.as_ref().map_or(&virgin, |s| &s.state),
+        ),
+    };
     // Coupled: one point; else one point per tangential direction, sharing h.
     let (first, second) = if p.model.coupled_slip {
-        (march3(&p.contact, &path(true, true))?, None)
+        (march3_from(&p.contact, &path(true, true), start1)?, None)
     } else {
         (
-            march3(&p.contact, &path(true, false))?,
-            Some(march3(&p.contact, &path(false, true))?),
+            march3_from(&p.contact, &path(true, false), start1)?,
+            Some(march3_from(&p.contact, &path(false, true), start2)?),
         )
     };
     let n0 = p.contact.k_n * p.h0;
@@ -192,8 +219,8 @@ fn stresses(tr: &mut Transforms, p: &Point3, dc: &[f64]) -> Result<(Vec<f64>, f6
         };
         tr.analyse(&series, &mut out[d * nc..(d + 1) * nc]);
     }
-    let dissipated = first.dissipated + second.map_or(0.0, |s| s.dissipated);
-    Ok((out, dissipated))
+    let dissipated = first.dissipated + second.as_ref().map_or(0.0, |s| s.dissipated);
+    Ok((out, dissipated, Marched { first, second }))
 }
 
 /// ĝ of point `p` at its direction coefficients `dc` (and Γ when `jac`).
@@ -213,7 +240,7 @@ pub fn forces(
             p.contact.k_t0
         }
     };
-    let (s, diss) = stresses(tr, p, dc)?;
+    let (s, diss, marched) = stresses(tr, p, dc, Start::Virgin)?;
     let ghat: Vec<f64> = (0..len)
         .map(|i| p.area * (s[i] - k_ref(i / nc) * dc[i]))
         .collect();
@@ -230,7 +257,7 @@ pub fn forces(
     let mut gamma = Vec::new();
     if jac {
         // Forward differences: step 1e-7 of the larger of max|r| and the stick
-        // displacement μN₀/k_T0.
+        // displacement μN₀/k_T0; each column marched from the base path's closed state.
         let scale = dc.iter().fold(
             p.contact.mu * p.contact.k_n * p.h0 / p.contact.k_t0,
             |a, v| a.max(v.abs()),
@@ -240,7 +267,7 @@ pub fn forces(
         let mut cp = dc.to_vec();
         for col in 0..len {
             cp[col] = dc[col] + eps;
-            let (sp, _) = stresses(tr, p, &cp)?;
+            let (sp, _, _) = stresses(tr, p, &cp, Start::Near(&marched))?;
             cp[col] = dc[col];
             for row in 0..len {
                 gamma[row * len + col] = p.area * (sp[row] - s[row]) / eps;
