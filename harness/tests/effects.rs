@@ -302,3 +302,39 @@ fn cli_harmonic_balance_override_writes_harmonics_and_is_validated() {
     );
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn cli_set_changes_the_scene_before_it_is_read() {
+    let dir = std::env::temp_dir().join(format!("jointlin-set-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    let scene = format!("{}/../scenes/block-stick.toml", env!("CARGO_MANIFEST_DIR"));
+    let run = |sets: &[&str]| {
+        let mut args = vec!["run", &scene, "--out", dir.to_str().unwrap(), "--quiet"];
+        for s in sets {
+            args.extend(["--set", s]);
+        }
+        std::process::Command::new(env!("CARGO_BIN_EXE_jointlin"))
+            .args(&args)
+            .output()
+            .unwrap()
+    };
+    let out = run(&["sweep.count=3", "sweep.f_max=0.3"]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let results = std::fs::read_to_string(dir.join("results.csv")).unwrap();
+    assert_eq!(results.lines().count(), 1 + 3, "{results}");
+    std::fs::remove_dir_all(&dir).unwrap();
+
+    // A key the scene does not have is named, and nothing is written.
+    let out = run(&["interfaces.7.mu=0.2"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("interfaces.7.mu") && err.contains("not an index"),
+        "{err}"
+    );
+    assert!(!dir.exists(), "nothing may be written for a bad override");
+}

@@ -5,15 +5,17 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use jointlin_harness::input::scene::{CalibratedParameter, LossStudySpec, Scene};
-use jointlin_harness::loss::{self, mesh, LossError};
+use jointlin_harness::loss::{self, effects as loss_effects, mesh, LossError};
 use jointlin_harness::util::atomic;
 
-use super::{load_scene, report_written, with_progress};
+use super::{load_scene_with, report_written, with_progress, SceneOverrides};
 
 // The command's help is the doc comment of `Command::Loss`.
 #[derive(clap::Args)]
 pub struct Args {
     scene: PathBuf,
+    #[command(flatten)]
+    overrides: SceneOverrides,
     /// Output directory (created if missing).
     #[arg(long)]
     out: PathBuf,
@@ -33,6 +35,12 @@ pub struct Args {
     /// each compared with the scene itself. Default: every axis of every box.
     #[arg(long)]
     refine: Vec<String>,
+    /// Instead: at the first reference point's torque and these amplitudes (the study's
+    /// amplitude unit), the resonance and loss with each point model of the contact (the
+    /// thesis's, coupled slip, normal load variation, both; a harmonic-balance scene);
+    /// writes effects.md and effects.csv.
+    #[arg(long, value_delimiter = ',', num_args = 1..)]
+    effects: Vec<f64>,
     /// With --mesh-study: only the area-sampled law (half the time; the node-based
     /// columns are left out).
     #[arg(long)]
@@ -43,7 +51,7 @@ pub struct Args {
 }
 
 pub fn main(a: Args) -> ExitCode {
-    let s = match load_scene(&a.scene) {
+    let s = match load_scene_with(&a.scene, &a.overrides.set) {
         Ok(s) => s,
         Err(code) => return code,
     };
@@ -59,6 +67,9 @@ pub fn main(a: Args) -> ExitCode {
                 ExitCode::from(1)
             }
         };
+    }
+    if !a.effects.is_empty() {
+        return effects(&s, &st, &a.out, &a.effects, a.quiet);
     }
     if !a.mesh_study.is_empty() {
         return mesh_study(
@@ -121,6 +132,37 @@ fn mesh_study(
         let (a, b) = (out.join("mesh_study.md"), out.join("mesh_study.csv"));
         atomic::write_text(&a, &md)?;
         atomic::write_text(&b, &mesh::csv(&rows))?;
+        Ok(vec![a, b])
+    };
+    report_written(write())
+}
+
+/// `jointlin loss --effects`.
+fn effects(s: &Scene, st: &LossStudySpec, out: &Path, amplitudes: &[f64], quiet: bool) -> ExitCode {
+    if amplitudes.iter().any(|a| !(a.is_finite() && *a > 0.0)) {
+        eprintln!(
+            "error: --effects amplitudes must be finite and > 0 [{}]",
+            st.amplitude_unit
+        );
+        return ExitCode::from(2);
+    }
+    let lengths: Vec<f64> = amplitudes.iter().map(|a| a * st.amplitude_factor).collect();
+    let t = std::time::Instant::now();
+    let rows = match with_progress(quiet, loss_effects::VARIANT_COUNT, |p| {
+        loss_effects::study(s, &lengths, p)
+    }) {
+        Ok(r) => r,
+        Err(code) => return code,
+    };
+    let md = loss_effects::markdown(s, &rows);
+    print!("{md}");
+    eprintln!("{:.1} s", t.elapsed().as_secs_f64());
+    let write = || -> Result<Vec<PathBuf>, String> {
+        let io = |e: std::io::Error| format!("{}: {e}", out.display());
+        std::fs::create_dir_all(out).map_err(io)?;
+        let (a, b) = (out.join("effects.md"), out.join("effects.csv"));
+        atomic::write_text(&a, &md)?;
+        atomic::write_text(&b, &loss_effects::csv(s, &rows))?;
         Ok(vec![a, b])
     };
     report_written(write())

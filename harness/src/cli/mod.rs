@@ -21,7 +21,7 @@ use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
 
-use jointlin_harness::input::{self, scene::Scene};
+use jointlin_harness::input::{self, scene::overrides::Override, scene::Scene};
 use jointlin_harness::util::progress::progress_bar;
 
 #[derive(Parser)]
@@ -203,7 +203,22 @@ pub fn dispatch(command: Command) -> ExitCode {
 /// scene of its run); a bad one is printed (a scene's error names file:line:column and
 /// key, a deck's file:line and keyword) and becomes exit code 2.
 fn load_scene(path: &Path) -> Result<Scene, ExitCode> {
-    match input::load(path) {
+    load_scene_with(path, &[])
+}
+
+/// `--set KEY=VALUE` (repeatable): a scene value changed before the scene is read.
+#[derive(clap::Args)]
+pub struct SceneOverrides {
+    /// Change a value of the scene before it is read: KEY a dotted path
+    /// (`iteration.mode`, `interfaces.*.rule` for every interface, `interfaces.0.mu`),
+    /// VALUE a TOML value or a bare word; `KEY=` removes the key. Repeatable.
+    #[arg(long = "set", value_name = "KEY=VALUE")]
+    pub set: Vec<Override>,
+}
+
+/// [`load_scene`] with overrides.
+fn load_scene_with(path: &Path, set: &[Override]) -> Result<Scene, ExitCode> {
+    match input::load_with(path, set) {
         Ok(i) => Ok(i.into_scene()),
         Err(e) => {
             eprintln!("error: {e}");

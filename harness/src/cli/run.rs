@@ -13,7 +13,7 @@ use jointlin_harness::report::{self, ReportOptions};
 use jointlin_harness::run::{run, Extras, RunError};
 use jointlin_harness::util::progress::progress_bar;
 
-use super::{load_scene, report_written};
+use super::{load_scene_with, report_written, SceneOverrides};
 
 #[derive(Clone, Copy, ValueEnum)]
 pub enum ModeArg {
@@ -27,6 +27,8 @@ pub enum ModeArg {
 pub struct Args {
     /// Scene file (TOML, see scenes/) or Abaqus-format deck (.inp).
     scene: PathBuf,
+    #[command(flatten)]
+    overrides: SceneOverrides,
     /// Output directory (created if missing).
     #[arg(long)]
     out: PathBuf,
@@ -54,7 +56,7 @@ pub struct Args {
 }
 
 pub fn main(a: Args) -> ExitCode {
-    let mut s = match load_scene(&a.scene) {
+    let mut s = match load_scene_with(&a.scene, &a.overrides.set) {
         Ok(s) => s,
         Err(code) => return code,
     };

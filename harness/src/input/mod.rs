@@ -100,13 +100,27 @@ pub fn format_of_text(text: &str) -> Format {
 
 /// Reads and validates the input file `path` in its format ([`format_of`]).
 pub fn load(path: &Path) -> Result<Input, InputError> {
+    load_with(path, &[])
+}
+
+/// [`load`] with `--set` overrides of a scene's values (a deck has none to set).
+pub fn load_with(path: &Path, set: &[scene::overrides::Override]) -> Result<Input, InputError> {
     match format_of(path) {
         Format::Scene => {
-            let mut s = Scene::load(path)?;
+            let mut s = Scene::load_with(path, set)?;
             scene::model_file::attach(&mut s, path)?;
             Ok(Input::Scene(s))
         }
         Format::AbaqusDeck => {
+            if !set.is_empty() {
+                return Err(InputError::Scene(SceneError {
+                    file: path.display().to_string(),
+                    line: 0,
+                    column: 0,
+                    key: String::new(),
+                    message: "--set changes a scene's values; a deck is run as written".into(),
+                }));
+            }
             let job = DeckJob::load(path)?;
             let text = std::fs::read_to_string(path).unwrap_or_default();
             let mut s = scene::model_file::deck_scene(job, text);

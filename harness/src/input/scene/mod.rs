@@ -7,6 +7,7 @@
 
 pub mod error;
 pub mod model_file;
+pub mod overrides;
 pub mod schema;
 pub mod studies;
 pub mod units;
@@ -37,6 +38,12 @@ pub struct Scene {
 impl Scene {
     /// Reads and validates a scene file.
     pub fn load(path: &Path) -> Result<Scene, SceneError> {
+        Scene::load_with(path, &[])
+    }
+
+    /// [`Scene::load`] with `--set` overrides applied to the text first
+    /// ([`overrides`]).
+    pub fn load_with(path: &Path, set: &[overrides::Override]) -> Result<Scene, SceneError> {
         let file = path.display().to_string();
         let text = std::fs::read_to_string(path).map_err(|e| SceneError {
             file: file.clone(),
@@ -44,6 +51,13 @@ impl Scene {
             column: 0,
             key: String::new(),
             message: format!("cannot read: {e}"),
+        })?;
+        let text = overrides::apply(&text, set).map_err(|message| SceneError {
+            file: file.clone(),
+            line: 0,
+            column: 0,
+            key: String::new(),
+            message,
         })?;
         Scene::parse(&file, &text)
     }
