@@ -59,7 +59,7 @@ pub enum EffectsError {
 }
 
 /// The four variants in order: label, normal_load_variation, coupled_slip.
-const VARIANTS: [(&str, bool, bool); 4] = [
+pub const VARIANTS: [(&str, bool, bool); 4] = [
     ("thesis: independent directions, static N", false, false),
     ("coupled slip", false, true),
     ("normal load variation", true, false),

@@ -11,6 +11,7 @@
 //! of the structure: 0.5 for a half model).
 
 pub mod calibrate;
+pub mod effects;
 pub mod level;
 pub mod mesh;
 pub mod plot;
