@@ -12,6 +12,11 @@
 //!   "default");
 //! - the multi-harmonic balance (`mode = "harmonic_balance"`) with H = 1, 3, 7, 15 and the
 //!   default samples per period, Newton to 1e-6;
+//! - where the scene's interfaces allow it (Masing's rule, a linear normal law), the
+//!   harmonic balance with `[effects] normal_load_variation` at H = 1, 3, 7: the normal
+//!   load follows the normal law within the cycle, as it does in the time domain (UINTER
+//!   at LINPER = 0: the friction limit follows the current pressure), where the thesis's
+//!   model holds it at the static value;
 //!
 //! and the time domain (UINTER LINPER = 0): Newmark at several steps per period (settled
 //! to a tolerance), fixed settling lengths, RK4 for small models, and the reference: the
@@ -35,6 +40,7 @@ use crate::input::scene::units::{frequency_unit, ColumnUnits};
 use crate::input::scene::{Mode, Scene, Units};
 use crate::mhb::default_samples;
 use crate::run::{run, Extras};
+use crate::solve::sweep::harmonic_fe_point3d::check_effects;
 use crate::time::scene_run::{integrator_for, run_scene, FreqResult};
 use crate::time::{Integrator, Start, TimeSettings};
 use crate::util::atomic;
@@ -44,6 +50,8 @@ pub use report::{csv, markdown, write};
 
 /// The harmonic-balance rungs.
 pub const HARMONICS: [usize; 4] = [1, 3, 7, 15];
+/// The harmonic-balance rungs with the normal load varying within the cycle.
+pub const HARMONICS_NORMAL_LOAD: [usize; 3] = [1, 3, 7];
 /// Their Newton tolerance (‖R‖ relative to the stuck response; far below the rungs'
 /// differences).
 const HB_TOLERANCE: f64 = 1e-6;
@@ -51,7 +59,8 @@ const HB_TOLERANCE: f64 = 1e-6;
 /// One rung of the ladder.
 #[derive(Debug, Clone, Serialize)]
 pub struct Rung {
-    /// "linear", "simpson", "default", "tolerance", "harmonic", "time", "reference".
+    /// "linear", "simpson", "default", "tolerance", "harmonic", "normal_load", "time",
+    /// "reference".
     pub family: &'static str,
     pub label: String,
     pub seconds: f64,
@@ -149,11 +158,8 @@ pub fn study(scene: &Scene, freq: Option<f64>, log: &dyn Fn(&str)) -> Result<Tra
         }
     };
     let base = at_frequency(scene, f);
-    let n_free = crate::model::build(&base)
-        .map_err(|e| e.to_string())?
-        .sys
-        .dofs
-        .n_free();
+    let problem = crate::model::build(&base).map_err(|e| e.to_string())?;
+    let n_free = problem.sys.dofs.n_free();
     let mut rungs = Vec::new();
     let mut push_fd = |family, label: String, s: &Scene, q| -> Result<(), String> {
         log(&label);
@@ -208,22 +214,44 @@ pub fn study(scene: &Scene, freq: Option<f64>, log: &dyn Fn(&str)) -> Result<Tra
             None,
         )?;
     }
-    for h in HARMONICS {
+    let harmonic = |h: usize, normal_load_variation: bool| {
         let mut s = base.clone();
         let it = &mut s.spec.iteration;
         it.mode = Mode::HarmonicBalance;
         (it.harmonics, it.samples) = (Some(h), None);
         it.tolerance = HB_TOLERANCE;
         it.max_passes = it.max_passes.max(50);
+        s.spec.effects.normal_load_variation = normal_load_variation;
+        s.spec.effects.coupled_slip = false;
+        s
+    };
+    for h in HARMONICS {
         push_fd(
             "harmonic",
             format!(
                 "harmonic balance H = {h} (N = {}), Newton to {HB_TOLERANCE:.0e}",
                 default_samples(h)
             ),
-            &s,
+            &harmonic(h, false),
             None,
         )?;
+    }
+    let normal = harmonic(1, true);
+    match check_effects(&problem, &normal.spec.effects, Mode::HarmonicBalance) {
+        Ok(()) => {
+            for h in HARMONICS_NORMAL_LOAD {
+                push_fd(
+                    "normal_load",
+                    format!(
+                        "harmonic balance H = {h} (N = {}) with normal_load_variation, Newton to {HB_TOLERANCE:.0e}",
+                        default_samples(h)
+                    ),
+                    &harmonic(h, true),
+                    None,
+                )?;
+            }
+        }
+        Err(e) => log(&format!("no normal_load_variation rungs: {e}")),
     }
 
     // Time domain.
@@ -390,11 +418,16 @@ fn ratios(rungs: &[Rung]) -> Vec<String> {
     ));
     let hb: Vec<String> = rungs
         .iter()
-        .filter(|r| r.family == "harmonic")
+        .filter(|r| r.family == "harmonic" || r.family == "normal_load")
         .map(|r| {
             let name = r.label.split(" (").next().unwrap_or(&r.label);
             let name = name.trim_start_matches("harmonic balance ");
-            format!("{name}: {:.2e} in {:.2e} s", err(r), r.seconds)
+            let with = if r.family == "normal_load" {
+                " with N(t)"
+            } else {
+                ""
+            };
+            format!("{name}{with}: {:.2e} in {:.2e} s", err(r), r.seconds)
         })
         .collect();
     if !hb.is_empty() {

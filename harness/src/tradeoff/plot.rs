@@ -10,7 +10,7 @@ fn err<E: std::fmt::Display>(e: E) -> String {
     e.to_string()
 }
 
-const FAMILIES: [(&str, &str); 7] = [
+const FAMILIES: [(&str, &str); 8] = [
     ("linear", "linear stick"),
     ("simpson", "Simpson (thesis)"),
     ("default", "default method"),
@@ -18,6 +18,7 @@ const FAMILIES: [(&str, &str); 7] = [
     ("harmonic", "harmonic balance H = 1, 3, 7, 15"),
     ("time", "time domain"),
     ("reference", "reference"),
+    ("normal_load", "harmonic balance with N(t), H = 1, 3, 7"),
 ];
 
 /// Writes the SVG.
