@@ -303,3 +303,66 @@ fn the_effects_study_runs_each_point_model() {
         "{md}"
     );
 }
+
+#[test]
+fn the_fe_time_domain_integrates_the_same_point_model() {
+    // `jointlin run --time-domain` with the effects on integrates the three-direction
+    // point (`time::contact_points3d`), the balance's model: each variant's periodic
+    // state (RK4 at 4000 steps per period, settled to 1e-8; Newmark, which takes the
+    // point's tangents, at 1024 settled to 1e-7) is the FE balance's (H = 7) to 1e-2 in
+    // every first-harmonic amplitude and in the energy per cycle.
+    use jointlin_harness::time::scene_run::run_scene;
+    use jointlin_harness::time::{Integrator, Start, TimeSettings};
+    let rk4 = TimeSettings {
+        integrator: Integrator::Rk4,
+        steps_per_cycle: 4000,
+        start: Start::Rest,
+        ramp_cycles: 5.0,
+        tolerance: 1e-8,
+        min_cycles: 3,
+        max_cycles: 600,
+        ..TimeSettings::default()
+    };
+    let newmark = TimeSettings {
+        integrator: Integrator::Newmark,
+        steps_per_cycle: 1024,
+        tolerance: 1e-7,
+        ..rk4
+    };
+    for (name, f) in [
+        ("sliding", [(8.0, 0.0), (2.0, 0.0), (1.0, 0.0)]),
+        ("separation", [(5.0, 0.0), (0.0, 0.0), (12.0, 0.0)]),
+        ("circle", [(4.0, 0.0), (4.0, -90.0), (0.0, 0.0)]),
+    ] {
+        for (normal, coupled, settings) in [
+            (true, true, rk4),
+            (false, true, rk4),
+            (true, false, rk4),
+            (true, true, newmark),
+        ] {
+            let s = scene(f, normal, coupled);
+            let hb = fe(&s);
+            assert!(hb.main.converged[0], "{name}");
+            let td = run_scene(&s, &settings, &|_, _| {}).unwrap();
+            let r = &td.results[0];
+            assert!(r.steady, "{name}: not periodic after {} cycles", r.cycles);
+            let amp: Vec<f64> = hb.main.outputs[0].iter().map(|z| z.norm()).collect();
+            let floor = 1e-6 * amp.iter().fold(0.0f64, |m, v| m.max(*v));
+            let mut worst = 0.0f64;
+            for (k, a) in amp.iter().enumerate() {
+                let b = r.last.outputs[k].amplitude;
+                worst = worst.max((a - b).abs() / a.abs().max(floor));
+            }
+            let energy = hb.main.power[0] / (OMEGA / (2.0 * std::f64::consts::PI));
+            let de = (r.last.energy - energy).abs() / energy;
+            println!(
+                "{name}, normal_load_variation {normal}, coupled_slip {coupled}, {}: amplitudes within {worst:.1e}, energy {:.5e} J within {de:.1e} of the balance ({} cycles)",
+                r.integrator, r.last.energy, r.cycles
+            );
+            assert!(
+                worst < 1e-2 && de < 1e-2,
+                "{name} {normal} {coupled}: {worst:e} {de:e}"
+            );
+        }
+    }
+}

@@ -7,13 +7,18 @@
 //! S = diag(−1, 1, 1) (overclosure h = −δ_n); the local force on the upper side is
 //! q = S·STRESS·area and its tangent dq/dδ = S·DDSDDR·S·area (as in the static step).
 //! The energy dissipated by a point is STATEV(5) (accumulated SFD, per area) × area.
+//!
+//! With `[effects] coupled_slip` or `normal_load_variation` the points are the library's
+//! three-direction point instead ([`super::contact_points3d`]), the balance's model.
 
 use nalgebra::Matrix3;
 
+use super::contact_points3d::Points3;
 use crate::capi::{self, CapiError, NPROPS, NSTATV};
 use crate::model::Problem;
 use crate::solve::contact::interface_props;
 use crate::solve::static_step::{overclosure, uinter_point, StaticState};
+use crate::solve::sweep::harmonic_fe_point3d::PointModel;
 
 /// KSTEP of the time-domain step (the static preload step is 1).
 pub const KSTEP: i32 = 2;
@@ -37,11 +42,23 @@ pub struct Contacts<'a> {
     kinc: i32,
     /// UINTER calls made.
     pub calls: u64,
+    /// The three-direction points, when the point model is not the thesis's.
+    points3: Option<Points3>,
 }
 
 impl<'a> Contacts<'a> {
     /// The points in the state the static step left them in, at displacement `stat.u`.
     pub fn new(p: &'a Problem, stat: &StaticState) -> Result<Self, CapiError> {
+        Contacts::with_model(p, stat, PointModel::default())
+    }
+
+    /// [`Contacts::new`] with the point model `model` (the thesis's: UINTER; else the
+    /// three-direction point, starting virgin at the static state).
+    pub fn with_model(
+        p: &'a Problem,
+        stat: &StaticState,
+        model: PointModel,
+    ) -> Result<Self, CapiError> {
         let props = p.interfaces.iter().map(interface_props).collect();
         let n = p.contacts.len();
         let mut c = Contacts {
@@ -55,9 +72,13 @@ impl<'a> Contacts<'a> {
             trial_statev: stat.statev.clone(),
             kinc: 0,
             calls: 0,
+            points3: None,
         };
         let d = c.local(&stat.u);
         c.delta.clone_from(&d);
+        if !model.is_thesis() {
+            c.points3 = Some(Points3::new(p, stat, d.clone(), model));
+        }
         c.evaluate(&d, None)?;
         c.commit();
         Ok(c)
@@ -88,6 +109,17 @@ impl<'a> Contacts<'a> {
         delta: &[[f64; 3]],
         mut tangents: Option<&mut [Matrix3<f64>]>,
     ) -> Result<(), CapiError> {
+        if let Some(p3) = self.points3.as_mut() {
+            for (i, d) in delta.iter().enumerate() {
+                let (q, t) = p3.evaluate(i, *d)?;
+                self.trial_force[i] = q;
+                self.trial_delta[i] = *d;
+                if let Some(ts) = tangents.as_deref_mut() {
+                    ts[i] = t;
+                }
+            }
+            return Ok(());
+        }
         let s = Matrix3::from_diagonal(&nalgebra::Vector3::new(-1.0, 1.0, 1.0));
         for (i, c) in self.p.contacts.iter().enumerate() {
             let pt = uinter_point(self.p, c, &self.props[c.interface]);
@@ -119,11 +151,17 @@ impl<'a> Contacts<'a> {
         self.delta.clone_from(&self.trial_delta);
         self.force.clone_from(&self.trial_force);
         self.statev.clone_from(&self.trial_statev);
+        if let Some(p3) = self.points3.as_mut() {
+            p3.commit();
+        }
         self.kinc += 1;
     }
 
     /// Energy dissipated so far by each point (committed; force·length).
     pub fn dissipated(&self) -> Vec<f64> {
+        if let Some(p3) = &self.points3 {
+            return p3.dissipated().to_vec();
+        }
         self.p
             .contacts
             .iter()

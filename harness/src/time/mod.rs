@@ -22,6 +22,7 @@
 
 pub mod contact;
 pub mod contact3d_reference;
+pub mod contact_points3d;
 pub mod mhb_reference;
 pub mod newmark;
 pub mod periodic;

@@ -21,6 +21,7 @@ use crate::input::scene::units::{frequency_unit, ColumnUnits};
 use crate::input::scene::{Scene, Units};
 use crate::model::{build, Problem};
 use crate::solve::static_step::{self, StaticState};
+use crate::solve::sweep::harmonic_fe_point3d::{check_laws, PointModel};
 use crate::solve::umfpack::{to_complex, Symbolic};
 use crate::util::csv_table::CsvTable;
 
@@ -256,7 +257,16 @@ pub fn run_scene(
     let clock = Instant::now();
     let problem = build(scene)?;
     let stat = static_step::solve(&problem, scene.spec.effects.normal_contact_nonlinearity)?;
-    let results = sweep(&problem, &stat, &scene.frequencies(), settings, progress)?;
+    let model = PointModel::from_effects(&scene.spec.effects);
+    check_laws(&problem, model).map_err(|e| TimeError::Settings(e.to_string()))?;
+    let results = sweep(
+        &problem,
+        &stat,
+        model,
+        &scene.frequencies(),
+        settings,
+        progress,
+    )?;
     Ok(TimeRun {
         problem,
         stat,
@@ -266,10 +276,12 @@ pub fn run_scene(
     })
 }
 
-/// Time-domain results at `freqs` for a built problem and its static state.
+/// Time-domain results at `freqs` for a built problem and its static state, with the
+/// contact point model `model` ([`Contacts::with_model`]).
 pub fn sweep(
     problem: &Problem,
     stat: &StaticState,
+    model: PointModel,
     freqs: &[f64],
     settings: &TimeSettings,
     progress: &dyn Fn(usize, usize),
@@ -281,7 +293,7 @@ pub fn sweep(
         return Err(TimeError::AreaSamples);
     }
     let mut results = Vec::new();
-    let mut contacts = Contacts::new(problem, stat)?;
+    let mut contacts = Contacts::with_model(problem, stat, model)?;
     let mut st = initial_state(
         problem,
         stat,
@@ -294,7 +306,7 @@ pub fn sweep(
             Start::Rest if i == 0 => settings.ramp_cycles,
             Start::Rest => 0.0,
             Start::Linear => {
-                contacts = Contacts::new(problem, stat)?;
+                contacts = Contacts::with_model(problem, stat, model)?;
                 st = initial_state(problem, stat, f, Start::Linear)?;
                 0.0
             }

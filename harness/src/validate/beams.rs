@@ -7,6 +7,7 @@ use crate::input::scene::Scene;
 use crate::model::build;
 use crate::run::{run, Extras};
 use crate::solve::static_step;
+use crate::solve::sweep::harmonic_fe_point3d::PointModel;
 use crate::time::scene_run::sweep as time_sweep;
 use crate::time::{Integrator, Start, TimeSettings};
 
@@ -114,7 +115,14 @@ pub fn coarse(three_beams: &Scene, rep: &mut Report, log: &dyn Fn(&str)) -> Resu
                 "peak 2"
             }
         );
-        let td = match time_sweep(&p, &stat, &[f], &settings, &|_, _| {}) {
+        let td = match time_sweep(
+            &p,
+            &stat,
+            PointModel::default(),
+            &[f],
+            &settings,
+            &|_, _| {},
+        ) {
             Ok(mut v) => v.remove(0),
             Err(e) => {
                 // Reported, not hidden: the row says the reference failed.

@@ -73,6 +73,12 @@ pub fn check_effects(problem: &Problem, effects: &Effects, mode: Mode) -> Result
     if mode != Mode::HarmonicBalance {
         return Err(SweepError::ContactEffectsNeedHarmonicBalance);
     }
+    check_laws(problem, model)
+}
+
+/// The interfaces' laws fit the three-direction point of `model` (any mode: the time
+/// domain uses it too).
+pub fn check_laws(problem: &Problem, model: PointModel) -> Result<(), SweepError> {
     for itf in &problem.interfaces {
         let law = |needs| SweepError::ContactEffectsLaw {
             interface: itf.name.clone(),
