@@ -49,8 +49,10 @@ pub struct Args {
     #[arg(long)]
     quiet: bool,
     /// Run the time-domain reference instead (UINTER LINPER = 0 with the library's
-    /// hysteresis; RK4 or Newmark, the scene's [time_domain] table): per frequency until
-    /// periodic; writes results_time.csv, points_time.csv, run_time.json.
+    /// hysteresis, or with [effects] coupled_slip / normal_load_variation the library's
+    /// three-direction point, the balance's model; RK4 or Newmark, the scene's
+    /// [time_domain] table): per frequency until periodic; writes results_time.csv,
+    /// points_time.csv, run_time.json.
     #[arg(long)]
     time_domain: bool,
 }
