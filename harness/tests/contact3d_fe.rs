@@ -366,3 +366,36 @@ fn the_fe_time_domain_integrates_the_same_point_model() {
         }
     }
 }
+
+#[test]
+fn the_tradeoff_ladder_of_a_scene_with_the_effects_runs_its_point_model() {
+    // `jointlin tradeoff` on the sliding point mass with both effects: the harmonic
+    // balance rungs and the time-domain reference compute the three-direction point, so
+    // the balance converges to the reference as H grows (H = 7 within 1e-2); the
+    // first-order rungs compute the thesis's model, whose error is the model's.
+    let s = scene([(8.0, 0.0), (2.0, 0.0), (1.0, 0.0)], true, true);
+    let t = jointlin_harness::tradeoff::study(&s, None, &|_| {}).unwrap();
+    let err = |r: &jointlin_harness::tradeoff::Rung| r.amplitude_error.max(r.energy_error);
+    let hb = |h: usize| {
+        t.rungs
+            .iter()
+            .find(|r| {
+                r.family == "harmonic" && r.label.starts_with(&format!("harmonic balance H = {h} "))
+            })
+            .unwrap()
+    };
+    for r in &t.rungs {
+        println!("{:<100} {:.2e}", r.label, err(r));
+    }
+    assert!(hb(7)
+        .label
+        .contains("with coupled_slip and normal_load_variation"));
+    assert!(
+        err(hb(7)) < 1e-2 && err(hb(7)) < err(hb(1)),
+        "{}",
+        err(hb(7))
+    );
+    assert!(t.rungs.iter().all(|r| r.family != "normal_load"));
+    let default = t.rungs.iter().find(|r| r.family == "default").unwrap();
+    assert!(err(default) > err(hb(7)));
+}

@@ -5,12 +5,14 @@ use std::process::ExitCode;
 
 use jointlin_harness::effects::{markdown, study, write};
 
-use super::study_main;
+use super::{study_main, SceneOverrides};
 
 // The command's help is the doc comment of `Command::Effects`.
 #[derive(clap::Args)]
 pub struct Args {
     scene: PathBuf,
+    #[command(flatten)]
+    overrides: SceneOverrides,
     /// Output directory.
     #[arg(long, default_value = "out/effects")]
     out: PathBuf,
@@ -19,6 +21,7 @@ pub struct Args {
 pub fn main(a: Args) -> ExitCode {
     study_main(
         &a.scene,
+        &a.overrides.set,
         &a.out,
         |s| study(s, &|l| eprintln!("{l}")),
         markdown,

@@ -231,12 +231,13 @@ fn load_scene_with(path: &Path, set: &[Override]) -> Result<Scene, ExitCode> {
 /// its files into `out`; exit code 2 for a bad scene, 1 for a failed study or write.
 fn study_main<T, E: std::fmt::Display>(
     scene: &Path,
+    set: &[Override],
     out: &Path,
     study: impl FnOnce(&Scene) -> Result<T, E>,
     markdown: impl FnOnce(&T) -> String,
     write: impl FnOnce(&Path, &T) -> Result<Vec<PathBuf>, String>,
 ) -> ExitCode {
-    let s = match load_scene(scene) {
+    let s = match load_scene_with(scene, set) {
         Ok(s) => s,
         Err(code) => return code,
     };

@@ -5,12 +5,14 @@ use std::process::ExitCode;
 
 use jointlin_harness::tradeoff::{markdown, study, write};
 
-use super::study_main;
+use super::{study_main, SceneOverrides};
 
 // The command's help is the doc comment of `Command::Tradeoff`.
 #[derive(clap::Args)]
 pub struct Args {
     scene: PathBuf,
+    #[command(flatten)]
+    overrides: SceneOverrides,
     /// Output directory.
     #[arg(long, default_value = "out/tradeoff")]
     out: PathBuf,
@@ -22,6 +24,7 @@ pub struct Args {
 pub fn main(a: Args) -> ExitCode {
     study_main(
         &a.scene,
+        &a.overrides.set,
         &a.out,
         |s| study(s, a.freq, &|l| eprintln!("{l}")),
         markdown,
