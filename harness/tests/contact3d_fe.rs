@@ -371,8 +371,9 @@ fn the_fe_time_domain_integrates_the_same_point_model() {
 fn the_tradeoff_ladder_of_a_scene_with_the_effects_runs_its_point_model() {
     // `jointlin tradeoff` on the sliding point mass with both effects: the harmonic
     // balance rungs and the time-domain reference compute the three-direction point, so
-    // the balance converges to the reference as H grows (H = 7 within 1e-2); the
-    // first-order rungs compute the thesis's model, whose error is the model's.
+    // the balance converges to the reference as H grows (measured 9.1e-3, 1.5e-3,
+    // 3.4e-4, 2.5e-5 at H = 1, 3, 7, 15); the first-order rungs compute the thesis's
+    // model, whose error (3.6e-2) is the model's.
     let s = scene([(8.0, 0.0), (2.0, 0.0), (1.0, 0.0)], true, true);
     let t = jointlin_harness::tradeoff::study(&s, None, &|_| {}).unwrap();
     let err = |r: &jointlin_harness::tradeoff::Rung| r.amplitude_error.max(r.energy_error);
@@ -390,11 +391,8 @@ fn the_tradeoff_ladder_of_a_scene_with_the_effects_runs_its_point_model() {
     assert!(hb(7)
         .label
         .contains("with coupled_slip and normal_load_variation"));
-    assert!(
-        err(hb(7)) < 1e-2 && err(hb(7)) < err(hb(1)),
-        "{}",
-        err(hb(7))
-    );
+    assert!(err(hb(15)) < err(hb(7)) && err(hb(7)) < err(hb(3)) && err(hb(3)) < err(hb(1)));
+    assert!(err(hb(7)) < 1e-3, "{}", err(hb(7)));
     assert!(t.rungs.iter().all(|r| r.family != "normal_load"));
     let default = t.rungs.iter().find(|r| r.family == "default").unwrap();
     assert!(err(default) > err(hb(7)));
