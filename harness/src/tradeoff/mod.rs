@@ -358,7 +358,10 @@ pub fn study(scene: &Scene, freq: Option<f64>, log: &dyn Fn(&str)) -> Result<Tra
         format!(
             "reference: {} settled to {:.0e}",
             if small {
-                format!("RK4 {} steps/period", reference.steps_per_cycle)
+                format!(
+                    "RK4 at max({}, its stability limit) steps/period",
+                    reference.steps_per_cycle
+                )
             } else {
                 format!("Newmark {} steps/period", reference.steps_per_cycle)
             },
