@@ -126,12 +126,20 @@ fn mesh_study(
     let md = mesh::markdown(s, &rows);
     print!("{md}");
     eprintln!("{:.1} s", t.elapsed().as_secs_f64());
+    write_table(out, "mesh_study", &md, &mesh::csv(&rows))
+}
+
+/// Writes NAME.md and NAME.csv into `out` (created if missing), each atomically.
+fn write_table(out: &Path, name: &str, md: &str, csv: &str) -> ExitCode {
     let write = || -> Result<Vec<PathBuf>, String> {
         let io = |e: std::io::Error| format!("{}: {e}", out.display());
         std::fs::create_dir_all(out).map_err(io)?;
-        let (a, b) = (out.join("mesh_study.md"), out.join("mesh_study.csv"));
-        atomic::write_text(&a, &md)?;
-        atomic::write_text(&b, &mesh::csv(&rows))?;
+        let (a, b) = (
+            out.join(format!("{name}.md")),
+            out.join(format!("{name}.csv")),
+        );
+        atomic::write_text(&a, md)?;
+        atomic::write_text(&b, csv)?;
         Ok(vec![a, b])
     };
     report_written(write())
@@ -157,15 +165,7 @@ fn effects(s: &Scene, st: &LossStudySpec, out: &Path, amplitudes: &[f64], quiet:
     let md = loss_effects::markdown(s, &rows);
     print!("{md}");
     eprintln!("{:.1} s", t.elapsed().as_secs_f64());
-    let write = || -> Result<Vec<PathBuf>, String> {
-        let io = |e: std::io::Error| format!("{}: {e}", out.display());
-        std::fs::create_dir_all(out).map_err(io)?;
-        let (a, b) = (out.join("effects.md"), out.join("effects.csv"));
-        atomic::write_text(&a, &md)?;
-        atomic::write_text(&b, &loss_effects::csv(s, &rows))?;
-        Ok(vec![a, b])
-    };
-    report_written(write())
+    write_table(out, "effects", &md, &loss_effects::csv(s, &rows))
 }
 
 /// `--calibrate`: fits the study's calibration, prints the fitted values per interface,

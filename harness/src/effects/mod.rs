@@ -77,20 +77,12 @@ pub fn study(scene: &Scene, progress: &dyn Fn(&str)) -> Result<EffectsStudy, Eff
     let mut variants = Vec::with_capacity(VARIANTS.len());
     for (label, normal, coupled) in VARIANTS {
         progress(&format!("{label} …"));
-        let mut s = scene.clone();
-        s.spec.effects = Effects {
-            normal_load_variation: normal,
-            coupled_slip: coupled,
-            ..s.spec.effects
-        };
-        let steps0 = capi::point3d_steps();
-        let t = Instant::now();
-        let r = run(&s, Extras::default(), &|_, _, _| {})
-            .map_err(|source| EffectsError::Run { label, source })?;
-        let seconds = t.elapsed().as_secs_f64();
+        let s = with_point_model(scene, normal, coupled);
+        let (r, steps, seconds) = measured(|| run(&s, Extras::default(), &|_, _, _| {}));
+        let r = r.map_err(|source| EffectsError::Run { label, source })?;
         let first = r.problem.outputs.first().ok_or(EffectsError::NoOutput)?;
         output.get_or_insert_with(|| first.name.clone());
-        variants.push(variant(label, normal, coupled, r.main, seconds, steps0));
+        variants.push(variant(label, normal, coupled, r.main, seconds, steps));
     }
     Ok(EffectsStudy {
         scene: scene.file.clone(),
@@ -100,13 +92,32 @@ pub fn study(scene: &Scene, progress: &dyn Fn(&str)) -> Result<EffectsStudy, Eff
     })
 }
 
+/// `scene` with the point model (normal_load_variation, coupled_slip) in place of its own.
+pub fn with_point_model(scene: &Scene, normal_load_variation: bool, coupled_slip: bool) -> Scene {
+    let mut s = scene.clone();
+    s.spec.effects = Effects {
+        normal_load_variation,
+        coupled_slip,
+        ..s.spec.effects
+    };
+    s
+}
+
+/// `work`'s result, the three-direction point's steps it made and its wall time (s).
+pub fn measured<T>(work: impl FnOnce() -> T) -> (T, u64, f64) {
+    let steps0 = capi::point3d_steps();
+    let t = Instant::now();
+    let r = work();
+    (r, capi::point3d_steps() - steps0, t.elapsed().as_secs_f64())
+}
+
 fn variant(
     label: &'static str,
     normal_load_variation: bool,
     coupled_slip: bool,
     sweep: SweepResult,
     seconds: f64,
-    steps0: u64,
+    point3d_steps: u64,
 ) -> Variant {
     let solved: Vec<usize> = (0..sweep.freqs.len())
         .filter(|&i| sweep.converged[i] && sweep.failure(i).is_none())
@@ -138,7 +149,7 @@ fn variant(
         power_max,
         converged: solved.len(),
         frequencies: sweep.freqs.len(),
-        point3d_steps: capi::point3d_steps() - steps0,
+        point3d_steps,
         seconds,
         sweep,
     }

@@ -6,13 +6,11 @@
 //! the three-direction point's steps and the wall time.
 
 use std::fmt::Write as _;
-use std::time::Instant;
 
 use super::{powers_at, report::torque_unit, LossError};
-use crate::capi;
-use crate::effects::VARIANTS;
+use crate::effects::{measured, with_point_model, VARIANTS};
 use crate::input::scene::units::frequency_unit;
-use crate::input::scene::{Effects, Mode, Scene};
+use crate::input::scene::{Mode, Scene};
 use crate::util::csv_table::CsvTable;
 
 /// Point models solved (progress steps).
@@ -54,16 +52,9 @@ pub fn study(
     let mut rows = Vec::with_capacity(VARIANTS.len() * amplitudes.len());
     for (label, normal, coupled) in VARIANTS {
         progress(&format!("{label} …"));
-        let mut s = scene.clone();
-        s.spec.effects = Effects {
-            normal_load_variation: normal,
-            coupled_slip: coupled,
-            ..s.spec.effects
-        };
-        let steps0 = capi::point3d_steps();
-        let t = Instant::now();
-        let (got, _) = powers_at(&s, torque, amplitudes)?;
-        let (point3d_steps, seconds) = (capi::point3d_steps() - steps0, t.elapsed().as_secs_f64());
+        let s = with_point_model(scene, normal, coupled);
+        let (got, point3d_steps, seconds) = measured(|| powers_at(&s, torque, amplitudes));
+        let (got, _) = got?;
         rows.extend(got.iter().map(|g| EffectsRow {
             label,
             amplitude: g.amplitude,
