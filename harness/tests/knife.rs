@@ -584,3 +584,35 @@ fn a_two_parameter_calibration_recovers_the_factors_that_made_its_references() {
         approx::assert_relative_eq!(*p, r.power, max_relative = 2.5e-3);
     }
 }
+
+#[test]
+fn contact_maps_draw_each_face_whole() {
+    // knife.toml splits each contact face into six x-slabs (interfaces face1_s1 …
+    // face1_s6 in one plane): the maps draw a face as one panel, not six.
+    use jointlin_harness::report::contact_map::{svg, MapKind, PointValues};
+    let s =
+        Scene::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes/knife.toml")).unwrap();
+    let p = jointlin_harness::model::build(&s).unwrap();
+    let vals: Vec<PointValues> = p
+        .contacts
+        .iter()
+        .enumerate()
+        .map(|(i, c)| PointValues {
+            pressure: 1.0,
+            amplitude: 1e-4 * c.position[0],
+            ratio: (i % 3) as f64 * 0.6,
+            energy_density: c.position[0],
+        })
+        .collect();
+    let dir = std::env::temp_dir().join(format!("jointlin-maps-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("ratio.svg");
+    svg(&file, "knife", &s.spec.units, &p, &vals, MapKind::Ratio).unwrap();
+    let text = std::fs::read_to_string(&file).unwrap();
+    for face in ["face1", "face2"] {
+        let caption = format!("{face}_s1 … {face}_s6 (6 interfaces in one plane)");
+        assert_eq!(text.matches(&caption).count(), 1, "{face}");
+    }
+    assert!(!text.contains("face1_s2:"), "a slab drawn on its own");
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -171,7 +171,55 @@ fn panel_axes(p: &Problem, interface: usize) -> (usize, usize) {
 
 const AXIS_NAMES: [&str; 3] = ["x", "y", "z"];
 
-/// SVG map: one panel per interface in the plane of its face (the two global axes
+/// The panels of a map: interfaces that lie in one plane share a panel (a face split
+/// into slabs of interfaces is drawn whole), in the order of their first interface.
+/// Per panel its interfaces and the two global axes across it.
+fn panel_groups(p: &Problem) -> Vec<(Vec<usize>, (usize, usize))> {
+    let extent = p
+        .contacts
+        .iter()
+        .flat_map(|c| c.position)
+        .fold(0.0f64, |m, v| m.max(v.abs()))
+        .max(f64::MIN_POSITIVE);
+    let mut groups: Vec<(Vec<usize>, (usize, usize), f64)> = Vec::new();
+    for k in 0..p.interfaces.len().max(1) {
+        let axes = panel_axes(p, k);
+        // The coordinate along the dropped axis (the face's plane), mean over its points.
+        let d = 3 - axes.0 - axes.1;
+        let (sum, n) = p
+            .contacts
+            .iter()
+            .filter(|c| c.interface == k)
+            .fold((0.0, 0usize), |(s, n), c| (s + c.position[d], n + 1));
+        let plane = if n > 0 { sum / n as f64 } else { f64::NAN };
+        match groups
+            .iter_mut()
+            .find(|(_, ax, pl)| *ax == axes && (pl - plane).abs() <= 1e-9 * extent)
+        {
+            Some(g) => g.0.push(k),
+            None => groups.push((vec![k], axes, plane)),
+        }
+    }
+    groups.into_iter().map(|(ks, ax, _)| (ks, ax)).collect()
+}
+
+/// A panel's name: its interface's, or for several the first and last names and their
+/// count.
+fn panel_name(p: &Problem, ks: &[usize]) -> String {
+    let name = |k: usize| p.interfaces.get(k).map_or("", |i| i.name.as_str());
+    match ks {
+        [k] => name(*k).to_string(),
+        [first, .., last] => format!(
+            "{} … {} ({} interfaces in one plane)",
+            name(*first),
+            name(*last),
+            ks.len()
+        ),
+        [] => String::new(),
+    }
+}
+
+/// SVG map: one panel per plane of interfaces ([`panel_groups`]; the two global axes
 /// across it), a circle per contact point; grey dots are open points.
 pub fn svg(
     path: &Path,
@@ -182,17 +230,19 @@ pub fn svg(
     kind: MapKind,
 ) -> Result<(), String> {
     let length_unit = units.length.as_str();
-    let n = p.interfaces.len().max(1);
-    let panels: Vec<_> = (0..n)
-        .map(|k| {
-            let (a, b) = panel_axes(p, k);
+    let groups = panel_groups(p);
+    let n = groups.len();
+    let panels: Vec<_> = groups
+        .iter()
+        .map(|(ks, (a, b))| {
+            let (a, b) = (*a, *b);
             let (mut x0, mut x1, mut y0, mut y1) = (
                 f64::INFINITY,
                 f64::NEG_INFINITY,
                 f64::INFINITY,
                 f64::NEG_INFINITY,
             );
-            for c in p.contacts.iter().filter(|c| c.interface == k) {
+            for c in p.contacts.iter().filter(|c| ks.contains(&c.interface)) {
                 x0 = x0.min(c.position[a]);
                 x1 = x1.max(c.position[a]);
                 y0 = y0.min(c.position[b]);
@@ -230,7 +280,8 @@ pub fn svg(
         .max(f64::MIN_POSITIVE);
     for (k, area) in areas.iter().enumerate() {
         let (a, b, x0, x1, y0, y1) = panels[k];
-        let name = p.interfaces.get(k).map_or("", |i| i.name.as_str());
+        let ks = &groups[k].0;
+        let name = panel_name(p, ks);
         let caption = match kind {
             MapKind::Ratio => format!(
                 "{name}: colour A/δ* (blue 0 … red 1, black ring: sliding), area ∝ slip amplitude (max {:.3e} {length_unit})",
@@ -260,7 +311,7 @@ pub fn svg(
             .contacts
             .iter()
             .enumerate()
-            .filter(|(_, c)| c.interface == k)
+            .filter(|(_, c)| ks.contains(&c.interface))
             .map(|(i, _)| (i, &vals[i]))
             .collect();
         chart
