@@ -20,7 +20,9 @@ pub const VARIANT_COUNT: usize = VARIANTS.len();
 #[derive(Debug, Clone)]
 pub struct EffectsRow {
     pub label: &'static str,
-    /// Output amplitude (length).
+    /// Output amplitude asked for and reached (length; the level search's tolerance
+    /// apart).
+    pub target: f64,
     pub amplitude: f64,
     /// Resonance (1/time).
     pub freq: f64,
@@ -55,8 +57,9 @@ pub fn study(
         let s = with_point_model(scene, normal, coupled);
         let (got, point3d_steps, seconds) = measured(|| powers_at(&s, torque, amplitudes));
         let (got, _) = got?;
-        rows.extend(got.iter().map(|g| EffectsRow {
+        rows.extend(got.iter().zip(amplitudes).map(|(g, &target)| EffectsRow {
             label,
+            target,
             amplitude: g.amplitude,
             freq: g.freq,
             power: g.power * st.power_factor,
@@ -89,14 +92,12 @@ pub fn markdown(scene: &Scene, rows: &[EffectsRow]) -> String {
         "| amplitude [{au}] | point model | resonance [{f}] | Δ resonance [{f}] | power [{pu}] | Δ power | 3D point steps | wall time [s] |\n|---:|---|---:|---:|---:|---:|---:|---:|",
         f = fu.text
     );
-    let mut amplitudes: Vec<f64> = rows.iter().map(|r| r.amplitude).collect();
-    amplitudes.sort_by(f64::total_cmp);
-    amplitudes.dedup_by(|a, b| (*a - *b).abs() <= 1e-9 * b.abs());
-    for a in amplitudes {
-        let same: Vec<&EffectsRow> = rows
-            .iter()
-            .filter(|r| (r.amplitude - a).abs() <= 1e-9 * a.abs())
-            .collect();
+    let mut targets: Vec<f64> = rows.iter().map(|r| r.target).collect();
+    targets.sort_by(f64::total_cmp);
+    targets.dedup();
+    for a in targets {
+        // In the order of the point models (the thesis's first).
+        let same: Vec<&EffectsRow> = rows.iter().filter(|r| r.target == a).collect();
         let Some(base) = same.first() else { continue };
         for r in &same {
             let _ = writeln!(
@@ -145,4 +146,52 @@ pub fn csv(scene: &Scene, rows: &[EffectsRow]) -> String {
         ]);
     }
     t.finish()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn each_amplitude_compares_its_models_with_the_thesis_model() {
+        // Reached amplitudes differ by the level search's tolerance; rows group by the
+        // amplitude asked for, in the point models' order.
+        let text = std::fs::read_to_string(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../scenes/knife-coarse.toml"
+        ))
+        .unwrap();
+        let scene = Scene::parse("knife-coarse.toml", &text).unwrap();
+        let row = |k: usize, target: f64, power: f64| EffectsRow {
+            label: VARIANTS[k].0,
+            target,
+            amplitude: target * (1.0 + 1e-4 * k as f64),
+            freq: 31_820.0 + k as f64,
+            power,
+            point3d_steps: 0,
+            seconds: 1.0,
+        };
+        let rows = vec![
+            row(0, 0.012, 2.0),
+            row(0, 0.015, 4.0),
+            row(1, 0.012, 2.2),
+            row(1, 0.015, 4.0),
+        ];
+        let md = markdown(&scene, &rows);
+        let lines: Vec<&str> = md.lines().filter(|l| l.starts_with("| 1")).collect();
+        assert_eq!(lines.len(), 4, "{md}");
+        assert!(lines[0].starts_with("| 12.00 | thesis"), "{md}");
+        assert!(
+            lines[1].starts_with("| 12.00 | coupled slip") && lines[1].contains("| +10.0 % |"),
+            "{md}"
+        );
+        assert!(
+            lines[2].starts_with("| 15.00 | thesis") && lines[3].contains("| +0.0 % |"),
+            "{md}"
+        );
+        assert!(
+            md.contains("resonance [Hz]") && md.contains("power [W]"),
+            "{md}"
+        );
+    }
 }
