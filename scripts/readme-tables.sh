@@ -9,6 +9,8 @@ declare -A commands=(
   [accuracy_table]="cargo run --release -q --example accuracy_table"
   [seed_cases]="cargo run --release -q --example seed_cases"
   [knife]="cargo run --release -q -p jointlin-harness --bin jointlin -- loss scenes/knife.toml --out harness/assets/knife --quiet"
+  [knife_graded_mesh]="cargo run --release -q -p jointlin-harness --bin jointlin -- loss scenes/knife.toml --mesh-study 1,2 --refine x:jaw_,blade_in --refine x:bar_ --refine y --refine z --sampled-only --out harness/assets/knife-graded-mesh --quiet"
+  [knife_effects]="cargo run --release -q -p jointlin-harness --bin jointlin -- loss scenes/knife-coarse.toml --effects 12,15 --set iteration.mode=harmonic_balance --set iteration.harmonics=3 --set 'interfaces.*.rule=masing' --out harness/assets/knife-effects --quiet"
   [knife_mesh]="cargo run --release -q -p jointlin-harness --bin jointlin -- loss scenes/knife-coarse.toml --mesh-study 1,2,3 --out harness/assets/knife-mesh --quiet"
   [tradeoff_beams]="cargo run --release -q -p jointlin-harness --bin jointlin -- tradeoff scenes/three-beams-coarse.toml --out out/tradeoff-beams"
   [tradeoff_block]="cargo run --release -q -p jointlin-harness --bin jointlin -- tradeoff scenes/block-stick.toml --out out/tradeoff-block"
@@ -39,7 +41,7 @@ declare -A plots=(
 # written): the block shows the message and the exit status instead of ending the script.
 may_stop=" backbone_fe_h7 "
 # Blocks whose command prints Markdown (the others are shown as terminal output).
-markdown=" contact_effects accuracy_table knife knife_mesh tradeoff_beams tradeoff_block backbone_cost deck_stack deck_bench "
+markdown=" contact_effects accuracy_table knife knife_graded_mesh knife_effects knife_mesh tradeoff_beams tradeoff_block backbone_cost deck_stack deck_bench "
 files=(README.md docs/accuracy.md)
 # Copies each "from to" pair of a plots entry; a glob must match exactly one file.
 copy_plots() {
