@@ -59,8 +59,11 @@ impl Points3 {
                     c.area,
                     model,
                 );
-                // The static overclosure itself (negative: a gap), for open points too.
-                pt.h0 = overclosure(p, c, delta0[i])[0];
+                // h₀ = N₀/k_N as in the balance (the slip limit μN₀ for any normal law);
+                // an open point keeps its static overclosure (≤ 0: the gap).
+                if stat.pressure[i] <= 0.0 {
+                    pt.h0 = overclosure(p, c, delta0[i])[0].min(0.0);
+                }
                 pt
             })
             .collect();
