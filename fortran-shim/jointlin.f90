@@ -63,6 +63,8 @@ module jointlin
   integer(c_int32_t), parameter :: JOINTLIN_POINT3D_MAX_CELLS = 128
   integer(c_int32_t), parameter :: JOINTLIN_POINT3D_DEFAULT_CELLS = 32
   integer(c_int32_t), parameter :: JOINTLIN_POINT3D_STATE_LEN = 261
+  integer(c_int32_t), parameter :: JOINTLIN_DESCRIBE_INTEGRATED = 0
+  integer(c_int32_t), parameter :: JOINTLIN_DESCRIBE_TABULATED = 1
   integer(c_int32_t), parameter :: JOINTLIN_UINTER_MIN_NPROPS = 7
   integer(c_int32_t), parameter :: JOINTLIN_UINTER_MAX_NPROPS = 12
   integer(c_int32_t), parameter :: JOINTLIN_UINTER_MIN_NSTATV = 57
@@ -138,6 +140,15 @@ module jointlin
      real(c_double) :: energy_per_cycle
      integer(c_int32_t) :: regime
   end type jointlin_linearization3d
+
+  type, bind(C) :: jointlin_linearization3d_matrix
+     real(c_double) :: k_star(4)
+     real(c_double) :: d_star(4)
+     real(c_double) :: semi_axes(2)
+     real(c_double) :: angle
+     real(c_double) :: energy_per_cycle
+     integer(c_int32_t) :: regime
+  end type jointlin_linearization3d_matrix
 
   type, bind(C) :: jointlin_store_config
      real(c_double) :: initial_amplitude
@@ -271,6 +282,18 @@ module jointlin
        type(jointlin_linearization3d), intent(out) :: out
        integer(c_int32_t) :: jointlin_linearize3d
      end function jointlin_linearize3d
+
+     function jointlin_linearize3d_phasors(contact, normal_force, u_hat, omega, method, &
+          out) bind(C, name='jointlin_linearize3d_phasors')
+       import :: c_int32_t, c_double, jointlin_contact3d, jointlin_linearization3d_matrix
+       type(jointlin_contact3d), intent(in) :: contact
+       real(c_double), value :: normal_force
+       real(c_double), intent(in) :: u_hat(4)
+       real(c_double), value :: omega
+       integer(c_int32_t), value :: method
+       type(jointlin_linearization3d_matrix), intent(out) :: out
+       integer(c_int32_t) :: jointlin_linearize3d_phasors
+     end function jointlin_linearize3d_phasors
 
      function jointlin_screw_preload(torque, pitch, d2, mu_thread, mu_head, d_km, &
           preload) bind(C, name='jointlin_screw_preload')

@@ -194,6 +194,18 @@
 #define JOINTLIN_POINT3D_STATE_LEN 261
 
 /**
+ * Method code: the cells' harmonics by closed forms or integration over the cycle (the
+ * reference; 0.1-0.5 s per 32-cell point).
+ */
+#define JOINTLIN_DESCRIBE_INTEGRATED 0
+
+/**
+ * Method code: the cells' harmonics interpolated from the unit cell's table
+ * (microseconds per point; each cell's force harmonics within 2e-3 of its limit force).
+ */
+#define JOINTLIN_DESCRIBE_TABULATED 1
+
+/**
  * Smallest NPROPS accepted by jointlin_uinter. The UINTER property layout:
  *
  * PROPS (1-based as in the Abaqus input file; NPROPS >= 7, entries past NPROPS take the
@@ -539,6 +551,37 @@ typedef struct jointlin_linearization3d {
 } jointlin_linearization3d;
 
 /**
+ * Describing function of a three-direction point for a complex tangential amplitude:
+ * the first harmonic of the tangential force is t = (K* + i omega D*) u.
+ */
+typedef struct jointlin_linearization3d_matrix {
+  /**
+   * K*, symmetric 2 x 2, row-major (force/length).
+   */
+  double k_star[4];
+  /**
+   * D*, symmetric 2 x 2, row-major (force x time/length).
+   */
+  double d_star[4];
+  /**
+   * Semi-axes A1 >= A2 >= 0 of the elliptic path (length).
+   */
+  double semi_axes[2];
+  /**
+   * Angle of the major axis from tangential direction 1 (rad, -pi/2 < angle <= pi/2).
+   */
+  double angle;
+  /**
+   * Energy dissipated per cycle by the point (force x length).
+   */
+  double energy_per_cycle;
+  /**
+   * JOINTLIN_REGIME_* code.
+   */
+  int32_t regime;
+} jointlin_linearization3d_matrix;
+
+/**
  * Settings of a store. Get the defaults from jointlin_store_config_default, then set at
  * least `initial_amplitude`.
  */
@@ -875,6 +918,32 @@ int32_t jointlin_linearize3d(const struct jointlin_contact3d *contact,
                              double amplitude_2,
                              double omega,
                              struct jointlin_linearization3d *out);
+
+/**
+ * Describing function of a three-direction point at the constant normal force
+ * `normal_force` (force; <= 0 open: all zeros, JOINTLIN_REGIME_OPEN) for the tangential
+ * motion u(t) = Re(u_hat e^{i omega t}), `u_hat` = (re u1, im u1, re u2, im u2) (length):
+ * the path is an ellipse, described in its principal axes as by jointlin_linearize3d and
+ * rotated back, so t = (K* + i omega D*) u_hat with symmetric K*, D*. A minor axis below
+ * 1e-6 of the major one is evaluated there (its coefficient is then the thin path's
+ * limit, not 0); u_hat = 0 gives K* = k_t0 I. `method`: JOINTLIN_DESCRIBE_INTEGRATED or
+ * JOINTLIN_DESCRIBE_TABULATED. Meaningful only while the normal force stays constant and
+ * positive over the cycle (docs/contact3d.md).
+ *
+ * Errors: JOINTLIN_ERR_NULL, JOINTLIN_ERR_NON_FINITE, JOINTLIN_ERR_OUT_OF_RANGE (omega
+ * <= 0, an unknown method, invalid contact), JOINTLIN_ERR_OVERFLOW. `*out` is written only
+ * on JOINTLIN_OK.
+ *
+ * # Safety
+ * `contact` must point to a valid jointlin_contact3d, `u_hat` to 4 doubles and `out` to
+ * a writable jointlin_linearization3d_matrix.
+ */
+int32_t jointlin_linearize3d_phasors(const struct jointlin_contact3d *contact,
+                                     double normal_force,
+                                     const double *u_hat,
+                                     double omega,
+                                     int32_t method,
+                                     struct jointlin_linearization3d_matrix *out);
 
 /**
  * Writes to `*preload` the axial force F (force) of a screw tightened to `torque` T

@@ -240,3 +240,64 @@ fn linearize3d_rejects_null_and_bad_inputs_without_writing() {
     }
     assert_eq!(out, keep);
 }
+
+#[test]
+fn linearize3d_phasors_rejects_null_and_bad_inputs_without_writing() {
+    let c = mindlin();
+    let keep = jointlin_linearization3d_matrix {
+        k_star: [SENTINEL; 4],
+        d_star: [SENTINEL; 4],
+        semi_axes: [SENTINEL; 2],
+        angle: SENTINEL,
+        energy_per_cycle: SENTINEL,
+        regime: -1,
+    };
+    let mut out = keep;
+    let u = [1e-4, 2e-5, -3e-5, 5e-5];
+    let tab = JOINTLIN_DESCRIBE_TABULATED;
+    unsafe {
+        assert_eq!(
+            jointlin_linearize3d_phasors(null(), 1.0, u.as_ptr(), 1.0, tab, &mut out),
+            JOINTLIN_ERR_NULL
+        );
+        assert_eq!(
+            jointlin_linearize3d_phasors(&c, 1.0, null(), 1.0, tab, &mut out),
+            JOINTLIN_ERR_NULL
+        );
+        assert_eq!(
+            jointlin_linearize3d_phasors(&c, 1.0, u.as_ptr(), 1.0, tab, null_mut()),
+            JOINTLIN_ERR_NULL
+        );
+        for bad in BAD {
+            for k in 0..4 {
+                let mut v = u;
+                v[k] = bad;
+                let rc = jointlin_linearize3d_phasors(&c, 1.0, v.as_ptr(), 1.0, tab, &mut out);
+                assert_eq!(rc, JOINTLIN_ERR_NON_FINITE, "{v:?}");
+            }
+            let rc = jointlin_linearize3d_phasors(&c, bad, u.as_ptr(), 1.0, tab, &mut out);
+            assert_eq!(rc, JOINTLIN_ERR_NON_FINITE);
+            let rc = jointlin_linearize3d_phasors(&c, 1.0, u.as_ptr(), bad, tab, &mut out);
+            assert_eq!(rc, JOINTLIN_ERR_NON_FINITE);
+        }
+        for (omega, method) in [(0.0, tab), (-1.0, tab), (1.0, 2), (1.0, -1)] {
+            let rc = jointlin_linearize3d_phasors(&c, 1.0, u.as_ptr(), omega, method, &mut out);
+            assert_eq!(rc, JOINTLIN_ERR_OUT_OF_RANGE, "{omega} {method}");
+        }
+    }
+    assert_eq!(out, keep);
+    // Both methods on the same path: symmetric matrices, the same energy within the
+    // table's tolerance (8 cells: 8 × 2e-3 of μN times the perimeter at most).
+    let mut both = [keep; 2];
+    for (m, o) in [JOINTLIN_DESCRIBE_INTEGRATED, tab]
+        .into_iter()
+        .zip(&mut both)
+    {
+        let rc = unsafe { jointlin_linearize3d_phasors(&c, 1.0, u.as_ptr(), 1.0, m, o) };
+        assert_eq!(rc, JOINTLIN_OK);
+        assert_eq!(o.k_star[1], o.k_star[2]);
+        assert_eq!(o.d_star[1], o.d_star[2]);
+    }
+    let perimeter = 2.0 * std::f64::consts::PI * both[0].semi_axes[0];
+    assert!((both[0].energy_per_cycle - both[1].energy_per_cycle).abs() < 2e-3 * 0.3 * perimeter);
+}

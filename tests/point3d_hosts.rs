@@ -1,7 +1,8 @@
 //! The three-direction point through the C API from a C program (gcc, include/jointlin.h)
 //! and a Fortran program (gfortran, fortran-shim/jointlin.f90), both linked against the
 //! libjointlin.so of this cargo build: an elliptic path with a normal load that varies and
-//! opens the contact for part of each cycle, then the describing function on a circle;
+//! opens the contact for part of each cycle, then the describing function on a circle and,
+//! tabulated, for two complex amplitudes;
 //! every printed number against the Rust core to 1e-12 relative.
 
 mod hosts_common;
@@ -10,8 +11,10 @@ use std::f64::consts::PI;
 use std::process::Command;
 
 use hosts_common::{lib_dir, root, run_ok, scratch};
+use jointlin::iterate::Complex64;
 use jointlin::law::hertz::NormalLaw;
-use jointlin::point3d::describing::describe;
+use jointlin::point3d::describing::{describe, Method};
+use jointlin::point3d::phasors::describe_phasors;
 use jointlin::point3d::{Contact3d, State3d, Tangential3d};
 
 const STEPS: usize = 240;
@@ -41,6 +44,12 @@ int main(void) {
   jointlin_linearization3d l;
   if (jointlin_linearize3d(&c, 2.0, 2e-3, 2e-3, 100.0, &l) != JOINTLIN_OK) return 2;
   printf("%.17g %.17g %.17g %.17g %.17g %d\n", l.k_star[0], l.k_star[1], l.d_star[0], l.d_star[1], l.energy_per_cycle, l.regime);
+  double u[4] = {2e-3, 5e-4, -1e-3, 1.5e-3};
+  jointlin_linearization3d_matrix m;
+  if (jointlin_linearize3d_phasors(&c, 2.0, u, 100.0, JOINTLIN_DESCRIBE_TABULATED, &m) != JOINTLIN_OK) return 3;
+  for (int k = 0; k < 4; ++k) printf("%.17g ", m.k_star[k]);
+  for (int k = 0; k < 4; ++k) printf("%.17g ", m.d_star[k]);
+  printf("%.17g %d\n", m.energy_per_cycle, m.regime);
   return 0;
 }
 "#;
@@ -52,7 +61,8 @@ const F_SRC: &str = r#"program point3d
   type(jointlin_contact3d) :: c
   type(jointlin_step3d) :: out
   type(jointlin_linearization3d) :: l
-  real(c_double) :: state(JOINTLIN_POINT3D_STATE_LEN), d(3), th
+  type(jointlin_linearization3d_matrix) :: m
+  real(c_double) :: state(JOINTLIN_POINT3D_STATE_LEN), d(3), th, u(4)
   real(c_double), parameter :: pi = 4.0_c_double * atan(1.0_c_double)
   integer :: j
   c = jointlin_contact3d(JOINTLIN_LAW_MINDLIN, 8, 0.5_c_double, 1000.0_c_double, &
@@ -68,6 +78,10 @@ const F_SRC: &str = r#"program point3d
   if (jointlin_linearize3d(c, 2.0_c_double, 2e-3_c_double, 2e-3_c_double, 100.0_c_double, l) &
        /= JOINTLIN_OK) error stop 2
   write (*, '(5(es25.17e3,1x),i0)') l%k_star, l%d_star, l%energy_per_cycle, l%regime
+  u = [2e-3_c_double, 5e-4_c_double, -1e-3_c_double, 1.5e-3_c_double]
+  if (jointlin_linearize3d_phasors(c, 2.0_c_double, u, 100.0_c_double, &
+       JOINTLIN_DESCRIBE_TABULATED, m) /= JOINTLIN_OK) error stop 3
+  write (*, '(9(es25.17e3,1x),i0)') m%k_star, m%d_star, m%energy_per_cycle, m%regime
 end program point3d
 "#;
 
@@ -98,6 +112,17 @@ fn expected() -> Vec<Vec<f64>> {
         d.energy_per_cycle,
         d.regime as i32 as f64,
     ]);
+    let u = [Complex64::new(2e-3, 5e-4), Complex64::new(-1e-3, 1.5e-3)];
+    let m = describe_phasors(&c, 2.0, u, 100.0, Method::Tabulated).unwrap();
+    let mut row: Vec<f64> = m
+        .k_star
+        .iter()
+        .chain(&m.d_star)
+        .flatten()
+        .copied()
+        .collect();
+    row.extend([m.energy_per_cycle, m.regime as i32 as f64]);
+    rows.push(row);
     rows
 }
 

@@ -5,8 +5,10 @@
 use super::error::{boundary, FfiError, FfiResult, JOINTLIN_ERR_OUT_OF_RANGE};
 use super::linearize::{regime_code, JOINTLIN_LAW_JENKINS, JOINTLIN_LAW_MINDLIN};
 use super::{check_ptr, finite, load, load_finite, put, put_all};
+use crate::iterate::Complex64;
 use crate::law::hertz::{Hertz, NormalLaw};
-use crate::point3d::describing::describe;
+use crate::point3d::describing::{describe, Method};
+use crate::point3d::phasors::describe_phasors;
 use crate::point3d::{Contact3d, State3d, Tangential3d, DEFAULT_CELLS, MAX_CELLS, STATE3D_LEN};
 
 /// Normal law code: linear penalty N = k_N h for h > 0 (k_N in force/length).
@@ -77,6 +79,32 @@ pub struct jointlin_linearization3d {
     /// JOINTLIN_REGIME_* code.
     pub regime: i32,
 }
+
+/// Describing function of a three-direction point for a complex tangential amplitude:
+/// the first harmonic of the tangential force is t = (K* + i omega D*) u.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct jointlin_linearization3d_matrix {
+    /// K*, symmetric 2 x 2, row-major (force/length).
+    pub k_star: [f64; 4],
+    /// D*, symmetric 2 x 2, row-major (force x time/length).
+    pub d_star: [f64; 4],
+    /// Semi-axes A1 >= A2 >= 0 of the elliptic path (length).
+    pub semi_axes: [f64; 2],
+    /// Angle of the major axis from tangential direction 1 (rad, -pi/2 < angle <= pi/2).
+    pub angle: f64,
+    /// Energy dissipated per cycle by the point (force x length).
+    pub energy_per_cycle: f64,
+    /// JOINTLIN_REGIME_* code.
+    pub regime: i32,
+}
+
+/// Method code: the cells' harmonics by closed forms or integration over the cycle (the
+/// reference; 0.1-0.5 s per 32-cell point).
+pub const JOINTLIN_DESCRIBE_INTEGRATED: i32 = 0;
+/// Method code: the cells' harmonics interpolated from the unit cell's table
+/// (microseconds per point; each cell's force harmonics within 2e-3 of its limit force).
+pub const JOINTLIN_DESCRIBE_TABULATED: i32 = 1;
 
 impl jointlin_contact3d {
     fn to_core(self) -> FfiResult<Contact3d> {
@@ -217,6 +245,59 @@ pub unsafe extern "C" fn jointlin_linearize3d(
         let l = jointlin_linearization3d {
             k_star: d.k_star,
             d_star: d.d_star,
+            energy_per_cycle: d.energy_per_cycle,
+            regime: regime_code(d.regime),
+        };
+        // SAFETY: checked non-NULL and aligned above.
+        unsafe { put(out, l) };
+        Ok(())
+    })
+}
+
+/// Describing function of a three-direction point at the constant normal force
+/// `normal_force` (force; <= 0 open: all zeros, JOINTLIN_REGIME_OPEN) for the tangential
+/// motion u(t) = Re(u_hat e^{i omega t}), `u_hat` = (re u1, im u1, re u2, im u2) (length):
+/// the path is an ellipse, described in its principal axes as by jointlin_linearize3d and
+/// rotated back, so t = (K* + i omega D*) u_hat with symmetric K*, D*. A minor axis below
+/// 1e-6 of the major one is evaluated there (its coefficient is then the thin path's
+/// limit, not 0); u_hat = 0 gives K* = k_t0 I. `method`: JOINTLIN_DESCRIBE_INTEGRATED or
+/// JOINTLIN_DESCRIBE_TABULATED. Meaningful only while the normal force stays constant and
+/// positive over the cycle (docs/contact3d.md).
+///
+/// Errors: JOINTLIN_ERR_NULL, JOINTLIN_ERR_NON_FINITE, JOINTLIN_ERR_OUT_OF_RANGE (omega
+/// <= 0, an unknown method, invalid contact), JOINTLIN_ERR_OVERFLOW. `*out` is written only
+/// on JOINTLIN_OK.
+///
+/// # Safety
+/// `contact` must point to a valid jointlin_contact3d, `u_hat` to 4 doubles and `out` to
+/// a writable jointlin_linearization3d_matrix.
+#[no_mangle]
+pub unsafe extern "C" fn jointlin_linearize3d_phasors(
+    contact: *const jointlin_contact3d,
+    normal_force: f64,
+    u_hat: *const f64,
+    omega: f64,
+    method: i32,
+    out: *mut jointlin_linearization3d_matrix,
+) -> i32 {
+    boundary("jointlin_linearize3d_phasors", || {
+        // SAFETY: checked by `load`/`load_finite`; valid by contract.
+        let c = unsafe { load(contact, "contact") }?.to_core()?;
+        let u: [f64; 4] = unsafe { load_finite(u_hat, 4, "u_hat") }?;
+        check_ptr(out, "out")?;
+        let method = match method {
+            JOINTLIN_DESCRIBE_INTEGRATED => Method::Integrated,
+            JOINTLIN_DESCRIBE_TABULATED => Method::Tabulated,
+            _ => return Err(FfiError::new(JOINTLIN_ERR_OUT_OF_RANGE, "unknown method")),
+        };
+        let phasors = [Complex64::new(u[0], u[1]), Complex64::new(u[2], u[3])];
+        let d = describe_phasors(&c, normal_force, phasors, omega, method)?;
+        let flat = |m: [[f64; 2]; 2]| [m[0][0], m[0][1], m[1][0], m[1][1]];
+        let l = jointlin_linearization3d_matrix {
+            k_star: flat(d.k_star),
+            d_star: flat(d.d_star),
+            semi_axes: d.semi_axes,
+            angle: d.angle,
             energy_per_cycle: d.energy_per_cycle,
             regime: regime_code(d.regime),
         };

@@ -45,6 +45,28 @@ pub fn describe(
     amplitude: [f64; 2],
     omega: f64,
 ) -> Result<Describing3d, Error> {
+    describe_with(contact, normal_force, amplitude, omega, Method::Integrated)
+}
+
+/// How a cell's harmonics are obtained.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Method {
+    /// Closed forms, or the cycle integrated in time ([`unit_cell`]): the reference,
+    /// 0.1–0.5 s per 32-cell point.
+    Integrated,
+    /// Interpolated from the unit cell's table ([`super::table`]): microseconds per point,
+    /// force harmonics within [`super::table::TABLE_TOLERANCE`] of each cell's limit force.
+    Tabulated,
+}
+
+/// [`describe`] with the cells' harmonics by `method`.
+pub fn describe_with(
+    contact: &Contact3d,
+    normal_force: f64,
+    amplitude: [f64; 2],
+    omega: f64,
+    method: Method,
+) -> Result<Describing3d, Error> {
     contact.validate()?;
     finite(normal_force, "normal force")?;
     finite(omega, "omega")?;
@@ -78,7 +100,7 @@ pub fn describe(
             regime: Regime::Stick,
         });
     }
-    let (main, slipping) = harmonics(contact, limit, amplitude);
+    let (main, slipping) = harmonics(contact, limit, amplitude, method);
     let mut k_star = [0.0; 2];
     let mut q = [0.0; 2]; // ω d*
                           // u₁ = A₁ cos θ: k*₁ = c₁/A₁, ωd*₁ = −s₁/A₁; u₂ = A₂ sin θ: k*₂ = s₂/A₂, ωd*₂ = c₂/A₂.
@@ -109,7 +131,16 @@ pub fn describe(
 
 /// Sum over the cells of the force harmonics (force units) and of the energy, and the
 /// number of cells that slip.
-fn harmonics(contact: &Contact3d, limit: f64, amplitude: [f64; 2]) -> (CellHarmonics, usize) {
+fn harmonics(
+    contact: &Contact3d,
+    limit: f64,
+    amplitude: [f64; 2],
+    method: Method,
+) -> (CellHarmonics, usize) {
+    let unit = match method {
+        Method::Integrated => unit_cell,
+        Method::Tabulated => super::table::unit_cell_tabulated,
+    };
     let cells = contact.cells();
     let mut sum = CellHarmonics {
         c1: 0.0,
@@ -123,7 +154,7 @@ fn harmonics(contact: &Contact3d, limit: f64, amplitude: [f64; 2]) -> (CellHarmo
         let k = contact.k_t0 * cells.stiffness[i];
         let x = limit * cells.strength[i] / k;
         let (a, b) = (amplitude[0] / x, amplitude[1] / x);
-        let h = unit_cell(a, b);
+        let h = unit(a, b);
         if h.energy > 0.0 {
             slipping += 1;
         }
@@ -208,7 +239,7 @@ pub const RIGID_CAP: f64 = 1e7;
 /// units of f, here x = 1 scaling) along the velocity; energy = f × perimeter. The smooth
 /// periodic integrands are summed by the trapezoidal rule with enough points to resolve
 /// the turn of the velocity at the ends of the major axis (width ≈ minor/major in θ).
-fn rigid_plastic(a: f64, b: f64) -> CellHarmonics {
+pub(crate) fn rigid_plastic(a: f64, b: f64) -> CellHarmonics {
     let flat = a.min(b) / a.max(b);
     let n = ((64.0 / flat).ceil() as usize).clamp(4096, 1 << 20);
     let h = 2.0 * PI / n as f64;
@@ -231,13 +262,14 @@ fn rigid_plastic(a: f64, b: f64) -> CellHarmonics {
         acc.s1 += t[0] * s;
         acc.c2 += t[1] * c;
         acc.s2 += t[1] * s;
-        acc.energy += speed;
+        // Scaled by the major semi-axis: n × a alone overflows for a ≈ 1e305.
+        acc.energy += speed / a.max(b);
     }
     CellHarmonics {
         c1: acc.c1 * h / PI,
         s1: acc.s1 * h / PI,
         c2: acc.c2 * h / PI,
         s2: acc.s2 * h / PI,
-        energy: acc.energy * h,
+        energy: acc.energy * h * a.max(b),
     }
 }

@@ -15,6 +15,12 @@ pub mod cell;
 pub mod cells;
 pub mod describing;
 mod ellipse;
+pub mod phasors;
+#[cfg(test)]
+mod phasors_tests;
+pub mod table;
+#[cfg(test)]
+mod table_tests;
 
 pub use cells::{Cells, DEFAULT_CELLS, MAX_CELLS};
 
