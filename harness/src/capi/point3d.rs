@@ -6,15 +6,20 @@
 use std::cell::Cell;
 
 use jointlin::ffi::point3d::{
-    jointlin_contact3d, jointlin_linearization3d, jointlin_linearize3d, jointlin_point3d_step,
-    jointlin_step3d, JOINTLIN_NORMAL_LINEAR, JOINTLIN_POINT3D_STATE_LEN,
+    jointlin_contact3d, jointlin_linearization3d, jointlin_linearization3d_matrix,
+    jointlin_linearize3d, jointlin_linearize3d_phasors, jointlin_point3d_step, jointlin_step3d,
+    JOINTLIN_DESCRIBE_INTEGRATED, JOINTLIN_DESCRIBE_TABULATED, JOINTLIN_NORMAL_LINEAR,
+    JOINTLIN_POINT3D_STATE_LEN,
 };
+
+use crate::solve::sweep::C64;
 
 use super::{check, law_code, CapiError};
 use crate::names::LawName;
 
 thread_local! {
     static POINT3D_STEPS: Cell<u64> = const { Cell::new(0) };
+    static PHASOR_CALLS: Cell<u64> = const { Cell::new(0) };
 }
 
 /// Doubles in the state of a three-direction point.
@@ -114,6 +119,40 @@ pub fn linearize3d(
     };
     check("jointlin_linearize3d", code)?;
     Ok(out)
+}
+
+/// `jointlin_linearize3d_phasors`: the point at the constant normal force `normal`
+/// (force) moving with the complex tangential amplitude `u` (length): first harmonic of
+/// the force t̂ = (K* + iωD*) û, K* and D* symmetric, row-major (force/length,
+/// force·time/length), the path's semi-axes and the energy per cycle (force·length).
+/// `tabulated`: the unit cell's table (microseconds) instead of its integration.
+pub fn linearize3d_phasors(
+    c: &Contact3,
+    normal: f64,
+    u: [C64; 2],
+    omega: f64,
+    tabulated: bool,
+) -> Result<jointlin_linearization3d_matrix, CapiError> {
+    PHASOR_CALLS.with(|n| n.set(n.get() + 1));
+    let contact = c.c();
+    let u_hat = [u[0].re, u[0].im, u[1].re, u[1].im];
+    let method = if tabulated {
+        JOINTLIN_DESCRIBE_TABULATED
+    } else {
+        JOINTLIN_DESCRIBE_INTEGRATED
+    };
+    let mut out = jointlin_linearization3d_matrix::default();
+    // SAFETY: contact, u_hat and out are valid locals.
+    let code = unsafe {
+        jointlin_linearize3d_phasors(&contact, normal, u_hat.as_ptr(), omega, method, &mut out)
+    };
+    check("jointlin_linearize3d_phasors", code)?;
+    Ok(out)
+}
+
+/// `jointlin_linearize3d_phasors` calls made on this thread so far.
+pub fn phasor_calls() -> u64 {
+    PHASOR_CALLS.with(|n| n.get())
 }
 
 /// `jointlin_point3d_step` calls made on this thread so far.

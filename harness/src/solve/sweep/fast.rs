@@ -24,6 +24,7 @@ use std::time::Instant;
 
 use super::anderson::Anderson;
 use super::bracket::Bracket;
+use super::fast_coupled::{correlation, rho_consistent, CoupledPoints, Lin2};
 use super::fast_update::{consistent, next_estimate, predict, updated_product};
 use super::krylov::Gmres;
 use super::posteriori::{self, Claim};
@@ -108,9 +109,14 @@ pub fn sweep(
                 .collect()
         })
         .collect();
-    // δ* per active point, only when macroslip is off (A = 0 gives δ* and k_T0).
+    // With coupled slip: the points' 2 × 2 describing functions (fast_coupled.rs).
+    let coupled = eff
+        .coupled_slip
+        .then(|| CoupledPoints::new(&tang, &samples));
+    // δ* per active point, only when macroslip is off or coupled slip reports A/δ*
+    // (A = 0 gives δ* and k_T0).
     let t0 = Instant::now();
-    let slip_limit: Vec<f64> = if eff.macroslip {
+    let slip_limit: Vec<f64> = if eff.macroslip && coupled.is_none() {
         Vec::new()
     } else {
         tang.iter()
@@ -139,6 +145,13 @@ pub fn sweep(
     let mut hist: Vec<(f64, Vec<f64>)> = Vec::new();
     let mut a_star = vec![0.0; m];
     let mut kappa0 = vec![[C64::new(0.0, 0.0); 2]; na];
+    // Coupled slip: per point the phase cosine ρ (estimate and computed), the off-diagonal
+    // of Δ (Δ₁₂ = Δ₂₁; the reference κ₀ is diagonal) and the describing function.
+    let nc = if coupled.is_some() { na } else { 0 };
+    let mut rho = vec![0.0; nc];
+    let mut rho_star = vec![0.0; nc];
+    let mut delta_off = vec![C64::new(0.0, 0.0); nc];
+    let mut lin2 = vec![Lin2::default(); nc];
     let active = setup.active.clone();
     let row = |j: usize| {
         if j < mc {
@@ -155,11 +168,40 @@ pub fn sweep(
     let zero_floor = |a: &[f64]| ZERO_AMP_REL * a.iter().fold(0.0f64, |x, &y| x.max(y));
 
     let linearize_all = |a: &[f64],
+                         rho: &[f64],
                          omega: f64,
                          lin: &mut [Linearized],
+                         lin2: &mut [Lin2],
                          caps: &mut usize|
      -> Result<(), capi::CapiError> {
         let floor = zero_floor(a);
+        if let Some(cp) = &coupled {
+            for q in 0..na {
+                let mut amp = [a[2 * q], a[2 * q + 1]].map(|v| if v < floor { 0.0 } else { v });
+                let major = amp[0].max(amp[1]);
+                if !eff.macroslip && major > slip_limit[q] {
+                    amp = amp.map(|v| v * slip_limit[q] / major);
+                    *caps += 1;
+                }
+                let l = cp.linearize(q, amp, rho[q], omega)?;
+                lin2[q] = l;
+                // The diagonal as the thesis model's per-direction record (outputs, the
+                // factorized reference); the energy is the point's, split evenly.
+                for d in 0..2 {
+                    let (k, dd) = (l.k[d][d], l.d[d][d]);
+                    lin[2 * q + d] = Linearized {
+                        k_star: k,
+                        d_star: dd,
+                        eta: if k > 0.0 { omega * dd / k } else { 0.0 },
+                        energy_per_cycle: 0.5 * l.energy,
+                        slip_limit: slip_limit[q],
+                        amplitude_ratio: amp[d] / slip_limit[q],
+                        regime: l.regime,
+                    };
+                }
+            }
+            return Ok(());
+        }
         for j in 0..mc {
             let mut amp = if a[j] < floor { 0.0 } else { a[j] };
             if !eff.macroslip && amp > slip_limit[j / 2] {
@@ -181,6 +223,17 @@ pub fn sweep(
             ks[q] = capi::linearize_cubic(sp.stiffness, sp.cubic, amp)?;
         }
         Ok(())
+    };
+    // κ = k* + iωd* of entry (i, j) of a coupled point's matrices.
+    let kappa_of_2 = |l: &Lin2, i: usize, j: usize, omega: f64| {
+        C64::new(
+            l.k[i][j],
+            if eff.contact_damping {
+                omega * l.d[i][j]
+            } else {
+                0.0
+            },
+        )
     };
     let kappa_of = |l: &Linearized, omega: f64| {
         C64::new(
@@ -207,6 +260,7 @@ pub fn sweep(
                         res.push_failed(&e, nout, opts.point_results.then_some(p.contacts.len()));
                         hist.clear();
                         a.iter_mut().for_each(|v| *v = it.initial_amplitude);
+                        rho.iter_mut().for_each(|v| *v = 0.0);
                         continue 'freqs;
                     }
                 }
@@ -221,7 +275,14 @@ pub fn sweep(
         let mut lin_fresh = false;
         if m > 0 {
             let t = Instant::now();
-            per_freq!(linearize_all(&a, omega, &mut lin, &mut res.macroslip_caps));
+            per_freq!(linearize_all(
+                &a,
+                &rho,
+                omega,
+                &mut lin,
+                &mut lin2,
+                &mut res.macroslip_caps
+            ));
             res.time("linearization (C API)", t);
             let t = Instant::now();
             per_freq!(linearize_springs(&a, &mut ks));
@@ -288,7 +349,14 @@ pub fn sweep(
                 iterations += 1;
                 if !lin_fresh {
                     let t = Instant::now();
-                    per_freq!(linearize_all(&a, omega, &mut lin, &mut res.macroslip_caps));
+                    per_freq!(linearize_all(
+                        &a,
+                        &rho,
+                        omega,
+                        &mut lin,
+                        &mut lin2,
+                        &mut res.macroslip_caps
+                    ));
                     res.time("linearization (C API)", t);
                     let t = Instant::now();
                     per_freq!(linearize_springs(&a, &mut ks));
@@ -304,17 +372,30 @@ pub fn sweep(
                     };
                     delta[j] = (now - reference) * weight(j);
                 }
+                for (q, l) in lin2.iter().enumerate() {
+                    delta_off[q] = kappa_of_2(l, 0, 1, omega) * area[q];
+                }
                 if krylov {
                     let s0 = &setup.s;
                     // ‖S₀ + BᵀΔB‖₂ ≤ ‖S₀‖₂ + Σⱼ |Δⱼ|‖Bⱼ‖₂².
+                    // Coupled: ‖B₁ᵀΔ₁₂B₂ + B₂ᵀΔ₁₂B₁‖₂ ≤ 2|Δ₁₂|‖B₁‖₂‖B₂‖₂.
                     let anorm = s0_norm
                         + delta
                             .iter()
                             .zip(&row_norm2)
                             .map(|(d, b2)| d.norm() * b2)
+                            .sum::<f64>()
+                        + delta_off
+                            .iter()
+                            .enumerate()
+                            .map(|(q, d)| {
+                                2.0 * d.norm() * (row_norm2[2 * q] * row_norm2[2 * q + 1]).sqrt()
+                            })
                             .sum::<f64>();
                     let stats = gmres.solve(
-                        &mut |xv: &[C64], y: &mut [C64]| updated_product(s0, &delta, &row, xv, y),
+                        &mut |xv: &[C64], y: &mut [C64]| {
+                            updated_product(s0, &delta, &delta_off, &row, xv, y)
+                        },
                         &mut |xv: &[C64], y: &mut [C64]| num.solve_into(xv, y),
                         &p.excitation,
                         &mut u,
@@ -330,9 +411,16 @@ pub fn sweep(
                         r[j] = row(j).iter().map(|&(i, w)| u[i] * w).sum();
                     }
                 } else {
+                    // I + GΔ; with coupled slip Δ has the 2 × 2 block of each point.
                     for jc in 0..m {
                         for k in 0..m {
                             work[k + m * jc] = rec.g[k + m * jc] * delta[jc];
+                        }
+                        if jc < nc * 2 {
+                            let partner = jc ^ 1;
+                            for k in 0..m {
+                                work[k + m * jc] += rec.g[k + m * partner] * delta_off[jc / 2];
+                            }
                         }
                         work[jc + m * jc] += C64::new(1.0, 0.0);
                     }
@@ -344,16 +432,26 @@ pub fn sweep(
                 for j in 0..m {
                     a_star[j] = r[j].norm();
                 }
+                for (q, v) in rho_star.iter_mut().enumerate() {
+                    *v = correlation(r[2 * q], r[2 * q + 1]);
+                }
                 let floor = ZERO_AMP_REL
                     * a.iter()
                         .chain(&a_star)
                         .fold(f64::MIN_POSITIVE, |x, &y| x.max(y));
-                converged = consistent(&a, &a_star, floor, it.tolerance);
+                converged = consistent(&a, &a_star, floor, it.tolerance)
+                    && rho_consistent(&a_star, &rho, &rho_star, it.tolerance);
                 res.time("condensed iterations", t);
                 if converged {
                     break;
                 }
-                a = next_estimate(&a, &a_star, floor, &mut acc, &mut bracket);
+                (a, rho) = next_estimate(
+                    (&a, &a_star),
+                    (&rho, &rho_star),
+                    floor,
+                    &mut acc,
+                    &mut bracket,
+                );
                 if a.iter().any(|v| !v.is_finite()) {
                     break;
                 }
@@ -363,11 +461,10 @@ pub fn sweep(
             }
             // Kept if the cold start does not converge either.
             first = Some((
-                a.clone(),
-                a_star.clone(),
+                (a.clone(), a_star.clone(), rho.clone()),
                 r.clone(),
-                delta.clone(),
-                lin.clone(),
+                (delta.clone(), delta_off.clone()),
+                (lin.clone(), lin2.clone()),
                 ks.clone(),
                 u.clone(),
                 gmres_ok,
@@ -375,14 +472,32 @@ pub fn sweep(
             cold = true;
             budget += it.max_passes;
             a.iter_mut().for_each(|v| *v = it.initial_amplitude);
+            rho.iter_mut().for_each(|v| *v = 0.0);
             acc = Anderson::new(DEPTH);
             bracket = Bracket::new();
             lin_fresh = false;
         }
         if let (false, Some(f)) = (converged, first) {
-            (a, a_star, r, delta, lin, ks, u, gmres_ok) = f;
+            (
+                (a, a_star, rho),
+                r,
+                (delta, delta_off),
+                (lin, lin2),
+                ks,
+                u,
+                gmres_ok,
+            ) = f;
         }
 
+        // (ΔBû)ⱼ: the diagonal, and with coupled slip the point's off-diagonal.
+        let delta_r = |j: usize| {
+            let off = if j < 2 * nc {
+                delta_off[j / 2] * r[j ^ 1]
+            } else {
+                C64::new(0.0, 0.0)
+            };
+            delta[j] * r[j] + off
+        };
         // Independent check of a converged frequency (posteriori.rs); the condensed path
         // forms x = S₀⁻¹(f̂ − Bᵀ Δ r) for it (one more solve).
         let mut check = None;
@@ -391,7 +506,7 @@ pub fn sweep(
             if !krylov {
                 x_rhs.copy_from_slice(&p.excitation);
                 for j in 0..m {
-                    let c = delta[j] * r[j];
+                    let c = delta_r(j);
                     for &(i, w) in row(j) {
                         x_rhs[i] -= c * w;
                     }
@@ -407,8 +522,11 @@ pub fn sweep(
                 })
                 .collect();
             let amplitudes: Vec<[f64; 2]> = (0..na).map(|q| [a[2 * q], a[2 * q + 1]]).collect();
+            let kappa_off: Vec<C64> = lin2.iter().map(|l| kappa_of_2(l, 0, 1, omega)).collect();
             let claim = Claim {
                 kappa: &kappa,
+                kappa_off: &kappa_off,
+                correlation: &rho,
                 amplitudes: &amplitudes,
                 caps: &vec![f64::INFINITY; na],
                 spring_k: &ks,
@@ -440,7 +558,7 @@ pub fn sweep(
                 .map(|k| {
                     rec.y0[k]
                         - (0..m)
-                            .map(|j| rec.o[k + nout * j] * delta[j] * r[j])
+                            .map(|j| rec.o[k + nout * j] * delta_r(j))
                             .sum::<C64>()
                 })
                 .collect()

@@ -44,15 +44,16 @@ pub fn consistent(a: &[f64], a_star: &[f64], floor: f64, rtol: f64) -> bool {
     })
 }
 
-/// The next estimate from `a` and its image `a_star` (amplitudes below `floor` are
-/// round-off).
+/// The next estimate from the amplitudes `a` and their image `a_star` (below `floor`:
+/// round-off) and, with coupled slip, the points' phase cosines ρ and their image (empty
+/// otherwise), which ride along in the Anderson vector (clamped to [−1, 1]).
 pub fn next_estimate(
-    a: &[f64],
-    a_star: &[f64],
+    (a, a_star): (&[f64], &[f64]),
+    (rho, rho_star): (&[f64], &[f64]),
     floor: f64,
     acc: &mut Anderson,
     bracket: &mut Bracket,
-) -> Vec<f64> {
+) -> (Vec<f64>, Vec<f64>) {
     // A direction whose computed amplitude is round-off (below the floor) is
     // not excited: it leaves the update (constant 0 in x and g, so it cannot
     // tie the Anderson columns to the moving floor) and is handed on as
@@ -66,36 +67,42 @@ pub fn next_estimate(
         .zip(&excited)
         .map(|(v, e)| log(v, e))
         .collect();
-    let mut next: Vec<f64> = if a.len() == 1 {
-        vec![bracket.next(xs[0], gs[0]).exp()]
+    let n = a.len();
+    let (mut next, rho_next): (Vec<f64>, Vec<f64>) = if n == 1 && rho.is_empty() {
+        (vec![bracket.next(xs[0], gs[0]).exp()], Vec::new())
     } else {
         // Anderson extrapolates; keep each step within a decade of the bracket
         // [min(a, a*), max(a, a*)] (MAX_EXTRAPOLATION).
-        acc.next(&xs, &gs)
+        let x: Vec<f64> = xs.iter().chain(rho).copied().collect();
+        let g: Vec<f64> = gs.iter().chain(rho_star).copied().collect();
+        let step = acc.next(&x, &g);
+        let amps = step[..n]
             .iter()
             .zip(xs.iter().zip(&gs))
             .map(|(v, (x, g))| {
                 v.clamp(x.min(*g) - MAX_EXTRAPOLATION, x.max(*g) + MAX_EXTRAPOLATION)
                     .exp()
             })
-            .collect()
+            .collect();
+        (amps, step[n..].iter().map(|v| v.clamp(-1.0, 1.0)).collect())
     };
     for (v, _) in next.iter_mut().zip(&excited).filter(|(_, e)| !**e) {
         *v = 0.0;
     }
-    next
+    (next, rho_next)
 }
 
-/// y = (S₀ + Σⱼ Bⱼᵀ Δⱼ Bⱼ) x: the dynamic stiffness with the contact update `delta` on
-/// the rows `row(j)` of B, without forming it.
+/// y = (S₀ + Σⱼ Bⱼᵀ Δⱼ Bⱼ + Σ_q (B₂q ᵀ Δ'_q B₂q₊₁ + B₂q₊₁ᵀ Δ'_q B₂q)) x: the dynamic
+/// stiffness with the contact update `delta` on the rows `row(j)` of B and, with coupled
+/// slip, each point's off-diagonal `delta_off` (empty otherwise), without forming it.
 pub fn updated_product<'a>(
     s0: &Csc<C64>,
     delta: &[C64],
+    delta_off: &[C64],
     row: &impl Fn(usize) -> &'a [(usize, f64)],
     xv: &[C64],
     y: &mut [C64],
 ) {
-    // y = S₀ x + Σⱼ Bⱼᵀ Δⱼ (Bⱼ x)
     y.iter_mut().for_each(|v| *v = C64::new(0.0, 0.0));
     let pt = &s0.pattern;
     for col in 0..pt.n {
@@ -104,11 +111,16 @@ pub fn updated_product<'a>(
             y[pt.row_idx[k] as usize] += s0.values[k] * xc;
         }
     }
+    let bx: Vec<C64> = (0..delta.len())
+        .map(|j| row(j).iter().map(|&(i, w)| xv[i] * w).sum())
+        .collect();
     for (j, d) in delta.iter().enumerate() {
-        let bx: C64 = row(j).iter().map(|&(i, w)| xv[i] * w).sum();
-        let dbx = d * bx;
+        let mut c = d * bx[j];
+        if j < 2 * delta_off.len() {
+            c += delta_off[j / 2] * bx[j ^ 1];
+        }
         for &(i, w) in row(j) {
-            y[i] += dbx * w;
+            y[i] += c * w;
         }
     }
 }

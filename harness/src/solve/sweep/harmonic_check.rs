@@ -71,7 +71,7 @@ impl FeBalance<'_, '_> {
             };
             num.solve_into(&rhs, &mut x)
                 .map_err(|source| SweepError::Umfpack { freq, source })?;
-            let eq = posteriori::residual(self.setup, omega, &kref, &[], &x, &rhs);
+            let eq = posteriori::residual(self.setup, omega, (&kref, &[]), &[], &x, &rhs);
             res2 += eq.residual * eq.residual;
             load2 += eq.load * eq.load;
             eta = eta.max(eq.backward_error());

@@ -62,7 +62,8 @@ impl PointModel {
     }
 }
 
-/// The scene may ask for the effects only where they are computed: the harmonic balance,
+/// The scene may ask for the effects only where they are computed: the harmonic balance
+/// (or, for coupled slip alone, its first-order describing function in mode fast),
 /// interfaces with Masing's rule (the three-direction point's) and, for the normal load
 /// variation, a linear normal law (the point's stress form).
 pub fn check_effects(problem: &Problem, effects: &Effects, mode: Mode) -> Result<(), SweepError> {
@@ -70,7 +71,8 @@ pub fn check_effects(problem: &Problem, effects: &Effects, mode: Mode) -> Result
     if model.is_thesis() {
         return Ok(());
     }
-    if mode != Mode::HarmonicBalance {
+    let first_order = mode == Mode::Fast && !model.normal_load_variation;
+    if mode != Mode::HarmonicBalance && !first_order {
         return Err(SweepError::ContactEffectsNeedHarmonicBalance);
     }
     check_laws(problem, model)

@@ -14,6 +14,7 @@
 pub mod anderson;
 pub mod bracket;
 pub mod fast;
+mod fast_coupled;
 mod fast_update;
 pub mod harmonic;
 pub mod harmonic_check;
@@ -91,7 +92,7 @@ pub enum SweepError {
     CubicInHarmonicBalance,
     #[error("interfaces with `area_samples` are solved in mode fast only (the thesis store and the harmonic balance evaluate each point at its node)")]
     AreaSamplesNeedFastMode,
-    #[error("[effects] normal_load_variation and coupled_slip are computed by the harmonic balance only: set [iteration] mode = \"harmonic_balance\"")]
+    #[error("[effects] normal_load_variation is computed by the harmonic balance only, coupled_slip by the harmonic balance or, first order, by mode fast: set [iteration] mode = \"harmonic_balance\" (or \"fast\" for coupled_slip alone)")]
     ContactEffectsNeedHarmonicBalance,
     #[error("[effects] normal_load_variation and coupled_slip use the library's three-direction point: interface {interface:?} needs {needs}")]
     ContactEffectsLaw {

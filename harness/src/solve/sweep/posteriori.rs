@@ -94,6 +94,10 @@ impl Verdict {
 /// otherwise ∞); k* per cubic spring.
 pub struct Claim<'a> {
     pub kappa: &'a [[C64; 2]],
+    /// Coupled slip: κ₁₂ = κ₂₁ per point (per area) and the phase cosine ρ the
+    /// linearization used; both empty for the thesis's model.
+    pub kappa_off: &'a [C64],
+    pub correlation: &'a [f64],
     pub amplitudes: &'a [[f64; 2]],
     pub caps: &'a [f64],
     pub spring_k: &'a [f64],
@@ -104,12 +108,21 @@ pub fn check(setup: &Setup, omega: f64, claim: &Claim, x: &[C64], rtol: f64, ato
     let eq = residual(
         setup,
         omega,
-        claim.kappa,
+        (claim.kappa, claim.kappa_off),
         claim.spring_k,
         x,
         &setup.problem.excitation,
     );
     let mut consistency = 0.0f64;
+    // ρ by the sweep's test (fast_coupled::rho_consistent), twice its tolerance.
+    for (j, (rho, bx)) in claim.correlation.iter().zip(&eq.contact).enumerate() {
+        let [a1, a2] = claim.amplitudes[j];
+        let (lo, hi) = (a1.min(a2), a1.max(a2));
+        if hi > 0.0 {
+            let off = (rho - super::fast_coupled::correlation(bx[0], bx[1])).abs() * lo;
+            consistency = consistency.max(off / (2.0 * rtol * hi));
+        }
+    }
     for (j, bx) in eq.contact.iter().enumerate() {
         for d in 0..2 {
             let (a, b) = (claim.amplitudes[j][d], bx[d].norm().min(claim.caps[j]));
@@ -168,7 +181,7 @@ impl Equations {
 pub fn residual(
     setup: &Setup,
     omega: f64,
-    kappa: &[[C64; 2]],
+    (kappa, kappa_off): (&[[C64; 2]], &[C64]),
     spring_k: &[f64],
     x: &[C64],
     f: &[C64],
@@ -208,7 +221,7 @@ pub fn residual(
         s_norm += coef.norm() * row.iter().map(|&(_, w)| w * w).sum::<f64>();
         bx
     };
-    let contact = setup
+    let contact: Vec<[C64; 2]> = setup
         .active
         .iter()
         .enumerate()
@@ -219,6 +232,18 @@ pub fn residual(
         .collect();
     for (sp, &k) in p.cubic_springs.iter().zip(spring_k) {
         springs(&sp.row, C64::new(k - sp.stiffness, 0.0));
+    }
+    // Coupled slip: B₁ᵀ κ₁₂ B₂ x + B₂ᵀ κ₁₂ B₁ x per point.
+    for (j, k12) in kappa_off.iter().enumerate() {
+        let c = &p.contacts[setup.active[j]];
+        let coef = k12 * c.area;
+        for d in 0..2 {
+            for &(i, w) in &c.rows[1 + d] {
+                y[i].add(coef * w, contact[j][1 - d]);
+            }
+        }
+        let norm2 = |d: usize| c.rows[1 + d].iter().map(|&(_, w)| w * w).sum::<f64>();
+        s_norm += 2.0 * coef.norm() * (norm2(0) * norm2(1)).sqrt();
     }
     let norm = |v: &mut dyn Iterator<Item = C64>| v.map(|z| z.norm_sqr()).sum::<f64>().sqrt();
     let residual = norm(&mut y.iter().zip(f).map(|(yi, fi)| {
@@ -261,6 +286,8 @@ mod tests {
         let caps = vec![f64::INFINITY; amps.len()];
         let claim = |kappa, amplitudes| Claim {
             kappa,
+            kappa_off: &[],
+            correlation: &[],
             amplitudes,
             caps: &caps,
             spring_k: &[],

@@ -227,6 +227,8 @@ pub fn sweep(
                     slip_limit.clone()
                 };
                 let claim = Claim {
+                    kappa_off: &[],
+                    correlation: &[],
                     kappa: &kappa,
                     amplitudes: &amplitudes,
                     caps: &caps,
