@@ -12,7 +12,7 @@ use jointlin::ffi::point3d::{
     JOINTLIN_POINT3D_STATE_LEN,
 };
 
-use crate::solve::sweep::C64;
+use nalgebra::Complex;
 
 use super::{check, law_code, CapiError};
 use crate::names::LawName;
@@ -129,7 +129,7 @@ pub fn linearize3d(
 pub fn linearize3d_phasors(
     c: &Contact3,
     normal: f64,
-    u: [C64; 2],
+    u: [Complex<f64>; 2],
     omega: f64,
     tabulated: bool,
 ) -> Result<jointlin_linearization3d_matrix, CapiError> {

@@ -1,9 +1,11 @@
 //! `jointlin effects SCENE`: what the contact effects beyond the thesis change and cost
 //! on one scene (docs/contact3d.md §6). The scene's harmonic-balance sweep is run four
 //! times: the thesis's point model (two independent tangential directions at the static
-//! normal load), with `coupled_slip`, with `normal_load_variation` and with both; per
-//! variant the response peak of the first output, the dissipated power there and at its
-//! largest, the three-direction point's steps and the wall time.
+//! normal load), with `coupled_slip`, with `normal_load_variation` and with both; then
+//! first order (mode fast) with the thesis's model and with `coupled_slip` (the
+//! describing function of each point's ellipse). Per variant the response peak of the
+//! first output, the dissipated power there and at its largest, the three-direction
+//! point's steps and the wall time.
 
 mod report;
 
@@ -21,6 +23,8 @@ pub struct Variant {
     pub label: &'static str,
     pub normal_load_variation: bool,
     pub coupled_slip: bool,
+    /// Solved first order (mode fast) instead of by the harmonic balance.
+    pub first_order: bool,
     /// Frequency of the first output's largest amplitude (1/time) and that amplitude
     /// (length), from the parabola through the largest solved amplitude and its solved
     /// neighbours (the grid's point where it is at an end); `None` when none was solved.
@@ -58,12 +62,19 @@ pub enum EffectsError {
     },
 }
 
-/// The four variants in order: label, normal_load_variation, coupled_slip.
-pub const VARIANTS: [(&str, bool, bool); 4] = [
-    ("thesis: independent directions, static N", false, false),
-    ("coupled slip", false, true),
-    ("normal load variation", true, false),
-    ("both", true, true),
+/// The variants in order: label, normal_load_variation, coupled_slip, first order.
+pub const VARIANTS: [(&str, bool, bool, bool); 6] = [
+    (
+        "thesis: independent directions, static N",
+        false,
+        false,
+        false,
+    ),
+    ("coupled slip", false, true, false),
+    ("normal load variation", true, false, false),
+    ("both", true, true, false),
+    ("thesis, first order", false, false, true),
+    ("coupled slip, first order", false, true, true),
 ];
 
 /// Runs the scene's sweep with each variant (the scene's own `[effects]` choice of the
@@ -75,14 +86,15 @@ pub fn study(scene: &Scene, progress: &dyn Fn(&str)) -> Result<EffectsStudy, Eff
     }
     let mut output = None;
     let mut variants = Vec::with_capacity(VARIANTS.len());
-    for (label, normal, coupled) in VARIANTS {
+    for (label, normal, coupled, first_order) in VARIANTS {
         progress(&format!("{label} …"));
-        let s = with_point_model(scene, normal, coupled);
+        let s = with_point_model(scene, normal, coupled, first_order);
         let (r, steps, seconds) = measured(|| run(&s, Extras::default(), &|_, _, _| {}));
         let r = r.map_err(|source| EffectsError::Run { label, source })?;
         let first = r.problem.outputs.first().ok_or(EffectsError::NoOutput)?;
         output.get_or_insert_with(|| first.name.clone());
-        variants.push(variant(label, normal, coupled, r.main, seconds, steps));
+        let flags = (normal, coupled, first_order);
+        variants.push(variant(label, flags, r.main, seconds, steps));
     }
     Ok(EffectsStudy {
         scene: scene.file.clone(),
@@ -92,9 +104,18 @@ pub fn study(scene: &Scene, progress: &dyn Fn(&str)) -> Result<EffectsStudy, Eff
     })
 }
 
-/// `scene` with the point model (normal_load_variation, coupled_slip) in place of its own.
-pub fn with_point_model(scene: &Scene, normal_load_variation: bool, coupled_slip: bool) -> Scene {
+/// `scene` with the point model (normal_load_variation, coupled_slip) in place of its own,
+/// solved first order (mode fast) when `first_order`.
+pub fn with_point_model(
+    scene: &Scene,
+    normal_load_variation: bool,
+    coupled_slip: bool,
+    first_order: bool,
+) -> Scene {
     let mut s = scene.clone();
+    if first_order {
+        s.spec.iteration.mode = Mode::Fast;
+    }
     s.spec.effects = Effects {
         normal_load_variation,
         coupled_slip,
@@ -113,8 +134,7 @@ pub fn measured<T>(work: impl FnOnce() -> T) -> (T, u64, f64) {
 
 fn variant(
     label: &'static str,
-    normal_load_variation: bool,
-    coupled_slip: bool,
+    (normal_load_variation, coupled_slip, first_order): (bool, bool, bool),
     sweep: SweepResult,
     seconds: f64,
     point3d_steps: u64,
@@ -135,6 +155,7 @@ fn variant(
         label,
         normal_load_variation,
         coupled_slip,
+        first_order,
         peak: at_peak.map(|i| {
             let k = solved.iter().position(|&j| j == i).unwrap_or(0);
             match (k.checked_sub(1).map(|k| solved[k]), solved.get(k + 1)) {

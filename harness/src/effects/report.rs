@@ -18,6 +18,7 @@ pub fn csv(t: &EffectsStudy) -> String {
         "variant".to_string(),
         "normal_load_variation".into(),
         "coupled_slip".into(),
+        "first_order".into(),
         format!("peak_{}", fu.column),
         format!("peak_{}_amp_{}", t.output, u.length),
         format!("power_at_peak_{}", u.power),
@@ -35,6 +36,7 @@ pub fn csv(t: &EffectsStudy) -> String {
             v.label.to_string(),
             v.normal_load_variation.to_string(),
             v.coupled_slip.to_string(),
+            v.first_order.to_string(),
             f,
             a,
             format!("{:.10e}", v.power_at_peak),
@@ -54,7 +56,7 @@ pub fn markdown(t: &EffectsStudy) -> String {
     let length = &t.units.length;
     let power = format!("{}·{}/{}", t.units.force, length, t.units.time);
     let mut s = format!(
-        "`{}`, harmonic balance; peak of `{}`, changes against the thesis's point model (first row).\n\n",
+        "`{}`, harmonic balance (first-order rows: mode fast, no balance); peak of `{}`, changes against the thesis's point model (first row).\n\n",
         t.scene, t.output
     );
     let _ = writeln!(

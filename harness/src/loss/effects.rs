@@ -1,7 +1,8 @@
 //! `jointlin loss SCENE --effects A,…`: what the contact effects beyond the thesis
 //! change in the loss study (docs/contact3d.md §6). At the first reference point's torque
 //! the scene's harmonic-balance model is solved with each point model of
-//! [`crate::effects::VARIANTS`] (the thesis's, coupled slip, normal load variation, both);
+//! [`crate::effects::VARIANTS`] (the thesis's, coupled slip, normal load variation, both,
+//! and first order with the thesis's model and with coupled slip);
 //! per model and amplitude the resonance and the joint power loss there, and per model
 //! the three-direction point's steps and the wall time.
 
@@ -52,9 +53,9 @@ pub fn study(
         .ok_or_else(|| LossError::Spec("--effects needs a reference point".into()))?
         .torque;
     let mut rows = Vec::with_capacity(VARIANTS.len() * amplitudes.len());
-    for (label, normal, coupled) in VARIANTS {
+    for (label, normal, coupled, first_order) in VARIANTS {
         progress(&format!("{label} …"));
-        let s = with_point_model(scene, normal, coupled);
+        let s = with_point_model(scene, normal, coupled, first_order);
         let (got, point3d_steps, seconds) = measured(|| powers_at(&s, torque, amplitudes));
         let (got, _) = got?;
         rows.extend(got.iter().zip(amplitudes).map(|(g, &target)| EffectsRow {
@@ -80,7 +81,8 @@ pub fn markdown(scene: &Scene, rows: &[EffectsRow]) -> String {
     let fu = frequency_unit(&scene.spec.units);
     let (au, af, pu) = (&st.amplitude_unit, st.amplitude_factor, &st.power_unit);
     let mut s = format!(
-        "Contact effects in the loss study, `{}` ({}), harmonic balance, torque {torque} {}: \
+        "Contact effects in the loss study, `{}` ({}), harmonic balance (first-order rows: \
+         mode fast, no balance), torque {torque} {}: \
          resonance and joint power loss per point model, changes against the thesis's model \
          at the same amplitude.\n\n",
         scene.spec.title,

@@ -261,6 +261,19 @@ pub fn study(scene: &Scene, freq: Option<f64>, log: &dyn Fn(&str)) -> Result<Tra
             None,
         )?;
     }
+    if scene_model.coupled_slip {
+        // First order with the coupled element: the describing function of each point's
+        // ellipse (docs/contact3d.md §4), no harmonic balance.
+        let mut s = base.clone();
+        s.spec.iteration.mode = Mode::Fast;
+        s.spec.effects.normal_load_variation = false;
+        push_fd(
+            "coupled_first_order",
+            "first order with coupled_slip (describing function of the ellipse, tabulated)".into(),
+            &s,
+            None,
+        )?;
+    }
     let normal = harmonic(1, true);
     match check_effects(&problem, &normal.spec.effects, Mode::HarmonicBalance) {
         _ if !scene_model.is_thesis() => {}
