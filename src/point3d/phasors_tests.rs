@@ -3,25 +3,12 @@ use std::f64::consts::PI;
 use super::describing::Method;
 use super::phasors::{describe_phasors, ellipse};
 use super::table::TABLE_TOLERANCE;
+use super::tests::{contact, K_N, K_T, MU};
 use super::*;
 use crate::iterate::Complex64;
 
-const MU: f64 = 0.5;
-const K_T: f64 = 1000.0;
-const K_N: f64 = 2000.0;
 /// Normal force (force): x = μN/k_T0 = 1e-3 length for a Jenkins point.
 const N: f64 = 2.0;
-
-fn contact(tangential: Tangential3d) -> Contact3d {
-    Contact3d {
-        tangential,
-        mu: MU,
-        k_t0: K_T,
-        normal: NormalLaw::Linear {
-            stiffness_per_area: K_N,
-        },
-    }
-}
 
 /// û = e^{iθ₀} R(φ) (A₁, −iA₂): the ellipse of semi-axes A₁, A₂ turned by φ, started at
 /// phase θ₀.

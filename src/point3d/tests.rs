@@ -5,11 +5,12 @@ use crate::hysteresis::{Point, PointState, Rule};
 use crate::law::{Backbone, TangentialLaw};
 use std::f64::consts::PI;
 
-const MU: f64 = 0.5;
-const K_T: f64 = 1000.0;
-const K_N: f64 = 2000.0;
+pub(super) const MU: f64 = 0.5;
+pub(super) const K_T: f64 = 1000.0;
+pub(super) const K_N: f64 = 2000.0;
 
-fn contact(tangential: Tangential3d) -> Contact3d {
+/// A point with μ = 0.5, k_T0 = 1000 and a linear normal law k_N = 2000 (force form).
+pub(super) fn contact(tangential: Tangential3d) -> Contact3d {
     Contact3d {
         tangential,
         mu: MU,
