@@ -361,6 +361,16 @@ fn the_effects_study_runs_each_point_model() {
     assert!((p[1] / p[0] - 1.0).abs() > 0.05);
     assert!((p[2] / p[0] - 1.0).abs() < 1e-6 && (p[3] / p[1] - 1.0).abs() < 1e-6);
     assert!((p[5] / p[1] - 1.0).abs() < 2e-3, "{} {}", p[5], p[1]);
+    // A scene in mode fast gets the first-order variants only (the same numbers); mode
+    // thesis none.
+    let mut fast = s.clone();
+    fast.spec.iteration.mode = jointlin_harness::input::scene::Mode::Fast;
+    let tf = jointlin_harness::effects::study(&fast, &|_| {}).unwrap();
+    assert_eq!(tf.variants.len(), 2);
+    assert_eq!(tf.variants[1].power_at_peak, p[5]);
+    assert!(jointlin_harness::effects::markdown(&tf).contains("first order (mode fast)"));
+    fast.spec.iteration.mode = jointlin_harness::input::scene::Mode::Thesis;
+    assert!(jointlin_harness::effects::study(&fast, &|_| {}).is_err());
     let md = jointlin_harness::effects::markdown(&t);
     assert!(
         md.contains("| coupled slip |") && md.contains("power at peak [N·m/s]"),

@@ -156,9 +156,11 @@ fn effects(s: &Scene, st: &LossStudySpec, out: &Path, amplitudes: &[f64], quiet:
     }
     let lengths: Vec<f64> = amplitudes.iter().map(|a| a * st.amplitude_factor).collect();
     let t = std::time::Instant::now();
-    let rows = match with_progress(quiet, loss_effects::VARIANT_COUNT, |p| {
-        loss_effects::study(s, &lengths, p)
-    }) {
+    let rows = match with_progress(
+        quiet,
+        loss_effects::variant_count(s.spec.iteration.mode),
+        |p| loss_effects::study(s, &lengths, p),
+    ) {
         Ok(r) => r,
         Err(code) => return code,
     };

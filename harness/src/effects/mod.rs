@@ -3,7 +3,9 @@
 //! times: the thesis's point model (two independent tangential directions at the static
 //! normal load), with `coupled_slip`, with `normal_load_variation` and with both; then
 //! first order (mode fast) with the thesis's model and with `coupled_slip` (the
-//! describing function of each point's ellipse). Per variant the response peak of the
+//! describing function of each point's ellipse). A scene in mode fast gets the two
+//! first-order variants only (a balance of a large model can take hours). Per variant
+//! the response peak of the
 //! first output, the dissipated power there and at its largest, the three-direction
 //! point's steps and the wall time.
 
@@ -51,7 +53,7 @@ pub struct EffectsStudy {
 /// Why the study cannot run.
 #[derive(Debug, thiserror::Error)]
 pub enum EffectsError {
-    #[error("the effects are computed by the harmonic balance: set [iteration] mode = \"harmonic_balance\" in the scene")]
+    #[error("the effects are computed by the harmonic balance, coupled slip also first order: set [iteration] mode = \"harmonic_balance\" (all variants) or \"fast\" (the first-order ones) in the scene")]
     NotHarmonicBalance,
     #[error("the model has no outputs: the peak is that of the first output")]
     NoOutput,
@@ -81,12 +83,10 @@ pub const VARIANTS: [(&str, bool, bool, bool); 6] = [
 /// two switches is replaced; everything else is the scene's). `progress` gets a line per
 /// variant.
 pub fn study(scene: &Scene, progress: &dyn Fn(&str)) -> Result<EffectsStudy, EffectsError> {
-    if scene.spec.iteration.mode != Mode::HarmonicBalance {
-        return Err(EffectsError::NotHarmonicBalance);
-    }
+    let chosen = variants_for(scene.spec.iteration.mode).ok_or(EffectsError::NotHarmonicBalance)?;
     let mut output = None;
-    let mut variants = Vec::with_capacity(VARIANTS.len());
-    for (label, normal, coupled, first_order) in VARIANTS {
+    let mut variants = Vec::with_capacity(chosen.len());
+    for (label, normal, coupled, first_order) in chosen {
         progress(&format!("{label} …"));
         let s = with_point_model(scene, normal, coupled, first_order);
         let (r, steps, seconds) = measured(|| run(&s, Extras::default(), &|_, _, _| {}));
@@ -102,6 +102,25 @@ pub fn study(scene: &Scene, progress: &dyn Fn(&str)) -> Result<EffectsStudy, Eff
         output: output.unwrap_or_default(),
         variants,
     })
+}
+
+/// The variants a scene in `mode` is solved with: all of them in the harmonic balance,
+/// the first-order ones in mode fast, none in mode thesis.
+pub fn variants_for(mode: Mode) -> Option<Vec<(&'static str, bool, bool, bool)>> {
+    match mode {
+        Mode::HarmonicBalance => Some(VARIANTS.to_vec()),
+        Mode::Fast => Some(VARIANTS.iter().copied().filter(|v| v.3).collect()),
+        Mode::Thesis => None,
+    }
+}
+
+/// How the rows were solved, for the table's caption.
+pub fn solved_by(mode: Mode) -> &'static str {
+    if mode == Mode::Fast {
+        "first order (mode fast)"
+    } else {
+        "harmonic balance (first-order rows: mode fast, no balance)"
+    }
 }
 
 /// `scene` with the point model (normal_load_variation, coupled_slip) in place of its own,

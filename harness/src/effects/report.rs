@@ -6,6 +6,7 @@ use std::path::{Path, PathBuf};
 
 use super::EffectsStudy;
 use crate::input::scene::units::{frequency_unit, ColumnUnits};
+use crate::input::scene::Mode;
 use crate::report::svg::{frf_curves, FrfCurve};
 use crate::util::atomic;
 use crate::util::csv_table::CsvTable;
@@ -56,8 +57,14 @@ pub fn markdown(t: &EffectsStudy) -> String {
     let length = &t.units.length;
     let power = format!("{}·{}/{}", t.units.force, length, t.units.time);
     let mut s = format!(
-        "`{}`, harmonic balance (first-order rows: mode fast, no balance); peak of `{}`, changes against the thesis's point model (first row).\n\n",
-        t.scene, t.output
+        "`{}`, {}; peak of `{}`, changes against the thesis's point model (first row).\n\n",
+        t.scene,
+        if t.variants.iter().all(|v| v.first_order) {
+            super::solved_by(Mode::Fast)
+        } else {
+            super::solved_by(Mode::HarmonicBalance)
+        },
+        t.output
     );
     let _ = writeln!(
         s,

@@ -9,13 +9,15 @@
 use std::fmt::Write as _;
 
 use super::{powers_at, report::torque_unit, LossError};
-use crate::effects::{measured, with_point_model, VARIANTS};
+use crate::effects::{measured, solved_by, variants_for, with_point_model};
 use crate::input::scene::units::frequency_unit;
 use crate::input::scene::{Mode, Scene};
 use crate::util::csv_table::CsvTable;
 
-/// Point models solved (progress steps).
-pub const VARIANT_COUNT: usize = VARIANTS.len();
+/// Point models solved for a scene in `mode` (progress steps).
+pub fn variant_count(mode: Mode) -> usize {
+    variants_for(mode).map_or(0, |v| v.len())
+}
 
 /// One point model at one amplitude.
 #[derive(Debug, Clone)]
@@ -42,18 +44,18 @@ pub fn study(
     progress: &dyn Fn(&str),
 ) -> Result<Vec<EffectsRow>, LossError> {
     let st = scene.spec.loss_study.as_ref().ok_or(LossError::NoStudy)?;
-    if scene.spec.iteration.mode != Mode::HarmonicBalance {
+    let Some(chosen) = variants_for(scene.spec.iteration.mode) else {
         return Err(LossError::Spec(
-            "--effects: the effects are computed by the harmonic balance: set [iteration] mode = \"harmonic_balance\"".into(),
+            "--effects: the effects are computed by the harmonic balance, coupled slip also first order: set [iteration] mode = \"harmonic_balance\" (all point models) or \"fast\" (the first-order ones)".into(),
         ));
-    }
+    };
     let torque = st
         .reference
         .first()
         .ok_or_else(|| LossError::Spec("--effects needs a reference point".into()))?
         .torque;
-    let mut rows = Vec::with_capacity(VARIANTS.len() * amplitudes.len());
-    for (label, normal, coupled, first_order) in VARIANTS {
+    let mut rows = Vec::with_capacity(chosen.len() * amplitudes.len());
+    for (label, normal, coupled, first_order) in chosen {
         progress(&format!("{label} …"));
         let s = with_point_model(scene, normal, coupled, first_order);
         let (got, point3d_steps, seconds) = measured(|| powers_at(&s, torque, amplitudes));
@@ -81,12 +83,12 @@ pub fn markdown(scene: &Scene, rows: &[EffectsRow]) -> String {
     let fu = frequency_unit(&scene.spec.units);
     let (au, af, pu) = (&st.amplitude_unit, st.amplitude_factor, &st.power_unit);
     let mut s = format!(
-        "Contact effects in the loss study, `{}` ({}), harmonic balance (first-order rows: \
-         mode fast, no balance), torque {torque} {}: \
+        "Contact effects in the loss study, `{}` ({}), {}, torque {torque} {}: \
          resonance and joint power loss per point model, changes against the thesis's model \
          at the same amplitude.\n\n",
         scene.spec.title,
         scene.file,
+        solved_by(scene.spec.iteration.mode),
         torque_unit(scene)
     );
     let _ = writeln!(
@@ -153,6 +155,7 @@ pub fn csv(scene: &Scene, rows: &[EffectsRow]) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::effects::VARIANTS;
 
     #[test]
     fn each_amplitude_compares_its_models_with_the_thesis_model() {
