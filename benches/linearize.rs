@@ -1,6 +1,8 @@
 //! Per-call cost of the linearization: the default method and each quadrature option on
 //! the block of Appendix C (thesis rule) at microslip (A = 0.5δ*) and sliding (A = 2δ*).
-//! The error-vs-cost table is `cargo run --release --example accuracy_table`.
+//! The error-vs-cost table is `cargo run --release --example accuracy_table`. Also the
+//! coupled element's describing function for two complex amplitudes (docs/contact3d.md
+//! §4), integrated and tabulated, on a 32- and a 128-cell Mindlin–Masing point.
 
 use criterion::{black_box, criterion_group, criterion_main, BenchmarkId, Criterion};
 use jointlin::hysteresis::Rule;
@@ -70,5 +72,43 @@ fn c_api(c: &mut Criterion) {
     });
 }
 
-criterion_group!(benches, options, c_api);
+/// `describe_phasors` on an ellipse of semi-axes (1, 0.4) δ* turned by 0.5 rad: the
+/// integrated cells (the reference) against the table.
+fn coupled(c: &mut Criterion) {
+    use jointlin::iterate::Complex64;
+    use jointlin::law::hertz::NormalLaw;
+    use jointlin::point3d::describing::Method as Cells;
+    use jointlin::point3d::phasors::describe_phasors;
+    use jointlin::point3d::{Contact3d, Tangential3d};
+    let delta_star = 1.5 * 0.6 / 1282.7;
+    let (s, co) = 0.5f64.sin_cos();
+    let (a1, a2) = (delta_star, 0.4 * delta_star);
+    let u = [
+        Complex64::new(a1 * co, a2 * s),
+        Complex64::new(a1 * s, -a2 * co),
+    ];
+    let mut group = c.benchmark_group("linearize3d_phasors");
+    group.sample_size(10);
+    for cells in [32, 128] {
+        let contact = Contact3d {
+            tangential: Tangential3d::MindlinMasing { cells },
+            mu: 0.3,
+            k_t0: 1282.7,
+            normal: NormalLaw::Linear {
+                stiffness_per_area: 1e5,
+            },
+        };
+        for (name, method) in [
+            ("integrated", Cells::Integrated),
+            ("tabulated", Cells::Tabulated),
+        ] {
+            group.bench_with_input(BenchmarkId::new(name, cells), &u, |b, u| {
+                b.iter(|| describe_phasors(&contact, 2.0, black_box(*u), 1.3, method).unwrap())
+            });
+        }
+    }
+    group.finish();
+}
+
+criterion_group!(benches, options, c_api, coupled);
 criterion_main!(benches);
