@@ -195,7 +195,11 @@ pub fn sweep(
                         eta: if k > 0.0 { omega * dd / k } else { 0.0 },
                         energy_per_cycle: 0.5 * l.energy,
                         slip_limit: slip_limit[q],
-                        amplitude_ratio: amp[d] / slip_limit[q],
+                        amplitude_ratio: if slip_limit[q] > 0.0 {
+                            amp[d] / slip_limit[q]
+                        } else {
+                            0.0
+                        },
                         regime: l.regime,
                     };
                 }
