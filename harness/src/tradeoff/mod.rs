@@ -383,9 +383,20 @@ pub fn study(scene: &Scene, freq: Option<f64>, log: &dyn Fn(&str)) -> Result<Tra
         reference,
     ));
     let nref = all.len() - 1;
+    // A time-domain rung that stops (e.g. Newton at a coarse step) is reported as such,
+    // not as a number; only the reference must reach the periodic state.
+    let mut stopped = Vec::new();
     for (k, (label, s)) in all.into_iter().enumerate() {
         log(&label);
-        let (r, secs) = td(&base, &s)?;
+        let (r, secs) = match td(&base, &s) {
+            Ok(v) => v,
+            Err(e) if k != nref => {
+                log(&format!("{label}: stopped: {e}"));
+                stopped.push(format!("{label}: stopped ({e})"));
+                continue;
+            }
+            Err(e) => return Err(e),
+        };
         let label = format!(
             "{label} ({} cycles × {} steps)",
             r.cycles, r.steps_per_cycle
@@ -411,7 +422,8 @@ pub fn study(scene: &Scene, freq: Option<f64>, log: &dyn Fn(&str)) -> Result<Tra
             0.0
         };
     }
-    let summary = ratios(&rungs);
+    let mut summary = ratios(&rungs);
+    summary.extend(stopped);
     Ok(Tradeoff {
         scene: scene.file.clone(),
         freq: f,
