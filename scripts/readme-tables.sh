@@ -14,7 +14,6 @@ declare -A commands=(
   [knife_graded_effects]="cargo run --release -q -p jointlin-harness --bin jointlin -- loss scenes/knife.toml --effects 12,15 --set 'interfaces.*.rule=masing' --out harness/assets/knife-graded-effects --quiet"
   [knife_mesh]="cargo run --release -q -p jointlin-harness --bin jointlin -- loss scenes/knife-coarse.toml --mesh-study 1,2,3 --out harness/assets/knife-mesh --quiet"
   [tradeoff_beams]="cargo run --release -q -p jointlin-harness --bin jointlin -- tradeoff scenes/three-beams-coarse.toml --out out/tradeoff-beams"
-  [tradeoff_oblique]="cargo run --release -q -p jointlin-harness --bin jointlin -- tradeoff scenes/three-beams-oblique.toml --set effects.coupled_slip=true --out out/tradeoff-oblique"
   [tradeoff_block]="cargo run --release -q -p jointlin-harness --bin jointlin -- tradeoff scenes/block-stick.toml --out out/tradeoff-block"
   [backbone_plot]="cargo run --release -q -p jointlin-harness --bin jointlin -- backbone scenes/jenkins-chain.toml --out harness/assets/backbone-chain 2>&1"
   [backbone_chain_h7]="cargo run --release -q -p jointlin-harness --bin jointlin -- backbone scenes/jenkins-chain.toml --harmonics 7 --amplitudes 0.02,20,300 --out harness/assets/backbone-chain-h7 2>&1"
@@ -35,7 +34,6 @@ declare -A commands=(
 declare -A plots=(
   [tradeoff_beams]="out/tradeoff-beams/tradeoff.svg docs/accuracy-three-beams.svg"
   [tradeoff_block]="out/tradeoff-block/tradeoff.svg docs/accuracy-block.svg"
-  [tradeoff_oblique]="out/tradeoff-oblique/tradeoff.svg docs/accuracy-oblique.svg"
   [three_beams_frf]="out/three-beams/frf.svg harness/assets/three-beams-frf.svg"
   [duffing_frf]="out/duffing/frf.svg harness/assets/duffing-frf.svg"
   [bolted_lap_frf]="out/bolted-lap/frf.svg harness/assets/bolted-lap-frf.svg; out/bolted-lap/contact_ratio_*.svg harness/assets/bolted-lap-contact-ratio.svg; out/bolted-lap/contact_energy_*.svg harness/assets/bolted-lap-contact-energy.svg"
@@ -44,7 +42,7 @@ declare -A plots=(
 # written): the block shows the message and the exit status instead of ending the script.
 may_stop=" backbone_fe_h7 "
 # Blocks whose command prints Markdown (the others are shown as terminal output).
-markdown=" contact_effects accuracy_table knife knife_graded_mesh knife_effects knife_graded_effects knife_mesh tradeoff_beams tradeoff_block tradeoff_oblique backbone_cost deck_stack deck_bench "
+markdown=" contact_effects accuracy_table knife knife_graded_mesh knife_effects knife_graded_effects knife_mesh tradeoff_beams tradeoff_block backbone_cost deck_stack deck_bench "
 files=(README.md docs/accuracy.md)
 # Copies each "from to" pair of a plots entry; a glob must match exactly one file.
 copy_plots() {
