@@ -111,13 +111,11 @@ pub fn updated_product<'a>(
             y[pt.row_idx[k] as usize] += s0.values[k] * xc;
         }
     }
-    let bx: Vec<C64> = (0..delta.len())
-        .map(|j| row(j).iter().map(|&(i, w)| xv[i] * w).sum())
-        .collect();
+    let bx = |j: usize| -> C64 { row(j).iter().map(|&(i, w)| xv[i] * w).sum() };
     for (j, d) in delta.iter().enumerate() {
-        let mut c = d * bx[j];
+        let mut c = d * bx(j);
         if j < 2 * delta_off.len() {
-            c += delta_off[j / 2] * bx[j ^ 1];
+            c += delta_off[j / 2] * bx(j ^ 1);
         }
         for &(i, w) in row(j) {
             y[i] += c * w;
