@@ -30,6 +30,8 @@ pub struct Card {
     pub params: Vec<(String, String)>,
     pub origin: Origin,
     pub data: Vec<DataLine>,
+    /// The file the data lines come from when it is not the keyword line's (`INPUT=`).
+    pub data_file: Option<String>,
 }
 
 impl Card {
@@ -75,135 +77,229 @@ impl Card {
         message: impl Into<String>,
     ) -> DeckError {
         Origin {
-            file: self.origin.file.clone(),
+            file: self
+                .data_file
+                .clone()
+                .unwrap_or_else(|| self.origin.file.clone()),
             line,
         }
         .error(kind, &self.name(), message)
     }
 }
 
+/// Most bytes read for one deck, all its `*INCLUDE`s and `INPUT=` files together
+/// (1 GiB: a million-node model's deck is some 100 MB; a device such as /dev/zero or a
+/// file included over and over stops here instead of filling the memory).
+pub const MAX_DECK_BYTES: u64 = 1 << 30;
+
+/// Most files opened for one deck (`*INCLUDE`s and `INPUT=` files): files that include
+/// each other several times over stop here instead of being read for hours.
+pub const MAX_DECK_FILES: usize = 10_000;
+
+/// What the reader has read so far, against [`MAX_DECK_BYTES`] and [`MAX_DECK_FILES`].
+#[derive(Default)]
+struct Lexer {
+    cards: Vec<Card>,
+    current: Option<Card>,
+    bytes: u64,
+    files: usize,
+}
+
 /// Reads the cards of the deck file `path`, following `*INCLUDE`s.
 pub fn read_file(path: &Path) -> Result<Vec<Card>, DeckError> {
-    let mut cards = Vec::new();
     let origin = Origin {
         file: path.display().to_string(),
         line: 0,
     };
-    let mut current = None;
-    lex_file(path, &origin, 0, &mut cards, &mut current)?;
-    cards.extend(current);
-    Ok(cards)
+    let mut lx = Lexer::default();
+    let text = lx.read(path, &origin, "")?;
+    let dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
+    lx.lex(&text, &origin.file, &dir, 0)?;
+    Ok(lx.finish())
 }
 
 /// Reads the cards of deck text `text` named `name` in messages; `*INCLUDE` paths are
 /// relative to `dir`.
 pub fn read_str(text: &str, name: &str, dir: &Path) -> Result<Vec<Card>, DeckError> {
-    let mut cards = Vec::new();
-    let mut current = None;
-    lex_text(text, name, dir, 0, &mut cards, &mut current)?;
-    cards.extend(current);
-    Ok(cards)
+    let mut lx = Lexer::default();
+    lx.bytes = text.len() as u64;
+    lx.lex(text, name, dir, 0)?;
+    Ok(lx.finish())
 }
 
-fn lex_file(
-    path: &Path,
-    from: &Origin,
-    depth: usize,
-    cards: &mut Vec<Card>,
-    current: &mut Option<Card>,
-) -> Result<(), DeckError> {
-    let bytes = std::fs::read(path).map_err(|e| {
-        from.error(
-            DeckErrorKind::Io,
-            "*INCLUDE",
-            format!("cannot read {}: {e}", path.display()),
-        )
-    })?;
-    let name = path.display().to_string();
-    let text = String::from_utf8(bytes).map_err(|e| {
-        Origin {
-            file: name.clone(),
-            line: 0,
+impl Lexer {
+    fn finish(mut self) -> Vec<Card> {
+        self.cards.extend(self.current.take());
+        self.cards
+    }
+
+    /// The text of `path`, read for the card at `from` (`keyword`, "" for the deck
+    /// itself), within the deck's byte and file budget.
+    fn read(&mut self, path: &Path, from: &Origin, keyword: &str) -> Result<String, DeckError> {
+        use std::io::Read as _;
+        self.files += 1;
+        if self.files > MAX_DECK_FILES {
+            return Err(from.error(
+                DeckErrorKind::BadValue,
+                keyword,
+                format!("more than {MAX_DECK_FILES} files read for one deck (files including each other over and over?)"),
+            ));
         }
-        .error(
-            DeckErrorKind::Syntax,
-            "",
-            format!("not UTF-8 text (byte {})", e.utf8_error().valid_up_to()),
-        )
-    })?;
-    let dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
-    lex_text(&text, &name, &dir, depth, cards, current)
-}
-
-fn lex_text(
-    text: &str,
-    name: &str,
-    dir: &Path,
-    depth: usize,
-    cards: &mut Vec<Card>,
-    current: &mut Option<Card>,
-) -> Result<(), DeckError> {
-    let mut lines = text.lines().enumerate().peekable();
-    while let Some((i, raw)) = lines.next() {
-        let line = raw.trim();
-        let origin = Origin {
-            file: name.to_string(),
-            line: i + 1,
+        let io = |e: std::io::Error| {
+            from.error(
+                DeckErrorKind::Io,
+                keyword,
+                format!("cannot read {}: {e}", path.display()),
+            )
         };
-        if line.starts_with("**") || line.is_empty() && current.is_none() {
-            continue;
+        let left = MAX_DECK_BYTES.saturating_sub(self.bytes);
+        let mut bytes = Vec::new();
+        std::fs::File::open(path)
+            .map_err(io)?
+            .take(left + 1)
+            .read_to_end(&mut bytes)
+            .map_err(io)?;
+        self.bytes += bytes.len() as u64;
+        if self.bytes > MAX_DECK_BYTES {
+            return Err(from.error(
+                DeckErrorKind::BadValue,
+                keyword,
+                format!(
+                    "{}: the deck and its files exceed {} MiB",
+                    path.display(),
+                    MAX_DECK_BYTES >> 20
+                ),
+            ));
         }
-        if let Some(rest) = line.strip_prefix('*') {
-            // Continuation: a keyword line ending with a comma goes on on the next line.
-            let mut head = rest.to_string();
-            while head.trim_end().ends_with(',') {
-                match lines.peek() {
-                    Some((_, next)) if !next.trim().starts_with('*') => {
-                        head.push_str(next.trim());
-                        lines.next();
+        String::from_utf8(bytes).map_err(|e| {
+            Origin {
+                file: path.display().to_string(),
+                line: 0,
+            }
+            .error(
+                DeckErrorKind::Syntax,
+                "",
+                format!("not UTF-8 text (byte {})", e.utf8_error().valid_up_to()),
+            )
+        })
+    }
+
+    fn lex(&mut self, text: &str, name: &str, dir: &Path, depth: usize) -> Result<(), DeckError> {
+        let mut lines = text.lines().enumerate().peekable();
+        while let Some((i, raw)) = lines.next() {
+            let line = raw.trim();
+            let origin = Origin {
+                file: name.to_string(),
+                line: i + 1,
+            };
+            if line.starts_with("**") || line.is_empty() && self.current.is_none() {
+                continue;
+            }
+            if let Some(rest) = line.strip_prefix('*') {
+                // Continuation: a keyword line ending with a comma goes on on the next line.
+                let mut head = rest.to_string();
+                while head.trim_end().ends_with(',') {
+                    match lines.peek() {
+                        Some((_, next)) if !next.trim().starts_with('*') => {
+                            head.push_str(next.trim());
+                            lines.next();
+                        }
+                        _ => break,
                     }
-                    _ => break,
                 }
-            }
-            let card = keyword_card(&head, origin)?;
-            if card.keyword == "INCLUDE" {
-                if depth >= MAX_INCLUDE_DEPTH {
-                    return Err(card.error(
-                        DeckErrorKind::BadValue,
-                        format!("more than {MAX_INCLUDE_DEPTH} nested includes (a file including itself?)"),
-                    ));
+                let card = keyword_card(&head, origin)?;
+                if card.keyword == "INCLUDE" {
+                    self.include(card, dir, depth)?;
+                } else {
+                    self.cards.extend(self.current.take());
+                    let input = card.param("INPUT").map(str::to_string);
+                    self.current = Some(card);
+                    if let Some(input) = input {
+                        self.input_data(&input, dir)?;
+                    }
                 }
-                let input = card.required("INPUT")?;
-                let path: PathBuf = dir.join(input.trim_matches('"'));
-                lex_file(&path, &card.origin, depth + 1, cards, current)?;
-            } else {
-                cards.extend(current.take());
-                *current = Some(card);
+                continue;
             }
-            continue;
-        }
-        match current.as_mut() {
-            Some(card) => {
-                let mut fields: Vec<String> =
-                    line.split(',').map(|f| f.trim().to_string()).collect();
-                if fields.len() > 1 && fields.last().is_some_and(|f| f.is_empty()) {
-                    fields.pop();
-                }
-                card.data.push(DataLine {
-                    line: i + 1,
-                    fields,
-                });
-            }
-            None => {
+            let Some(card) = self.current.as_mut() else {
                 return Err(origin.error(
                     DeckErrorKind::Syntax,
                     "",
                     format!("data line before the first keyword: {:?}", truncate(line)),
-                ))
+                ));
+            };
+            if card.param("INPUT").is_some() && card.keyword != "INCLUDE" {
+                return Err(origin.error(
+                    DeckErrorKind::Syntax,
+                    &card.name(),
+                    "a data line after a keyword whose data lines come from its INPUT= file",
+                ));
             }
+            card.data.push(data_line(i + 1, line));
         }
+        Ok(())
     }
-    Ok(())
+
+    /// `*INCLUDE, INPUT=file`: the file's lines in place of the card.
+    fn include(&mut self, card: Card, dir: &Path, depth: usize) -> Result<(), DeckError> {
+        if let Some((p, _)) = card.params.iter().find(|(p, _)| p != "INPUT") {
+            return Err(card.origin.error(
+                DeckErrorKind::Unsupported,
+                &format!("*INCLUDE, {p}="),
+                "parameter not supported (this reader implements INPUT)",
+            ));
+        }
+        if depth >= MAX_INCLUDE_DEPTH {
+            return Err(card.error(
+                DeckErrorKind::BadValue,
+                format!("more than {MAX_INCLUDE_DEPTH} nested includes (a file including itself?)"),
+            ));
+        }
+        let path: PathBuf = dir.join(card.required("INPUT")?.trim_matches('"'));
+        let text = self.read(&path, &card.origin, "*INCLUDE")?;
+        let inner = path.parent().map(Path::to_path_buf).unwrap_or_default();
+        self.lex(&text, &path.display().to_string(), &inner, depth + 1)
+    }
+
+    /// `*KEYWORD, INPUT=file` (other than `*INCLUDE`): the file's lines are the open
+    /// card's data lines (comments skipped; a keyword line there is an error).
+    fn input_data(&mut self, input: &str, dir: &Path) -> Result<(), DeckError> {
+        let card = self.current.as_ref().expect("input_data follows a card");
+        let from = card.origin.clone();
+        let keyword = card.name();
+        let path = dir.join(input.trim_matches('"'));
+        let text = self.read(&path, &from, &keyword)?;
+        let file = path.display().to_string();
+        let card = self.current.as_mut().expect("input_data follows a card");
+        for (i, raw) in text.lines().enumerate() {
+            let line = raw.trim();
+            if line.is_empty() || line.starts_with("**") {
+                continue;
+            }
+            if line.starts_with('*') {
+                return Err(Origin {
+                    file: file.clone(),
+                    line: i + 1,
+                }
+                .error(
+                    DeckErrorKind::Syntax,
+                    &keyword,
+                    "a keyword line in a file of data lines (INPUT=)",
+                ));
+            }
+            card.data.push(data_line(i + 1, line));
+        }
+        card.data_file = Some(file);
+        Ok(())
+    }
+}
+
+/// A data line's trimmed fields (a trailing comma gives no empty last field).
+fn data_line(line: usize, text: &str) -> DataLine {
+    let mut fields: Vec<String> = text.split(',').map(|f| f.trim().to_string()).collect();
+    if fields.len() > 1 && fields.last().is_some_and(|f| f.is_empty()) {
+        fields.pop();
+    }
+    DataLine { line, fields }
 }
 
 /// Splits `NAME, P1=V1, FLAG` into the upper-case keyword and parameters.
@@ -241,6 +337,7 @@ fn keyword_card(head: &str, origin: Origin) -> Result<Card, DeckError> {
         params,
         origin,
         data: Vec::new(),
+        data_file: None,
     })
 }
 

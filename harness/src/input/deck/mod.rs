@@ -6,13 +6,15 @@
 //! `GENERATE` ranges, flat decks and `*PART`/`*ASSEMBLY`/`*INSTANCE` decks (instances
 //! translated, their names prefixed `INSTANCE.`, their ids offset past the ids before
 //! them). Every error is `file:line: *KEYWORD: message` ([`DeckError`]); a keyword in
-//! neither [`SUPPORTED_KEYWORDS`] nor [`IGNORED_KEYWORDS`] is an error.
+//! neither [`keywords::KEYWORDS`] nor [`IGNORED_KEYWORDS`] is an error, and so is a
+//! parameter or a data field that [`keywords::KEYWORDS`] does not list for its keyword.
 
 pub mod check;
 pub mod config;
 pub mod error;
 pub mod gmsh;
 pub mod job;
+pub mod keywords;
 pub mod lexer;
 pub mod model;
 pub mod parse;
@@ -27,43 +29,6 @@ use std::path::Path;
 
 pub use error::{DeckError, DeckErrorKind, DeckWarning};
 pub use model::*;
-
-/// Keywords the reader understands (upper case, single spaces).
-pub const SUPPORTED_KEYWORDS: &[&str] = &[
-    "HEADING",
-    "NODE",
-    "ELEMENT",
-    "NSET",
-    "ELSET",
-    "SURFACE",
-    "MATERIAL",
-    "ELASTIC",
-    "DENSITY",
-    "DAMPING",
-    "SOLID SECTION",
-    "SURFACE INTERACTION",
-    "CONTACT PAIR",
-    "TIE",
-    "BOUNDARY",
-    "STEP",
-    "STATIC",
-    "FREQUENCY",
-    "STEADY STATE DYNAMICS",
-    "CLOAD",
-    "DLOAD",
-    "DSLOAD",
-    "NODE PRINT",
-    "NODE OUTPUT",
-    "OUTPUT",
-    "END STEP",
-    "PART",
-    "END PART",
-    "ASSEMBLY",
-    "END ASSEMBLY",
-    "INSTANCE",
-    "END INSTANCE",
-    "INCLUDE",
-];
 
 /// Output and print keywords read and skipped with a warning: they ask for results
 /// this code does not write.

@@ -36,6 +36,7 @@ pub(super) fn load_part(card: &Card) -> Result<bool, DeckError> {
             format!("AMPLITUDE={a}: a frequency-dependent load amplitude is not read (the data lines' values would be taken at every frequency)"),
         ));
     }
+    choice(card, "OP", &["MOD"], "MOD")?;
     let (re, im) = (card.flag("REAL"), card.flag("IMAGINARY"));
     if re && im {
         return Err(card.error(
@@ -44,6 +45,28 @@ pub(super) fn load_part(card: &Card) -> Result<bool, DeckError> {
         ));
     }
     Ok(im)
+}
+
+/// The value of parameter `name`, upper case, one of `allowed` (`default` when the
+/// card does not give it); another value is an error naming the ones implemented.
+pub(super) fn choice(
+    card: &Card,
+    name: &str,
+    allowed: &[&str],
+    default: &str,
+) -> Result<String, DeckError> {
+    let Some(v) = card.param(name) else {
+        return Ok(default.to_string());
+    };
+    let u = v.trim().to_ascii_uppercase();
+    if allowed.contains(&u.as_str()) {
+        return Ok(u);
+    }
+    Err(card.origin.error(
+        K::Unsupported,
+        &format!("{}, {name}=", card.name()),
+        format!("{name}={v}: this reader implements {}", allowed.join(", ")),
+    ))
 }
 
 pub(super) fn param_number(card: &Card, name: &str, default: f64) -> Result<f64, DeckError> {

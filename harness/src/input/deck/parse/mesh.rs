@@ -4,6 +4,7 @@ use super::*;
 
 impl Reader {
     pub(super) fn nodes(&mut self, card: &Card, scope: &Scope) -> Result<(), DeckError> {
+        let system = choice(card, "SYSTEM", &["R", "C", "S"], "R")?;
         let mut ids = Vec::new();
         for l in lines(card) {
             let f = &l.fields[0];
@@ -16,9 +17,13 @@ impl Reader {
                         format!("node id {:?} is not a positive integer", truncate(f)),
                     )
                 })?;
-            let mut x = [0.0; 3];
-            for c in 0..3 {
-                x[c] = opt_number(card, l, c + 1, "coordinate", 0.0)? + scope.translation[c];
+            let mut given = [0.0; 3];
+            for (c, v) in given.iter_mut().enumerate() {
+                *v = opt_number(card, l, c + 1, "coordinate", 0.0)?;
+            }
+            let mut x = cartesian(&system, given);
+            for (x, t) in x.iter_mut().zip(scope.translation) {
+                *x += t;
             }
             if self
                 .deck
@@ -137,6 +142,27 @@ impl Reader {
         Ok(())
     }
 
+    /// `*NSET, NSET=name, ELSET=set`: the nodes of the elements of `set` (no data lines).
+    fn nodes_of_elements(&self, card: &Card, scope: &Scope) -> Result<Vec<u64>, DeckError> {
+        if card.flag("GENERATE") || lines(card).next().is_some() {
+            return Err(card.error(
+                K::Syntax,
+                "ELSET= gives the members: no GENERATE and no data lines",
+            ));
+        }
+        let set = scope.name(card.required("ELSET")?);
+        let elements =
+            self.deck.element_sets.get(&set).ok_or_else(|| {
+                card.error(K::Undefined, format!("element set {set} is not defined"))
+            })?;
+        let mut ids = Vec::new();
+        for id in elements {
+            let e = &self.deck.elements[self.deck.element_index[id]];
+            ids.extend_from_slice(&e.nodes);
+        }
+        Ok(ids)
+    }
+
     pub(super) fn set(&mut self, card: &Card, scope: &Scope) -> Result<(), DeckError> {
         let (param, kind) = if card.keyword == "NSET" {
             ("NSET", Members::Nodes)
@@ -160,8 +186,12 @@ impl Reader {
             }
             None => scope.clone(),
         };
-        let data: Vec<DataLine> = lines(card).cloned().collect();
-        let ids = members(card, &data, kind, &inner, &self.instances, &self.deck)?;
+        let ids = if kind == Members::Nodes && card.param("ELSET").is_some() {
+            self.nodes_of_elements(card, &inner)?
+        } else {
+            let data: Vec<DataLine> = lines(card).cloned().collect();
+            members(card, &data, kind, &inner, &self.instances, &self.deck)?
+        };
         let sets = if kind == Members::Nodes {
             &mut self.deck.node_sets
         } else {
@@ -256,5 +286,23 @@ impl Reader {
             return Err(card.error(K::Duplicate, format!("surface {name} defined twice")));
         }
         Ok(())
+    }
+}
+
+/// Global Cartesian coordinates of a node given in `system` (Abaqus's `*NODE, SYSTEM=`):
+/// `R` (x, y, z); `C` cylindrical (r, θ, z), θ in degrees about z from x; `S` spherical
+/// (r, θ, φ), θ in degrees about z from x, φ in degrees from the x–y plane toward z.
+pub(super) fn cartesian(system: &str, v: [f64; 3]) -> [f64; 3] {
+    match system {
+        "C" => {
+            let (s, c) = v[1].to_radians().sin_cos();
+            [v[0] * c, v[0] * s, v[2]]
+        }
+        "S" => {
+            let (st, ct) = v[1].to_radians().sin_cos();
+            let (sp, cp) = v[2].to_radians().sin_cos();
+            [v[0] * cp * ct, v[0] * cp * st, v[0] * sp]
+        }
+        _ => v,
     }
 }

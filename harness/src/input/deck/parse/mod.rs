@@ -16,12 +16,13 @@ use std::collections::HashMap;
 use crate::fe::elements::ElementKind;
 
 use super::error::{DeckError, DeckErrorKind as K, DeckWarning, Origin};
+use super::keywords::{check_fields, check_params, keyword};
 use super::lexer::{parse_id, parse_number, truncate, Card, DataLine};
 use super::model::*;
 use super::sets::{add_to_set, members, InstanceOffsets, Members, Scope};
-use super::{IGNORED_KEYWORDS, SUPPORTED_KEYWORDS};
+use super::IGNORED_KEYWORDS;
 use fields::{
-    dof, face_label, frequency_range, lines, load_part, number, opt_number, param_number,
+    choice, dof, face_label, frequency_range, lines, load_part, number, opt_number, param_number,
 };
 
 /// Reader state between cards.
@@ -39,6 +40,9 @@ struct Reader {
 
 /// Builds the deck from its cards (see [`super::read`]).
 pub fn build(cards: Vec<Card>) -> Result<(Deck, Vec<DeckWarning>), DeckError> {
+    for card in &cards {
+        check_card(card)?;
+    }
     let mut r = Reader::default();
     let flat = Scope::default();
     let mut it = cards.into_iter();
@@ -87,6 +91,23 @@ pub fn build(cards: Vec<Card>) -> Result<(Deck, Vec<DeckWarning>), DeckError> {
     }
     super::check::check(&r.deck)?;
     Ok((r.deck, r.warnings))
+}
+
+/// Checks a card against the implemented keywords: an unknown keyword, a parameter
+/// its keyword does not implement or a data line with more fields than it reads is an
+/// error (output keywords the run ignores are not checked further).
+fn check_card(card: &Card) -> Result<(), DeckError> {
+    if IGNORED_KEYWORDS.contains(&card.keyword.as_str()) {
+        return Ok(());
+    }
+    let kw = keyword(&card.keyword).ok_or_else(|| {
+        card.error(
+            K::UnknownKeyword,
+            "keyword not supported (see the supported and ignored keyword lists)",
+        )
+    })?;
+    check_params(card, kw)?;
+    check_fields(card, kw)
 }
 
 impl Reader {
@@ -275,6 +296,7 @@ impl Reader {
                     None => None,
                     Some(_) => Some(param_number(card, "POSITION TOLERANCE", 0.0)?),
                 };
+                choice(card, "ADJUST", &["YES", "NO"], "YES")?;
                 for l in lines(card) {
                     let [slave, master] = self.surface_pair(card, l, scope)?;
                     self.deck.ties.push(Tie {
@@ -291,10 +313,7 @@ impl Reader {
                 if self.step.is_some() {
                     return Err(card.error(K::Syntax, "*STEP inside a step (missing *END STEP?)"));
                 }
-                if card
-                    .param("NLGEOM")
-                    .is_some_and(|v| v.eq_ignore_ascii_case("YES"))
-                {
+                if choice(card, "NLGEOM", &["NO", "YES"], "NO")? == "YES" {
                     return Err(card.error(
                         K::Unsupported,
                         "NLGEOM=YES: the model is geometrically linear",
@@ -417,11 +436,10 @@ impl Reader {
                 );
             }
             _ => {
-                debug_assert!(!SUPPORTED_KEYWORDS.contains(&kw), "{kw} has no handler");
                 return Err(card.error(
-                    K::UnknownKeyword,
-                    "keyword not supported (see the supported and ignored keyword lists)",
-                ));
+                    K::Unsupported,
+                    "listed as implemented but has no handler (a reader defect)",
+                ))
             }
         }
         Ok(())

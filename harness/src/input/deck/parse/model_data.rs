@@ -47,6 +47,13 @@ impl Reader {
                 m.density = Some(rho);
             }
             _ => {
+                if let Some(s) = card.param("STRUCTURAL") {
+                    return Err(card.origin.error(
+                        K::Unsupported,
+                        "*DAMPING, STRUCTURAL=",
+                        format!("STRUCTURAL={s}: structural (hysteretic) damping is not implemented; the run would be undamped where Abaqus damps"),
+                    ));
+                }
                 let (a, b) = (
                     param_number(card, "ALPHA", 0.0)?,
                     param_number(card, "BETA", 0.0)?,
@@ -139,6 +146,8 @@ impl Reader {
     }
 
     pub(super) fn boundary(&mut self, card: &Card, scope: &Scope) -> Result<(), DeckError> {
+        choice(card, "OP", &["MOD"], "MOD")?;
+        choice(card, "TYPE", &["DISPLACEMENT"], "DISPLACEMENT")?;
         let mut out = Vec::new();
         for l in lines(card) {
             let target = self.node_target(card, l, scope)?;

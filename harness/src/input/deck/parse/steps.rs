@@ -9,6 +9,18 @@ impl Reader {
         let procedure = match card.keyword.as_str() {
             "STATIC" => Procedure::Static,
             "FREQUENCY" => {
+                choice(
+                    card,
+                    "EIGENSOLVER",
+                    &["LANCZOS", "SUBSPACE", "AMS"],
+                    "LANCZOS",
+                )?;
+                choice(
+                    card,
+                    "NORMALIZATION",
+                    &["DISPLACEMENT", "MASS"],
+                    "DISPLACEMENT",
+                )?;
                 let l = first
                     .ok_or_else(|| card.error(K::Syntax, "needs a data line (number of modes)"))?;
                 let f = l.fields[0].as_str();
@@ -33,6 +45,7 @@ impl Reader {
                         "only DIRECT steady-state dynamics (not modal)",
                     ));
                 }
+                choice(card, "INTERVAL", &["RANGE"], "RANGE")?;
                 let scale = match card
                     .param("FREQUENCY SCALE")
                     .map(|s| s.to_ascii_uppercase())
