@@ -121,8 +121,10 @@ pub fn read_file(path: &Path) -> Result<Vec<Card>, DeckError> {
 /// Reads the cards of deck text `text` named `name` in messages; `*INCLUDE` paths are
 /// relative to `dir`.
 pub fn read_str(text: &str, name: &str, dir: &Path) -> Result<Vec<Card>, DeckError> {
-    let mut lx = Lexer::default();
-    lx.bytes = text.len() as u64;
+    let mut lx = Lexer {
+        bytes: text.len() as u64,
+        ..Lexer::default()
+    };
     lx.lex(text, name, dir, 0)?;
     Ok(lx.finish())
 }
