@@ -65,19 +65,64 @@ pub fn pair_surfaces(
     Ok(p)
 }
 
-/// Position tolerance of contact pairs and untoleranced ties: 1e-6 × the model's size.
-pub fn default_tolerance(deck: &Deck) -> f64 {
-    let mut lo = [f64::INFINITY; 3];
-    let mut hi = [f64::NEG_INFINITY; 3];
-    for n in &deck.nodes {
-        for c in 0..3 {
-            lo[c] = lo[c].min(n.x[c]);
-            hi[c] = hi[c].max(n.x[c]);
+/// The tolerances of one contact pair or tie, judged on the faces it pairs (never on
+/// the whole model, whose far reference nodes would widen them).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PairTolerance {
+    /// A gap at or below this is round-off (length): [`ROUND_OFF`] × the master's typical
+    /// face diagonal; larger gaps are reported with their size.
+    pub round_off: f64,
+    /// The farthest a slave node may lie from the master surface and be paired
+    /// (length): a tie's `POSITION TOLERANCE`, else [`DEFAULT_POSITION`] × the master's
+    /// typical face diagonal (Abaqus's default for ties).
+    pub search: f64,
+}
+
+/// Round-off gap relative to the master's typical face diagonal.
+pub const ROUND_OFF: f64 = 1e-6;
+/// Default position tolerance relative to the master's typical face diagonal.
+pub const DEFAULT_POSITION: f64 = 0.05;
+
+/// The tolerances of a pair with master surface `master` (`position`: a tie's
+/// `POSITION TOLERANCE`, length).
+pub fn pair_tolerance(deck: &Deck, master: &str, position: Option<f64>) -> PairTolerance {
+    let h = typical_face_diagonal(deck, master);
+    PairTolerance {
+        round_off: ROUND_OFF * h,
+        search: position.unwrap_or(DEFAULT_POSITION * h),
+    }
+}
+
+/// The mean diagonal of the bounding boxes of surface `name`'s faces (length; 1 for a
+/// surface without faces, which pairing then refuses).
+fn typical_face_diagonal(deck: &Deck, name: &str) -> f64 {
+    let Some(SurfaceKind::Element(list)) = deck.surfaces.get(name).map(|s| &s.kind) else {
+        return 1.0;
+    };
+    let mut sum = 0.0;
+    let mut count = 0usize;
+    for &(id, face) in list {
+        let e = &deck.elements[deck.element_index[&id]];
+        let local = e.kind.face_nodes(face).unwrap_or(&[]);
+        let x: Vec<[f64; 3]> = local
+            .iter()
+            .filter_map(|&i| e.nodes.get(i).and_then(|&n| deck.node(n)))
+            .collect();
+        let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+        for p in &x {
+            for c in 0..3 {
+                lo[c] = lo[c].min(p[c]);
+                hi[c] = hi[c].max(p[c]);
+            }
+        }
+        let d = (0..3).map(|c| (hi[c] - lo[c]).powi(2)).sum::<f64>().sqrt();
+        if d.is_finite() {
+            sum += d;
+            count += 1;
         }
     }
-    let size = (0..3).map(|c| hi[c] - lo[c]).fold(0.0, f64::max);
-    1e-6 * if size.is_finite() && size > 0.0 {
-        size
+    if count > 0 && sum > 0.0 {
+        sum / count as f64
     } else {
         1.0
     }
@@ -113,9 +158,9 @@ pub fn summary(deck: &Deck, file: &str) -> Result<String, DeckError> {
         deck.materials.len(),
         deck.sections.len()
     );
-    let tol = default_tolerance(deck);
     let ids = |n: usize| deck.nodes[n].id;
     for c in &deck.contact_pairs {
+        let tol = pair_tolerance(deck, &c.master, None).search;
         let p = pair_surfaces(deck, &c.slave, &c.master, tol, &c.origin, "*CONTACT PAIR")?;
         let _ = writeln!(
             s,
@@ -134,7 +179,7 @@ pub fn summary(deck: &Deck, file: &str) -> Result<String, DeckError> {
             deck,
             &t.slave,
             &t.master,
-            t.position_tolerance.unwrap_or(tol),
+            pair_tolerance(deck, &t.master, t.position_tolerance).search,
             &t.origin,
             "*TIE",
         )?;

@@ -15,6 +15,8 @@
 mod loads;
 mod mesh;
 
+use std::collections::HashMap;
+
 use nalgebra::{Complex, Matrix3};
 
 use super::build::material_damping;
@@ -23,8 +25,9 @@ use crate::fe::assembly::assemble_couplings;
 use crate::fe::pair_blocks::Coupling;
 use crate::fe::pairing::{PairedNode, Pairing};
 use crate::input::deck::job::DeckJob;
-use crate::input::deck::summary::{default_tolerance, pair_surfaces};
+use crate::input::deck::summary::{self, pair_surfaces, pair_tolerance};
 use crate::input::deck::Deck;
+use crate::input::deck::DeckErrorKind;
 use crate::input::scene::Scene;
 
 /// Tie penalty: each tied slave node is held to its master face by a spring
@@ -82,6 +85,28 @@ fn unmatched(deck: &Deck, what: &str, p: &Pairing) -> Option<String> {
         .map(|r| format!("{what}: {r}; they are left out"))
 }
 
+/// Slave nodes off the master surface by more than `round_off` (length), as a warning
+/// line naming how many, the largest gap and its node, and what the run makes of it.
+fn gaps(
+    deck: &Deck,
+    at: &str,
+    p: &Pairing,
+    round_off: f64,
+    length: &str,
+    taken: &str,
+) -> Option<String> {
+    let off: Vec<&PairedNode> = p.nodes.iter().filter(|n| n.gap.abs() > round_off).collect();
+    let worst = off
+        .iter()
+        .max_by(|a, b| a.gap.abs().total_cmp(&b.gap.abs()))?;
+    Some(format!(
+        "{at}: {} slave nodes lie off the master surface, up to {:e} {length} (node {}); {taken}",
+        off.len(),
+        worst.gap.abs(),
+        deck.nodes[worst.slave].id
+    ))
+}
+
 /// Builds the problem of a deck for `scene` (its effects and outputs).
 pub fn build(scene: &Scene, job: &DeckJob) -> Result<Problem, BuildError> {
     let deck = &job.deck;
@@ -90,7 +115,7 @@ pub fn build(scene: &Scene, job: &DeckJob) -> Result<Problem, BuildError> {
         rayleigh,
     } = mesh::mesh(job)?;
     let mut warnings: Vec<String> = job.warnings.iter().map(|w| w.to_string()).collect();
-    let tol = default_tolerance(deck);
+    let length = &scene.spec.units.length;
     let e_max = model
         .materials
         .iter()
@@ -103,17 +128,35 @@ pub fn build(scene: &Scene, job: &DeckJob) -> Result<Problem, BuildError> {
     let mut couplings: Vec<Coupling> = Vec::new();
     let mut tie_springs = Vec::new();
     for t in &deck.ties {
-        let tol = t.position_tolerance.unwrap_or(tol);
-        let p = pair_surfaces(deck, &t.slave, &t.master, tol, &t.origin, "*TIE")?;
-        if let Some(merged) = coincident(&model.nodes, &p, tol) {
+        let tol = pair_tolerance(deck, &t.master, t.position_tolerance);
+        let at = format!("{}:{}: *TIE {}", t.origin.file, t.origin.line, t.name);
+        // Paired within the face size, so that a node beyond the position tolerance is
+        // named rather than left out.
+        let wide = tol.search.max(tol.round_off / summary::ROUND_OFF);
+        let p = pair_surfaces(deck, &t.slave, &t.master, wide, &t.origin, "*TIE")?;
+        if let Some(n) = p.nodes.iter().find(|n| n.gap.abs() > tol.search) {
+            return Err(t.origin.error(
+                DeckErrorKind::BadValue,
+                "*TIE",
+                format!(
+                    "slave node {} lies {:e} {length} from master {}, beyond the position tolerance {:e} {length} ({}): Abaqus would leave it untied",
+                    deck.nodes[n.slave].id,
+                    n.gap.abs(),
+                    t.master,
+                    tol.search,
+                    if t.position_tolerance.is_some() { "POSITION TOLERANCE=" } else { "the default, 5 % of the master's typical face diagonal" },
+                ),
+            )
+            .into());
+        }
+        if let Some(merged) = coincident(&model.nodes, &p, tol.round_off) {
             model.ties.extend(merged);
             continue;
         }
-        if let Some(w) = unmatched(
-            deck,
-            &format!("{}:{}: *TIE {}", t.origin.file, t.origin.line, t.name),
-            &p,
-        ) {
+        if let Some(w) = unmatched(deck, &at, &p) {
+            warnings.push(w);
+        }
+        if let Some(w) = gaps(deck, &at, &p, tol.round_off, length, "tied across the gap") {
             warnings.push(w);
         }
         for n in &p.nodes {
@@ -125,26 +168,53 @@ pub fn build(scene: &Scene, job: &DeckJob) -> Result<Problem, BuildError> {
     // Contact pairs: interfaces and their points.
     let mut interfaces = Vec::new();
     let mut raw = Vec::new(); // (paired node, interface)
-    for (c, l) in deck.contact_pairs.iter().zip(&job.laws) {
+    let mut slave_of: HashMap<usize, usize> = HashMap::new(); // slave node → contact pair
+    for (ci, (c, l)) in deck.contact_pairs.iter().zip(&job.laws).enumerate() {
         interfaces.push(Interface {
             name: format!("{}/{}", c.slave, c.master),
             contact: *l,
             initial_gap: 0.0,
         });
-        let p = pair_surfaces(deck, &c.slave, &c.master, tol, &c.origin, "*CONTACT PAIR")?;
+        let tol = pair_tolerance(deck, &c.master, None);
+        let p = pair_surfaces(
+            deck,
+            &c.slave,
+            &c.master,
+            tol.search,
+            &c.origin,
+            "*CONTACT PAIR",
+        )?;
         let at = format!(
             "{}:{}: *CONTACT PAIR {}/{}",
             c.origin.file, c.origin.line, c.slave, c.master
         );
+        for n in &p.nodes {
+            if let Some(&other) = slave_of.get(&n.slave) {
+                let o = &deck.contact_pairs[other];
+                return Err(c.origin.error(
+                    DeckErrorKind::Duplicate,
+                    "*CONTACT PAIR",
+                    format!(
+                        "slave node {} is in {}/{} and in {}/{} (line {}): it would get two contact points",
+                        deck.nodes[n.slave].id, c.slave, c.master, o.slave, o.master, o.origin.line
+                    ),
+                )
+                .into());
+            }
+        }
+        slave_of.extend(p.nodes.iter().map(|n| (n.slave, ci)));
         if let Some(w) = unmatched(deck, &at, &p) {
             warnings.push(w);
         }
-        let worst = p.nodes.iter().map(|n| n.gap.abs()).fold(0.0, f64::max);
-        if worst > tol {
-            warnings.push(format!(
-                "{at}: slave nodes lie up to {worst:e} {} off the master surface; the run takes the surfaces as touching (gap 0)",
-                scene.spec.units.length
-            ));
+        if let Some(w) = gaps(
+            deck,
+            &at,
+            &p,
+            tol.round_off,
+            length,
+            "the run takes the surfaces as touching (gap 0)",
+        ) {
+            warnings.push(w);
         }
         let all_fixed = |n: &PairedNode| {
             coupling(n)

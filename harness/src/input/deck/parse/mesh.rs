@@ -245,6 +245,15 @@ impl Reader {
                         faces.push((id, face));
                     }
                 }
+                let n = faces.len();
+                let mut seen = std::collections::HashSet::new();
+                faces.retain(|f| seen.insert(*f));
+                if faces.len() < n {
+                    self.warnings.push(card.origin.warning(
+                        &card.name(),
+                        format!("surface {name}: {} faces listed more than once, each counted once (a surface is a set)", n - faces.len()),
+                    ));
+                }
                 SurfaceKind::Element(faces)
             }
             "NODE" => {
@@ -260,6 +269,15 @@ impl Reader {
                             nodes.extend(self.deck.node_sets[&s].iter().map(|&id| (id, area)))
                         }
                     }
+                }
+                let n = nodes.len();
+                let mut seen = std::collections::HashSet::new();
+                nodes.retain(|(id, _)| seen.insert(*id));
+                if nodes.len() < n {
+                    self.warnings.push(card.origin.warning(
+                        &card.name(),
+                        format!("surface {name}: {} nodes listed more than once, each counted once (the first line's area kept)", n - nodes.len()),
+                    ));
                 }
                 SurfaceKind::Node(nodes)
             }

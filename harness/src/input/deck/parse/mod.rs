@@ -129,14 +129,22 @@ impl Reader {
             return Ok(NodeTarget::Node(id));
         }
         let name = scope.name(f);
-        if !self.deck.node_sets.contains_key(&name) {
-            return Err(card.error_at(
+        match self.deck.node_sets.get(&name) {
+            None => Err(card.error_at(
                 l.line,
                 K::Undefined,
                 format!("node set {name} is not defined"),
-            ));
+            )),
+            Some(set) if set.is_empty() => Err(card.error_at(
+                l.line,
+                K::BadValue,
+                format!(
+                    "node set {name} is empty: {} would act on nothing",
+                    card.name()
+                ),
+            )),
+            Some(_) => Ok(NodeTarget::Set(name)),
         }
-        Ok(NodeTarget::Set(name))
     }
 
     fn element_target(
@@ -157,14 +165,22 @@ impl Reader {
             return Ok(ElementTarget::Element(id));
         }
         let name = scope.name(f);
-        if !self.deck.element_sets.contains_key(&name) {
-            return Err(card.error_at(
+        match self.deck.element_sets.get(&name) {
+            None => Err(card.error_at(
                 l.line,
                 K::Undefined,
                 format!("element set {name} is not defined"),
-            ));
+            )),
+            Some(set) if set.is_empty() => Err(card.error_at(
+                l.line,
+                K::BadValue,
+                format!(
+                    "element set {name} is empty: {} would act on nothing",
+                    card.name()
+                ),
+            )),
+            Some(_) => Ok(ElementTarget::Set(name)),
         }
-        Ok(ElementTarget::Set(name))
     }
 
     fn element_ids(&self, t: &ElementTarget) -> Vec<u64> {
@@ -259,11 +275,20 @@ impl Reader {
                     material: Scope::default().name(card.required("MATERIAL")?),
                     origin: card.origin.clone(),
                 };
-                if !self.deck.element_sets.contains_key(&section.element_set) {
-                    return Err(card.error(
-                        K::Undefined,
-                        format!("element set {} is not defined", section.element_set),
-                    ));
+                match self.deck.element_sets.get(&section.element_set) {
+                    None => {
+                        return Err(card.error(
+                            K::Undefined,
+                            format!("element set {} is not defined", section.element_set),
+                        ))
+                    }
+                    Some(set) if set.is_empty() => {
+                        return Err(card.error(
+                            K::BadValue,
+                            format!("element set {} is empty", section.element_set),
+                        ))
+                    }
+                    Some(_) => {}
                 }
                 self.deck.sections.push(section);
             }
@@ -281,6 +306,18 @@ impl Reader {
                 }
                 for l in lines(card) {
                     let [slave, master] = self.surface_pair(card, l, scope)?;
+                    if let Some(first) = self
+                        .deck
+                        .contact_pairs
+                        .iter()
+                        .find(|c| c.slave == slave && c.master == master)
+                    {
+                        self.warnings.push(card.origin.warning(
+                            &card.name(),
+                            format!("line {}: {slave}, {master} is paired already (line {}): counted once", l.line, first.origin.line),
+                        ));
+                        continue;
+                    }
                     self.deck.contact_pairs.push(ContactPair {
                         interaction: interaction.clone(),
                         slave,
@@ -299,6 +336,18 @@ impl Reader {
                 choice(card, "ADJUST", &["YES", "NO"], "YES")?;
                 for l in lines(card) {
                     let [slave, master] = self.surface_pair(card, l, scope)?;
+                    if let Some(first) = self
+                        .deck
+                        .ties
+                        .iter()
+                        .find(|t| t.slave == slave && t.master == master)
+                    {
+                        self.warnings.push(card.origin.warning(
+                            &card.name(),
+                            format!("line {}: {slave}, {master} is tied already (line {}): counted once", l.line, first.origin.line),
+                        ));
+                        continue;
+                    }
                     self.deck.ties.push(Tie {
                         name: name.clone(),
                         slave,

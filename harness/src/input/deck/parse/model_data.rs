@@ -142,6 +142,13 @@ impl Reader {
                 ));
             }
         }
+        if out[0] == out[1] {
+            return Err(card.error_at(
+                l.line,
+                K::BadValue,
+                format!("slave and master are the same surface {}", out[0]),
+            ));
+        }
         Ok(out)
     }
 

@@ -88,8 +88,17 @@ impl Reader {
             return Ok(());
         };
         let node_set = scope.name(set);
-        if !self.deck.node_sets.contains_key(&node_set) {
-            return Err(card.error(K::Undefined, format!("node set {node_set} is not defined")));
+        match self.deck.node_sets.get(&node_set) {
+            None => {
+                return Err(card.error(K::Undefined, format!("node set {node_set} is not defined")))
+            }
+            Some(s) if s.is_empty() => {
+                return Err(card.error(
+                    K::BadValue,
+                    format!("node set {node_set} is empty: no output"),
+                ))
+            }
+            Some(_) => {}
         }
         let variables: Vec<String> = lines(card)
             .flat_map(|l| l.fields.iter())
