@@ -5,6 +5,9 @@
 
 use serde::{Deserialize, Serialize};
 
+/// Highest frequency any input may ask for (1/time): (2πf)² of a higher one overflows.
+pub const MAX_FREQUENCY: f64 = 1e150;
+
 /// Tangential contact law.
 #[derive(Debug, Clone, Copy, Deserialize, Serialize, PartialEq, Eq)]
 #[serde(rename_all = "snake_case")]

@@ -89,7 +89,8 @@ impl Scene {
                     let t = biased(i as f64 / (s.count - 1) as f64, s.bias);
                     match s.spacing {
                         Spacing::Linear => s.f_min + t * (s.f_max - s.f_min),
-                        Spacing::Log => s.f_min * (s.f_max / s.f_min).powf(t),
+                        // In log space: f_max / f_min itself may overflow.
+                        Spacing::Log => (s.f_min.ln() + t * (s.f_max.ln() - s.f_min.ln())).exp(),
                     }
                 })
                 .collect()

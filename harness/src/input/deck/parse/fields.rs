@@ -109,11 +109,25 @@ pub(super) fn face_label(label: &str, letter: char) -> Option<usize> {
 /// A `*STEADY STATE DYNAMICS` data line as Abaqus reads it: f_low, f_high (zero or
 /// blank: the single frequency f_low), points (fewer than 2 or blank: 20), bias
 /// (default 1).
-pub(super) fn frequency_range(card: &Card, l: &DataLine) -> Result<FrequencyRange, DeckError> {
+pub(super) fn frequency_range(
+    card: &Card,
+    l: &DataLine,
+    log: bool,
+) -> Result<FrequencyRange, DeckError> {
     /// Abaqus's number of points when the line gives fewer than 2.
     const DEFAULT_POINTS: f64 = 20.0;
     let f_low = number(card, l, 0, "lower frequency")?;
     let f_high = opt_number(card, l, 1, "upper frequency", 0.0)?;
+    if f_low.max(f_high) > MAX_FREQUENCY {
+        return Err(card.error_at(
+            l.line,
+            K::BadValue,
+            format!(
+                "frequency {:e} above {MAX_FREQUENCY:e} (1/time): (2πf)² overflows",
+                f_low.max(f_high)
+            ),
+        ));
+    }
     if f_high == 0.0 {
         if f_low < 0.0 {
             return Err(card.error_at(l.line, K::BadValue, format!("frequency {f_low} < 0")));
@@ -132,6 +146,13 @@ pub(super) fn frequency_range(card: &Card, l: &DataLine) -> Result<FrequencyRang
     let bias = opt_number(card, l, 3, "bias", 1.0)?;
     if f_low < 0.0 || f_high < f_low || points.fract() != 0.0 || points > 1e7 || bias <= 0.0 {
         return Err(card.error_at(l.line, K::BadValue, format!("need 0 <= f_low <= f_high, a whole number of points and bias > 0; got {f_low}, {f_high}, {points}, {bias}")));
+    }
+    if log && f_low <= 0.0 {
+        return Err(card.error_at(
+            l.line,
+            K::BadValue,
+            format!("f_low = {f_low} on a logarithmic scale (the default FREQUENCY SCALE): log spacing needs f_low > 0; give FREQUENCY SCALE=LINEAR or a positive f_low"),
+        ));
     }
     Ok(FrequencyRange {
         f_low,

@@ -14,6 +14,7 @@ mod steps;
 use std::collections::HashMap;
 
 use crate::fe::elements::ElementKind;
+use crate::names::MAX_FREQUENCY;
 
 use super::error::{DeckError, DeckErrorKind as K, DeckWarning, Origin};
 use super::keywords::{check_fields, check_params, keyword};
@@ -91,6 +92,17 @@ pub fn build(cards: Vec<Card>) -> Result<(Deck, Vec<DeckWarning>), DeckError> {
     }
     super::check::check(&r.deck)?;
     Ok((r.deck, r.warnings))
+}
+
+/// Where data line `l` of `card` is (its file, its line).
+fn data_origin(card: &Card, l: &DataLine) -> Origin {
+    Origin {
+        file: card
+            .data_file
+            .clone()
+            .unwrap_or_else(|| card.origin.file.clone()),
+        line: l.line,
+    }
 }
 
 /// Checks a card against the implemented keywords: an unknown keyword, a parameter
@@ -323,7 +335,7 @@ impl Reader {
                         slave,
                         master,
                         small_sliding: card.flag("SMALL SLIDING"),
-                        origin: card.origin.clone(),
+                        origin: data_origin(card, l),
                     });
                 }
             }
@@ -353,7 +365,7 @@ impl Reader {
                         slave,
                         master,
                         position_tolerance: tol,
-                        origin: card.origin.clone(),
+                        origin: data_origin(card, l),
                     });
                 }
             }

@@ -65,8 +65,9 @@ impl Reader {
                         card.error(K::Syntax, "needs a data line (f_low, f_high, points, bias)")
                     );
                 }
+                let log = scale == FrequencyScale::Logarithmic;
                 let ranges = lines(card)
-                    .map(|l| frequency_range(card, l))
+                    .map(|l| frequency_range(card, l, log))
                     .collect::<Result<Vec<_>, _>>()?;
                 Procedure::SteadyState { ranges, scale }
             }

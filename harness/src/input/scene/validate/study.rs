@@ -4,6 +4,9 @@
 use std::collections::BTreeSet;
 
 use super::{Checker, MAX_HARMONICS, MAX_SAMPLES};
+use crate::names::MAX_FREQUENCY;
+
+const TOO_HIGH: &str = "must be <= 1e150 (1/time): (2πf)² of a higher frequency overflows";
 use crate::input::scene::error::KeyPath;
 use crate::input::scene::schema::*;
 use crate::input::scene::studies::*;
@@ -14,6 +17,9 @@ pub(super) fn sweep(c: &mut Checker, s: &SceneFile) {
     let sw = root.key("sweep");
     c.positive(sw.key("f_min"), s.sweep.f_min);
     c.positive(sw.key("f_max"), s.sweep.f_max);
+    if s.sweep.f_max > MAX_FREQUENCY {
+        c.fail(sw.key("f_max"), TOO_HIGH);
+    }
     if s.sweep.count == 0 {
         c.fail(sw.key("count"), "must be >= 1");
     }
@@ -29,6 +35,9 @@ pub(super) fn sweep(c: &mut Checker, s: &SceneFile) {
         let bp = sw.key("refine").index(i);
         c.positive(bp.key("f_min"), b.f_min);
         c.positive(bp.key("f_max"), b.f_max);
+        if b.f_max > MAX_FREQUENCY {
+            c.fail(bp.key("f_max"), TOO_HIGH);
+        }
         c.positive(bp.key("bias"), b.bias);
         // count = 1 with f_max = f_min puts one exact frequency into the sweep (e.g. an
         // eigenfrequency from `jointlin modes`).

@@ -1,0 +1,490 @@
+//! Decks as users write them are read exactly as Abaqus reads them, or refused with
+//! `file:line: *KEYWORD[, PARAMETER=]: message` and exit code 2: node sets from element
+//! sets, parameters the reader does not implement, cylindrical nodes, repeated faces
+//! and pair lines, tolerances judged on the paired faces, logarithmic sweeps from 0 Hz,
+//! include bombs. Each test writes the deck as a user would and compares the run with
+//! the same model written plainly.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+use jointlin_harness::validate::stack_deck::{stack_deck, Joining};
+
+fn dir(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("jointlin-as-written-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+/// `jointlin ARGS`: exit code and stderr.
+fn jointlin(args: &[&str]) -> (i32, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_jointlin"))
+        .args(args)
+        .output()
+        .unwrap();
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+/// Runs deck text `text` as `d/name.inp`: exit code, stderr and results.csv's numbers
+/// (status column left out; empty when the run failed).
+fn run(d: &Path, name: &str, text: &str) -> (i32, String, Vec<Vec<f64>>) {
+    let deck = d.join(format!("{name}.inp"));
+    std::fs::write(&deck, text).unwrap();
+    let out = d.join(format!("{name}-out"));
+    let (code, log) = jointlin(&[
+        "run",
+        deck.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--quiet",
+        "--no-plots",
+    ]);
+    let rows = std::fs::read_to_string(out.join("results.csv"))
+        .map(|t| {
+            let mut lines = t.lines();
+            let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+            let status = header.iter().position(|h| *h == "status");
+            lines
+                .map(|l| {
+                    l.split(',')
+                        .enumerate()
+                        .filter(|&(i, _)| Some(i) != status)
+                        .map(|(_, v)| v.parse().unwrap())
+                        .collect()
+                })
+                .collect()
+        })
+        .unwrap_or_default();
+    (code, log, rows)
+}
+
+/// Asserts both runs succeeded with the same numbers within `rtol`, and not all zero.
+fn same(a: &(i32, String, Vec<Vec<f64>>), b: &(i32, String, Vec<Vec<f64>>), rtol: f64) {
+    assert_eq!(a.0, 0, "{}", a.1);
+    assert_eq!(b.0, 0, "{}", b.1);
+    assert_eq!(a.2.len(), b.2.len());
+    assert!(!a.2.is_empty());
+    let scale = a.2.iter().flatten().fold(0.0f64, |m, v| m.max(v.abs()));
+    for (x, y) in a.2.iter().flatten().zip(b.2.iter().flatten()) {
+        assert!(
+            (x - y).abs() <= rtol * x.abs().max(1e-12 * scale),
+            "{x} vs {y}"
+        );
+    }
+    // The response itself (the columns after the frequency) is not zero.
+    assert!(
+        a.2.iter().any(|r| r[1..].iter().any(|v| *v != 0.0)),
+        "zero response"
+    );
+}
+
+/// Asserts a refused run: exit code 2, and `needle` in its message.
+fn refused(r: &(i32, String, Vec<Vec<f64>>), needle: &str) {
+    assert_eq!(r.0, 2, "exit code {}: {}", r.0, r.1);
+    assert!(r.1.contains(needle), "`{needle}` not in: {}", r.1);
+}
+
+/// A steel block 10 × 2 × 2 mm of 5 × 1 × 1 C3D8 elements, clamped at x = 0, pushed in z
+/// at its free end by the nodes of `load` (a node set the caller defines in `sets`),
+/// swept linearly over 1000…5000 Hz in 5 points. Nodes are `id, x, y, z` unless
+/// `node_lines` writes them.
+fn block(sets: &str, load: &str, node_lines: &dyn Fn(u64, [f64; 3]) -> String) -> String {
+    let (nx, ny, nz) = (5usize, 1usize, 1usize);
+    let id = |i: usize, j: usize, k: usize| (1 + i + (nx + 1) * (j + (ny + 1) * k)) as u64;
+    let mut s =
+        String::from("*HEADING\nsteel block\n** jointlin units: length=mm force=N time=s mass=t\n");
+    s.push_str(&node_header());
+    for k in 0..=nz {
+        for j in 0..=ny {
+            for i in 0..=nx {
+                let x = [2.0 * i as f64, 2.0 * j as f64, 2.0 * k as f64];
+                s.push_str(&node_lines(id(i, j, k), x));
+            }
+        }
+    }
+    s.push_str("*ELEMENT, TYPE=C3D8, ELSET=BLOCK\n");
+    for i in 0..nx {
+        let n = [
+            id(i, 0, 0),
+            id(i + 1, 0, 0),
+            id(i + 1, 1, 0),
+            id(i, 1, 0),
+            id(i, 0, 1),
+            id(i + 1, 0, 1),
+            id(i + 1, 1, 1),
+            id(i, 1, 1),
+        ];
+        let n: Vec<String> = n.iter().map(u64::to_string).collect();
+        s.push_str(&format!("{}, {}\n", i + 1, n.join(", ")));
+    }
+    let clamp: Vec<String> = (0..=nz)
+        .flat_map(|k| (0..=ny).map(move |j| id(0, j, k).to_string()))
+        .collect();
+    s.push_str(&format!(
+        "*NSET, NSET=CLAMP\n{}\n*NSET, NSET=OUT\n{}\n{sets}",
+        clamp.join(", "),
+        id(nx, 0, nz)
+    ));
+    s.push_str("*MATERIAL, NAME=STEEL\n*ELASTIC\n210000., 0.3\n*DENSITY\n7.85e-9\n*DAMPING, ALPHA=0., BETA=1e-7\n*SOLID SECTION, ELSET=BLOCK, MATERIAL=STEEL\n,\n*BOUNDARY\nCLAMP, ENCASTRE\n");
+    s.push_str(&format!("*STEP, NAME=SWEEP, PERTURBATION\n*STEADY STATE DYNAMICS, DIRECT, FREQUENCY SCALE=LINEAR\n1000., 5000., 5\n*CLOAD\n{load}, 3, 0.25\n*NODE PRINT, NSET=OUT\nU\n*END STEP\n"));
+    s
+}
+
+fn node_header() -> String {
+    "*NODE\n".into()
+}
+
+fn cartesian(id: u64, x: [f64; 3]) -> String {
+    format!("{id}, {:?}, {:?}, {:?}\n", x[0], x[1], x[2])
+}
+
+/// The nodes of the block's last element (x = 8…10 mm).
+const TIP_NODES: &str = "5, 6, 11, 12, 17, 18, 23, 24";
+
+#[test]
+fn a_node_set_from_an_element_set_holds_that_elements_nodes() {
+    let d = dir("nset-elset");
+    let plain = run(
+        &d,
+        "plain",
+        &block(
+            &format!("*NSET, NSET=TIPN\n{TIP_NODES}\n"),
+            "TIPN",
+            &cartesian,
+        ),
+    );
+    let from_elset = run(
+        &d,
+        "elset",
+        &block(
+            "*ELSET, ELSET=TIPEL\n5\n*NSET, NSET=TIPN, ELSET=TIPEL\n",
+            "TIPN",
+            &cartesian,
+        ),
+    );
+    same(&plain, &from_elset, 1e-12);
+    // An empty set that a load uses is an error at the load's data line, not zero load.
+    let empty = block("*NSET, NSET=TIPN\n", "TIPN", &cartesian);
+    let line = empty
+        .lines()
+        .position(|l| l.starts_with("TIPN, 3"))
+        .unwrap()
+        + 1;
+    refused(
+        &run(&d, "empty", &empty),
+        &format!("empty.inp:{line}: *CLOAD: node set TIPN is empty"),
+    );
+    let _ = std::fs::remove_dir_all(&d);
+}
+
+#[test]
+fn parameters_and_fields_the_reader_does_not_implement_are_refused_at_their_line() {
+    let d = dir("params");
+    let base = block(
+        &format!("*NSET, NSET=TIPN\n{TIP_NODES}\n"),
+        "TIPN",
+        &cartesian,
+    );
+    let line_of =
+        |text: &str, start: &str| text.lines().position(|l| l.starts_with(start)).unwrap() + 1;
+    for (name, from, to, needle) in [
+        (
+            "structural",
+            "*DAMPING, ALPHA=0., BETA=1e-7",
+            "*DAMPING, STRUCTURAL=0.02",
+            "*DAMPING, STRUCTURAL=: STRUCTURAL=0.02",
+        ),
+        (
+            "velocity",
+            "*BOUNDARY\n",
+            "*BOUNDARY, TYPE=VELOCITY\n",
+            "*BOUNDARY, TYPE=: TYPE=VELOCITY",
+        ),
+        (
+            "unknown",
+            "*SOLID SECTION, ELSET=BLOCK, MATERIAL=STEEL",
+            "*SOLID SECTION, ELSET=BLOCK, MATERIAL=STEEL, ORIENTATION=ORI",
+            "*SOLID SECTION, ORIENTATION=: parameter not supported",
+        ),
+        (
+            "temperature",
+            "210000., 0.3\n",
+            "210000., 0.3, 20.\n",
+            "*ELASTIC: 3 fields on a data line",
+        ),
+        (
+            "op-new",
+            "*CLOAD\n",
+            "*CLOAD, OP=NEW\n",
+            "*CLOAD, OP=: OP=NEW",
+        ),
+    ] {
+        let text = base.replacen(from, to, 1);
+        assert_ne!(text, base, "{name}");
+        let at = if name == "temperature" {
+            line_of(&text, "210000.")
+        } else {
+            line_of(&text, to.trim_end())
+        };
+        refused(&run(&d, name, &text), &format!("{name}.inp:{at}: {needle}"));
+    }
+    // *NODE, INPUT= reads the nodes from that file: the same model as inline.
+    let inline = base.clone();
+    let (head, rest) = inline.split_once("*NODE\n").unwrap();
+    let (nodes, tail) = rest.split_once("*ELEMENT").unwrap();
+    std::fs::write(
+        d.join("nodes.txt"),
+        format!("** the block's nodes\n{nodes}"),
+    )
+    .unwrap();
+    let from_file = format!("{head}*NODE, INPUT=nodes.txt\n*ELEMENT{tail}");
+    same(
+        &run(&d, "inline", &inline),
+        &run(&d, "input", &from_file),
+        1e-12,
+    );
+    let _ = std::fs::remove_dir_all(&d);
+}
+
+#[test]
+fn cylindrical_and_spherical_nodes_are_placed_as_abaqus_places_them() {
+    let d = dir("system");
+    let sets = format!("*NSET, NSET=TIPN\n{TIP_NODES}\n");
+    let plain = run(&d, "plain", &block(&sets, "TIPN", &cartesian));
+    // Each node as (r, θ°, z) about the z axis.
+    let cyl = block(&sets, "TIPN", &|id, x| {
+        let r = x[0].hypot(x[1]);
+        let t = x[1].atan2(x[0]).to_degrees();
+        format!("{id}, {r:?}, {t:?}, {:?}\n", x[2])
+    })
+    .replace("*NODE\n", "*NODE, SYSTEM=C\n");
+    same(&plain, &run(&d, "cyl", &cyl), 1e-9);
+    // (r, θ°, φ°): φ from the x–y plane toward z.
+    let sph = block(&sets, "TIPN", &|id, x| {
+        let r = (x[0] * x[0] + x[1] * x[1] + x[2] * x[2]).sqrt();
+        let t = x[1].atan2(x[0]).to_degrees();
+        let p = x[2].atan2(x[0].hypot(x[1])).to_degrees();
+        format!("{id}, {r:?}, {t:?}, {p:?}\n")
+    })
+    .replace("*NODE\n", "*NODE, SYSTEM=S\n");
+    same(&plain, &run(&d, "sph", &sph), 1e-9);
+    let _ = std::fs::remove_dir_all(&d);
+}
+
+/// The stack with a Jenkins contact, two frequencies below its first resonance.
+fn contact_stack() -> String {
+    let joint = Joining::Contact {
+        mu: 0.3,
+        k_t0: 1e5,
+        k_n: 1e6,
+        pressure: 1.0,
+    };
+    stack_deck(joint, 2, Some((200.0, 400.0, 2)))
+}
+
+#[test]
+fn repeated_faces_and_pair_lines_count_once_and_a_doubly_paired_node_is_refused() {
+    let d = dir("repeats");
+    let base = contact_stack();
+    let plain = run(&d, "plain", &base);
+    // A face listed twice in the surface the preload presses.
+    let twice = base.replacen(
+        "*SURFACE, NAME=L3-TOP, TYPE=ELEMENT\nL3, S2",
+        "*SURFACE, NAME=L3-TOP, TYPE=ELEMENT\nL3, S2\nL3, S2",
+        1,
+    );
+    assert_ne!(twice, base);
+    let r = run(&d, "face-twice", &twice);
+    same(&plain, &r, 1e-12);
+    // The same pair line twice.
+    let pair = "*CONTACT PAIR, INTERACTION=JOINT, SMALL SLIDING\nL2-BOT, L1-TOP";
+    let doubled = base.replacen(pair, &format!("{pair}\nL2-BOT, L1-TOP"), 1);
+    assert_ne!(doubled, base);
+    same(&plain, &run(&d, "pair-twice", &doubled), 1e-12);
+    // Two slave surfaces sharing the layer's elements, paired with one master.
+    let line = base.lines().position(|l| l == "L2-BOT, L1-TOP").unwrap() + 1;
+    let shared = base.replacen(
+        pair,
+        "*SURFACE, NAME=L2-BOT-AGAIN, TYPE=ELEMENT\nL2, S1\n*CONTACT PAIR, INTERACTION=JOINT, SMALL SLIDING\nL2-BOT, L1-TOP\nL2-BOT-AGAIN, L1-TOP",
+        1,
+    );
+    let r = run(&d, "shared", &shared);
+    refused(
+        &r,
+        &format!("shared.inp:{}: *CONTACT PAIR: slave node ", line + 3),
+    );
+    refused(
+        &r,
+        &format!(
+            "is in L2-BOT-AGAIN/L1-TOP and in L2-BOT/L1-TOP (line {})",
+            line + 2
+        ),
+    );
+    // Slave and master the same surface.
+    let same_surface = base.replacen("L2-BOT, L1-TOP", "L1-TOP, L1-TOP", 1);
+    refused(
+        &run(&d, "self", &same_surface),
+        "slave and master are the same surface L1-TOP",
+    );
+    let _ = std::fs::remove_dir_all(&d);
+}
+
+/// Two C3D8 blocks 4 × 2 × 1 mm, the upper one `gap` mm above the lower, the upper's
+/// bottom joined to the lower's top by `joint` (`*TIE …` or `*CONTACT PAIR …` with its
+/// cards), and a reference node far away at x = 1e6 mm, clamped.
+fn gapped(gap: f64, joint: &str) -> String {
+    let mut s = String::from(
+        "*HEADING\ntwo blocks\n** jointlin units: length=mm force=N time=s mass=t\n*NODE\n",
+    );
+    let mut id = 0;
+    for (b, z0) in [(0, 0.0), (1, 1.0 + gap)] {
+        for k in 0..2 {
+            for j in 0..2 {
+                for i in 0..3 {
+                    id += 1;
+                    let _ = b;
+                    s.push_str(&format!(
+                        "{id}, {}, {}, {}\n",
+                        2.0 * i as f64,
+                        2.0 * j as f64,
+                        z0 + k as f64
+                    ));
+                }
+            }
+        }
+    }
+    s.push_str("999, 1000000., 0., 0.\n");
+    for (b, set) in [(0, "LOW"), (12, "UP")] {
+        s.push_str(&format!("*ELEMENT, TYPE=C3D8, ELSET={set}\n"));
+        for i in 0..2u64 {
+            let n = |i: u64, j: u64, k: u64| b + 1 + i + 3 * j + 6 * k;
+            s.push_str(&format!(
+                "{}, {}, {}, {}, {}, {}, {}, {}, {}\n",
+                b / 6 + i + 1,
+                n(i, 0, 0),
+                n(i + 1, 0, 0),
+                n(i + 1, 1, 0),
+                n(i, 1, 0),
+                n(i, 0, 1),
+                n(i + 1, 0, 1),
+                n(i + 1, 1, 1),
+                n(i, 1, 1)
+            ));
+        }
+    }
+    s.push_str("*SURFACE, NAME=LOW-TOP\nLOW, S2\n*SURFACE, NAME=UP-BOT\nUP, S1\n*NSET, NSET=CLAMP\n1, 4, 7, 10, 999\n*NSET, NSET=OUT\n18\n*MATERIAL, NAME=STEEL\n*ELASTIC\n210000., 0.3\n*DENSITY\n7.85e-9\n*SOLID SECTION, ELSET=LOW, MATERIAL=STEEL\n*SOLID SECTION, ELSET=UP, MATERIAL=STEEL\n*BOUNDARY\nCLAMP, ENCASTRE\n");
+    s.push_str(joint);
+    s.push_str("*STEP\n*STEADY STATE DYNAMICS, DIRECT, FREQUENCY SCALE=LINEAR\n100., 200., 2\n*CLOAD\nOUT, 3, 1.\n*NODE PRINT, NSET=OUT\nU\n*END STEP\n");
+    s
+}
+
+#[test]
+fn tolerances_are_judged_on_the_paired_faces_not_on_a_far_reference_node() {
+    let d = dir("tolerance");
+    let tie = "*TIE, NAME=GLUE\nUP-BOT, LOW-TOP\n";
+    // Touching: the tie merges the coincident nodes and runs.
+    let (code, log, rows) = run(&d, "touching", &gapped(0.0, tie));
+    assert_eq!(code, 0, "{log}");
+    assert_eq!(rows.len(), 2);
+    // 0.5 mm apart (a quarter of the faces' 2.8 mm diagonal): beyond the default
+    // position tolerance (5 % of it), however far the reference node lies.
+    let r = run(&d, "tie-gap", &gapped(0.5, tie));
+    refused(&r, "*TIE: slave node ");
+    refused(
+        &r,
+        "lies 5e-1 mm from master LOW-TOP, beyond the position tolerance 1.41",
+    );
+    // With POSITION TOLERANCE=1 it is tied across the gap, and the gap is reported.
+    let (code, log, _) = run(
+        &d,
+        "tie-tolerance",
+        &gapped(
+            0.5,
+            "*TIE, NAME=GLUE, POSITION TOLERANCE=1.\nUP-BOT, LOW-TOP\n",
+        ),
+    );
+    assert_eq!(code, 0, "{log}");
+    assert!(
+        log.contains("6 slave nodes lie off the master surface, up to 5e-1 mm"),
+        "{log}"
+    );
+    // A contact pair across the gap pairs nothing: refused, not run as touching.
+    let contact = "*SURFACE INTERACTION, NAME=JOINT, USER, PROPERTIES=7\n1.\n1, 0, 0.3, 1e5, 0, 1e6, 0\n*CONTACT PAIR, INTERACTION=JOINT\nUP-BOT, LOW-TOP\n";
+    refused(
+        &run(&d, "pair-gap", &gapped(0.5, contact)),
+        "do not overlap",
+    );
+    let _ = std::fs::remove_dir_all(&d);
+}
+
+#[test]
+fn a_logarithmic_sweep_from_zero_is_refused_at_its_line() {
+    let d = dir("log");
+    let base = block(
+        &format!("*NSET, NSET=TIPN\n{TIP_NODES}\n"),
+        "TIPN",
+        &cartesian,
+    );
+    let text = base
+        .replace(", FREQUENCY SCALE=LINEAR", "")
+        .replace("1000., 5000., 5", "0., 5000., 5");
+    let line = text.lines().position(|l| l == "0., 5000., 5").unwrap() + 1;
+    refused(
+        &run(&d, "zero", &text),
+        &format!("zero.inp:{line}: *STEADY STATE DYNAMICS: f_low = 0 on a logarithmic scale"),
+    );
+    let huge = base.replace("1000., 5000., 5", "1e-300, 1e300, 5");
+    refused(&run(&d, "huge", &huge), "above 1e150 (1/time)");
+    // A wide logarithmic sweep within range runs with finite frequencies.
+    let wide = base
+        .replace(", FREQUENCY SCALE=LINEAR", "")
+        .replace("1000., 5000., 5", "1e-100, 1e100, 3");
+    let (code, log, rows) = run(&d, "wide", &wide);
+    assert_eq!(code, 0, "{log}");
+    let f: Vec<f64> = rows.iter().map(|r| r[0]).collect();
+    assert_eq!(f.len(), 3);
+    for (a, b) in f.iter().zip([1e-100, 1.0, 1e100]) {
+        assert!((a / b - 1.0).abs() < 1e-9, "{f:?}");
+    }
+    assert!(rows.iter().flatten().all(|v| v.is_finite()), "{rows:?}");
+    let _ = std::fs::remove_dir_all(&d);
+}
+
+#[test]
+fn includes_that_multiply_and_endless_files_stop_with_a_named_error() {
+    let d = dir("include");
+    // 14 files, each including the next four times: 4^13 reads if nothing stopped it.
+    for i in 0..14 {
+        let body = if i == 13 {
+            "** leaf\n".to_string()
+        } else {
+            format!("*INCLUDE, INPUT=f{}.inp\n", i + 1).repeat(4)
+        };
+        std::fs::write(d.join(format!("f{i}.inp")), body).unwrap();
+    }
+    let t = std::time::Instant::now();
+    let (code, log) = jointlin(&["check", d.join("f0.inp").to_str().unwrap()]);
+    assert_eq!(code, 2, "{log}");
+    assert!(
+        log.contains("more than 10000 files read for one deck"),
+        "{log}"
+    );
+    assert!(t.elapsed().as_secs() < 60, "{:?}", t.elapsed());
+    // A device that never ends.
+    std::fs::write(
+        d.join("zero.inp"),
+        "*HEADING\nx\n*INCLUDE, INPUT=/dev/zero\n",
+    )
+    .unwrap();
+    let (code, log) = jointlin(&["check", d.join("zero.inp").to_str().unwrap()]);
+    assert_eq!(code, 2, "{log}");
+    assert!(
+        log.contains("zero.inp:3: *INCLUDE: /dev/zero: the deck and its files exceed 1024 MiB"),
+        "{log}"
+    );
+    let _ = std::fs::remove_dir_all(&d);
+}
