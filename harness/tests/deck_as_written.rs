@@ -488,3 +488,25 @@ fn includes_that_multiply_and_endless_files_stop_with_a_named_error() {
     );
     let _ = std::fs::remove_dir_all(&d);
 }
+
+#[test]
+fn the_readme_keyword_table_is_the_one_the_reader_checks_against() {
+    let out = Command::new(env!("CARGO_BIN_EXE_jointlin"))
+        .args(["check", "--keywords"])
+        .output()
+        .unwrap();
+    assert!(out.status.success());
+    let table = String::from_utf8(out.stdout).unwrap();
+    let readme =
+        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../README.md")).unwrap();
+    let block = readme
+        .split("<!-- BEGIN deck_keywords -->\n")
+        .nth(1)
+        .and_then(|b| b.split("<!-- END deck_keywords -->").next())
+        .unwrap();
+    assert!(
+        block.ends_with(&table),
+        "README's deck_keywords block is stale: bash scripts/readme-tables.sh deck_keywords"
+    );
+    assert!(table.contains("| `*DAMPING` | `ALPHA=`"), "{table}");
+}

@@ -17,7 +17,12 @@ use jointlin_harness::util::number::{sig, sig_n};
 // The command's help is the doc comment of `Command::Check`.
 #[derive(clap::Args)]
 pub struct Args {
-    scene: PathBuf,
+    #[arg(required_unless_present = "keywords")]
+    scene: Option<PathBuf>,
+    /// Print the deck keywords the reader implements, each with its parameters, as
+    /// the README's Markdown table, and exit.
+    #[arg(long)]
+    keywords: bool,
     /// Also compute the stuck modes (joints closed and stuck after the static step)
     /// below the sweep's highest frequency and list them (as `jointlin modes`; seconds
     /// to minutes on a large model).
@@ -30,10 +35,14 @@ pub struct Args {
 }
 
 pub fn main(a: Args) -> ExitCode {
-    if format_of(&a.scene) == Format::AbaqusDeck {
-        return check_deck(&a);
+    let Some(scene) = a.scene.clone().filter(|_| !a.keywords) else {
+        print!("{}", deck::keywords::markdown_table());
+        return ExitCode::SUCCESS;
+    };
+    if format_of(&scene) == Format::AbaqusDeck {
+        return check_deck(&scene, &a);
     }
-    let s = match load_scene(&a.scene) {
+    let s = match load_scene(&scene) {
         Ok(s) => s,
         Err(code) => return code,
     };
@@ -87,8 +96,7 @@ pub fn main(a: Args) -> ExitCode {
 
 /// `jointlin check DECK.inp`: reads the deck, pairs its contact surfaces, prints the
 /// summary and the reader's warnings; exit 2 with `file:line: *KEYWORD: message`.
-fn check_deck(a: &Args) -> ExitCode {
-    let path = a.scene.as_path();
+fn check_deck(path: &std::path::Path, a: &Args) -> ExitCode {
     let result = deck::read(path).and_then(|(d, warnings)| {
         deck::summary::summary(&d, &path.display().to_string()).map(|s| (s, warnings))
     });
@@ -98,7 +106,7 @@ fn check_deck(a: &Args) -> ExitCode {
             for w in warnings {
                 eprintln!("warning: {w}");
             }
-            run_checks(a)
+            run_checks(path, a)
         }
         Err(e) => {
             eprintln!("error: {e}");
@@ -110,8 +118,7 @@ fn check_deck(a: &Args) -> ExitCode {
 /// What `jointlin run` meets before its first solve on a deck: the run-level reading
 /// (units comment, property tables, densities, steps a run can honour) and the model
 /// build (ties, contact pairs, loads, outputs); exit 2 with the deck's file:line.
-fn run_checks(a: &Args) -> ExitCode {
-    let path = a.scene.as_path();
+fn run_checks(path: &std::path::Path, a: &Args) -> ExitCode {
     let s = match load_scene(path) {
         Ok(s) => s,
         Err(code) => return code,
