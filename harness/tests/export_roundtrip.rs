@@ -372,3 +372,69 @@ fn calculix_reads_and_runs_the_exported_deck() {
     }
     let _ = std::fs::remove_dir_all(&d);
 }
+
+/// Export never destroys: it refuses to write onto the scene it reads, refuses a
+/// directory holding another job's sweep.frq and jointlin.cfg (a second job there would
+/// replace them), re-exports the same job in place, and a refused export writes nothing.
+#[test]
+fn export_never_overwrites_its_input_or_another_job() {
+    let d = dir("never-destroys");
+    let scene = d.join("block.toml");
+    let text = std::fs::read_to_string(root().join("scenes/block-on-plane.toml")).unwrap();
+    std::fs::write(&scene, &text).unwrap();
+    let (code, log) = jointlin(&[
+        "export",
+        scene.to_str().unwrap(),
+        "--inp",
+        scene.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 2, "{log}");
+    assert!(
+        log.contains("which this export reads; write the job elsewhere"),
+        "{log}"
+    );
+    assert_eq!(std::fs::read_to_string(&scene).unwrap(), text);
+    // The first job, then the same job again (in place: allowed).
+    let first = d.join("job").join("first.inp");
+    for _ in 0..2 {
+        let (code, log) = jointlin(&[
+            "export",
+            scene.to_str().unwrap(),
+            "--inp",
+            first.to_str().unwrap(),
+        ]);
+        assert_eq!(code, 0, "{log}");
+    }
+    let before: Vec<String> = ["first.inp", "sweep.frq", "jointlin.cfg"]
+        .iter()
+        .map(|f| std::fs::read_to_string(d.join("job").join(f)).unwrap())
+        .collect();
+    // A second job into the same directory.
+    let second = d.join("job").join("second.inp");
+    let (code, log) = jointlin(&[
+        "export",
+        "scenes/three-beams-coarse.toml",
+        "--inp",
+        second.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 2, "{log}");
+    assert!(log.contains("holds the job first.inp"), "{log}");
+    assert!(!second.exists());
+    for (f, old) in ["first.inp", "sweep.frq", "jointlin.cfg"]
+        .iter()
+        .zip(&before)
+    {
+        assert_eq!(
+            &std::fs::read_to_string(d.join("job").join(f)).unwrap(),
+            old,
+            "{f}"
+        );
+    }
+    // Nothing else was left in the directory (no temporary files).
+    let names: Vec<String> = std::fs::read_dir(d.join("job"))
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    assert_eq!(names.len(), 3, "{names:?}");
+    let _ = std::fs::remove_dir_all(&d);
+}

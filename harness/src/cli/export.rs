@@ -5,7 +5,7 @@
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use jointlin_harness::export::{export, write, ExportError};
+use jointlin_harness::export::{check_target, export, write, ExportError};
 
 use super::{load_scene, report_written};
 
@@ -25,6 +25,19 @@ pub fn main(a: Args) -> ExitCode {
         Ok(s) => s,
         Err(code) => return code,
     };
+    let mut inputs = vec![a.scene.clone()];
+    if let Some(model) = &s.spec.model {
+        inputs.push(
+            a.scene
+                .parent()
+                .unwrap_or(std::path::Path::new(""))
+                .join(model),
+        );
+    }
+    if let Err(e) = check_target(&a.inp, &inputs) {
+        eprintln!("error: {e}");
+        return ExitCode::from(2);
+    }
     let name = a
         .inp
         .file_name()
@@ -48,5 +61,5 @@ pub fn main(a: Args) -> ExitCode {
     for note in &job.left_out {
         eprintln!("not in the deck: {note}");
     }
-    report_written(write(&job, &a.inp))
+    report_written(write(&job, &a.inp, &inputs))
 }

@@ -27,7 +27,7 @@ use thiserror::Error;
 
 use crate::input::scene::Scene;
 use crate::model::{build, BuildError};
-use crate::util::atomic::write_text;
+use crate::util::atomic::partial_path;
 
 pub use crate::input::deck::config::CONFIG_FILE;
 
@@ -85,21 +85,104 @@ pub fn export(scene: &Scene, deck_name: &str) -> Result<Job, ExportError> {
     })
 }
 
-/// Writes `job` to `deck` and beside it (each file atomically); returns the paths.
-pub fn write(job: &Job, deck: &Path) -> Result<Vec<PathBuf>, String> {
+/// Writes `job`: the deck at `deck`, [`FREQUENCY_FILE`] and [`CONFIG_FILE`] beside it,
+/// all three or none (each written to a temporary name first, renamed when all are
+/// written). Refused, nothing written: a file of the job that is one of `inputs` (the
+/// scene and the files it reads), and a directory that holds another job's
+/// [`FREQUENCY_FILE`] or [`CONFIG_FILE`] (two jobs would share them: one directory per
+/// job). Returns the files written.
+pub fn write(job: &Job, deck: &Path, inputs: &[PathBuf]) -> Result<Vec<PathBuf>, String> {
+    check_target(deck, inputs)?;
     let dir = deck.parent().unwrap_or(Path::new(""));
-    if !dir.as_os_str().is_empty() {
-        std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
-    }
     let files = [
         (deck.to_path_buf(), &job.deck),
         (dir.join(FREQUENCY_FILE), &job.frequencies),
         (dir.join(CONFIG_FILE), &job.config),
     ];
-    for (path, text) in &files {
-        write_text(path, text)?;
+    if !dir.as_os_str().is_empty() {
+        std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+    }
+    let temps: Vec<PathBuf> = files.iter().map(|(p, _)| partial_path(p)).collect();
+    let clean = |temps: &[PathBuf]| {
+        for t in temps {
+            let _ = std::fs::remove_file(t);
+        }
+    };
+    for ((path, text), tmp) in files.iter().zip(&temps) {
+        if let Err(e) = std::fs::write(tmp, text) {
+            clean(&temps);
+            return Err(format!("{}: {e}", path.display()));
+        }
+    }
+    for ((path, _), tmp) in files.iter().zip(&temps) {
+        if let Err(e) = std::fs::rename(tmp, path) {
+            clean(&temps);
+            return Err(format!("{}: {e}", path.display()));
+        }
     }
     Ok(files.into_iter().map(|(p, _)| p).collect())
+}
+
+/// Refuses a job at `deck` whose files would overwrite one of `inputs` (the scene and
+/// the files it reads) or another job's files in the same directory.
+pub fn check_target(deck: &Path, inputs: &[PathBuf]) -> Result<(), String> {
+    let dir = deck.parent().unwrap_or(Path::new(""));
+    let name = deck
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    for path in [
+        deck.to_path_buf(),
+        dir.join(FREQUENCY_FILE),
+        dir.join(CONFIG_FILE),
+    ] {
+        if let Some(input) = inputs.iter().find(|i| same_file(&path, i)) {
+            return Err(format!(
+                "{}: is {}, which this export reads; write the job elsewhere",
+                path.display(),
+                input.display()
+            ));
+        }
+    }
+    if let Some(other) = other_job(dir, &name) {
+        return Err(format!(
+            "{}: holds the job {other} (its {FREQUENCY_FILE} and {CONFIG_FILE}); {name} would replace them: export each job into a directory of its own",
+            if dir.as_os_str().is_empty() { Path::new(".") } else { dir }.display()
+        ));
+    }
+    Ok(())
+}
+
+/// Whether `a` and `b` name one existing file.
+fn same_file(a: &Path, b: &Path) -> bool {
+    match (a.canonicalize(), b.canonicalize()) {
+        (Ok(a), Ok(b)) => a == b,
+        _ => false,
+    }
+}
+
+/// The deck name of another job whose files lie in `dir` (a [`CONFIG_FILE`] written
+/// for a deck other than `deck_name`, or a [`FREQUENCY_FILE`] without one), if any.
+fn other_job(dir: &Path, deck_name: &str) -> Option<String> {
+    let config = std::fs::read_to_string(dir.join(CONFIG_FILE)).ok();
+    let frequencies = dir.join(FREQUENCY_FILE).exists();
+    let named = config
+        .as_deref()
+        .and_then(|c| c.lines().next())
+        .and_then(|l| l.split_once("of the Abaqus job "))
+        .and_then(|(_, rest)| rest.split_once(", written by"))
+        .map(|(job, _)| job.to_string());
+    match (config, named) {
+        (Some(_), Some(job)) if job == deck_name => None,
+        (Some(_), Some(job)) => Some(job),
+        (Some(_), None) => Some(format!(
+            "of an unknown deck ({CONFIG_FILE} not written by export)"
+        )),
+        (None, _) if frequencies => Some(format!(
+            "of an unknown deck ({FREQUENCY_FILE} without {CONFIG_FILE})"
+        )),
+        (None, _) => None,
+    }
 }
 
 /// A float in shortest round-trip form (read back bit for bit), e.g. `1174.0`, `1e-6`.

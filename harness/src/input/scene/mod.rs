@@ -89,8 +89,7 @@ impl Scene {
                     let t = biased(i as f64 / (s.count - 1) as f64, s.bias);
                     match s.spacing {
                         Spacing::Linear => s.f_min + t * (s.f_max - s.f_min),
-                        // In log space: f_max / f_min itself may overflow.
-                        Spacing::Log => (s.f_min.ln() + t * (s.f_max.ln() - s.f_min.ln())).exp(),
+                        Spacing::Log => log_spaced(s.f_min, s.f_max, t),
                     }
                 })
                 .collect()
@@ -104,6 +103,17 @@ impl Scene {
         f.sort_by(f64::total_cmp);
         f.dedup_by(|a, b| (*a - *b).abs() <= 1e-12 * b.abs());
         f
+    }
+}
+
+/// The point at fraction `t` of a logarithmic scale from `lo` to `hi` (> 0): lo (hi/lo)^t,
+/// in log space where hi/lo overflows or underflows.
+fn log_spaced(lo: f64, hi: f64, t: f64) -> f64 {
+    let ratio = hi / lo;
+    if ratio.is_finite() && ratio > 0.0 {
+        lo * ratio.powf(t)
+    } else {
+        (lo.ln() + t * (hi.ln() - lo.ln())).exp()
     }
 }
 
