@@ -510,3 +510,32 @@ fn the_readme_keyword_table_is_the_one_the_reader_checks_against() {
     );
     assert!(table.contains("| `*DAMPING` | `ALPHA=`"), "{table}");
 }
+
+#[test]
+fn a_node_in_no_element_is_dropped_with_a_note_and_a_load_on_it_refused() {
+    let d = dir("orphan");
+    let base = block(
+        &format!("*NSET, NSET=TIPN\n{TIP_NODES}\n"),
+        "TIPN",
+        &cartesian,
+    );
+    let orphan = base.replacen(
+        "*ELEMENT, TYPE=C3D8",
+        "500, 50., 50., 50.\n*ELEMENT, TYPE=C3D8",
+        1,
+    );
+    assert_ne!(orphan, base);
+    let r = run(&d, "orphan", &orphan);
+    same(&run(&d, "plain", &base), &r, 1e-12);
+    assert!(
+        r.1.contains("1 nodes in no element (500): dropped"),
+        "{}",
+        r.1
+    );
+    let loaded = orphan.replace("*NSET, NSET=TIPN\n", "*NSET, NSET=TIPN\n500, ");
+    refused(
+        &run(&d, "loaded", &loaded),
+        "*CLOAD: node 500 is in no element: the load would act on nothing",
+    );
+    let _ = std::fs::remove_dir_all(&d);
+}

@@ -15,9 +15,22 @@ pub fn step_loads(job: &DeckJob, st: &Step, n_dofs: usize) -> Result<PartLoads, 
     let d = &job.deck;
     let (mut re, mut im) = (vec![0.0; n_dofs], vec![0.0; n_dofs]);
     let x: Vec<[f64; 3]> = d.nodes.iter().map(|n| n.x).collect();
+    let mut in_element = vec![false; d.nodes.len()];
+    for e in &d.elements {
+        for n in &e.nodes {
+            in_element[d.node_index[n]] = true;
+        }
+    }
     for l in &st.cloads {
         let f = if l.imaginary { &mut im } else { &mut re };
         for id in job.target_nodes(&l.target) {
+            if !in_element[d.node_index[&id]] {
+                return Err(l.origin.error(
+                    K::BadValue,
+                    "*CLOAD",
+                    format!("node {id} is in no element: the load would act on nothing"),
+                ));
+            }
             f[3 * d.node_index[&id] + (l.dof as usize - 1)] += l.value;
         }
     }

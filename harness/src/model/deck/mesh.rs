@@ -11,6 +11,9 @@ use crate::input::deck::{DeckError, DeckErrorKind as K};
 pub struct DeckMesh {
     pub model: Model,
     pub rayleigh: Vec<(f64, f64)>,
+    /// Ids of the nodes in no element (Gmsh and Abaqus/CAE write them; Abaqus ignores
+    /// them): their DOFs are held, so that they carry no stiffness-free unknowns.
+    pub orphans: Vec<u64>,
 }
 
 /// Nodes, elements with their section's material, and the boundary conditions (DOFs
@@ -50,6 +53,21 @@ pub fn mesh(job: &DeckJob) -> Result<DeckMesh, DeckError> {
         .collect();
     model.fixed = vec![false; model.n_dofs()];
     model.loads = vec![0.0; model.n_dofs()];
+    let mut used = vec![false; model.nodes.len()];
+    for e in &model.elements {
+        for &n in &e.nodes {
+            used[n] = true;
+        }
+    }
+    let orphans: Vec<u64> = (0..used.len())
+        .filter(|&i| !used[i])
+        .map(|i| d.nodes[i].id)
+        .collect();
+    for (i, u) in used.iter().enumerate() {
+        if !u {
+            model.fixed[3 * i..3 * i + 3].fill(true);
+        }
+    }
     for b in d
         .boundaries
         .iter()
@@ -65,5 +83,9 @@ pub fn mesh(job: &DeckJob) -> Result<DeckMesh, DeckError> {
             .fix(&nodes, comps)
             .map_err(|x| b.origin.error(K::BadValue, "*BOUNDARY", x.to_string()))?;
     }
-    Ok(DeckMesh { model, rayleigh })
+    Ok(DeckMesh {
+        model,
+        rayleigh,
+        orphans,
+    })
 }

@@ -113,8 +113,19 @@ pub fn build(scene: &Scene, job: &DeckJob) -> Result<Problem, BuildError> {
     let mesh::DeckMesh {
         mut model,
         rayleigh,
+        orphans,
     } = mesh::mesh(job)?;
     let mut warnings: Vec<String> = job.warnings.iter().map(|w| w.to_string()).collect();
+    if !orphans.is_empty() {
+        let shown: Vec<String> = orphans.iter().take(10).map(u64::to_string).collect();
+        warnings.push(format!(
+            "{}: {} nodes in no element ({}{}): dropped, as Abaqus ignores them",
+            job.file,
+            orphans.len(),
+            shown.join(", "),
+            if orphans.len() > 10 { ", …" } else { "" }
+        ));
+    }
     let length = &scene.spec.units.length;
     let e_max = model
         .materials
