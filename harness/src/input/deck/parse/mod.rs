@@ -105,6 +105,24 @@ fn data_origin(card: &Card, l: &DataLine) -> Origin {
     }
 }
 
+/// A warning when the pair `[slave, master]` of data line `l` repeats one of `earlier`
+/// (slave, master, line): the repeat then counts once.
+fn repeated<'a>(
+    card: &Card,
+    l: &DataLine,
+    [slave, master]: [&String; 2],
+    mut earlier: impl Iterator<Item = (&'a String, &'a String, usize)>,
+) -> Option<DeckWarning> {
+    let (_, _, line) = earlier.find(|(s, m, _)| *s == slave && *m == master)?;
+    Some(card.origin.warning(
+        &card.name(),
+        format!(
+            "line {}: {slave}, {master} is given already (line {line}): counted once",
+            l.line
+        ),
+    ))
+}
+
 /// Checks a card against the implemented keywords: an unknown keyword, a parameter
 /// its keyword does not implement or a data line with more fields than it reads is an
 /// error (output keywords the run ignores are not checked further).
@@ -318,16 +336,10 @@ impl Reader {
                 }
                 for l in lines(card) {
                     let [slave, master] = self.surface_pair(card, l, scope)?;
-                    if let Some(first) = self
-                        .deck
-                        .contact_pairs
-                        .iter()
-                        .find(|c| c.slave == slave && c.master == master)
-                    {
-                        self.warnings.push(card.origin.warning(
-                            &card.name(),
-                            format!("line {}: {slave}, {master} is paired already (line {}): counted once", l.line, first.origin.line),
-                        ));
+                    let earlier = (self.deck.contact_pairs.iter())
+                        .map(|c| (&c.slave, &c.master, c.origin.line));
+                    if let Some(w) = repeated(card, l, [&slave, &master], earlier) {
+                        self.warnings.push(w);
                         continue;
                     }
                     self.deck.contact_pairs.push(ContactPair {
@@ -348,16 +360,10 @@ impl Reader {
                 choice(card, "ADJUST", &["YES", "NO"], "YES")?;
                 for l in lines(card) {
                     let [slave, master] = self.surface_pair(card, l, scope)?;
-                    if let Some(first) = self
-                        .deck
-                        .ties
-                        .iter()
-                        .find(|t| t.slave == slave && t.master == master)
-                    {
-                        self.warnings.push(card.origin.warning(
-                            &card.name(),
-                            format!("line {}: {slave}, {master} is tied already (line {}): counted once", l.line, first.origin.line),
-                        ));
+                    let earlier =
+                        (self.deck.ties.iter()).map(|t| (&t.slave, &t.master, t.origin.line));
+                    if let Some(w) = repeated(card, l, [&slave, &master], earlier) {
+                        self.warnings.push(w);
                         continue;
                     }
                     self.deck.ties.push(Tie {
