@@ -193,10 +193,10 @@ fn parameters_and_fields_the_reader_does_not_implement_are_refused_at_their_line
         |text: &str, start: &str| text.lines().position(|l| l.starts_with(start)).unwrap() + 1;
     for (name, from, to, needle) in [
         (
-            "structural",
+            "composite",
             "*DAMPING, ALPHA=0., BETA=1e-7",
-            "*DAMPING, STRUCTURAL=0.02",
-            "*DAMPING, STRUCTURAL=: STRUCTURAL=0.02",
+            "*DAMPING, COMPOSITE=0.02",
+            "*DAMPING, COMPOSITE=: parameter not supported",
         ),
         (
             "velocity",

@@ -173,6 +173,9 @@ pub fn reduce(p: &Problem, effects: &Effects, mode: usize) -> Result<Reduced, St
         .ok_or("B K_s⁻¹ Bᵀ is not positive definite: two contact directions coincide")?;
     // Ψ = X G⁻¹ (G symmetric): Ψᵀ = G⁻¹ Xᵀ.
     let psi = chol.solve(&x.transpose()).transpose();
+    if effects.material_damping && p.structural.is_some() {
+        return Err("the model has structural damping (*DAMPING, STRUCTURAL=): backbones take viscous damping only".into());
+    }
     let m = &p.sys.m;
     let damping = if effects.material_damping {
         p.damping.as_ref()

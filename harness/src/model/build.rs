@@ -458,6 +458,7 @@ pub fn build(scene: &Scene) -> Result<Problem, BuildError> {
         model,
         sys,
         damping,
+        structural: None,
         interfaces,
         contacts,
         cubic_springs,

@@ -171,6 +171,11 @@ pub struct Problem {
     /// Material (Rayleigh, per material) plus dashpot damping; `None` when the
     /// `material_damping` effect is off or nothing damps.
     pub damping: Option<Csc<f64>>,
+    /// Structural (hysteretic) damping Σ sₘ Kₘ of the materials (a deck's `*DAMPING,
+    /// STRUCTURAL=`): i times it joins the dynamic stiffness at every frequency ω > 0
+    /// (force/length); `None` when nothing damps so or `material_damping` is off. It has
+    /// no time-domain form.
+    pub structural: Option<Csc<f64>>,
     pub interfaces: Vec<Interface>,
     pub contacts: Vec<ContactPoint>,
     pub cubic_springs: Vec<CubicSpring>,

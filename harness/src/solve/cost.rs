@@ -64,7 +64,8 @@ pub fn measure(p: &Problem, omega: f64) -> Result<Measured, UmfpackError> {
     let w2 = omega * omega;
     for (k, v) in s.values.iter_mut().enumerate() {
         let d = p.damping.as_ref().map_or(0.0, |d| d.values[k]);
-        *v = C64::new(base[k] - w2 * p.sys.m.values[k], omega * d);
+        let h = p.structural.as_ref().map_or(0.0, |h| h.values[k]);
+        *v = C64::new(base[k] - w2 * p.sys.m.values[k], omega * d + h);
     }
     let t = Instant::now();
     let num = symbolic.factor(&s)?;

@@ -116,6 +116,11 @@ pub fn simulate(
     settings: &TimeSettings,
     ramp_cycles: f64,
 ) -> Result<FreqResult, TimeError> {
+    if p.structural.is_some() {
+        return Err(TimeError::Settings(
+            "the model has structural damping (*DAMPING, STRUCTURAL=), which has no time-domain form (Abaqus applies it in steady-state steps only)".into(),
+        ));
+    }
     let clock = Instant::now();
     let calls0 = contacts.calls;
     let omega = 2.0 * std::f64::consts::PI * freq;

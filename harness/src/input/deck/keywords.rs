@@ -142,7 +142,7 @@ pub const KEYWORDS: &[Keyword] = &[
             value("BETA", "Rayleigh stiffness factor β (time)"),
             value(
                 "STRUCTURAL",
-                "refused: structural (hysteretic) damping is not implemented",
+                "structural damping s: i·s·K of the material in steady-state steps",
             ),
         ],
         fields: Some(0),

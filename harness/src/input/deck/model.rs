@@ -77,6 +77,9 @@ pub struct MaterialDef {
     pub density: Option<f64>,
     /// Rayleigh damping: α (1/time, mass-proportional), β (time, stiffness-proportional).
     pub damping: Option<(f64, f64)>,
+    /// Structural (hysteretic) damping factor s: i·s times the material's stiffness in
+    /// a steady-state step (`*DAMPING, STRUCTURAL=`), dimensionless.
+    pub structural: Option<f64>,
     pub origin: Origin,
 }
 

@@ -11,6 +11,8 @@ use crate::input::deck::{DeckError, DeckErrorKind as K};
 pub struct DeckMesh {
     pub model: Model,
     pub rayleigh: Vec<(f64, f64)>,
+    /// Each material's structural damping factor s (0: none).
+    pub structural: Vec<f64>,
     /// Ids of the nodes in no element (Gmsh and Abaqus/CAE write them; Abaqus ignores
     /// them): their DOFs are held, so that they carry no stiffness-free unknowns.
     pub orphans: Vec<u64>,
@@ -23,6 +25,7 @@ pub fn mesh(job: &DeckJob) -> Result<DeckMesh, DeckError> {
     let mut index: HashMap<&str, usize> = HashMap::new();
     let mut materials = Vec::new();
     let mut rayleigh = Vec::new();
+    let mut structural = Vec::new();
     let mut material_of: HashMap<u64, usize> = HashMap::new();
     for s in &d.sections {
         let m = &d.materials[&s.material];
@@ -35,6 +38,7 @@ pub fn mesh(job: &DeckJob) -> Result<DeckMesh, DeckError> {
                 .map_err(|x| m.origin.error(K::BadValue, "*MATERIAL", x.to_string()))?;
             materials.push(mat);
             rayleigh.push(m.damping.unwrap_or((0.0, 0.0)));
+            structural.push(m.structural.unwrap_or(0.0));
         }
         for id in &d.element_sets[&s.element_set] {
             material_of.insert(*id, i);
@@ -86,6 +90,7 @@ pub fn mesh(job: &DeckJob) -> Result<DeckMesh, DeckError> {
     Ok(DeckMesh {
         model,
         rayleigh,
+        structural,
         orphans,
     })
 }

@@ -113,6 +113,7 @@ pub fn build(scene: &Scene, job: &DeckJob) -> Result<Problem, BuildError> {
     let mesh::DeckMesh {
         mut model,
         rayleigh,
+        structural,
         orphans,
     } = mesh::mesh(job)?;
     let mut warnings: Vec<String> = job.warnings.iter().map(|w| w.to_string()).collect();
@@ -250,10 +251,14 @@ pub fn build(scene: &Scene, job: &DeckJob) -> Result<Problem, BuildError> {
             &Matrix3::from_diagonal_element(spring),
         );
     }
-    let damping = if scene.spec.effects.material_damping {
-        material_damping(&model, &sys, &rayleigh)?
+    let (damping, structural) = if scene.spec.effects.material_damping {
+        let hysteretic: Vec<(f64, f64)> = structural.iter().map(|&s| (0.0, s)).collect();
+        (
+            material_damping(&model, &sys, &rayleigh)?,
+            material_damping(&model, &sys, &hysteretic)?,
+        )
     } else {
-        None
+        (None, None)
     };
 
     let contacts = raw
@@ -344,6 +349,7 @@ pub fn build(scene: &Scene, job: &DeckJob) -> Result<Problem, BuildError> {
         model,
         sys,
         damping,
+        structural,
         interfaces,
         contacts,
         cubic_springs: Vec::new(),

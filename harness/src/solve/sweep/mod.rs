@@ -282,6 +282,8 @@ pub struct Setup<'a> {
     /// (`StaticState::friction_samples`; empty: node-based).
     pub friction_samples: Vec<Vec<(f64, f64)>>,
     pub damping: Option<&'a Csc<f64>>,
+    /// Structural damping ([`Problem::structural`]), `None` when `material_damping` is off.
+    pub structural: Option<&'a Csc<f64>>,
     /// S(ω) scratch.
     pub s: Csc<C64>,
 }
@@ -331,10 +333,10 @@ impl<'a> Setup<'a> {
                 unit_blocks.push([unit(1), unit(2)]);
             }
         }
-        let damping = if effects.material_damping {
-            problem.damping.as_ref()
+        let (damping, structural) = if effects.material_damping {
+            (problem.damping.as_ref(), problem.structural.as_ref())
         } else {
-            None
+            (None, None)
         };
         Ok(Setup {
             problem,
@@ -347,6 +349,7 @@ impl<'a> Setup<'a> {
             normal_k,
             point_model: harmonic_fe_point3d::PointModel::from_effects(effects),
             damping,
+            structural,
             s: problem.sys.complex_zeros(),
         })
     }
@@ -362,6 +365,11 @@ impl<'a> Setup<'a> {
         if let Some(d) = self.damping {
             for (s, dv) in self.s.values.iter_mut().zip(&d.values) {
                 s.im += omega * dv;
+            }
+        }
+        if let Some(h) = self.structural.filter(|_| omega > 0.0) {
+            for (s, hv) in self.s.values.iter_mut().zip(&h.values) {
+                s.im += hv;
             }
         }
         for (j, &i) in self.active.iter().enumerate() {

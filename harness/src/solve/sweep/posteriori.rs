@@ -197,10 +197,14 @@ pub fn residual(
         for k in pt.col_ptr[j] as usize..pt.col_ptr[j + 1] as usize {
             let i = pt.row_idx[k] as usize;
             let d = setup.damping.map_or(0.0, |d| d.values[k]);
+            let h = setup
+                .structural
+                .filter(|_| omega > 0.0)
+                .map_or(0.0, |h| h.values[k]);
             y[i].add(C64::new(setup.base[k], 0.0), x[j]);
             y[i].add(C64::new(-w2 * m[k], 0.0), x[j]);
-            y[i].add(C64::new(0.0, omega * d), x[j]);
-            let v = C64::new(setup.base[k] - w2 * m[k], omega * d).norm();
+            y[i].add(C64::new(0.0, omega * d + h), x[j]);
+            let v = C64::new(setup.base[k] - w2 * m[k], omega * d + h).norm();
             cols[j] += v;
             rows[i] += v;
         }

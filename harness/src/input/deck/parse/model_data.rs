@@ -47,23 +47,25 @@ impl Reader {
                 m.density = Some(rho);
             }
             _ => {
-                if let Some(s) = card.param("STRUCTURAL") {
-                    return Err(card.origin.error(
-                        K::Unsupported,
-                        "*DAMPING, STRUCTURAL=",
-                        format!("STRUCTURAL={s}: structural (hysteretic) damping is not implemented; the run would be undamped where Abaqus damps"),
+                if m.damping.is_some() || m.structural.is_some() {
+                    return Err(card.error(
+                        K::Duplicate,
+                        format!("material {name} has a *DAMPING already (one card gives ALPHA, BETA and STRUCTURAL)"),
                     ));
                 }
-                let (a, b) = (
+                let (a, b, s) = (
                     param_number(card, "ALPHA", 0.0)?,
                     param_number(card, "BETA", 0.0)?,
+                    param_number(card, "STRUCTURAL", 0.0)?,
                 );
-                if a < 0.0 || b < 0.0 {
-                    return Err(
-                        card.error(K::BadValue, format!("ALPHA = {a}, BETA = {b} must be >= 0"))
-                    );
+                if a < 0.0 || b < 0.0 || s < 0.0 {
+                    return Err(card.error(
+                        K::BadValue,
+                        format!("ALPHA = {a}, BETA = {b}, STRUCTURAL = {s} must be >= 0"),
+                    ));
                 }
                 m.damping = Some((a, b));
+                m.structural = card.param("STRUCTURAL").map(|_| s);
             }
         }
         Ok(())
