@@ -212,7 +212,7 @@ fn contact_surfaces_that_do_not_overlap_are_an_error() {
     assert_eq!(e.kind, DeckErrorKind::BadValue);
     assert!(
         e.to_string()
-            .starts_with("test.inp:38: *CONTACT PAIR: slave TOP and master BASE do not overlap"),
+            .starts_with("test.inp:39: *CONTACT PAIR: slave TOP and master BASE do not overlap"),
         "{e}"
     );
 }
@@ -300,7 +300,8 @@ const BAD: &[(&str, &str, DeckErrorKind, &str)] = &[
         "interaction=JOINT",
         "interaction=OTHER",
         DeckErrorKind::Undefined,
-        "test.inp:38: *CONTACT PAIR",
+        // Each pair is at its data line (the slave, master line).
+        "test.inp:39: *CONTACT PAIR",
     ),
     (
         "BOTTOM, ENCASTRE",
