@@ -539,3 +539,64 @@ fn a_node_in_no_element_is_dropped_with_a_note_and_a_load_on_it_refused() {
     );
     let _ = std::fs::remove_dir_all(&d);
 }
+
+#[test]
+fn a_deck_too_large_for_the_machine_is_refused_by_check_and_run_before_it_is_built() {
+    let d = dir("size");
+    let base = block(
+        &format!("*NSET, NSET=TIPN\n{TIP_NODES}\n"),
+        "TIPN",
+        &cartesian,
+    );
+    // 300 lines of 1e7 frequencies each: refused at the line that passes 1e7 in all.
+    let many = base.replace("1000., 5000., 5\n", &"1., 100., 10000000\n".repeat(300));
+    let deck = d.join("many.inp");
+    std::fs::write(&deck, &many).unwrap();
+    let line = many
+        .lines()
+        .position(|l| l == "1., 100., 10000000")
+        .unwrap()
+        + 2;
+    for cmd in ["check", "run"] {
+        let o = d.join("o");
+        let args: &[&str] = if cmd == "run" {
+            &["run", deck.to_str().unwrap(), "--out", o.to_str().unwrap()]
+        } else {
+            &["check", deck.to_str().unwrap()]
+        };
+        let (code, log) = jointlin(args);
+        assert_eq!(code, 2, "{cmd}: {log}");
+        assert!(
+            log.contains(&format!("many.inp:{line}: *STEADY STATE DYNAMICS: more than 10000000 frequencies in one step")),
+            "{cmd}: {log}"
+        );
+    }
+    // The mesh against a memory limit: named by check and by run, nothing written.
+    let small = d.join("small.inp");
+    std::fs::write(&small, &base).unwrap();
+    for cmd in ["check", "run"] {
+        let o = d.join("o");
+        let mut args = vec![cmd, small.to_str().unwrap()];
+        if cmd == "run" {
+            args.extend(["--out", o.to_str().unwrap()]);
+        }
+        let out = Command::new(env!("CARGO_BIN_EXE_jointlin"))
+            .env("JOINTLIN_MAX_MEMORY", "1M")
+            .args(&args)
+            .output()
+            .unwrap();
+        let log = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{cmd}: {log}");
+        assert!(
+            log.contains("*ELEMENT: the run needs about"),
+            "{cmd}: {log}"
+        );
+        assert!(log.contains("24 nodes: 72 DOFs"), "{cmd}: {log}");
+        assert!(
+            log.contains("allowed by JOINTLIN_MAX_MEMORY"),
+            "{cmd}: {log}"
+        );
+    }
+    assert!(!d.join("o").join("results.csv").exists());
+    let _ = std::fs::remove_dir_all(&d);
+}

@@ -50,6 +50,7 @@ impl DeckJob {
         deck: Deck,
         mut warnings: Vec<DeckWarning>,
     ) -> Result<DeckJob, DeckError> {
+        super::size::check(&file, &deck)?;
         let units = stated_units(&file, text)?.unwrap_or_else(|| Units {
             length: "deck length".into(),
             force: "deck force".into(),

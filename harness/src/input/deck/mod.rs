@@ -20,6 +20,7 @@ pub mod model;
 pub mod parse;
 pub mod props;
 pub mod sets;
+pub mod size;
 pub mod summary;
 
 #[cfg(test)]

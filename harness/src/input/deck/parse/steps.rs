@@ -2,6 +2,7 @@
 //! output requests.
 
 use super::*;
+use crate::input::deck::size::MAX_FREQUENCIES;
 
 impl Reader {
     pub(super) fn procedure(&mut self, card: &Card) -> Result<(), DeckError> {
@@ -66,9 +67,20 @@ impl Reader {
                     );
                 }
                 let log = scale == FrequencyScale::Logarithmic;
-                let ranges = lines(card)
-                    .map(|l| frequency_range(card, l, log))
-                    .collect::<Result<Vec<_>, _>>()?;
+                let mut ranges = Vec::new();
+                let mut total = 0usize;
+                for l in lines(card) {
+                    let r = frequency_range(card, l, log)?;
+                    total += r.points;
+                    if total > MAX_FREQUENCIES {
+                        return Err(card.error_at(
+                            l.line,
+                            K::BadValue,
+                            format!("more than {MAX_FREQUENCIES} frequencies in one step (the lines so far list {total})"),
+                        ));
+                    }
+                    ranges.push(r);
+                }
                 Procedure::SteadyState { ranges, scale }
             }
         };

@@ -8,28 +8,10 @@
 use super::Problem;
 use crate::input::scene::error::KeyPath;
 use crate::input::scene::schema::*;
-use crate::util::memory::{self, format_bytes, LimitSource, MAX_MEMORY_VAR};
-
-/// Bytes per DOF of the sparse matrices: a hex8 mesh couples each DOF with 81 (27
-/// nodes × 3), held in K, M, D (real), the dynamic stiffness (complex), the static
-/// tangent, their index arrays, and the solvers' vectors of that length.
-const MATRIX_BYTES_PER_DOF: f64 = 4000.0;
-/// Bytes per estimated entry of the sparse LU factors ([`factor_entries`]): fitted to
-/// the peak memory of `jointlin run` on two bodies in contact (4 320 and 29 376 DOFs:
-/// 0.10 and 1.56 GB) and three beams (13 608 DOFs: 0.36 GB); with the DOF term the
-/// estimate is 1.1–1.7 × the measured peak (2.4 × on the knife's 824 DOFs). UMFPACK's
-/// real fill exceeds the nested dissection count, and the static and complex factors,
-/// the FGMRES basis and the contact blocks come with it.
-const FACTOR_BYTES_PER_ENTRY: f64 = 2000.0;
-/// Bytes kept per frequency and contact point (point results: amplitudes, k*, d*,
-/// energy and ratio per direction).
-const POINT_BYTES_PER_FREQUENCY: f64 = 160.0;
-/// Bytes kept per frequency and output (complex amplitude, with and without contact
-/// damping) and per frequency itself.
-const OUTPUT_BYTES_PER_FREQUENCY: f64 = 48.0;
-const BYTES_PER_FREQUENCY: f64 = 64.0;
-/// The process itself (binary, libraries, allocator) before the model (13 MB measured).
-const BASE_BYTES: f64 = 20e6;
+use crate::util::memory::{
+    self, format_bytes, LimitSource, BASE_BYTES, BYTES_PER_FREQUENCY, FACTOR_BYTES_PER_ENTRY,
+    MATRIX_BYTES_PER_DOF, MAX_MEMORY_VAR, OUTPUT_BYTES_PER_FREQUENCY, POINT_BYTES_PER_FREQUENCY,
+};
 
 /// One part of the estimate: the key that sets it, its size (bytes) and what it is.
 #[derive(Debug, Clone, PartialEq)]
@@ -177,10 +159,7 @@ pub fn check_against(s: &SceneFile, (limit, source): (f64, LimitSource)) -> Opti
         return None;
     }
     let part = e.largest()?;
-    let from = match source {
-        LimitSource::Available => "available (MemAvailable of /proc/meminfo)",
-        LimitSource::Variable => "allowed by JOINTLIN_MAX_MEMORY",
-    };
+    let from = source.describe();
     Some((
         part.key.clone(),
         format!(
