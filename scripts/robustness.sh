@@ -28,7 +28,7 @@ ROOT=$PWD
 TARGET=${CARGO_TARGET_DIR:-$ROOT/target}
 OUT=${ROBUST_DIR:-$TARGET/robustness}
 mkdir -p "$OUT"
-TARGETS=(jointlin_linearize jointlin_uinter jointlin_uexternaldb scene_check)
+TARGETS=(jointlin_linearize jointlin_uinter jointlin_uexternaldb scene_check deck_check)
 
 log() { printf '== %s\n' "$*"; }
 

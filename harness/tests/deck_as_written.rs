@@ -600,3 +600,32 @@ fn a_deck_too_large_for_the_machine_is_refused_by_check_and_run_before_it_is_bui
     assert!(!d.join("o").join("results.csv").exists());
     let _ = std::fs::remove_dir_all(&d);
 }
+
+#[test]
+fn a_model_that_is_not_held_is_named_before_any_solve() {
+    let d = dir("free");
+    let base = block(
+        &format!("*NSET, NSET=TIPN\n{TIP_NODES}\n"),
+        "TIPN",
+        &cartesian,
+    );
+    let free = base.replace("*BOUNDARY\nCLAMP, ENCASTRE\n", "");
+    assert_ne!(free, base);
+    refused(
+        &run(&d, "free", &free),
+        "*BOUNDARY: the model is not held: 6 rigid-body modes in the part of 24 nodes",
+    );
+    // Rotations only (solid nodes have none): as free.
+    let rotations = base.replace("CLAMP, ENCASTRE", "CLAMP, 4, 6");
+    refused(
+        &run(&d, "rotations", &rotations),
+        "the model is not held: 6 rigid-body modes",
+    );
+    // One node pinned: the three rotations about it stay.
+    let pinned = base.replace("CLAMP, ENCASTRE", "1, PINNED");
+    refused(
+        &run(&d, "pinned", &pinned),
+        "the model is not held: 3 rigid-body modes",
+    );
+    let _ = std::fs::remove_dir_all(&d);
+}

@@ -202,7 +202,8 @@ fn decks_a_run_cannot_honour_are_named_errors_with_their_line() {
             "*CONTACT PAIR" => "*CONTACT PAIR",
             k => k,
         };
-        let line = line_of(&text, card);
+        // A contact pair is named at its data line (slave, master), after the card.
+        let line = line_of(&text, card) + usize::from(keyword == "*CONTACT PAIR");
         let want = format!("{name}:{line}: {keyword}: ");
         assert!(
             log.contains(&want) && log.contains(msg),

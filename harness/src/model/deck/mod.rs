@@ -12,6 +12,7 @@
 //! (model.md §3: n from the lower body, here the master, into the upper one, the
 //! slave); its area is the slave node's tributary area.
 
+mod held;
 mod loads;
 mod mesh;
 
@@ -242,6 +243,31 @@ pub fn build(scene: &Scene, job: &DeckJob) -> Result<Problem, BuildError> {
     }
     let first_contact = couplings.len();
     couplings.extend(raw.iter().map(|(n, _)| coupling(n)));
+    let groups: Vec<Vec<usize>> = (couplings.iter())
+        .map(|c| c.iter().map(|&(n, _)| n).collect())
+        .collect();
+    if let Some(l) = held::loose_parts(&model, &groups).first() {
+        let ids: Vec<String> = l
+            .nodes
+            .iter()
+            .take(5)
+            .map(|&i| deck.nodes[i].id.to_string())
+            .collect();
+        return Err(crate::input::deck::DeckError {
+            kind: DeckErrorKind::BadValue,
+            file: job.file.clone(),
+            line: 0,
+            keyword: "*BOUNDARY".into(),
+            message: format!(
+                "the model is not held: {} rigid-body modes in the part of {} nodes ({}{}); hold it with *BOUNDARY (a free model's modes at 0 Hz are not computed)",
+                l.modes,
+                l.nodes.len(),
+                ids.join(", "),
+                if l.nodes.len() > 5 { ", …" } else { "" }
+            ),
+        }
+        .into());
+    }
 
     let mut sys = assemble_couplings(&model, &couplings)?;
     for &(k, spring) in &tie_springs {
