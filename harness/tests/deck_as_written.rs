@@ -629,3 +629,37 @@ fn a_model_that_is_not_held_is_named_before_any_solve() {
     );
     let _ = std::fs::remove_dir_all(&d);
 }
+
+#[test]
+fn overflowing_materials_and_loads_and_empty_units_are_named_at_their_line() {
+    let d = dir("magnitudes");
+    let base = block(
+        &format!("*NSET, NSET=TIPN\n{TIP_NODES}\n"),
+        "TIPN",
+        &cartesian,
+    );
+    let line_of =
+        |text: &str, start: &str| text.lines().position(|l| l.starts_with(start)).unwrap() + 1;
+    let huge_e = base.replace("210000., 0.3", "1e250, 0.3");
+    refused(
+        &run(&d, "e", &huge_e),
+        &format!(
+            "e.inp:{}: *MATERIAL: material STEEL: E = 1e250",
+            line_of(&huge_e, "*MATERIAL")
+        ),
+    );
+    let huge_f = base.replace("TIPN, 3, 0.25", "TIPN, 3, 1e300");
+    refused(
+        &run(&d, "f", &huge_f),
+        &format!(
+            "f.inp:{}: *CLOAD: force 1e300 beyond 1e150",
+            line_of(&huge_f, "*CLOAD")
+        ),
+    );
+    let empty = base.replace("length=mm", "length=");
+    refused(
+        &run(&d, "units", &empty),
+        "units.inp:3: **: `length=`: the unit of length is empty",
+    );
+    let _ = std::fs::remove_dir_all(&d);
+}

@@ -6,8 +6,14 @@ use std::collections::HashMap;
 use super::error::{DeckError, DeckErrorKind as K};
 use super::model::{Deck, Procedure};
 
+/// Largest stiffness E·L (force/length, L the model's size), nodal force or pressure
+/// force p·L² a deck may give: the solve forms products of two such numbers, which stay
+/// finite below (1e150)².
+pub const MAX_MAGNITUDE: f64 = 1e150;
+
 /// Checks the deck; the first problem is the error.
 pub fn check(deck: &Deck) -> Result<(), DeckError> {
+    magnitudes(deck)?;
     let mut x = Vec::new();
     for e in &deck.elements {
         x.clear();
@@ -94,6 +100,69 @@ pub fn check(deck: &Deck) -> Result<(), DeckError> {
                 "*CONTACT PAIR",
                 format!("interaction {} is not defined", p.interaction),
             ));
+        }
+    }
+    Ok(())
+}
+
+/// Materials and loads whose stiffness or force would overflow the solve's products
+/// ([`MAX_MAGNITUDE`]), named at their card.
+fn magnitudes(deck: &Deck) -> Result<(), DeckError> {
+    let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+    for n in &deck.nodes {
+        for c in 0..3 {
+            lo[c] = lo[c].min(n.x[c]);
+            hi[c] = hi[c].max(n.x[c]);
+        }
+    }
+    let size = (0..3).map(|c| (hi[c] - lo[c]).powi(2)).sum::<f64>().sqrt();
+    if !size.is_finite() {
+        return Err(DeckError {
+            kind: K::BadValue,
+            file: String::new(),
+            line: 0,
+            keyword: "*NODE".into(),
+            message: "the nodes span more than the largest double".into(),
+        });
+    }
+    let too_big = |v: f64| !(v.abs() <= MAX_MAGNITUDE);
+    for m in deck.materials.values() {
+        if let Some((e, _)) = m.elastic {
+            if too_big(e * size) {
+                return Err(m.origin.error(
+                    K::BadValue,
+                    "*MATERIAL",
+                    format!("material {}: E = {e:e} over the model's size {size:e} is a stiffness of {:e}, beyond {MAX_MAGNITUDE:e}: the solve would overflow", m.name, e * size),
+                ));
+            }
+        }
+    }
+    for st in &deck.steps {
+        for l in &st.cloads {
+            if too_big(l.value) {
+                return Err(l.origin.error(
+                    K::BadValue,
+                    "*CLOAD",
+                    format!(
+                        "force {:e} beyond {MAX_MAGNITUDE:e}: the solve would overflow",
+                        l.value
+                    ),
+                ));
+            }
+        }
+        let pressures = (st.dloads.iter().map(|l| (l.pressure, &l.origin, "*DLOAD"))).chain(
+            st.dsloads
+                .iter()
+                .map(|l| (l.pressure, &l.origin, "*DSLOAD")),
+        );
+        for (p, origin, keyword) in pressures {
+            if too_big(p * size * size) {
+                return Err(origin.error(
+                    K::BadValue,
+                    keyword,
+                    format!("pressure {p:e} over the model's size {size:e} is a force of {:e}, beyond {MAX_MAGNITUDE:e}: the solve would overflow", p * size * size),
+                ));
+            }
         }
     }
     Ok(())

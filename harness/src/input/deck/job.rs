@@ -335,6 +335,9 @@ pub fn stated_units(file: &str, text: &str) -> Result<Option<Units>, DeckError> 
                     )))
                 }
             };
+            if v.is_empty() {
+                return Err(err(format!("`{item}`: the unit of {k} is empty")));
+            }
             u[slot] = Some(v.to_string());
         }
         let [Some(length), Some(force), Some(time), Some(mass)] = u else {
