@@ -125,7 +125,7 @@ fn magnitudes(deck: &Deck) -> Result<(), DeckError> {
             message: "the nodes span more than the largest double".into(),
         });
     }
-    let too_big = |v: f64| !(v.abs() <= MAX_MAGNITUDE);
+    let too_big = |v: f64| v.is_nan() || v.abs() > MAX_MAGNITUDE;
     for m in deck.materials.values() {
         if let Some((e, _)) = m.elastic {
             if too_big(e * size) {
