@@ -145,18 +145,19 @@ fn cartesian(id: u64, x: [f64; 3]) -> String {
 /// The nodes of the block's last element (x = 8…10 mm).
 const TIP_NODES: &str = "5, 6, 11, 12, 17, 18, 23, 24";
 
+/// The block loaded on its last element's nodes, listed by number (set TIPN).
+fn plain_block() -> String {
+    block(
+        &format!("*NSET, NSET=TIPN\n{TIP_NODES}\n"),
+        "TIPN",
+        &cartesian,
+    )
+}
+
 #[test]
 fn a_node_set_from_an_element_set_holds_that_elements_nodes() {
     let d = dir("nset-elset");
-    let plain = run(
-        &d,
-        "plain",
-        &block(
-            &format!("*NSET, NSET=TIPN\n{TIP_NODES}\n"),
-            "TIPN",
-            &cartesian,
-        ),
-    );
+    let plain = run(&d, "plain", &plain_block());
     let from_elset = run(
         &d,
         "elset",
@@ -184,11 +185,7 @@ fn a_node_set_from_an_element_set_holds_that_elements_nodes() {
 #[test]
 fn parameters_and_fields_the_reader_does_not_implement_are_refused_at_their_line() {
     let d = dir("params");
-    let base = block(
-        &format!("*NSET, NSET=TIPN\n{TIP_NODES}\n"),
-        "TIPN",
-        &cartesian,
-    );
+    let base = plain_block();
     let line_of =
         |text: &str, start: &str| text.lines().position(|l| l.starts_with(start)).unwrap() + 1;
     for (name, from, to, needle) in [
@@ -424,11 +421,7 @@ fn tolerances_are_judged_on_the_paired_faces_not_on_a_far_reference_node() {
 #[test]
 fn a_logarithmic_sweep_from_zero_is_refused_at_its_line() {
     let d = dir("log");
-    let base = block(
-        &format!("*NSET, NSET=TIPN\n{TIP_NODES}\n"),
-        "TIPN",
-        &cartesian,
-    );
+    let base = plain_block();
     let text = base
         .replace(", FREQUENCY SCALE=LINEAR", "")
         .replace("1000., 5000., 5", "0., 5000., 5");
@@ -514,11 +507,7 @@ fn the_readme_keyword_table_is_the_one_the_reader_checks_against() {
 #[test]
 fn a_node_in_no_element_is_dropped_with_a_note_and_a_load_on_it_refused() {
     let d = dir("orphan");
-    let base = block(
-        &format!("*NSET, NSET=TIPN\n{TIP_NODES}\n"),
-        "TIPN",
-        &cartesian,
-    );
+    let base = plain_block();
     let orphan = base.replacen(
         "*ELEMENT, TYPE=C3D8",
         "500, 50., 50., 50.\n*ELEMENT, TYPE=C3D8",
@@ -543,11 +532,7 @@ fn a_node_in_no_element_is_dropped_with_a_note_and_a_load_on_it_refused() {
 #[test]
 fn a_deck_too_large_for_the_machine_is_refused_by_check_and_run_before_it_is_built() {
     let d = dir("size");
-    let base = block(
-        &format!("*NSET, NSET=TIPN\n{TIP_NODES}\n"),
-        "TIPN",
-        &cartesian,
-    );
+    let base = plain_block();
     // 300 lines of 1e7 frequencies each: refused at the line that passes 1e7 in all.
     let many = base.replace("1000., 5000., 5\n", &"1., 100., 10000000\n".repeat(300));
     let deck = d.join("many.inp");
@@ -604,11 +589,7 @@ fn a_deck_too_large_for_the_machine_is_refused_by_check_and_run_before_it_is_bui
 #[test]
 fn a_model_that_is_not_held_is_named_before_any_solve() {
     let d = dir("free");
-    let base = block(
-        &format!("*NSET, NSET=TIPN\n{TIP_NODES}\n"),
-        "TIPN",
-        &cartesian,
-    );
+    let base = plain_block();
     let free = base.replace("*BOUNDARY\nCLAMP, ENCASTRE\n", "");
     assert_ne!(free, base);
     refused(
@@ -633,11 +614,7 @@ fn a_model_that_is_not_held_is_named_before_any_solve() {
 #[test]
 fn overflowing_materials_and_loads_and_empty_units_are_named_at_their_line() {
     let d = dir("magnitudes");
-    let base = block(
-        &format!("*NSET, NSET=TIPN\n{TIP_NODES}\n"),
-        "TIPN",
-        &cartesian,
-    );
+    let base = plain_block();
     let line_of =
         |text: &str, start: &str| text.lines().position(|l| l.starts_with(start)).unwrap() + 1;
     let huge_e = base.replace("210000., 0.3", "1e250, 0.3");
