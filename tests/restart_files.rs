@@ -84,12 +84,21 @@ fn status_of(store: *const jointlin_store) -> (i32, jointlin_point_status, (i32,
     (code, st, action)
 }
 
-/// Writes `text` to the restart path and restores: JOINTLIN_ERR_IO, state unchanged.
+/// `text` (an edited restart file) with its checksum line written anew, so that a
+/// restore reaches the checks behind the checksum.
+fn resealed(text: &str) -> String {
+    let body = text.rsplit_once("checksum ").map_or(text, |(b, _)| b);
+    format!("{body}checksum {:08x}\n", crc32fast::hash(body.as_bytes()))
+}
+
+/// Writes `text` (resealed: [`resealed`]) to the restart path and restores:
+/// JOINTLIN_ERR_IO, state unchanged.
 fn rejected(store: *const jointlin_store, path: &Path, text: &str) {
     assert!(
         text.starts_with("jointlin-store"),
         "not a restart file: {text}"
     );
+    let text = &resealed(text);
     let before = status_of(store);
     std::fs::write(path, text).unwrap();
     let status = unsafe { jointlin_store_restore(store) };
@@ -169,12 +178,21 @@ fn a_file_of_another_model_or_other_settings_is_rejected() {
     assert_eq!(uexternaldb(same, 4, 0, 1, 0), JOINTLIN_OK);
     // Format 1 (no fingerprints): only a store without a model fingerprint reads it.
     let v1: String = good
-        .replacen("jointlin-store 2", "jointlin-store 1", 1)
+        .replacen("jointlin-store 3", "jointlin-store 1", 1)
         .lines()
-        .filter(|l| !l.starts_with("model ") && !l.starts_with("settings "))
+        .filter(|l| {
+            !l.starts_with("model ") && !l.starts_with("settings ") && !l.starts_with("checksum ")
+        })
         .map(|l| format!("{l}\n"))
         .collect();
     rejected(other, &path, &v1);
+    // Format 2 (fingerprints, no checksum) is refused: a one-byte edit of a format 3
+    // file's version would otherwise make it one.
+    let v2 = good
+        .replacen("jointlin-store 3", "jointlin-store 2", 1)
+        .replace(good.lines().last().unwrap(), "");
+    std::fs::write(&path, &v2).unwrap();
+    assert_eq!(unsafe { jointlin_store_restore(same) }, JOINTLIN_ERR_IO);
     std::fs::write(&path, &v1).unwrap();
     assert_eq!(unsafe { jointlin_store_restore(none) }, JOINTLIN_OK);
     for s in [writer, other, loose, none, same] {
@@ -328,4 +346,46 @@ fn lop_2_and_3_are_all_or_nothing_when_the_restart_file_cannot_be_written() {
     assert_ne!(std::fs::read_to_string(&path).unwrap(), good);
     unsafe { jointlin_store_free(store) };
     std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// Every single-byte change of a restart file (each byte replaced by a neighbour
+/// character), and every file cut short, is rejected by its checksum line; before the
+/// checksum about half of such edits still parsed as a valid file.
+#[test]
+fn every_single_byte_edit_or_cut_is_rejected_by_the_checksum() {
+    let dir = fresh_dir("checksum");
+    let path = dir.join("jointlin.restart");
+    let store = store_at(&path, 1e-6, b"deck v1");
+    let good = real_file(store, &path);
+    assert!(
+        good.lines().last().unwrap().starts_with("checksum "),
+        "{good}"
+    );
+    let before = status_of(store);
+    let mut edits = 0;
+    for i in 0..good.len() {
+        let mut bytes = good.clone().into_bytes();
+        bytes[i] = if bytes[i] == b'0' { b'1' } else { bytes[i] ^ 1 };
+        std::fs::write(&path, &bytes).unwrap();
+        assert_eq!(
+            unsafe { jointlin_store_restore(store) },
+            JOINTLIN_ERR_IO,
+            "byte {i} changed: accepted"
+        );
+        edits += 1;
+    }
+    for n in (0..good.len()).step_by(3) {
+        std::fs::write(&path, &good[..n]).unwrap();
+        assert_eq!(
+            unsafe { jointlin_store_restore(store) },
+            JOINTLIN_ERR_IO,
+            "cut at {n}"
+        );
+    }
+    assert!(edits > 300, "{edits}");
+    assert_eq!(status_of(store), before);
+    std::fs::write(&path, &good).unwrap();
+    assert_eq!(unsafe { jointlin_store_restore(store) }, JOINTLIN_OK);
+    unsafe { jointlin_store_free(store) };
+    let _ = std::fs::remove_dir_all(&dir);
 }

@@ -6,12 +6,20 @@
 //! file whose values a store could not have written (NaN, ∞ or negative amplitudes,
 //! duplicate points, increments or records, counters beyond [`MAX_RESTART_PASSES`],
 //! schedules naming increments the sweep never ran). Version 1 files (no fingerprints) are
-//! read only by a store without a model fingerprint, with the same checks.
+//! read only by a store without a model fingerprint, with the same checks. Version 3 is
+//! version 2 with a last line `checksum <crc32>` over every byte before it: a file
+//! changed or cut after it was written is rejected before it is read. Version 2 files
+//! are refused (a one-byte edit of the version would turn a version 3 file into one):
+//! delete them to start the iteration over.
 
 use super::*;
 
 const MAGIC: &str = "jointlin-store";
-const VERSION: &str = "2";
+const VERSION: &str = "3";
+/// The format with fingerprints and without the checksum.
+const VERSION_2: &str = "2";
+/// The tag of the checksum line that ends a version 3 file.
+const CHECKSUM: &str = "checksum ";
 /// The format before the fingerprints.
 const VERSION_1: &str = "1";
 
@@ -151,7 +159,26 @@ pub(super) fn write(keys: &[PointKey], s: &State, fp: &Fingerprint) -> String {
         }
     }
     o.push_str("end\n");
+    let crc = crc32fast::hash(o.as_bytes());
+    o.push_str(&format!("{CHECKSUM}{crc:08x}\n"));
     o
+}
+
+/// The text before the checksum line of a version 3 file, checked against it.
+fn checked_body(text: &str) -> Result<&str, StoreError> {
+    let mismatch = || {
+        StoreError::Io(
+            "restart file checksum mismatch: the file was changed or cut after it was written"
+                .into(),
+        )
+    };
+    let (body, sum) = text.rsplit_once(CHECKSUM).ok_or_else(mismatch)?;
+    let sum = sum.strip_suffix('\n').ok_or_else(mismatch)?;
+    let want = u32::from_str_radix(sum, 16).map_err(|_| mismatch())?;
+    if sum.len() != 8 || crc32fast::hash(body.as_bytes()) != want {
+        return Err(mismatch());
+    }
+    Ok(body)
 }
 
 struct Tokens<'a>(std::str::SplitWhitespace<'a>);
@@ -196,9 +223,19 @@ impl<'a> Tokens<'a> {
 }
 
 pub(super) fn parse(text: &str, fp: &Fingerprint) -> Result<(Registry, State), StoreError> {
+    let mut head = text.split_whitespace();
+    let text = match (head.next(), head.next()) {
+        (Some(MAGIC), Some(VERSION)) => checked_body(text)?,
+        _ => text,
+    };
     let mut t = Tokens(text.split_whitespace());
     t.tag(MAGIC)?;
     match t.word("version")? {
+        VERSION_2 => {
+            return Err(StoreError::Io(
+                "restart file of version 2 has no checksum (an earlier jointlin wrote it): delete it to start the iteration over".into(),
+            ))
+        }
         VERSION => {
             t.tag("model")?;
             if unhex(t.word("model")?, "model fingerprint")? != fp.model {
