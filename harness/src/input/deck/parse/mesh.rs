@@ -1,6 +1,7 @@
 //! `*NODE`, `*ELEMENT`, `*NSET`/`*ELSET`, `*SURFACE`.
 
 use super::*;
+use crate::input::deck::check::MAX_MAGNITUDE;
 
 impl Reader {
     pub(super) fn nodes(&mut self, card: &Card, scope: &Scope) -> Result<(), DeckError> {
@@ -24,6 +25,13 @@ impl Reader {
             let mut x = cartesian(&system, given);
             for (x, t) in x.iter_mut().zip(scope.translation) {
                 *x += t;
+            }
+            if x.iter().any(|v| v.abs() > MAX_MAGNITUDE) {
+                return Err(card.error_at(
+                    l.line,
+                    K::BadValue,
+                    format!("node {f} at {x:?}: a coordinate beyond {MAX_MAGNITUDE:e} (the model's size would overflow)"),
+                ));
             }
             if self
                 .deck
