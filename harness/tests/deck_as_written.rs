@@ -640,3 +640,47 @@ fn overflowing_materials_and_loads_and_empty_units_are_named_at_their_line() {
     );
     let _ = std::fs::remove_dir_all(&d);
 }
+
+#[test]
+fn what_abaqus_cae_writes_is_read_and_included_data_lines_are_named_in_their_file() {
+    let d = dir("cae");
+    let base = plain_block();
+    let plain = run(&d, "plain", &base);
+    // CAE's parameters that change nothing a run computes.
+    let cae = base.replace(
+        "*STEADY STATE DYNAMICS, DIRECT, FREQUENCY SCALE=LINEAR",
+        "*Steady State Dynamics, direct, friction damping=NO, frequency scale=LINEAR",
+    );
+    let cae = cae.replace(
+        "*STEP, NAME=SWEEP, PERTURBATION\n",
+        "*STEP, NAME=MODES, PERTURBATION\n*Frequency, eigensolver=Lanczos, sim=NO, acoustic coupling=on, normalization=displacement\n3, , , , ,\n*END STEP\n*STEP, NAME=SWEEP, PERTURBATION\n",
+    );
+    same(&plain, &run(&d, "cae", &cae), 1e-12);
+    // A blank line after a card whose data lines come from its INPUT= file.
+    let (head, rest) = base.split_once("*NODE\n").unwrap();
+    let (nodes, tail) = rest.split_once("*ELEMENT").unwrap();
+    std::fs::write(d.join("nodes.txt"), nodes).unwrap();
+    let blank = format!("{head}*NODE, INPUT=nodes.txt\n\n*ELEMENT{tail}");
+    same(&plain, &run(&d, "blank", &blank), 1e-12);
+    // A frequency list in an included file: its bad line is named in that file.
+    std::fs::write(d.join("sweep.frq"), "1000., 5000., 5\n0., 5000., 5\n").unwrap();
+    let included = base
+        .replace(", FREQUENCY SCALE=LINEAR", "")
+        .replace("1000., 5000., 5\n", "*INCLUDE, INPUT=sweep.frq\n");
+    let r = run(&d, "included", &included);
+    refused(
+        &r,
+        "sweep.frq:2: *STEADY STATE DYNAMICS: f_low = 0 on a logarithmic scale",
+    );
+    // TYPE=SURFACE TO SURFACE: read where the tie conforms, refused where it does not.
+    let s2s = "*TIE, NAME=GLUE, TYPE=SURFACE TO SURFACE\nUP-BOT, LOW-TOP\n";
+    let (code, log, _) = run(&d, "s2s", &gapped(0.0, s2s));
+    assert_eq!(code, 0, "{log}");
+    let s2s_far =
+        "*TIE, NAME=GLUE, TYPE=SURFACE TO SURFACE, POSITION TOLERANCE=1.\nUP-BOT, LOW-TOP\n";
+    refused(
+        &run(&d, "s2s-gap", &gapped(0.5, s2s_far)),
+        "*TIE, TYPE=: TYPE=SURFACE TO SURFACE on the non-conforming tie GLUE",
+    );
+    let _ = std::fs::remove_dir_all(&d);
+}

@@ -430,6 +430,38 @@ fn export_never_overwrites_its_input_or_another_job() {
             "{f}"
         );
     }
+    // An existing file that is not this job's deck (e.g. a mesh a deck includes), and a
+    // deck named like the job's own side files.
+    let mesh = d.join("mesh").join("mesh.inp");
+    std::fs::create_dir_all(mesh.parent().unwrap()).unwrap();
+    std::fs::write(&mesh, "*NODE\n1, 0., 0., 0.\n").unwrap();
+    let (code, log) = jointlin(&[
+        "export",
+        scene.to_str().unwrap(),
+        "--inp",
+        mesh.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 2, "{log}");
+    assert!(
+        log.contains("exists and is not a deck export wrote for this job"),
+        "{log}"
+    );
+    assert_eq!(
+        std::fs::read_to_string(&mesh).unwrap(),
+        "*NODE\n1, 0., 0., 0.\n"
+    );
+    let side = d.join("side").join("sweep.frq");
+    let (code, log) = jointlin(&[
+        "export",
+        scene.to_str().unwrap(),
+        "--inp",
+        side.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 2, "{log}");
+    assert!(
+        log.contains("the deck would be the job's own sweep.frq"),
+        "{log}"
+    );
     // Nothing else was left in the directory (no temporary files).
     let names: Vec<String> = std::fs::read_dir(d.join("job"))
         .unwrap()

@@ -124,13 +124,20 @@ pub fn write(job: &Job, deck: &Path, inputs: &[PathBuf]) -> Result<Vec<PathBuf>,
 }
 
 /// Refuses a job at `deck` whose files would overwrite one of `inputs` (the scene and
-/// the files it reads) or another job's files in the same directory.
+/// the files it reads), an existing file that is not this job's deck (a mesh the scene's
+/// deck includes, any other file), or another job's files in the same directory.
 pub fn check_target(deck: &Path, inputs: &[PathBuf]) -> Result<(), String> {
     let dir = deck.parent().unwrap_or(Path::new(""));
     let name = deck
         .file_name()
         .map(|n| n.to_string_lossy().into_owned())
         .unwrap_or_default();
+    if name == FREQUENCY_FILE || name == CONFIG_FILE {
+        return Err(format!(
+            "{}: the deck would be the job's own {name}; name it JOB.inp",
+            deck.display()
+        ));
+    }
     for path in [
         deck.to_path_buf(),
         dir.join(FREQUENCY_FILE),
@@ -144,6 +151,14 @@ pub fn check_target(deck: &Path, inputs: &[PathBuf]) -> Result<(), String> {
             ));
         }
     }
+    let ours = std::fs::read_to_string(dir.join(CONFIG_FILE))
+        .is_ok_and(|c| job_of(&c).as_deref() == Some(name.as_str()));
+    if deck.exists() && !ours {
+        return Err(format!(
+            "{}: exists and is not a deck export wrote for this job (no {CONFIG_FILE} beside it names it); write the job elsewhere",
+            deck.display()
+        ));
+    }
     if let Some(other) = other_job(dir, &name) {
         return Err(format!(
             "{}: holds the job {other} (its {FREQUENCY_FILE} and {CONFIG_FILE}); {name} would replace them: export each job into a directory of its own",
@@ -151,6 +166,14 @@ pub fn check_target(deck: &Path, inputs: &[PathBuf]) -> Result<(), String> {
         ));
     }
     Ok(())
+}
+
+/// The deck a [`CONFIG_FILE`] written by export names in its first line.
+fn job_of(config: &str) -> Option<String> {
+    let first = config.lines().next()?;
+    let (_, rest) = first.split_once("of the Abaqus job ")?;
+    let (job, _) = rest.split_once(", written by")?;
+    Some(job.to_string())
 }
 
 /// Whether `a` and `b` name one existing file.
@@ -166,12 +189,7 @@ fn same_file(a: &Path, b: &Path) -> bool {
 fn other_job(dir: &Path, deck_name: &str) -> Option<String> {
     let config = std::fs::read_to_string(dir.join(CONFIG_FILE)).ok();
     let frequencies = dir.join(FREQUENCY_FILE).exists();
-    let named = config
-        .as_deref()
-        .and_then(|c| c.lines().next())
-        .and_then(|l| l.split_once("of the Abaqus job "))
-        .and_then(|(_, rest)| rest.split_once(", written by"))
-        .map(|(job, _)| job.to_string());
+    let named = config.as_deref().and_then(job_of);
     match (config, named) {
         (Some(_), Some(job)) if job == deck_name => None,
         (Some(_), Some(job)) => Some(job),

@@ -30,7 +30,8 @@ pub struct Card {
     pub params: Vec<(String, String)>,
     pub origin: Origin,
     pub data: Vec<DataLine>,
-    /// The file the data lines come from when it is not the keyword line's (`INPUT=`).
+    /// The file the data lines come from when it is not the keyword line's (`INPUT=`, or
+    /// an `*INCLUDE`d file of data lines); `None` also when they come from several.
     pub data_file: Option<String>,
 }
 
@@ -229,12 +230,23 @@ impl Lexer {
                     format!("data line before the first keyword: {:?}", truncate(line)),
                 ));
             };
-            if card.param("INPUT").is_some() && card.keyword != "INCLUDE" {
+            if card.param("INPUT").is_some() && card.keyword != "INCLUDE" && !line.is_empty() {
                 return Err(origin.error(
                     DeckErrorKind::Syntax,
                     &card.name(),
                     "a data line after a keyword whose data lines come from its INPUT= file",
                 ));
+            }
+            // Data lines from an included file (a frequency list after the keyword
+            // line): their errors name that file, unless the card mixes files.
+            let from = (name != card.origin.file).then(|| name.to_string());
+            let blank = |l: &DataLine| l.fields.iter().all(|f| f.is_empty());
+            if !line.is_empty() {
+                if card.data.iter().all(blank) {
+                    card.data_file = from;
+                } else if card.data_file != from {
+                    card.data_file = None;
+                }
             }
             card.data.push(data_line(i + 1, line));
         }

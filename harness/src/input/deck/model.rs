@@ -123,6 +123,8 @@ pub struct Tie {
     pub master: String,
     /// POSITION TOLERANCE= (length), if given.
     pub position_tolerance: Option<f64>,
+    /// `TYPE=SURFACE TO SURFACE`: allowed only where the tie is conforming.
+    pub surface_to_surface: bool,
     pub origin: Origin,
 }
 

@@ -166,6 +166,14 @@ pub fn build(scene: &Scene, job: &DeckJob) -> Result<Problem, BuildError> {
             model.ties.extend(merged);
             continue;
         }
+        if t.surface_to_surface {
+            return Err(t.origin.error(
+                DeckErrorKind::Unsupported,
+                "*TIE, TYPE=",
+                format!("TYPE=SURFACE TO SURFACE on the non-conforming tie {}: this reader ties node to surface (TYPE=NODE TO SURFACE); the two agree only where the meshes conform", t.name),
+            )
+            .into());
+        }
         if let Some(w) = unmatched(deck, &at, &p) {
             warnings.push(w);
         }

@@ -358,6 +358,12 @@ impl Reader {
                     Some(_) => Some(param_number(card, "POSITION TOLERANCE", 0.0)?),
                 };
                 choice(card, "ADJUST", &["YES", "NO"], "YES")?;
+                let surface_to_surface = choice(
+                    card,
+                    "TYPE",
+                    &["NODE TO SURFACE", "SURFACE TO SURFACE"],
+                    "NODE TO SURFACE",
+                )? == "SURFACE TO SURFACE";
                 for l in lines(card) {
                     let [slave, master] = self.surface_pair(card, l, scope)?;
                     let earlier =
@@ -371,6 +377,7 @@ impl Reader {
                         slave,
                         master,
                         position_tolerance: tol,
+                        surface_to_surface,
                         origin: data_origin(card, l),
                     });
                 }

@@ -47,6 +47,7 @@ impl Reader {
                     ));
                 }
                 choice(card, "INTERVAL", &["RANGE"], "RANGE")?;
+                choice(card, "FRICTION DAMPING", &["NO"], "NO")?;
                 let scale = match card
                     .param("FREQUENCY SCALE")
                     .map(|s| s.to_ascii_uppercase())
