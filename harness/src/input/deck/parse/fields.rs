@@ -103,7 +103,7 @@ pub(super) fn dof(card: &Card, l: &DataLine, i: usize) -> Result<u8, DeckError> 
 pub(super) fn face_label(label: &str, letter: char) -> Option<usize> {
     let u = label.trim().to_ascii_uppercase();
     let n: usize = u.strip_prefix(letter)?.parse().ok()?;
-    (1..=6).contains(&n).then_some(n - 1)
+    (1..=6).contains(&n).then(|| n - 1)
 }
 
 /// A `*STEADY STATE DYNAMICS` data line as Abaqus reads it: f_low, f_high (zero or
@@ -160,4 +160,18 @@ pub(super) fn frequency_range(
         points: points as usize,
         bias,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::face_label;
+
+    #[test]
+    fn face_labels_outside_one_to_six_are_no_face() {
+        assert_eq!(face_label("S0", 'S'), None);
+        assert_eq!(face_label("s7", 'S'), None);
+        assert_eq!(face_label(" s6 ", 'S'), Some(5));
+        assert_eq!(face_label("P1", 'P'), Some(0));
+        assert_eq!(face_label("P1", 'S'), None);
+    }
 }
