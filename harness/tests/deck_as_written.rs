@@ -684,3 +684,95 @@ fn what_abaqus_cae_writes_is_read_and_included_data_lines_are_named_in_their_fil
     );
     let _ = std::fs::remove_dir_all(&d);
 }
+
+/// Three steel beams 100 × 10 × 2 mm stacked in z, C3D8I, one element thick with
+/// (x, y) cells `cells` per layer (non-conforming), clamped together at x = 0, joined by
+/// contact pairs with the USER interaction `law` (code, μ, k_T0 = k_N per area), pressed
+/// by 1 MPa on the top face only.
+fn pressed_beams(cells: [[usize; 2]; 3], law: (u8, f64, f64)) -> String {
+    let (l, w, t) = (100.0, 10.0, 2.0);
+    let mut s =
+        String::from("*HEADING\nthree beams\n** jointlin units: length=mm force=N time=s mass=t\n");
+    let (mut base, mut ebase, mut clamp, mut tip) = (0, 0, Vec::new(), 0);
+    for (layer, [nx, ny]) in cells.iter().copied().enumerate() {
+        let id = |i: usize, j: usize, k: usize| base + 1 + i + (nx + 1) * (j + (ny + 1) * k);
+        s.push_str("*NODE\n");
+        for k in 0..2 {
+            for j in 0..=ny {
+                for i in 0..=nx {
+                    let x = [l * i as f64 / nx as f64, w * j as f64 / ny as f64];
+                    let z = t * (layer + k) as f64;
+                    s += &format!("{}, {:?}, {:?}, {z:?}\n", id(i, j, k), x[0], x[1]);
+                    if i == 0 {
+                        clamp.push(id(i, j, k).to_string());
+                    }
+                    if layer == 2 && i == nx && j == 0 && k == 1 {
+                        tip = id(i, j, k);
+                    }
+                }
+            }
+        }
+        s += &format!("*ELEMENT, TYPE=C3D8I, ELSET=L{}\n", layer + 1);
+        for j in 0..ny {
+            for i in 0..nx {
+                ebase += 1;
+                let n = [
+                    id(i, j, 0),
+                    id(i + 1, j, 0),
+                    id(i + 1, j + 1, 0),
+                    id(i, j + 1, 0),
+                    id(i, j, 1),
+                    id(i + 1, j, 1),
+                    id(i + 1, j + 1, 1),
+                    id(i, j + 1, 1),
+                ];
+                let n: Vec<String> = n.iter().map(usize::to_string).collect();
+                s += &format!("{ebase}, {}\n", n.join(", "));
+            }
+        }
+        s += &format!(
+            "*SURFACE, NAME=L{0}-BOT\nL{0}, S1\n*SURFACE, NAME=L{0}-TOP\nL{0}, S2\n",
+            layer + 1
+        );
+        base += (nx + 1) * (ny + 1) * 2;
+    }
+    let (code, mu, k) = law;
+    s.push_str("*NSET, NSET=CLAMP\n");
+    for chunk in clamp.chunks(16) {
+        s += &format!("{}\n", chunk.join(", "));
+    }
+    s += &format!(
+        "*NSET, NSET=TIP\n{tip}\n*ELSET, ELSET=ALL\nL1, L2, L3\n*MATERIAL, NAME=STEEL\n*ELASTIC\n210000., 0.3\n*DENSITY\n7.85e-9\n*SOLID SECTION, ELSET=ALL, MATERIAL=STEEL\n*BOUNDARY\nCLAMP, ENCASTRE\n\
+         *SURFACE INTERACTION, NAME=JOINT, USER, PROPERTIES=7\n1.\n{code}, 0, {mu:e}, {k:e}, 0, {k:e}, 0\n\
+         *CONTACT PAIR, INTERACTION=JOINT, SMALL SLIDING\nL2-BOT, L1-TOP\nL3-BOT, L2-TOP\n\
+         *STEP\n*STATIC\n*DSLOAD\nL3-TOP, P, 1.\n*END STEP\n\
+         *STEP, PERTURBATION\n*STEADY STATE DYNAMICS, DIRECT, FREQUENCY SCALE=LINEAR\n100., 200., 2\n*CLOAD\nTIP, 3, 1.\n*NODE PRINT, NSET=TIP\nU\n*END STEP\n"
+    );
+    s
+}
+
+#[test]
+fn a_stuck_stack_pressed_from_one_side_finds_its_preload() {
+    // Friction high enough to stick (μ = 10, Mindlin) and an interface far stiffer than
+    // the beams: from rest, Newton's contact states cycle (points open and close between
+    // iterations, 60 iterations were not enough); the preload is found by raising the
+    // contact force gradually, and it is the model's own equilibrium (‖R‖/‖f‖ within
+    // Newton's tolerance, every frequency converged).
+    let d = dir("stuck");
+    let deck = pressed_beams([[6, 2], [8, 2], [10, 2]], (0, 10.0, 1e7));
+    let r = run(&d, "stuck", &deck);
+    assert_eq!(r.0, 0, "{}", r.1);
+    let json = std::fs::read_to_string(d.join("stuck-out/run.json")).unwrap();
+    let iterations: usize = json
+        .split("\"newton_iterations\": ")
+        .nth(1)
+        .and_then(|t| t.split(|c: char| !c.is_ascii_digit()).next())
+        .and_then(|t| t.parse().ok())
+        .unwrap();
+    assert!(
+        iterations > 60,
+        "{iterations}: Newton alone converged, the deck tests nothing"
+    );
+    assert!(json.contains("\"converged\"") && !json.contains("\"not converged\""));
+    let _ = std::fs::remove_dir_all(&d);
+}

@@ -23,6 +23,9 @@ use crate::solve::contact::{interface_props, normal_stiffness};
 use crate::solve::line_search;
 use crate::solve::umfpack::{to_complex, Symbolic, UmfpackError};
 
+mod continuation;
+use continuation::continuation;
+
 /// Newton stops when ‖R‖ ≤ this × ‖f_pre‖ (round-off of K u with cond(K) ~1e8 is far
 /// below; penalty laws converge in a few steps).
 pub const RESIDUAL_TOL: f64 = 1e-9;
@@ -57,6 +60,19 @@ pub enum StaticError {
         "static Newton did not converge in {iterations} iterations (‖R‖/‖f‖ = {residual:.3e})"
     )]
     NotConverged { iterations: usize, residual: f64 },
+    #[error(
+        "static Newton did not converge, also not with the contact force raised gradually \
+         from {start:.0e} of its value: it stalled at {alpha:.3e} of it after {iterations} \
+         iterations (‖R‖/‖f‖ = {residual:.3e}); an interface far stiffer than the \
+         elements beside it (normal or stick stiffness per area × element size ≫ E) \
+         makes the pressure alternate from node to node on a non-conforming mesh"
+    )]
+    Stalled {
+        start: f64,
+        alpha: f64,
+        iterations: usize,
+        residual: f64,
+    },
 }
 
 /// The converged preload state.
@@ -133,7 +149,7 @@ struct Eval {
 /// per sample): the overclosure interpolated from the points' overclosures `h`, the
 /// tangential slip the point's own. The
 /// point's stress and tangent are the area averages (tangent: the part through its own
-/// overclosure; the parts through its neighbours' go to `couplings`), and the area
+/// overclosure; the parts through its neighbours' go to `couplings`, × α), and the area
 /// average of dσ/dh.
 fn sampled_point(
     pt: &UinterPoint,
@@ -141,6 +157,7 @@ fn sampled_point(
     k: usize,
     h: &[f64],
     rdisp: [f64; 3],
+    alpha: f64,
     couplings: &mut Vec<(usize, usize, f64)>,
 ) -> Result<(capi::UinterOut, f64), CapiError> {
     let mut mean = capi::UinterOut::default();
@@ -164,7 +181,7 @@ fn sampled_point(
         stiffness += s.fraction * o.ddsddr[0][0];
         for &(j, w) in s.corners.iter().filter(|x| x.0 != k) {
             if o.ddsddr[0][0] != 0.0 {
-                couplings.push((k, j, s.fraction * w * o.ddsddr[0][0] * c.area));
+                couplings.push((k, j, s.fraction * w * o.ddsddr[0][0] * c.area * alpha));
             }
         }
     }
@@ -200,12 +217,15 @@ fn friction_samples(
     Ok(out)
 }
 
-/// Residual K u + f_c(u) − f and per-point tangents, one UINTER call per point.
+/// Residual K u + α f_c(u) − f and per-point tangents (× α), one UINTER call per point;
+/// α = 1 is the model, α < 1 a softer contact on the continuation's path
+/// ([`continuation`]).
 fn evaluate(
     p: &Problem,
     props: &[[f64; 12]],
     u: &[f64],
     probe: Option<f64>,
+    alpha: f64,
 ) -> Result<Eval, CapiError> {
     let mut r = p.sys.k.mul_vec(u);
     for (ri, fi) in r.iter_mut().zip(&p.preload) {
@@ -234,7 +254,7 @@ fn evaluate(
         // stress and tangent from the samples.
         let mut out = capi::uinter_general(&pt, &mut sv, rdisp, rdisp, 1, 1)?;
         if probe.is_none() && !c.samples.is_empty() {
-            let (mean, kn) = sampled_point(&pt, c, k, &h, rdisp, &mut couplings)?;
+            let (mean, kn) = sampled_point(&pt, c, k, &h, rdisp, alpha, &mut couplings)?;
             out.stress = mean.stress;
             out.ddsddr = mean.ddsddr;
             out.closed = mean.closed;
@@ -246,13 +266,13 @@ fn evaluate(
             let f = s_flip(out.stress);
             for k in 0..3 {
                 for &(i, w) in &c.rows[k] {
-                    r[i] += w * f[k] * c.area;
+                    r[i] += w * f[k] * c.area * alpha;
                 }
             }
         }
         let d = Matrix3::from_fn(|i, j| out.ddsddr[i][j]);
         let s = Matrix3::from_diagonal(&nalgebra::Vector3::new(-1.0, 1.0, 1.0));
-        tangents.push(s * d * s * c.area);
+        tangents.push(s * d * s * c.area * alpha);
         outs.push(out);
         statevs.push(sv);
     }
@@ -266,13 +286,20 @@ fn evaluate(
     })
 }
 
-/// Solves the preload step.
-pub fn solve(p: &Problem, nonlinear: bool) -> Result<StaticState, StaticError> {
-    let props: Vec<[f64; 12]> = p.interfaces.iter().map(interface_props).collect();
-    let sym = Symbolic::symmetric(p.sys.pattern.clone())?;
-    let n = p.sys.dofs.n_free();
-    let fnorm = norm(&p.preload).max(f64::MIN_POSITIVE);
-    let tangent_matrix = |tangents: &[Matrix3<f64>], couplings: &[(usize, usize, f64)]| {
+/// The Newton matrix K + Σ tangents + sampled couplings, factored and solved.
+struct NewtonMatrix<'a> {
+    p: &'a Problem,
+    sym: Symbolic,
+}
+
+impl NewtonMatrix<'_> {
+    fn solve(
+        &self,
+        tangents: &[Matrix3<f64>],
+        couplings: &[(usize, usize, f64)],
+        rhs: &[f64],
+    ) -> Result<Vec<f64>, UmfpackError> {
+        let p = self.p;
         let mut kt = to_complex(&p.sys.k);
         for (c, t) in p.contacts.iter().zip(tangents) {
             let g = to_global(&c.frame, &t.map(|v| Complex::new(v, 0.0)));
@@ -287,55 +314,22 @@ pub fn solve(p: &Problem, nonlinear: bool) -> Result<StaticState, StaticError> {
                 }
             }
         }
-        kt
-    };
-    let solve_with =
-        |kt: &crate::fe::csc::Csc<Complex<f64>>, rhs: &[f64]| -> Result<Vec<f64>, UmfpackError> {
-            let b: Vec<Complex<f64>> = rhs.iter().map(|&v| Complex::new(v, 0.0)).collect();
-            Ok(sym.factor(kt)?.solve(&b)?.iter().map(|z| z.re).collect())
-        };
-
-    if !nonlinear {
-        // Constant springs: k_N normal, k_T0 tangential (stick), no C-API call.
-        let tangents: Vec<Matrix3<f64>> = p
-            .contacts
-            .iter()
-            .map(|c| {
-                let i = &p.interfaces[c.interface];
-                let kn = normal_stiffness(i);
-                Matrix3::from_diagonal(&nalgebra::Vector3::new(
-                    kn,
-                    i.contact.k_t0_per_area,
-                    i.contact.k_t0_per_area,
-                )) * c.area
-            })
-            .collect();
-        let u = solve_with(&tangent_matrix(&tangents, &[]), &p.preload)?;
-        let mut pressure = Vec::new();
-        let mut closed = Vec::new();
-        let mut kn = Vec::new();
-        let mut statev = Vec::new();
-        for c in &p.contacts {
-            let i = &p.interfaces[c.interface];
-            let h = -c.relative(0, &u) - i.initial_gap;
-            let pr = (normal_stiffness(i) * h).max(0.0);
-            pressure.push(pr);
-            closed.push(pr > 0.0);
-            kn.push(normal_stiffness(i));
-            statev.push([0.0; NSTATV]);
-        }
-        return Ok(StaticState {
-            u,
-            pressure,
-            normal_stiffness: kn,
-            closed,
-            statev,
-            friction_samples: vec![Vec::new(); p.contacts.len()],
-            newton_iterations: 0,
-            residual: 0.0,
-        });
+        let b: Vec<Complex<f64>> = rhs.iter().map(|&v| Complex::new(v, 0.0)).collect();
+        let x = self.sym.factor(&kt)?.solve(&b)?;
+        Ok(x.iter().map(|z| z.re).collect())
     }
+}
 
+/// Solves the preload step.
+pub fn solve(p: &Problem, nonlinear: bool) -> Result<StaticState, StaticError> {
+    let props: Vec<[f64; 12]> = p.interfaces.iter().map(interface_props).collect();
+    let matrix = NewtonMatrix {
+        p,
+        sym: Symbolic::symmetric(p.sys.pattern.clone())?,
+    };
+    if !nonlinear {
+        return constant_springs(p, &matrix);
+    }
     // Size of the model, for the probe overclosure.
     let extent = p
         .model
@@ -344,72 +338,180 @@ pub fn solve(p: &Problem, nonlinear: bool) -> Result<StaticState, StaticError> {
         .flat_map(|x| x.iter().copied())
         .fold(0.0f64, |a, v| a.max(v.abs()))
         .max(1.0);
-    let mut u = vec![0.0; n];
-    let probe = evaluate(p, &props, &u, Some(PROBE_REL * extent))?;
-    let mut ev = evaluate(p, &props, &u, None)?;
-    let mut tangents = probe.tangents.clone();
-    let mut couplings = Vec::new();
-    let mut res = norm(&ev.residual) / fnorm;
-    for it in 1..=MAX_NEWTON {
-        let neg: Vec<f64> = ev.residual.iter().map(|v| -v).collect();
-        let du = solve_with(&tangent_matrix(&tangents, &couplings), &neg)?;
-        let slope0 = -dot(&neg, &du);
-        let found = line_search::search(slope0, |s| {
-            let trial: Vec<f64> = u.iter().zip(&du).map(|(a, b)| a + s * b).collect();
-            let e = evaluate(p, &props, &trial, None)?;
-            let g = dot(&e.residual, &du);
-            Ok::<_, CapiError>(((e, trial), g))
-        })?;
-        let moved = found.length * norm(&du);
-        (ev, u) = found.value;
-        res = norm(&ev.residual) / fnorm;
-        couplings.clone_from(&ev.couplings);
-        tangents = ev
-            .tangents
-            .iter()
-            .zip(&ev.out)
-            .zip(&probe.tangents)
-            .zip(&p.contacts)
-            .map(|(((t, o), pt), c)| {
-                if o.closed || p.interfaces[c.interface].initial_gap == 0.0 {
-                    *t
-                } else {
-                    pt * OPEN_STAND_IN
-                }
-            })
-            .collect();
-        if res <= RESIDUAL_TOL || (moved <= 1e-14 * norm(&u).max(f64::MIN_POSITIVE) && res < 1e-6) {
-            let pressure = ev.out.iter().map(|o| o.stress[0].max(0.0)).collect();
-            let normal_stiffness = ev
-                .out
-                .iter()
-                .zip(&ev.sample_stiffness)
-                .map(|(o, s)| match (o.closed, s) {
-                    (false, _) => 0.0,
-                    (true, Some(kn)) => *kn,
-                    (true, None) => o.ddsddr[0][0],
-                })
-                .collect();
-            let closed = ev.out.iter().map(|o| o.closed).collect();
-            let friction_samples = friction_samples(p, &props, &u)?;
-            return Ok(StaticState {
-                u,
-                pressure,
-                normal_stiffness,
-                closed,
-                statev: ev.statev,
-                friction_samples,
-                newton_iterations: it,
-                residual: res,
-            });
-        }
-    }
-    Err(StaticError::NotConverged {
-        iterations: MAX_NEWTON,
-        residual: res,
+    let newton = Newton {
+        p,
+        props: &props,
+        matrix,
+        fnorm: norm(&p.preload).max(f64::MIN_POSITIVE),
+        probe: evaluate(
+            p,
+            &props,
+            &vec![0.0; p.sys.dofs.n_free()],
+            Some(PROBE_REL * extent),
+            1.0,
+        )?
+        .tangents,
+    };
+    let start = vec![0.0; p.sys.dofs.n_free()];
+    let done = match newton.run(
+        start,
+        1.0,
+        newton.probe.clone(),
+        Vec::new(),
+        (RESIDUAL_TOL, MAX_NEWTON),
+    ) {
+        Err(StaticError::NotConverged { .. }) => continuation(&newton),
+        other => other,
+    }?;
+    let ev = done.eval;
+    let pressure = ev.out.iter().map(|o| o.stress[0].max(0.0)).collect();
+    let normal_stiffness = ev
+        .out
+        .iter()
+        .zip(&ev.sample_stiffness)
+        .map(|(o, s)| match (o.closed, s) {
+            (false, _) => 0.0,
+            (true, Some(kn)) => *kn,
+            (true, None) => o.ddsddr[0][0],
+        })
+        .collect();
+    let closed = ev.out.iter().map(|o| o.closed).collect();
+    let friction_samples = friction_samples(p, &props, &done.u)?;
+    Ok(StaticState {
+        u: done.u,
+        pressure,
+        normal_stiffness,
+        closed,
+        statev: ev.statev,
+        friction_samples,
+        newton_iterations: done.iterations,
+        residual: done.residual,
     })
 }
 
+/// Constant springs: k_N normal, k_T0 tangential (stick), one linear solve, no C-API call.
+fn constant_springs(p: &Problem, matrix: &NewtonMatrix) -> Result<StaticState, StaticError> {
+    let tangents: Vec<Matrix3<f64>> = p
+        .contacts
+        .iter()
+        .map(|c| {
+            let i = &p.interfaces[c.interface];
+            let kn = normal_stiffness(i);
+            Matrix3::from_diagonal(&nalgebra::Vector3::new(
+                kn,
+                i.contact.k_t0_per_area,
+                i.contact.k_t0_per_area,
+            )) * c.area
+        })
+        .collect();
+    let u = matrix.solve(&tangents, &[], &p.preload)?;
+    let mut pressure = Vec::new();
+    let mut closed = Vec::new();
+    let mut kn = Vec::new();
+    let mut statev = Vec::new();
+    for c in &p.contacts {
+        let i = &p.interfaces[c.interface];
+        let h = -c.relative(0, &u) - i.initial_gap;
+        let pr = (normal_stiffness(i) * h).max(0.0);
+        pressure.push(pr);
+        closed.push(pr > 0.0);
+        kn.push(normal_stiffness(i));
+        statev.push([0.0; NSTATV]);
+    }
+    Ok(StaticState {
+        u,
+        pressure,
+        normal_stiffness: kn,
+        closed,
+        statev,
+        friction_samples: vec![Vec::new(); p.contacts.len()],
+        newton_iterations: 0,
+        residual: 0.0,
+    })
+}
+
+/// Newton's method on K u + α f_c(u) = f_pre.
+struct Newton<'a> {
+    p: &'a Problem,
+    props: &'a [[f64; 12]],
+    matrix: NewtonMatrix<'a>,
+    /// ‖f_pre‖ (at least the smallest positive number).
+    fnorm: f64,
+    /// Per point: its tangent at the probe overclosure (α = 1).
+    probe: Vec<Matrix3<f64>>,
+}
+
+/// A converged Newton run.
+struct Converged {
+    u: Vec<f64>,
+    eval: Eval,
+    iterations: usize,
+    residual: f64,
+}
+
+impl Newton<'_> {
+    /// Newton from `u` with first matrix from `tangents` and `couplings`, each step
+    /// along the line search's length, until ‖R‖ ≤ `tol` ‖f_pre‖ or after
+    /// `max_iterations`.
+    fn run(
+        &self,
+        mut u: Vec<f64>,
+        alpha: f64,
+        mut tangents: Vec<Matrix3<f64>>,
+        mut couplings: Vec<(usize, usize, f64)>,
+        (tol, max_iterations): (f64, usize),
+    ) -> Result<Converged, StaticError> {
+        let (p, props) = (self.p, self.props);
+        let mut ev = evaluate(p, props, &u, None, alpha)?;
+        let mut res = norm(&ev.residual) / self.fnorm;
+        for it in 1..=max_iterations {
+            let neg: Vec<f64> = ev.residual.iter().map(|v| -v).collect();
+            let du = self.matrix.solve(&tangents, &couplings, &neg)?;
+            let slope0 = -dot(&neg, &du);
+            let found = line_search::search(slope0, |s| {
+                let trial: Vec<f64> = u.iter().zip(&du).map(|(a, b)| a + s * b).collect();
+                let e = evaluate(p, props, &trial, None, alpha)?;
+                let g = dot(&e.residual, &du);
+                Ok::<_, CapiError>(((e, trial), g))
+            })?;
+            let moved = found.length * norm(&du);
+            (ev, u) = found.value;
+            res = norm(&ev.residual) / self.fnorm;
+            couplings.clone_from(&ev.couplings);
+            tangents = self.newton_tangents(&ev, alpha);
+            if res <= tol || (moved <= 1e-14 * norm(&u).max(f64::MIN_POSITIVE) && res < 1e-6) {
+                return Ok(Converged {
+                    u,
+                    eval: ev,
+                    iterations: it,
+                    residual: res,
+                });
+            }
+        }
+        Err(StaticError::NotConverged {
+            iterations: max_iterations,
+            residual: res,
+        })
+    }
+
+    /// The points' tangents for the next Newton matrix: their own, or for an open point
+    /// of an interface with an initial gap the stand-in [`OPEN_STAND_IN`].
+    fn newton_tangents(&self, ev: &Eval, alpha: f64) -> Vec<Matrix3<f64>> {
+        ev.tangents
+            .iter()
+            .zip(&ev.out)
+            .zip(&self.probe)
+            .zip(&self.p.contacts)
+            .map(|(((t, o), pt), c)| {
+                if o.closed || self.p.interfaces[c.interface].initial_gap == 0.0 {
+                    *t
+                } else {
+                    pt * (OPEN_STAND_IN * alpha)
+                }
+            })
+            .collect()
+    }
+}
+
 #[cfg(test)]
-#[path = "static_step_tests.rs"]
 mod tests;
