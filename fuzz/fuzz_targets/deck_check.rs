@@ -33,7 +33,8 @@ fn run(data: &[u8]) {
     }
     std::env::set_var("JOINTLIN_MAX_MEMORY", "1G");
     let lines = text.lines().count().max(1) + 1;
-    let (d, warnings) = match deck::read_str(text, "fuzz.inp", std::path::Path::new("/nonexistent")) {
+    let (d, warnings) = match deck::read_str(text, "fuzz.inp", std::path::Path::new("/nonexistent"))
+    {
         Ok(r) => r,
         Err(e) => {
             assert!(e.line <= lines, "line {} of {lines}: {e}", e.line);
@@ -51,7 +52,9 @@ fn run(data: &[u8]) {
             return;
         }
     };
-    let count: usize = job.sweep().map_or(0, |s| s.count + s.refine.iter().map(|b| b.count).sum::<usize>());
+    let count: usize = job.sweep().map_or(0, |s| {
+        s.count + s.refine.iter().map(|b| b.count).sum::<usize>()
+    });
     let small = 3 * job.deck.nodes.len() <= MAX_BUILD_DOFS && count <= MAX_FREQUENCIES;
     if small {
         let scene = deck_scene(job, text.to_string());

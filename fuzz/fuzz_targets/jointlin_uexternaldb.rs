@@ -76,7 +76,10 @@ enum Op {
     },
     /// Sets the model fingerprint (none for 0), then saved files and restores check it;
     /// `utf8` puts a two-byte character into the file at `at` (fraction of 256).
-    Model { id: u8, utf8: Option<u8> },
+    Model {
+        id: u8,
+        utf8: Option<u8>,
+    },
 }
 
 fn restart_path() -> &'static PathBuf {
