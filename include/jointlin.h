@@ -1162,13 +1162,16 @@ int32_t jointlin_store_restore(const struct jointlin_store *store);
  * the input deck, the job's contact definitions and frequencies. Call it right after
  * creating the store, before LOP 0 or LOP 4.
  *
- * The restart file (format 3) carries the fingerprint and the store's settings
- * (initial_amplitude, rtol, atol, scheme, max_passes, sweep_step, kinc_numbering) and
+ * The restart file (format 4) carries the fingerprint and the store's settings
+ * (initial_amplitude, rtol, atol, scheme, max_passes, sweep_step, kinc_numbering), each
+ * point's key with the CRC-32 of its PROPS (points met through jointlin_uinter), and
  * ends with a CRC-32 of its content; LOP 4 and jointlin_store_restore reject a file
  * whose fingerprint or settings differ, or whose checksum does not match (changed or
- * cut), with JOINTLIN_ERR_IO, leaving the store unchanged. A file of the older format 1
- * (no fingerprints) is read only by a store without a fingerprint; format 2 (no
- * checksum) is refused.
+ * cut), with JOINTLIN_ERR_IO, leaving the store unchanged. After such a restore a point
+ * the file does not list, or lists with other PROPS (a file another job left), is
+ * JOINTLIN_ERR_IO at its first call. A file of the older format 1 (no fingerprints)
+ * is read only by a store without a fingerprint; formats 2 (no checksum) and 3 (no
+ * PROPS) are refused.
  *
  * Errors: JOINTLIN_ERR_NULL (`store`, or `bytes` with `len` > 0), JOINTLIN_ERR_OUT_OF_RANGE
  * (`len` > 4096).
@@ -1362,8 +1365,10 @@ int32_t jointlin_uexternaldb(const struct jointlin_store *store,
  * CINAME longer than 256, a corrupt hysteresis state), JOINTLIN_ERR_SIZE (NSTATV < 57,
  * NPROPS < 7), JOINTLIN_ERR_PROPS (see the PROPS table), JOINTLIN_ERR_OVERFLOW (a result
  * would not be finite, e.g. 2 pi FREQR for FREQR = 1e308; messages print numbers in
- * shortest round-trip form, 1e300 rather than its 301 digits), and the store's errors at LINPER = 1 (JOINTLIN_ERR_SEQUENCE outside
- * an open increment, ...).
+ * shortest round-trip form, 1e300 rather than its 301 digits), and the store's errors at
+ * LINPER = 1 (JOINTLIN_ERR_SEQUENCE outside an open increment; JOINTLIN_ERR_IO after a
+ * restore from a restart file that does not list this point, or lists it with other
+ * PROPS; ...).
  *
  * # Safety
  * Array arguments must hold the sizes Abaqus gives them: stress, rdisp, drdisp: NDIR;

@@ -415,7 +415,7 @@ fn a_corrupt_or_missing_restart_file_is_an_io_error_and_changes_nothing() {
         .step_by(7)
         .map(|n| good[..n].to_string())
         .collect();
-    bad.push(good.replace("jointlin-store 3", "jointlin-store 4"));
+    bad.push(good.replace("jointlin-store 4", "jointlin-store 5"));
     bad.push(good.replace("records 1", "records 5"));
     bad.push(good.replace("phase 1", "phase 7"));
     bad.push("garbage".into());

@@ -178,20 +178,26 @@ fn a_file_of_another_model_or_other_settings_is_rejected() {
     assert_eq!(uexternaldb(same, 4, 0, 1, 0), JOINTLIN_OK);
     // Format 1 (no fingerprints): only a store without a model fingerprint reads it.
     let v1: String = good
-        .replacen("jointlin-store 3", "jointlin-store 1", 1)
+        .replacen("jointlin-store 4", "jointlin-store 1", 1)
         .lines()
         .filter(|l| {
             !l.starts_with("model ") && !l.starts_with("settings ") && !l.starts_with("checksum ")
         })
-        .map(|l| format!("{l}\n"))
+        .map(|l| format!("{}\n", l.strip_suffix(" -").unwrap_or(l)))
         .collect();
     rejected(other, &path, &v1);
-    // Format 2 (fingerprints, no checksum) is refused: a one-byte edit of a format 3
-    // file's version would otherwise make it one.
+    // Formats 2 (fingerprints, no checksum) and 3 (no PROPS per point) are refused: a
+    // one-byte edit of a format 4 file's version would otherwise make it one.
     let v2 = good
-        .replacen("jointlin-store 3", "jointlin-store 2", 1)
+        .replacen("jointlin-store 4", "jointlin-store 2", 1)
         .replace(good.lines().last().unwrap(), "");
     std::fs::write(&path, &v2).unwrap();
+    assert_eq!(unsafe { jointlin_store_restore(same) }, JOINTLIN_ERR_IO);
+    std::fs::write(
+        &path,
+        resealed(&good.replacen("jointlin-store 4", "jointlin-store 3", 1)),
+    )
+    .unwrap();
     assert_eq!(unsafe { jointlin_store_restore(same) }, JOINTLIN_ERR_IO);
     std::fs::write(&path, &v1).unwrap();
     assert_eq!(unsafe { jointlin_store_restore(none) }, JOINTLIN_OK);
@@ -387,5 +393,62 @@ fn every_single_byte_edit_or_cut_is_rejected_by_the_checksum() {
     std::fs::write(&path, &good).unwrap();
     assert_eq!(unsafe { jointlin_store_restore(store) }, JOINTLIN_OK);
     unsafe { jointlin_store_free(store) };
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// UINTER of the steady-state step (LINPER = 1) at increment `kinc` for a point at node
+/// `node` with `props`, closed by a static call before (h = 2e-4): the return code.
+fn sweep_uinter(store: *const jointlin_store, node: i32, props: Vec<f64>, kinc: i32) -> i32 {
+    let mut u = Uinter::new(props, 2);
+    u.node = node;
+    u.coords = [node as f64, 0.0, 0.0];
+    assert_eq!(u.step_to([2e-4, 0.0, 0.0]), JOINTLIN_OK);
+    u.linper = 1;
+    u.freqr = 100.0;
+    u.kinc = kinc;
+    u.call(store)
+}
+
+#[test]
+fn a_restart_file_of_another_mesh_or_law_is_refused_at_the_first_point_it_does_not_list() {
+    // The Abaqus route: the shim restores jointlin.restart at LOP 0, before any UINTER
+    // call tells it the deck's points. A file another job left (other nodes, or the same
+    // mesh with other PROPS) lists other points: the first UINTER of a point it does not
+    // list is JOINTLIN_ERR_IO naming that point, where it was a silent restart before.
+    let dir = fresh_dir("another-model");
+    let path = dir.join("jointlin.restart");
+    let writer = store_at(&path, 1e-3, b"");
+    assert_eq!(uexternaldb(writer, 0, 0, 1, 0), JOINTLIN_OK);
+    assert_eq!(uexternaldb(writer, 1, 0, 1, 1), JOINTLIN_OK);
+    for node in [1, 2] {
+        assert_eq!(sweep_uinter(writer, node, block_props(), 1), JOINTLIN_OK);
+    }
+    assert_eq!(uexternaldb(writer, 2, 1, 1, 1), JOINTLIN_OK);
+    let mut other_law = block_props();
+    other_law[2] = 0.2; // μ
+    for (node, props, expected) in [
+        (1, block_props(), JOINTLIN_OK),
+        (3, block_props(), JOINTLIN_ERR_IO),
+        (2, other_law, JOINTLIN_ERR_IO),
+    ] {
+        let reader = store_at(&path, 1e-3, b"");
+        assert_eq!(uexternaldb(reader, 4, 0, 1, 0), JOINTLIN_OK);
+        assert_eq!(uexternaldb(reader, 1, 0, 1, 2), JOINTLIN_OK);
+        assert_eq!(
+            sweep_uinter(reader, node, props, 2),
+            expected,
+            "node {node}"
+        );
+        if expected != JOINTLIN_OK {
+            let message = last_error();
+            assert!(
+                message.contains("restart file written for another model")
+                    && message.contains(&format!("node {node}")),
+                "{message}"
+            );
+        }
+        unsafe { jointlin_store_free(reader) };
+    }
+    unsafe { jointlin_store_free(writer) };
     let _ = std::fs::remove_dir_all(&dir);
 }

@@ -15,6 +15,7 @@ use super::store::{jointlin_store, key_from_raw, store_ref};
 use super::{check_ptr, finite, load, load_finite, put, put_all};
 use crate::hysteresis::{PointState, STATE_LEN};
 use crate::linearize::{linearize, Contact};
+use crate::store::props_checksum;
 
 /// What one LINPER = 1 call of jointlin_uinter computed (all per unit area). Directions are
 /// the tangential directions 1, 2 (RDISP(2), RDISP(3)); unused entries are 0.
@@ -125,8 +126,10 @@ fn err(code: i32, msg: String) -> FfiError {
 /// CINAME longer than 256, a corrupt hysteresis state), JOINTLIN_ERR_SIZE (NSTATV < 57,
 /// NPROPS < 7), JOINTLIN_ERR_PROPS (see the PROPS table), JOINTLIN_ERR_OVERFLOW (a result
 /// would not be finite, e.g. 2 pi FREQR for FREQR = 1e308; messages print numbers in
-/// shortest round-trip form, 1e300 rather than its 301 digits), and the store's errors at LINPER = 1 (JOINTLIN_ERR_SEQUENCE outside
-/// an open increment, ...).
+/// shortest round-trip form, 1e300 rather than its 301 digits), and the store's errors at
+/// LINPER = 1 (JOINTLIN_ERR_SEQUENCE outside an open increment; JOINTLIN_ERR_IO after a
+/// restore from a restart file that does not list this point, or lists it with other
+/// PROPS; ...).
 ///
 /// # Safety
 /// Array arguments must hold the sizes Abaqus gives them: stress, rdisp, drdisp: NDIR;
@@ -263,6 +266,7 @@ pub unsafe extern "C" fn jointlin_uinter(
                     0
                 };
                 let id = s.resolve(hint, key)?;
+                s.check_props(id, props_checksum(&props_in[..(nprops as usize).min(12)]))?;
                 Ok((s.estimate(id, kinc, dirs)?, id))
             };
             steady_state(&props_parsed, n, freqr, point, &mut out)?;

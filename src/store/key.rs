@@ -38,3 +38,31 @@ impl PointKey {
         })
     }
 }
+
+/// CRC-32 of a point's PROPS (their bits, −0.0 as 0.0): what a restart file keeps of
+/// them, to recognise the model it was written for.
+pub fn props_checksum(props: &[f64]) -> u32 {
+    let mut crc = crc32fast::Hasher::new();
+    for p in props {
+        crc.update(&(p + 0.0).to_bits().to_le_bytes());
+    }
+    crc.finalize()
+}
+
+impl std::fmt::Display for PointKey {
+    /// `NAME node N at (x, y, z)`.
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let xyz: Vec<String> = self
+            .coords
+            .iter()
+            .map(|c| format!("{:e}", f64::from_bits(*c)))
+            .collect();
+        write!(
+            f,
+            "{} node {} at ({})",
+            String::from_utf8_lossy(&self.name),
+            self.node,
+            xyz.join(", ")
+        )
+    }
+}

@@ -270,6 +270,13 @@ struct Registry {
     keys: Vec<PointKey>,
     /// Point ids per host node (several where interactions share a node).
     by_node: HashMap<i32, Vec<i64>>,
+    /// Per point: the CRC-32 of the PROPS it was last called with through UINTER
+    /// ([`props_checksum`]), None before.
+    props: Vec<Option<u32>>,
+    /// Restored from a restart file that listed points: the model's points are those,
+    /// and a new one, or one with other PROPS, means the file was written for another
+    /// model.
+    restored: bool,
 }
 
 impl Registry {
@@ -280,6 +287,7 @@ impl Registry {
         }
         self.by_node.entry(key.node).or_default().push(id);
         self.keys.push(key.clone());
+        self.props.push(None);
         self.ids.insert(key, id);
         true
     }
@@ -336,6 +344,8 @@ impl Store {
     }
 
     /// Stable 1-based id of the point with this key; the same key always gives the same id.
+    /// After a restore from a file that listed points, a key not among them is
+    /// [`StoreError::Io`]: the file was written for another model.
     pub fn register(&self, key: PointKey) -> Result<i64, StoreError> {
         if let Some(&id) = self
             .registry
@@ -350,9 +360,39 @@ impl Store {
         if let Some(&id) = reg.ids.get(&key) {
             return Ok(id); // registered by another thread in between
         }
+        if reg.restored {
+            return Err(StoreError::Io(format!(
+                "restart file written for another model: point {key} is not among its {} points (another mesh or interaction); delete the file to start the iteration over",
+                reg.keys.len()
+            )));
+        }
         let id = reg.keys.len() as i64 + 1;
         reg.add(key, id);
         Ok(id)
+    }
+
+    /// Notes that point `id` was called with PROPS of checksum `checksum`
+    /// ([`props_checksum`]). After a restore, a point the file lists with other PROPS is
+    /// [`StoreError::Io`]: the file was written for another model.
+    pub fn check_props(&self, id: i64, checksum: u32) -> Result<(), StoreError> {
+        self.check_point(id)?;
+        let slot = id as usize - 1;
+        let reg = self.registry.read().map_err(|_| StoreError::Poisoned)?;
+        if reg.props[slot] == Some(checksum) {
+            return Ok(());
+        }
+        drop(reg);
+        let mut reg = self.registry.write().map_err(|_| StoreError::Poisoned)?;
+        match reg.props[slot] {
+            Some(old) if reg.restored && old != checksum => Err(StoreError::Io(format!(
+                "restart file written for another model: point {} had PROPS of checksum {old:08x}, this call's are {checksum:08x}; delete the file to start the iteration over",
+                reg.keys[slot]
+            ))),
+            _ => {
+                reg.props[slot] = Some(checksum);
+                Ok(())
+            }
+        }
     }
 
     /// The id of the point registered for host node `node` (the NODE of its UINTER
@@ -795,7 +835,10 @@ impl Store {
             model: &model,
             config: &self.config,
         };
-        write_atomically(path, &restart::write(&registry.keys, &next, &fp))?;
+        write_atomically(
+            path,
+            &restart::write(&registry.keys, &registry.props, &next, &fp),
+        )?;
         *guard = next;
         Ok(())
     }
@@ -812,26 +855,25 @@ impl Store {
             model: &model,
             config: &self.config,
         };
-        let (registry, state) = restart::parse(&text, &fp)?;
+        let (mut registry, state) = restart::parse(&text, &fp)?;
+        registry.restored = !registry.keys.is_empty();
         *self.registry.write().map_err(|_| StoreError::Poisoned)? = registry;
         *self.state()? = state;
         Ok(())
     }
 
     fn serialize(&self) -> Result<String, StoreError> {
-        let keys = self
-            .registry
-            .read()
-            .map_err(|_| StoreError::Poisoned)?
-            .keys
-            .clone();
+        let (keys, props) = {
+            let reg = self.registry.read().map_err(|_| StoreError::Poisoned)?;
+            (reg.keys.clone(), reg.props.clone())
+        };
         let state = self.state()?.clone();
         let model = self.model()?;
         let fp = restart::Fingerprint {
             model: &model,
             config: &self.config,
         };
-        Ok(restart::write(&keys, &state, &fp))
+        Ok(restart::write(&keys, &props, &state, &fp))
     }
 }
 
@@ -855,7 +897,7 @@ mod ranks;
 mod restart;
 
 pub use config::{KincNumbering, StoreConfig, DEFAULT_MAX_PASSES, DEFAULT_RTOL, HISTORY_WINDOW};
-pub use key::{PointKey, MAX_NAME_LEN};
+pub use key::{props_checksum, PointKey, MAX_NAME_LEN};
 pub use ranks::PassSummary;
 
 #[cfg(test)]

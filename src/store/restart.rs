@@ -8,14 +8,19 @@
 //! schedules naming increments the sweep never ran). Version 1 files (no fingerprints) are
 //! read only by a store without a model fingerprint, with the same checks. Version 3 is
 //! version 2 with a last line `checksum <crc32>` over every byte before it: a file
-//! changed or cut after it was written is rejected before it is read. Version 2 files
-//! are refused (a one-byte edit of the version would turn a version 3 file into one):
+//! changed or cut after it was written is rejected before it is read. Version 4 is
+//! version 3 with each point's PROPS checksum (`p<crc32>`, `-` for a point never called
+//! through UINTER): a restored store refuses a point the file does not list, or one it
+//! lists with other PROPS (a file written for another mesh or another law). Versions 2
+//! and 3 are refused (a one-byte edit of the version would turn a newer file into one):
 //! delete them to start the iteration over.
 
 use super::*;
 
 const MAGIC: &str = "jointlin-store";
-const VERSION: &str = "3";
+const VERSION: &str = "4";
+/// The format with the checksum, without the points' PROPS checksums.
+const VERSION_3: &str = "3";
 /// The format with fingerprints and without the checksum.
 const VERSION_2: &str = "2";
 /// The tag of the checksum line that ends a version 3 file.
@@ -76,7 +81,12 @@ fn ints(out: &mut String, list: &[i32]) {
     }
 }
 
-pub(super) fn write(keys: &[PointKey], s: &State, fp: &Fingerprint) -> String {
+pub(super) fn write(
+    keys: &[PointKey],
+    props: &[Option<u32>],
+    s: &State,
+    fp: &Fingerprint,
+) -> String {
     let mut o = format!("{MAGIC} {VERSION}\n");
     o.push_str(&format!(
         "model x{}\nsettings {}\n",
@@ -125,12 +135,15 @@ pub(super) fn write(keys: &[PointKey], s: &State, fp: &Fingerprint) -> String {
         o.push_str(&format!(" {k} {}", u8::from(*ok)));
     }
     o.push_str(&format!("\npoints {}\n", keys.len()));
-    for k in keys {
+    for (k, p) in keys.iter().zip(props) {
         o.push_str(&format!("{} x{} {}", k.node, hex(&k.name), k.coords.len()));
         for c in &k.coords {
             o.push_str(&format!(" {c:016x}"));
         }
-        o.push('\n');
+        match p {
+            Some(p) => o.push_str(&format!(" p{p:08x}\n")),
+            None => o.push_str(" -\n"),
+        }
     }
     let n: usize = s.records.iter().map(BTreeMap::len).sum();
     o.push_str(&format!("records {n}\n"));
@@ -230,10 +243,16 @@ pub(super) fn parse(text: &str, fp: &Fingerprint) -> Result<(Registry, State), S
     };
     let mut t = Tokens(text.split_whitespace());
     t.tag(MAGIC)?;
-    match t.word("version")? {
+    let version = t.word("version")?;
+    match version {
         VERSION_2 => {
             return Err(StoreError::Io(
                 "restart file of version 2 has no checksum (an earlier jointlin wrote it): delete it to start the iteration over".into(),
+            ))
+        }
+        VERSION_3 => {
+            return Err(StoreError::Io(
+                "restart file of version 3 has no PROPS per point (an earlier jointlin wrote it): delete it to start the iteration over".into(),
             ))
         }
         VERSION => {
@@ -339,10 +358,24 @@ pub(super) fn parse(text: &str, fp: &Fingerprint) -> Result<(Registry, State), S
         let coords = (0..m)
             .map(|_| u64::from_str_radix(t.word("coordinate")?, 16).map_err(|_| bad("coordinate")))
             .collect::<Result<Vec<u64>, _>>()?;
+        let props = match if version == VERSION {
+            t.word("PROPS checksum")?
+        } else {
+            "-"
+        } {
+            "-" => None,
+            w => Some(
+                w.strip_prefix('p')
+                    .filter(|h| h.len() == 8)
+                    .and_then(|h| u32::from_str_radix(h, 16).ok())
+                    .ok_or_else(|| bad("PROPS checksum"))?,
+            ),
+        };
         let key = PointKey { name, node, coords };
         if !reg.add(key, i as i64 + 1) {
             return Err(bad(&format!("point {} listed twice", i + 1)));
         }
+        reg.props[i] = props;
     }
     t.tag("records")?;
     let n: usize = t.int("records")?;
