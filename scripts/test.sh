@@ -14,7 +14,27 @@ echo "== cargo build (workspace, release)"
 # stale copy.
 cargo build --workspace --release
 echo "== cargo test (workspace, release)"
+# Tests that need a missing external tool fail on CI and leave a note here elsewhere
+# (tests/tools/mod.rs).
+rm -rf target/tmp/skipped
 cargo test --workspace --release
+skipped=$(find target/tmp/skipped -type f 2>/dev/null | wc -l)
+echo "tests skipped for a missing tool: $skipped"
+if [ "$skipped" -gt 0 ]; then
+    for f in target/tmp/skipped/*; do echo "  $(basename "$f"): $(cat "$f")"; done
+fi
+# The sanitizer and fuzz runs need a nightly toolchain (ASan-instrumented library,
+# libFuzzer): installed here, never silently replaced by a weaker run.
+if ! cargo +nightly --version >/dev/null 2>&1; then
+    if command -v rustup >/dev/null; then
+        echo "== installing the nightly Rust toolchain (for ASan and libFuzzer)"
+        rustup toolchain install nightly --profile minimal
+    else
+        echo "the sanitizer and fuzz runs need a nightly Rust toolchain: install rustup" >&2
+        echo "(https://rustup.rs), then run:  rustup toolchain install nightly --profile minimal" >&2
+        exit 1
+    fi
+fi
 echo "== robustness: sanitizers, threaded valgrind, short fuzz run"
 bash scripts/robustness.sh asan
 bash scripts/robustness.sh valgrind

@@ -3,6 +3,9 @@
 //! rewrites it. A second test compiles the header with the system C compiler (when there is
 //! one) in strict C99 and C++ modes.
 
+#[path = "tools/mod.rs"]
+mod tools;
+
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
@@ -78,7 +81,7 @@ fn header_compiles_as_strict_c_and_cpp() {
         ],
         &c_src,
     ) else {
-        eprintln!("no C compiler: skipping the compile check");
+        tools::missing("header_c", "a C compiler (cc)", "not on PATH");
         return;
     };
     assert!(
@@ -86,16 +89,17 @@ fn header_compiles_as_strict_c_and_cpp() {
         "C: {}",
         String::from_utf8_lossy(&out.stderr)
     );
-    if let Some(out) = compile(
+    match compile(
         "c++",
         &["-std=c++11", "-Wall", "-Werror", "-fsyntax-only", &include],
         &cpp_src,
     ) {
-        assert!(
+        Some(out) => assert!(
             out.status.success(),
             "C++: {}",
             String::from_utf8_lossy(&out.stderr)
-        );
+        ),
+        None => tools::missing("header_cpp", "a C++ compiler (c++)", "not on PATH"),
     }
     std::fs::remove_dir_all(&dir).ok();
 }

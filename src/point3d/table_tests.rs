@@ -6,9 +6,10 @@ use super::table::{
 
 const CSV: &str = include_str!("unit_cell_table.csv");
 
-/// Writes `unit_cell_table.csv` from the integrated unit cell (about two minutes on two cores).
+/// Writes `unit_cell_table.csv` from the integrated unit cell (about two minutes on two
+/// cores); the test below checks the committed table against the integration.
 #[test]
-#[ignore]
+#[ignore = "regenerates src/point3d/unit_cell_table.csv: cargo test --release --lib regenerate_unit_cell_table -- --ignored"]
 fn regenerate_unit_cell_table() {
     let t = compute(2);
     let path = concat!(
