@@ -18,8 +18,10 @@ use std::f64::consts::PI;
 pub const THESIS_DUFFING_HBM: f64 = 0.395;
 /// 4.1: Runge–Kutta steady-state maximum (the thesis's rounded figure, model.md §8).
 pub const THESIS_DUFFING_RK: f64 = 0.393;
-/// model.md §8: an independent high-accuracy integration gives ≈ 0.3956.
-pub const INDEPENDENT_DUFFING_RK: f64 = 0.3956;
+/// The steady maximum of an independent integration (adaptive Dormand–Prince 5(4),
+/// tolerance 1e-12, no code shared with the library): `python3 scripts/duffing_reference.py`
+/// prints it (tests/seed_cases.rs runs it and compares).
+pub const INDEPENDENT_DUFFING_RK: f64 = 0.395574;
 /// 4.2.4, stick case F̂ = 0.5 N (mm): first positive peak, next negative peak, their mean
 /// half-width, and the linearized amplitude.
 pub const THESIS_BLOCK_PEAK_POS: f64 = 4.904e-4;

@@ -243,7 +243,11 @@ fn calculix_modes_of_the_tied_variant_are_the_readmes_and_the_sweep_covers_the_f
     assert!(f.iter().all(|v| v.is_finite() && *v > 0.0), "{f:?}");
     assert!(f.windows(2).all(|w| w[0] <= w[1]), "{f:?}");
     // The README's number, at its printed precision.
-    assert!((f[0] - 142.9).abs() < 0.05, "first mode {} Hz, README 142.9", f[0]);
+    assert!(
+        (f[0] - 142.9).abs() < 0.05,
+        "first mode {} Hz, README 142.9",
+        f[0]
+    );
     let (shipped, _) = deck::read(&example("bolted-lap.inp")).unwrap();
     let Procedure::SteadyState { ranges, .. } = &shipped.steps[2].procedure else {
         panic!("step 3 is not the sweep");
