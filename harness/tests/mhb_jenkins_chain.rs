@@ -75,13 +75,27 @@ fn continuation_does_not_turn_back_without_a_fold() {
                 "{start} {step_max}: Ω turns back"
             );
         }
-        // Every tenth point is the pointwise Newton solution at its Ω.
+        // One solution per Ω: at every tenth point, Newton started elsewhere (the stuck
+        // linear response, and the point's motion scaled by 0.3 and by 3) finds the
+        // point's amplitude again.
         for p in br.points.iter().step_by(10) {
-            let s = hb
-                .solve(&p.sol.u, p.sol.omega, NewtonOptions::default())
-                .unwrap();
+            let w = p.sol.omega;
             let a = hb.amplitude(&p.sol.u, 1);
-            assert!((hb.amplitude(&s.u, 1) / a - 1.0).abs() < 1e-6);
+            let scaled = |f: f64| p.sol.u.iter().map(|v| v * f).collect::<Vec<f64>>();
+            for (start, u) in [
+                ("stuck", hb.stuck_start(w)),
+                ("0.3×", scaled(0.3)),
+                ("3×", scaled(3.0)),
+            ] {
+                let s = hb
+                    .solve(&u, w, NewtonOptions::default())
+                    .unwrap_or_else(|e| panic!("Ω {w} from {start}: {e}"));
+                let e = hb.amplitude(&s.u, 1) / a - 1.0;
+                assert!(
+                    e.abs() < 1e-6,
+                    "Ω {w} from {start}: another solution ({e:e})"
+                );
+            }
         }
     }
 }
