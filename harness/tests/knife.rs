@@ -111,16 +111,16 @@ fn smaller_l_shaped_contact_face_dissipates_more() {
     // where the pressure is highest, leaves the tangential load to lower-pressure points
     // and the loss rises (the thesis's finding). Cutting the far corner (x < 72,
     // y > 1.5) also removes low-pressure edge points, which dissipate most: there the
-    // two effects nearly cancel (measured +0.5 % at the calibrated k_T0, −24 % at
-    // k_T0 = 1e4 N/mm³), so only its sign-free size is checked.
+    // two effects nearly cancel. Measured at 3 µm on the coarse scene: full 9.414 W,
+    // screw corner cut 21.98 W (+133 %), far corner cut 8.608 W (−8.6 %).
     let s = coarse();
     let cut =
         |min: [f64; 3], max: [f64; 3]| with(&s, |i| i.exclude = vec![RegionSpec { min, max }]);
     let full = power(&s, 3000.0).power;
     let at_screw = power(&cut([72.1, -1.0, -10.0], [80.0, 1.4, 10.0]), 3000.0).power;
     let far = power(&cut([60.0, 1.6, -10.0], [71.9, 10.0, 10.0]), 3000.0).power;
-    assert!(at_screw > full, "{at_screw} vs {full}");
-    assert!((far / full - 1.0).abs() < 0.3, "{far} vs {full}");
+    assert!(at_screw > 2.0 * full, "{at_screw} vs {full}");
+    assert!((far / full - 1.0).abs() < 0.15, "{far} vs {full}");
 }
 
 /// The thesis's torque trend (Fig. 5.41–5.45: lower torque, more loss) at all four
