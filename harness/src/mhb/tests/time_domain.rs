@@ -9,9 +9,10 @@ fn jenkins_chain_against_time_domain() {
     // (started from the H = 7 solution to shorten the transient). Measured: first order
     // +30 %, +53 %, +24 % at ω = 0.50, 0.54, 0.58; H = 7 within 1e-3 and H = 15 within
     // 3e-4 (H = 15 vs the reference is the reference's own step error). Asserted: first
-    // order off by > 20 %, H = 7 within 0.5 %, H = 15 within 0.1 %.
+    // order off by > 20 %, H = 7 within the README's printed digit, H = 15 within 3e-4.
     let sys = jenkins_chain(0.05);
-    for &w in &[0.50, 0.54, 0.58] {
+    // H = 7 bounds at the README's printed digit (measured 8.9e-4, 2.7e-4, 1.6e-4).
+    for (&w, h7_tol) in [0.50, 0.54, 0.58].iter().zip([1e-3, 4e-4, 2.5e-4]) {
         let x1 = first_order::solve(&sys, w, &[0.1, 0.1]).unwrap();
         let mut amp = Vec::new();
         let mut u7 = Vec::new();
@@ -32,12 +33,12 @@ fn jenkins_chain_against_time_domain() {
         let fo = x1[2].norm() / r - 1.0;
         assert!(fo > 0.2, "ω {w}: first order {fo:e}");
         assert!(
-            (amp[0] / r - 1.0).abs() < 5e-3,
+            (amp[0] / r - 1.0).abs() < h7_tol,
             "ω {w}: H=7 {}",
             amp[0] / r - 1.0
         );
         assert!(
-            (amp[1] / r - 1.0).abs() < 1e-3,
+            (amp[1] / r - 1.0).abs() < 3e-4,
             "ω {w}: H=15 {}",
             amp[1] / r - 1.0
         );
@@ -49,7 +50,8 @@ fn mindlin_block_against_time_domain() {
     // The block of Appendix C (Masing rule) on a ground spring through its microslip range
     // (ω = 18 ... 25: A/δ* ~ 1 ... 1.6). Reference: RK4, 4096 steps per period (k_T0/m
     // is stiff), periodic to 1e-7. Measured: first order 1.6e-2 at most (ω = 18), H = 7
-    // 1.8e-4 at most. Asserted: H = 7 within 1e-3, and at least 5× closer than first order.
+    // 1.8e-4 at most (README). Asserted: first order within 1.65e-2, H = 7 within 2e-4
+    // and at least 5× closer than first order.
     let law = point(LawName::Mindlin, RuleName::Masing, 0.3, 2.0, 1282.7);
     let sys = oscillator(2.0, 0.5, 200.0, Complex::new(0.4, 0.0), law);
     for &w in &[18.0, 22.0, 25.0] {
@@ -63,7 +65,8 @@ fn mindlin_block_against_time_domain() {
         let r = td.amplitude[0];
         let e7 = (hb.amplitude(&s.u, 0) / r - 1.0).abs();
         let e1 = (x1[0].norm() / r - 1.0).abs();
-        assert!(e7 < 1e-3, "ω {w}: {e7:e}");
+        assert!(e7 < 2e-4, "ω {w}: {e7:e}");
+        assert!(e1 < 1.65e-2, "ω {w}: {e1:e}");
         assert!(e1 > 5.0 * e7, "ω {w}: {e1:e} vs {e7:e}");
     }
 }
