@@ -15,6 +15,7 @@ mod common;
 
 #[cfg(feature = "replay")]
 use common::replay_main;
+use common::{assert_line_within, text_input};
 use jointlin_harness::input::deck::job::DeckJob;
 use jointlin_harness::input::deck::{self, summary};
 use jointlin_harness::input::scene::model_file::deck_scene;
@@ -25,32 +26,23 @@ const MAX_BUILD_DOFS: usize = 3000;
 const MAX_FREQUENCIES: usize = 100_000;
 
 fn run(data: &[u8]) {
-    let Ok(text) = std::str::from_utf8(data) else {
+    let Some(text) = text_input(data) else {
         return;
     };
     if text.to_ascii_uppercase().contains("INPUT") {
         return;
     }
-    std::env::set_var("JOINTLIN_MAX_MEMORY", "1G");
-    let lines = text.lines().count().max(1) + 1;
     let (d, warnings) = match deck::read_str(text, "fuzz.inp", std::path::Path::new("/nonexistent"))
     {
         Ok(r) => r,
-        Err(e) => {
-            assert!(e.line <= lines, "line {} of {lines}: {e}", e.line);
-            let _ = e.to_string();
-            return;
-        }
+        Err(e) => return assert_line_within(text, e.line, &e),
     };
     if let Err(e) = summary::summary(&d, "fuzz.inp") {
-        assert!(e.line <= lines, "line {} of {lines}: {e}", e.line);
+        assert_line_within(text, e.line, &e);
     }
     let job = match DeckJob::new("fuzz.inp".into(), text, d, warnings) {
         Ok(j) => j,
-        Err(e) => {
-            assert!(e.line <= lines, "line {} of {lines}: {e}", e.line);
-            return;
-        }
+        Err(e) => return assert_line_within(text, e.line, &e),
     };
     let count: usize = job.sweep().map_or(0, |s| {
         s.count + s.refine.iter().map(|b| b.count).sum::<usize>()

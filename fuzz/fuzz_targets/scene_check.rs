@@ -10,6 +10,7 @@ mod common;
 
 #[cfg(feature = "replay")]
 use common::replay_main;
+use common::{assert_line_within, text_input};
 use jointlin_harness::input::scene::Scene;
 
 /// Largest model built per input (DOFs of the boxes' nodes): keeps each run short.
@@ -18,19 +19,12 @@ const MAX_BUILD_DOFS: f64 = 3000.0;
 const MAX_FREQUENCIES: f64 = 1e5;
 
 fn run(data: &[u8]) {
-    let Ok(text) = std::str::from_utf8(data) else {
+    let Some(text) = text_input(data) else {
         return;
     };
-    // A fixed limit: the size check's own path, and no input may allocate beyond it.
-    std::env::set_var("JOINTLIN_MAX_MEMORY", "1G");
     let scene = match Scene::parse("fuzz.toml", text) {
         Ok(s) => s,
-        Err(e) => {
-            let lines = text.lines().count().max(1) + 1;
-            assert!(e.line <= lines, "line {} of {lines}: {e}", e.line);
-            let _ = e.to_string();
-            return;
-        }
+        Err(e) => return assert_line_within(text, e.line, &e),
     };
     let s = &scene.spec;
     let freqs = s.sweep.count as f64 + s.sweep.refine.iter().map(|b| b.count as f64).sum::<f64>();

@@ -94,6 +94,22 @@ pub fn last_error() -> String {
     String::from_utf8_lossy(&buf).into_owned()
 }
 
+/// The input as text for the harness's readers (None when not UTF-8), with the memory
+/// limit fixed at 1 GiB: the readers' size checks take their own path and no input may
+/// allocate beyond it.
+pub fn text_input(data: &[u8]) -> Option<&str> {
+    let text = std::str::from_utf8(data).ok()?;
+    std::env::set_var("JOINTLIN_MAX_MEMORY", "1G");
+    Some(text)
+}
+
+/// Panics (a fuzz finding) when an error's `line` lies beyond `text` (its lines + 1).
+pub fn assert_line_within(text: &str, line: usize, error: &dyn std::fmt::Display) {
+    let lines = text.lines().count().max(1) + 1;
+    assert!(line <= lines, "line {line} of {lines}: {error}");
+    let _ = error.to_string();
+}
+
 /// Stable stand-in for libFuzzer (`--features replay`): runs `target` on every file of the
 /// directories/files given, then for `--seconds N` (default 10) on mutations of them (bit
 /// flips, byte overwrites, truncation, splicing) and on random buffers; xorshift seeded by
