@@ -2,7 +2,7 @@
 # Installs the Debian packages jointlin needs (as root), or prints the exact command to run.
 # Sourced by scripts/main-job.sh and scripts/test.sh.
 set -euo pipefail
-JOINTLIN_DEBS=(gcc g++ make gfortran pkg-config libsuitesparse-dev libopenblas0-pthread valgrind
+JOINTLIN_DEBS=(gcc g++ make gfortran pkg-config libsuitesparse-dev libarpack2-dev libopenblas0-pthread valgrind
   openmpi-bin libopenmpi-dev calculix-ccx gmsh python3)
 missing=()
 for pkg in "${JOINTLIN_DEBS[@]}"; do

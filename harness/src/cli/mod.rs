@@ -155,7 +155,8 @@ pub enum Command {
     ///   modes.csv   mode, frequency_Hz (or frequency_per_<time>), label, dominant,
     ///               share_longitudinal, share_bending, share_torsion, share_section,
     ///               effective_mass_<x|y|z>_<mass>, effective_inertia_<x|y|z>_<mass>_<length>2
-    ///               (about the mass centre), relative_residual of K φ = λ M φ
+    ///               (about the mass centre), backward_error of K φ = λ M φ
+    ///               (‖Kφ − λMφ‖₁ / (‖K‖₁ + |λ|‖M‖₁)‖φ‖₁)
     ///   modes.vtu   the mesh with a point vector per mode, mode_<i>_<f>_<Hz|per_time>,
     ///               scaled to a largest nodal displacement of 1 (ParaView: Warp By Vector)
     #[command(verbatim_doc_comment)]

@@ -86,7 +86,7 @@ pub fn main(a: Args) -> ExitCode {
             .copied()
             .fold(0.0, f64::max);
         eprintln!(
-            "warning: the eigen-iteration stopped at a round-off floor: largest relative residual {worst:.1e} (modes.csv lists each)"
+            "warning: not every mode is an eigenpair to working accuracy: largest backward error {worst:.1e} (modes.csv lists each)"
         );
     }
     let table = ModeTable::new(&modes, units);

@@ -82,14 +82,31 @@ impl<T: Copy + Default> Csc<T> {
 impl Csc<f64> {
     /// y = A x.
     pub fn mul_vec(&self, x: &[f64]) -> Vec<f64> {
+        let mut y = vec![0.0; self.pattern.n];
+        self.mul_vec_into(x, &mut y);
+        y
+    }
+
+    /// y = A x into `y` (length n), no allocation.
+    pub fn mul_vec_into(&self, x: &[f64], y: &mut [f64]) {
         let p = &self.pattern;
-        let mut y = vec![0.0; p.n];
+        y.fill(0.0);
         for j in 0..p.n {
             for k in p.col_ptr[j] as usize..p.col_ptr[j + 1] as usize {
                 y[p.row_idx[k] as usize] += self.values[k] * x[j];
             }
         }
-        y
+    }
+
+    /// ‖A‖₁, the largest absolute column sum.
+    pub fn norm_1(&self) -> f64 {
+        let p = &self.pattern;
+        (0..p.n)
+            .map(|j| {
+                let col = p.col_ptr[j] as usize..p.col_ptr[j + 1] as usize;
+                self.values[col].iter().map(|v| v.abs()).sum::<f64>()
+            })
+            .fold(0.0, f64::max)
     }
 
     /// Dense copy (tests, small problems).

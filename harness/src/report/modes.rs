@@ -113,7 +113,7 @@ impl<'a> ModeTable<'a> {
         for d in ['x', 'y', 'z'] {
             header.push(format!("effective_inertia_{d}_{m}_{l}2"));
         }
-        header.push("relative_residual".into());
+        header.push("backward_error".into());
         let mut t = CsvTable::new(&header);
         let modes = &self.modes.band.modes;
         for (i, (f, c)) in self.frequencies().iter().zip(&self.characters).enumerate() {

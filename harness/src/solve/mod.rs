@@ -1,5 +1,7 @@
 //! Linear solvers (UMFPACK, modal), the static preload step and the steady-state sweep.
 
+pub mod arpack;
+pub mod cholmod;
 pub mod contact;
 pub mod cost;
 pub mod dense;

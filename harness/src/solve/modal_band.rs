@@ -1,9 +1,8 @@
-//! All modes of K φ = λ M φ below a frequency limit. The subspace iteration of
-//! [`lowest_modes`] finds the p lowest pairs; the factorization UMFPACK makes (LU with
-//! unsymmetric pivoting) gives no inertia, so there is no Sturm-sequence count: p starts
-//! at the minimum count and doubles until the p-th frequency reaches the limit (then
-//! every mode below the limit is among the p found, the lowest ones converging first),
-//! the DOF count or a cap.
+//! All modes of K φ = λ M φ below a frequency limit. The Lanczos run of
+//! [`lowest_modes`] finds the p lowest pairs (shift-invert about a shift at or below the
+//! spectrum, so the lowest converge first): p starts at the minimum count and doubles
+//! until the p-th frequency reaches the limit (then every mode below the limit is among
+//! the p found), the DOF count or a cap.
 
 use crate::fe::csc::Csc;
 use crate::solve::modal::{lowest_modes, ModalError, ModalOptions, Modes};

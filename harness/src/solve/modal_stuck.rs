@@ -17,7 +17,7 @@ pub enum ModeCount {
     /// Exactly this many (fewer if the model has fewer DOFs).
     Exactly(usize),
     /// Every mode below `factor` × the sweep's highest frequency, at least `min`, at
-    /// most `max` (the subspace's dense work grows as DOFs × count²).
+    /// most `max` (the Lanczos basis holds DOFs × (2·count + 1) numbers).
     Band { factor: f64, min: usize, max: usize },
 }
 

@@ -26,6 +26,7 @@ pub mod matrices_ccx;
 mod mesh_cards;
 pub mod softening;
 pub mod stack_deck;
+pub mod tied_blocks;
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};

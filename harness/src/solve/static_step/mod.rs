@@ -12,7 +12,7 @@
 //! normal springs (`normal_stiffness_per_area`) and stick springs k_T0, one linear solve,
 //! pressure = k_N·h (a point in tension counts as open).
 
-use nalgebra::{Complex, Matrix3};
+use nalgebra::Matrix3;
 use thiserror::Error;
 
 use crate::capi::{self, CapiError, UinterPoint, NSTATV};
@@ -21,7 +21,7 @@ use crate::model::subgrid::{refine_at_patch_edge, sample_value, EDGE_DEPTH};
 use crate::model::{ContactPoint, Problem};
 use crate::solve::contact::{interface_props, normal_stiffness};
 use crate::solve::line_search;
-use crate::solve::umfpack::{to_complex, Symbolic, UmfpackError};
+use crate::solve::umfpack::{Symbolic, UmfpackError};
 
 mod continuation;
 use continuation::continuation;
@@ -289,7 +289,7 @@ fn evaluate(
 /// The Newton matrix K + Σ tangents + sampled couplings, factored and solved.
 struct NewtonMatrix<'a> {
     p: &'a Problem,
-    sym: Symbolic,
+    sym: Symbolic<f64>,
 }
 
 impl NewtonMatrix<'_> {
@@ -300,9 +300,9 @@ impl NewtonMatrix<'_> {
         rhs: &[f64],
     ) -> Result<Vec<f64>, UmfpackError> {
         let p = self.p;
-        let mut kt = to_complex(&p.sys.k);
+        let mut kt = p.sys.k.clone();
         for (c, t) in p.contacts.iter().zip(tangents) {
-            let g = to_global(&c.frame, &t.map(|v| Complex::new(v, 0.0)));
+            let g = to_global(&c.frame, t);
             p.sys.pairs.add(&mut kt.values, c.pair, &g);
         }
         // Bₖ,ₙᵀ C Bⱼ,ₙ of the sampled points (the pattern has these entries).
@@ -310,18 +310,30 @@ impl NewtonMatrix<'_> {
             for &(r, wr) in &p.contacts[k].rows[0] {
                 for &(col, wc) in &p.contacts[j].rows[0] {
                     let slot = kt.pattern.find(r, col).expect("coupling entry in pattern");
-                    kt.values[slot] += Complex::new(wr * cv * wc, 0.0);
+                    kt.values[slot] += wr * cv * wc;
                 }
             }
         }
-        let b: Vec<Complex<f64>> = rhs.iter().map(|&v| Complex::new(v, 0.0)).collect();
-        let x = self.sym.factor(&kt)?.solve(&b)?;
-        Ok(x.iter().map(|z| z.re).collect())
+        let x = self.sym.factor(&kt)?.solve(rhs)?;
+        Ok(x)
     }
 }
 
 /// Solves the preload step.
 pub fn solve(p: &Problem, nonlinear: bool) -> Result<StaticState, StaticError> {
+    if p.contacts.is_empty() && p.preload.iter().all(|&f| f == 0.0) {
+        // K u = 0: nothing to factor (a free structure's singular K included).
+        return Ok(StaticState {
+            u: vec![0.0; p.preload.len()],
+            pressure: Vec::new(),
+            normal_stiffness: Vec::new(),
+            closed: Vec::new(),
+            statev: Vec::new(),
+            friction_samples: Vec::new(),
+            newton_iterations: 0,
+            residual: 0.0,
+        });
+    }
     let props: Vec<[f64; 12]> = p.interfaces.iter().map(interface_props).collect();
     let matrix = NewtonMatrix {
         p,

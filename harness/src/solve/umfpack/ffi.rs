@@ -1,4 +1,5 @@
-//! Raw declarations of the `umfpack_zl_*` functions the wrapper uses, from
+//! Raw declarations of the `umfpack_zl_*` (complex) and `umfpack_dl_*` (real) functions
+//! the wrapper uses, from
 //! `/usr/include/suitesparse/umfpack.h` (SuiteSparse_long is `long` on LP64 Linux,
 //! `__int64` on Win64: 64 bits either way). Only [`super`] calls them.
 
@@ -59,4 +60,37 @@ extern "C" {
     ) -> i64;
     pub fn umfpack_zl_free_symbolic(symbolic: *mut *mut c_void);
     pub fn umfpack_zl_free_numeric(numeric: *mut *mut c_void);
+    pub fn umfpack_dl_symbolic(
+        n_row: i64,
+        n_col: i64,
+        ap: *const i64,
+        ai: *const i64,
+        ax: *const f64,
+        symbolic: *mut *mut c_void,
+        control: *const f64,
+        info: *mut f64,
+    ) -> i64;
+    pub fn umfpack_dl_numeric(
+        ap: *const i64,
+        ai: *const i64,
+        ax: *const f64,
+        symbolic: *mut c_void,
+        numeric: *mut *mut c_void,
+        control: *const f64,
+        info: *mut f64,
+    ) -> i64;
+    #[allow(clippy::too_many_arguments)]
+    pub fn umfpack_dl_solve(
+        sys: i64,
+        ap: *const i64,
+        ai: *const i64,
+        ax: *const f64,
+        xx: *mut f64,
+        bx: *const f64,
+        numeric: *mut c_void,
+        control: *const f64,
+        info: *mut f64,
+    ) -> i64;
+    pub fn umfpack_dl_free_symbolic(symbolic: *mut *mut c_void);
+    pub fn umfpack_dl_free_numeric(numeric: *mut *mut c_void);
 }

@@ -1,5 +1,7 @@
-//! Thin safe wrapper over SuiteSparse UMFPACK's complex, 64-bit-index interface
-//! (`umfpack_zl_*`, declared here from `/usr/include/suitesparse/umfpack.h`).
+//! Thin safe wrapper over SuiteSparse UMFPACK's 64-bit-index interfaces, complex
+//! (`umfpack_zl_*`) and real (`umfpack_dl_*`), declared here from
+//! `/usr/include/suitesparse/umfpack.h`; the entry type ([`Entry`]: `Complex<f64>` or
+//! `f64`) picks the family.
 //!
 //! - [`Symbolic`]: ordering and symbolic analysis of a [`CscPattern`], done once and
 //!   reused for every numeric factorization on that pattern (every frequency of a sweep).
@@ -7,7 +9,8 @@
 //!   right-hand sides (UMFPACK's default iterative refinement, up to 2 steps, uses A).
 //! - Drop frees the UMFPACK objects.
 //!
-//! Complex values are passed **packed**: `Az`, `Xz`, `Bz` are NULL and `Ax` holds
+//! Real matrices (static tangents, the shifted K − σM of the eigensolver, the time
+//! domain's effective stiffness) are factored as real. Complex values are passed **packed**: `Az`, `Xz`, `Bz` are NULL and `Ax` holds
 //! (re, im) pairs. That is exactly the memory layout of `[Complex<f64>]` (num-complex's
 //! `Complex` is `#[repr(C)] { re, im }`), so matrices and vectors are passed without
 //! copying.
@@ -16,6 +19,7 @@
 //! result with Inf/NaN; so is a solution that is not finite.
 
 use std::ffi::c_void;
+use std::marker::PhantomData;
 use std::ptr::{self, NonNull};
 use std::sync::Arc;
 
@@ -27,7 +31,10 @@ use crate::fe::csc::{Csc, CscPattern};
 
 type C64 = Complex<f64>;
 
+mod entry;
 mod ffi;
+
+pub use entry::Entry;
 
 /// UMFPACK status code 1: factorization done but the matrix is singular.
 pub const UMFPACK_WARNING_SINGULAR_MATRIX: i64 = 1;
@@ -101,21 +108,22 @@ fn defaults() -> [f64; ffi::UMFPACK_CONTROL] {
 
 /// Symbolic analysis (fill-reducing ordering) of a pattern. Reusable for any number of
 /// numeric factorizations of matrices on that pattern.
-pub struct Symbolic {
+pub struct Symbolic<T: Entry = C64> {
     ptr: NonNull<c_void>,
     pattern: Arc<CscPattern>,
     control: [f64; ffi::UMFPACK_CONTROL],
     /// UMFPACK's Info value of the strategy it used (3: symmetric).
     strategy_used: f64,
+    entry: PhantomData<T>,
 }
 
 // SAFETY: the Symbolic object is plain heap memory owned by this value; UMFPACK reads it
 // without modifying it in numeric ("Input argument, not modified", umfpack_numeric.h),
 // so it may be moved to and shared between threads.
-unsafe impl Send for Symbolic {}
-unsafe impl Sync for Symbolic {}
+unsafe impl<T: Entry> Send for Symbolic<T> {}
+unsafe impl<T: Entry> Sync for Symbolic<T> {}
 
-impl std::fmt::Debug for Symbolic {
+impl<T: Entry> std::fmt::Debug for Symbolic<T> {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.debug_struct("Symbolic")
             .field("n", &self.pattern.n)
@@ -125,7 +133,7 @@ impl std::fmt::Debug for Symbolic {
     }
 }
 
-impl Symbolic {
+impl<T: Entry> Symbolic<T> {
     /// Analyses `pattern` (values are not needed: UMFPACK uses them only for statistics)
     /// with UMFPACK's automatic strategy.
     pub fn new(pattern: Arc<CscPattern>) -> Result<Self, UmfpackError> {
@@ -161,13 +169,10 @@ impl Symbolic {
         // invariant); Ax/Az NULL are allowed by umfpack_symbolic.h; raw receives the
         // object or NULL.
         let code = unsafe {
-            ffi::umfpack_zl_symbolic(
-                n,
+            T::symbolic(
                 n,
                 pattern.col_ptr.as_ptr(),
                 pattern.row_idx.as_ptr(),
-                ptr::null(),
-                ptr::null(),
                 &mut raw,
                 control.as_ptr(),
                 info.as_mut_ptr(),
@@ -175,13 +180,13 @@ impl Symbolic {
         };
         if code != 0 {
             if !raw.is_null() {
-                // SAFETY: raw came from umfpack_zl_symbolic.
-                unsafe { ffi::umfpack_zl_free_symbolic(&mut raw) };
+                // SAFETY: raw came from T::symbolic.
+                unsafe { T::free_symbolic(&mut raw) };
             }
-            check("umfpack_zl_symbolic", code)?;
+            check(T::CALLS.symbolic, code)?;
         }
         let ptr = NonNull::new(raw).ok_or(UmfpackError::Status {
-            call: "umfpack_zl_symbolic",
+            call: T::CALLS.symbolic,
             code: -911,
             name: "NULL Symbolic object",
         })?;
@@ -190,6 +195,7 @@ impl Symbolic {
             pattern,
             control,
             strategy_used: info[ffi::UMFPACK_STRATEGY_USED],
+            entry: PhantomData,
         })
     }
 
@@ -207,20 +213,19 @@ impl Symbolic {
     }
 
     /// LU factorization of `a` (which must be on this pattern).
-    pub fn factor<'a>(&'a self, a: &'a Csc<C64>) -> Result<Numeric<'a>, UmfpackError> {
+    pub fn factor<'a>(&'a self, a: &'a Csc<T>) -> Result<Numeric<'a, T>, UmfpackError> {
         if !same_pattern(&a.pattern, &self.pattern) {
             return Err(UmfpackError::PatternMismatch);
         }
         let mut info = [0.0; ffi::UMFPACK_INFO];
         let mut raw: *mut c_void = ptr::null_mut();
-        // SAFETY: pattern arrays as in `new`; values has nnz Complex<f64> = 2·nnz packed
-        // doubles (Az NULL ⇒ packed); the Symbolic object is valid while self lives.
+        // SAFETY: pattern arrays as in `new`; values has nnz entries; the Symbolic
+        // object (of T's family) is valid while self lives.
         let code = unsafe {
-            ffi::umfpack_zl_numeric(
+            T::numeric(
                 self.pattern.col_ptr.as_ptr(),
                 self.pattern.row_idx.as_ptr(),
-                a.values.as_ptr() as *const f64,
-                ptr::null(),
+                a.values.as_ptr(),
                 self.ptr.as_ptr(),
                 &mut raw,
                 self.control.as_ptr(),
@@ -229,12 +234,12 @@ impl Symbolic {
         };
         if code != 0 && !raw.is_null() {
             // Singular: UMFPACK still built an object; free it, we return an error.
-            // SAFETY: raw came from umfpack_zl_numeric.
-            unsafe { ffi::umfpack_zl_free_numeric(&mut raw) };
+            // SAFETY: raw came from T::numeric.
+            unsafe { T::free_numeric(&mut raw) };
         }
-        check("umfpack_zl_numeric", code)?;
+        check(T::CALLS.numeric, code)?;
         let ptr = NonNull::new(raw).ok_or(UmfpackError::Status {
-            call: "umfpack_zl_numeric",
+            call: T::CALLS.numeric,
             code: -911,
             name: "NULL Numeric object",
         })?;
@@ -247,30 +252,30 @@ impl Symbolic {
     }
 }
 
-impl Drop for Symbolic {
+impl<T: Entry> Drop for Symbolic<T> {
     fn drop(&mut self) {
         let mut raw = self.ptr.as_ptr();
-        // SAFETY: created by umfpack_zl_symbolic, freed exactly once here.
-        unsafe { ffi::umfpack_zl_free_symbolic(&mut raw) };
+        // SAFETY: created by T::symbolic, freed exactly once here.
+        unsafe { T::free_symbolic(&mut raw) };
     }
 }
 
 /// LU factors of one matrix; borrows the matrix (used for iterative refinement) and
 /// the symbolic analysis.
-pub struct Numeric<'a> {
+pub struct Numeric<'a, T: Entry = C64> {
     ptr: NonNull<c_void>,
-    symbolic: &'a Symbolic,
-    a: &'a Csc<C64>,
+    symbolic: &'a Symbolic<T>,
+    a: &'a Csc<T>,
     rcond: f64,
 }
 
-// SAFETY: plain heap memory owned by this value; umfpack_zl_solve reads it without
+// SAFETY: plain heap memory owned by this value; umfpack_*_solve reads it without
 // modifying it ("Input argument, not modified", umfpack_solve.h) and allocates its own
 // workspace, so concurrent solves with one Numeric are sound.
-unsafe impl Send for Numeric<'_> {}
-unsafe impl Sync for Numeric<'_> {}
+unsafe impl<T: Entry> Send for Numeric<'_, T> {}
+unsafe impl<T: Entry> Sync for Numeric<'_, T> {}
 
-impl std::fmt::Debug for Numeric<'_> {
+impl<T: Entry> std::fmt::Debug for Numeric<'_, T> {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.debug_struct("Numeric")
             .field("n", &self.a.n())
@@ -279,14 +284,14 @@ impl std::fmt::Debug for Numeric<'_> {
     }
 }
 
-impl Numeric<'_> {
+impl<T: Entry> Numeric<'_, T> {
     /// UMFPACK's cheap reciprocal condition estimate min|Uᵢᵢ|/max|Uᵢᵢ|.
     pub fn rcond(&self) -> f64 {
         self.rcond
     }
 
     /// Solves A x = b for one right-hand side into `x` (both length n).
-    pub fn solve_into(&self, b: &[C64], x: &mut [C64]) -> Result<(), UmfpackError> {
+    pub fn solve_into(&self, b: &[T], x: &mut [T]) -> Result<(), UmfpackError> {
         let n = self.a.n();
         for len in [b.len(), x.len()] {
             if len != n {
@@ -295,46 +300,42 @@ impl Numeric<'_> {
         }
         let p = &self.symbolic.pattern;
         let mut info = [0.0; ffi::UMFPACK_INFO];
-        // SAFETY: arrays sized as UMFPACK requires (n+1, nnz, 2·nnz, 2·n, 2·n doubles,
-        // packed complex with all z-pointers NULL); Numeric valid while self lives.
+        // SAFETY: arrays sized as UMFPACK requires (n+1 and nnz indices, nnz values, n
+        // entries of x and b); the Numeric object (T's family) is valid while self lives.
         let code = unsafe {
-            ffi::umfpack_zl_solve(
-                ffi::UMFPACK_A,
+            T::solve(
                 p.col_ptr.as_ptr(),
                 p.row_idx.as_ptr(),
-                self.a.values.as_ptr() as *const f64,
-                ptr::null(),
-                x.as_mut_ptr() as *mut f64,
-                ptr::null_mut(),
-                b.as_ptr() as *const f64,
-                ptr::null(),
+                self.a.values.as_ptr(),
+                x.as_mut_ptr(),
+                b.as_ptr(),
                 self.ptr.as_ptr(),
                 self.symbolic.control.as_ptr(),
                 info.as_mut_ptr(),
             )
         };
-        check("umfpack_zl_solve", code)?;
-        if x.iter().any(|v| !(v.re.is_finite() && v.im.is_finite())) {
+        check(T::CALLS.solve, code)?;
+        if x.iter().any(|v| !v.finite()) {
             return Err(UmfpackError::NonFinite);
         }
         Ok(())
     }
 
     /// Solves A x = b for one right-hand side.
-    pub fn solve(&self, b: &[C64]) -> Result<Vec<C64>, UmfpackError> {
-        let mut x = vec![C64::new(0.0, 0.0); self.a.n()];
+    pub fn solve(&self, b: &[T]) -> Result<Vec<T>, UmfpackError> {
+        let mut x = vec![T::default(); self.a.n()];
         self.solve_into(b, &mut x)?;
         Ok(x)
     }
 
     /// Solves for several right-hand sides stored one after another (column-major
     /// n × k, `b.len() = k·n`) with this one factorization; returns X the same way.
-    pub fn solve_many(&self, b: &[C64]) -> Result<Vec<C64>, UmfpackError> {
+    pub fn solve_many(&self, b: &[T]) -> Result<Vec<T>, UmfpackError> {
         let n = self.a.n();
         if !b.len().is_multiple_of(n) {
             return Err(UmfpackError::Length { got: b.len(), n });
         }
-        let mut x = vec![C64::new(0.0, 0.0); b.len()];
+        let mut x = vec![T::default(); b.len()];
         for (bc, xc) in b.chunks_exact(n).zip(x.chunks_exact_mut(n)) {
             self.solve_into(bc, xc)?;
         }
@@ -342,11 +343,11 @@ impl Numeric<'_> {
     }
 }
 
-impl Drop for Numeric<'_> {
+impl<T: Entry> Drop for Numeric<'_, T> {
     fn drop(&mut self) {
         let mut raw = self.ptr.as_ptr();
-        // SAFETY: created by umfpack_zl_numeric, freed exactly once here.
-        unsafe { ffi::umfpack_zl_free_numeric(&mut raw) };
+        // SAFETY: created by T::numeric, freed exactly once here.
+        unsafe { T::free_numeric(&mut raw) };
     }
 }
 

@@ -199,7 +199,7 @@ fn wrong_lengths_and_empty_are_errors() {
     );
     assert!(num.solve_many(&[C64::new(1.0, 0.0); 7]).is_err());
     let empty = Arc::new(CscPattern::from_entries(0, []));
-    assert_eq!(Symbolic::new(empty).err(), Some(UmfpackError::Empty));
+    assert_eq!(Symbolic::<C64>::new(empty).err(), Some(UmfpackError::Empty));
 }
 
 #[test]
@@ -229,4 +229,50 @@ fn real_spd_matrix_through_complex_interface() {
         assert!((x[i].re - xr[i]).abs() < TOL * xr.norm());
         assert!(x[i].im.abs() < TOL * xr.norm());
     }
+}
+
+#[test]
+fn real_interface_solves_as_the_complex_one_and_names_its_errors() {
+    // A random sparse real system: umfpack_dl against umfpack_zl on the same values.
+    let mut rng = Rng::new(11);
+    let c = random_matrix(&mut rng, 40, 4);
+    let a = Csc {
+        pattern: c.pattern.clone(),
+        values: c.values.iter().map(|v| v.re).collect::<Vec<f64>>(),
+    };
+    let b: Vec<f64> = (0..40).map(|i| (0.3 * i as f64).sin()).collect();
+    let real = Symbolic::<f64>::new(a.pattern.clone()).unwrap();
+    let x = real.factor(&a).unwrap().solve(&b).unwrap();
+    let complex = Symbolic::new(a.pattern.clone()).unwrap();
+    let bc: Vec<C64> = b.iter().map(|&v| C64::new(v, 0.0)).collect();
+    let xc = complex.factor(&to_complex(&a)).unwrap().solve(&bc).unwrap();
+    let scale = x.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    for (r, z) in x.iter().zip(&xc) {
+        assert!((r - z.re).abs() < 1e-12 * scale, "{r} vs {z}");
+    }
+    // Its residual, independently: ‖A x − b‖ at round-off.
+    let ax = a.mul_vec(&x);
+    let res = ax
+        .iter()
+        .zip(&b)
+        .map(|(p, q)| (p - q).abs())
+        .fold(0.0, f64::max);
+    assert!(res < 1e-12 * scale.max(1.0), "residual {res}");
+    // A singular real matrix is the named error of the real family.
+    let p = Arc::new(CscPattern::from_entries(
+        2,
+        [(0, 0), (1, 0), (0, 1), (1, 1)],
+    ));
+    let s = Csc {
+        pattern: p.clone(),
+        values: vec![1.0, 2.0, 2.0, 4.0],
+    };
+    let sym = Symbolic::<f64>::new(p).unwrap();
+    assert_eq!(
+        sym.factor(&s).unwrap_err(),
+        UmfpackError::Singular {
+            call: "umfpack_dl_numeric",
+            code: 1
+        }
+    );
 }
