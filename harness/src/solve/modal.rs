@@ -320,4 +320,4 @@ fn backward_error(
 
 #[cfg(test)]
 #[path = "modal_tests.rs"]
-mod tests;
+pub(crate) mod tests;

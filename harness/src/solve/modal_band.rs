@@ -71,31 +71,13 @@ fn first(mut modes: Modes, count: usize) -> Modes {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::fe::csc::CscPattern;
-    use std::sync::Arc;
 
-    /// A chain of `n` unit masses between unit springs, fixed at both ends: λⱼ =
-    /// 4 sin²(jπ / 2(n+1)), j = 1..n (ω in rad/time).
+    /// The fixed–fixed chain of the modal tests with its exact frequencies (1/time).
     fn chain(n: usize) -> (Csc<f64>, Csc<f64>, Vec<f64>) {
-        let p = Arc::new(CscPattern::from_entries(
-            n,
-            (0..n).flat_map(|j| (j.saturating_sub(1)..(j + 2).min(n)).map(move |i| (i, j))),
-        ));
-        let mut k = Csc::zeros(p.clone());
-        let mut m = Csc::zeros(p.clone());
-        for j in 0..n {
-            k.values[p.find(j, j).unwrap()] = 2.0;
-            m.values[p.find(j, j).unwrap()] = 1.0;
-            if j + 1 < n {
-                k.values[p.find(j, j + 1).unwrap()] = -1.0;
-                k.values[p.find(j + 1, j).unwrap()] = -1.0;
-            }
-        }
-        let f = (1..=n)
-            .map(|j| {
-                let s = (j as f64 * std::f64::consts::PI / (2.0 * (n + 1) as f64)).sin();
-                2.0 * s / (2.0 * std::f64::consts::PI)
-            })
+        let (k, m, lambdas) = crate::solve::modal::tests::chain(n);
+        let f = lambdas
+            .iter()
+            .map(|l| l.sqrt() / (2.0 * std::f64::consts::PI))
             .collect();
         (k, m, f)
     }

@@ -231,7 +231,7 @@ fn tied_halves_are_one_body() {
 }
 
 /// A fixed–fixed chain of `n` unit masses and springs: λⱼ = 4 sin²(jπ / 2(n+1)).
-fn chain(n: usize) -> (Csc<f64>, Csc<f64>, Vec<f64>) {
+pub(crate) fn chain(n: usize) -> (Csc<f64>, Csc<f64>, Vec<f64>) {
     let p = Arc::new(CscPattern::from_entries(
         n,
         (0..n).flat_map(|j| (j.saturating_sub(1)..(j + 2).min(n)).map(move |i| (i, j))),
