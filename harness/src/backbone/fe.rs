@@ -34,7 +34,7 @@ use crate::solve::contact::tangential;
 use crate::solve::modal::{lowest_modes, ModalOptions};
 use crate::solve::static_step;
 use crate::solve::sweep::Setup;
-use crate::solve::umfpack::{to_complex, Symbolic};
+use crate::solve::umfpack::Symbolic;
 
 /// Convergence of the reduction: the sliding frequencies up to the traced mode change by
 /// less than this fraction of its stuck frequency when the interior modes double.
@@ -150,17 +150,16 @@ pub fn reduce(p: &Problem, effects: &Effects, mode: usize) -> Result<Reduced, St
         return Err("no contact point is closed after the preload: nothing to trace".into());
     }
     // X = K_s⁻¹ Bᵀ (one factorization, nb solves), G = B X.
-    let symbolic = Symbolic::new(pattern.clone()).map_err(|e| e.to_string())?;
-    let ksc = to_complex(&ks);
-    let num = symbolic.factor(&ksc).map_err(|e| e.to_string())?;
-    let mut rhs = vec![Complex::new(0.0, 0.0); n * nb];
+    let symbolic = Symbolic::<f64>::symmetric(pattern.clone()).map_err(|e| e.to_string())?;
+    let num = symbolic.factor(&ks).map_err(|e| e.to_string())?;
+    let mut rhs = vec![0.0; n * nb];
     for (j, row) in rows.iter().enumerate() {
         for &(i, w) in row.iter() {
             rhs[j * n + i] += w;
         }
     }
     let xs = num.solve_many(&rhs).map_err(|e| e.to_string())?;
-    let x = DMatrix::from_fn(n, nb, |i, j| xs[j * n + i].re);
+    let x = DMatrix::from_fn(n, nb, |i, j| xs[j * n + i]);
     let apply_b = |v: &DMatrix<f64>| {
         DMatrix::from_fn(nb, v.ncols(), |r, c| {
             rows[r].iter().map(|&(i, w)| w * v[(i, c)]).sum::<f64>()

@@ -23,7 +23,7 @@
 use nalgebra::{DMatrix, DVector, Matrix3};
 
 use super::contact::Contacts;
-use super::{Forcing, State, Stepper, TimeError, C64};
+use super::{Forcing, State, Stepper, TimeError};
 use crate::fe::csc::Csc;
 use crate::fe::pair_blocks::to_global;
 use crate::model::Problem;
@@ -98,7 +98,7 @@ pub fn effective_stiffness(p: &Problem, damping: Option<&Csc<f64>>, h: f64) -> C
 /// Newmark on a scene's model.
 pub struct Newmark<'a, 'n> {
     p: &'a Problem,
-    k0: &'n Numeric<'n>,
+    k0: &'n Numeric<'n, f64>,
     damping: Option<&'a Csc<f64>>,
     forcing: Forcing<'a>,
     h: f64,
@@ -117,7 +117,7 @@ impl<'a, 'n> Newmark<'a, 'n> {
     /// Precomputes H and G with the factors `k0` of K̂₀ (m solves).
     pub fn new(
         p: &'a Problem,
-        k0: &'n Numeric<'n>,
+        k0: &'n Numeric<'n, f64>,
         kc0: Vec<Matrix3<f64>>,
         damping: Option<&'a Csc<f64>>,
         forcing: Forcing<'a>,
@@ -129,24 +129,24 @@ impl<'a, 'n> Newmark<'a, 'n> {
         let m = 3 * np;
         let mut hmat = vec![0.0; n * m];
         let mut g = DMatrix::zeros(m, m);
-        let mut b = vec![C64::new(0.0, 0.0); n];
-        let mut x = vec![C64::new(0.0, 0.0); n];
+        let mut b = vec![0.0; n];
+        let mut x = vec![0.0; n];
         for j in 0..m {
             let row = &p.contacts[j / 3].rows[j % 3];
             for &(i, w) in row {
-                b[i] = C64::new(w, 0.0);
+                b[i] = w;
             }
             k0.solve_into(&b, &mut x)?;
             for &(i, _) in row {
-                b[i] = C64::new(0.0, 0.0);
+                b[i] = 0.0;
             }
             for i in 0..n {
-                hmat[i + n * j] = x[i].re;
+                hmat[i + n * j] = x[i];
             }
             for k in 0..m {
                 g[(k, j)] = p.contacts[k / 3].rows[k % 3]
                     .iter()
-                    .map(|&(i, w)| w * x[i].re)
+                    .map(|&(i, w)| w * x[i])
                     .sum();
             }
         }
@@ -223,8 +223,7 @@ impl Stepper for Newmark<'_, '_> {
                 *r += x;
             }
         }
-        let b: Vec<C64> = rhs.iter().map(|&x| C64::new(x, 0.0)).collect();
-        let u0: Vec<f64> = self.k0.solve(&b)?.iter().map(|c| c.re).collect();
+        let u0 = self.k0.solve(&rhs)?;
         let m = 3 * contacts.len();
         let r0 = DVector::from_iterator(
             m,

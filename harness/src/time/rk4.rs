@@ -10,15 +10,11 @@
 //! h ω_max < 2√2 (the imaginary-axis limit of RK4), so [`stable_steps_per_cycle`] raises
 //! the step count to that limit with a margin.
 
-use nalgebra::Complex;
-
 use super::contact::Contacts;
 use super::{Forcing, State, Stepper, TimeError};
 use crate::fe::csc::Csc;
 use crate::model::Problem;
 use crate::solve::umfpack::Numeric;
-
-type C64 = Complex<f64>;
 
 /// One classical RK4 step (D.2) of x' = f(t, x).
 pub fn rk4_step<const N: usize>(
@@ -51,14 +47,13 @@ pub fn stable_steps_per_cycle(omega: f64, omega_max: f64) -> usize {
 /// Largest eigenfrequency (rad/time) of M⁻¹ K₀ by power iteration (`m` factors M,
 /// `k0` is the stiffness with the points stuck). 60 iterations from a fixed start; the
 /// estimate is raised by 5 % (power iteration approaches from below).
-pub fn max_frequency(m: &Numeric, k0: &Csc<f64>) -> Result<f64, TimeError> {
+pub fn max_frequency(m: &Numeric<f64>, k0: &Csc<f64>) -> Result<f64, TimeError> {
     let n = k0.n();
     let mut x: Vec<f64> = (0..n).map(|i| 1.0 + (i % 7) as f64 * 0.1).collect();
     let mut lambda = 0.0;
     for _ in 0..60 {
         let y = k0.mul_vec(&x);
-        let b: Vec<C64> = y.iter().map(|&v| C64::new(v, 0.0)).collect();
-        let z: Vec<f64> = m.solve(&b)?.iter().map(|c| c.re).collect();
+        let z = m.solve(&y)?;
         let nz = z.iter().map(|v| v * v).sum::<f64>().sqrt();
         let nx = x.iter().map(|v| v * v).sum::<f64>().sqrt();
         if nz == 0.0 {
@@ -74,7 +69,7 @@ pub fn max_frequency(m: &Numeric, k0: &Csc<f64>) -> Result<f64, TimeError> {
 pub struct SceneRk4<'a, 'n> {
     pub p: &'a Problem,
     /// LU factors of M.
-    pub m: &'n Numeric<'n>,
+    pub m: &'n Numeric<'n, f64>,
     pub damping: Option<&'a Csc<f64>>,
     pub forcing: Forcing<'a>,
     pub h: f64,
@@ -108,8 +103,7 @@ impl SceneRk4<'_, '_> {
             .map(|f| f.map(|x| -x))
             .collect();
         contacts.add_internal(&q, &mut r);
-        let b: Vec<C64> = r.iter().map(|&x| C64::new(x, 0.0)).collect();
-        let a: Vec<f64> = self.m.solve(&b)?.iter().map(|c| c.re).collect();
+        let a = self.m.solve(&r)?;
         if a.iter().any(|x| !x.is_finite()) {
             return Err(TimeError::NonFinite { t });
         }

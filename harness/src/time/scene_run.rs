@@ -139,9 +139,9 @@ pub fn simulate(
     contacts.evaluate(&delta, None)?;
     contacts.commit();
     // Consistent initial acceleration M a = f − K u − D v − Bᵀ q.
-    let sym = Symbolic::new(p.sys.pattern.clone())?;
-    let mc = to_complex(&p.sys.m);
-    let mnum = sym.factor(&mc)?;
+    // M and K̂₀ are real and symmetric: real LU on one symbolic analysis.
+    let sym = Symbolic::<f64>::new(p.sys.pattern.clone())?;
+    let mnum = sym.factor(&p.sys.m)?;
     let kind = integrator_for(settings, n);
     let mut steps_per_cycle = settings.steps_per_cycle;
     let mut k0vals = p.sys.k.values.clone();
@@ -167,13 +167,12 @@ pub fn simulate(
     let kc0 = stuck_blocks(p, stat);
     let mut khat = effective_stiffness(p, d, h);
     add_blocks(p, &mut khat.values, &kc0);
-    let khat_c = to_complex(&khat);
     let knum;
     let mut rk_holder;
     let mut nm_holder;
     let stepper: &mut dyn Stepper = match kind {
         Integrator::Newmark => {
-            knum = sym.factor(&khat_c)?;
+            knum = sym.factor(&khat)?;
             nm_holder = Newmark::new(p, &knum, kc0, d, forcing, h, settings.newton_tolerance)?;
             &mut nm_holder
         }

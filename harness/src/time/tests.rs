@@ -10,7 +10,7 @@ use crate::capi;
 use crate::input::scene::{LawName, RuleName, Scene};
 use crate::model::build;
 use crate::solve::static_step;
-use crate::solve::umfpack::{to_complex, Symbolic};
+use crate::solve::umfpack::Symbolic;
 
 /// ẍ + 2ζω₀ẋ + ω₀²x = (F/m) cos Ωt from rest: the exact solution (steady part plus the
 /// homogeneous part that matches x(0) = ẋ(0) = 0).
@@ -119,9 +119,8 @@ fn sdof_scene_error(kind: Integrator, steps: usize, t_end: f64) -> f64 {
     };
     let mut contacts = Contacts::new(&p, &stat).unwrap();
     let mut st = initial_state(&p, &stat, 0.35, Start::Rest).unwrap();
-    let sym = Symbolic::new(p.sys.pattern.clone()).unwrap();
-    let mc = to_complex(&p.sys.m);
-    let mnum = sym.factor(&mc).unwrap();
+    let sym = Symbolic::<f64>::new(p.sys.pattern.clone()).unwrap();
+    let mnum = sym.factor(&p.sys.m).unwrap();
     let rk = SceneRk4 {
         p: &p,
         m: &mnum,
@@ -135,8 +134,7 @@ fn sdof_scene_error(kind: Integrator, steps: usize, t_end: f64) -> f64 {
     let kc0 = stuck_blocks(&p, &stat);
     let mut khat = effective_stiffness(&p, p.damping.as_ref(), h);
     add_blocks(&p, &mut khat.values, &kc0);
-    let kc = to_complex(&khat);
-    let knum = sym.factor(&kc).unwrap();
+    let knum = sym.factor(&khat).unwrap();
     let mut nm = Newmark::new(&p, &knum, kc0, p.damping.as_ref(), forcing, h, 1e-12).unwrap();
     let mut rk = rk;
     let stepper: &mut dyn Stepper = match kind {
