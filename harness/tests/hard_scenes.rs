@@ -170,8 +170,9 @@ fn stiffness_ratio_from_1e_minus_6_to_1e6() {
 fn open_joint_at_undamped_eigenfrequencies_is_named_singular() {
     // All 12 points open (tension preload), no damping: at the two lowest eigenfrequencies
     // K − ω²M is singular to working precision. The scene holds them as `jointlin modes`
-    // prints them (checked here to 1e-12 against the modal code: the singular band of
-    // this model is ~1e-10 wide). Every mode must mark exactly those two frequencies
+    // prints them (checked here to 1e-10, the width of this model's singular band; the
+    // eigenvalues themselves are reproducible to ~1e-11 here, the conditioning of the
+    // stiff joint beside the beams). Every mode must mark exactly those two frequencies
     // singular (results.csv: status `singular`, empty fields; run.json:
     // singular_frequencies) and solve all others. 1e-6 and 2e-6 below the first
     // eigenfrequency the response is finite and, one mode dominating,
@@ -180,7 +181,7 @@ fn open_joint_at_undamped_eigenfrequencies_is_named_singular() {
     let modes = stuck_modes(&s, 6).unwrap();
     let bands: Vec<f64> = s.spec.sweep.refine.iter().map(|b| b.f_min).collect();
     for (b, m) in bands.iter().zip(&modes) {
-        assert!((b / m - 1.0).abs() < 1e-12, "scene {b} vs modes {m}");
+        assert!((b / m - 1.0).abs() < 1e-10, "scene {b} vs modes {m}");
     }
     for mode in [Mode::Fast, Mode::Thesis, Mode::HarmonicBalance] {
         let mut s = s.clone();
@@ -195,7 +196,20 @@ fn open_joint_at_undamped_eigenfrequencies_is_named_singular() {
             .map(|i| r.main.freqs[i])
             .collect();
         assert_eq!(singular, bands, "{mode:?}");
-        assert_eq!(json["singular_frequencies"], serde_json::json!(bands));
+        // run.json's frequencies come back from ω = 2πf: equal to the last bit or two.
+        let listed: Vec<f64> = json["singular_frequencies"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|v| v.as_f64().unwrap())
+            .collect();
+        assert_eq!(listed.len(), bands.len());
+        for (a, b) in listed.iter().zip(&bands) {
+            assert!(
+                (a / b - 1.0).abs() < 4.0 * f64::EPSILON,
+                "{listed:?} vs {bands:?}"
+            );
+        }
         assert_eq!(json["all_converged"], false);
         let rows: Vec<&str> = csv.lines().skip(1).collect();
         assert_eq!(
@@ -243,7 +257,7 @@ fn near_zero_damping_at_resonance_is_bounded_by_the_joint() {
     // in the message).
     let s = scene("near-zero-damping.toml");
     let f_stuck = stuck_modes(&s, 6).unwrap()[0]; // as `jointlin modes` (6 modes)
-    assert!((s.spec.sweep.refine[0].f_min / f_stuck - 1.0).abs() < 1e-12);
+    assert!((s.spec.sweep.refine[0].f_min / f_stuck - 1.0).abs() < 1e-10);
     let (r, _, _) = run_cli_path(&s, "near-zero");
     let m = &r.main;
     assert!(m.converged.iter().all(|&c| c));
