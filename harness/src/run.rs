@@ -9,9 +9,12 @@ use serde::Serialize;
 use thiserror::Error;
 
 use crate::capi::{self, CallCounts};
-use crate::input::scene::{Direction, Effects, FieldOutputSpec, Mode, Scene};
+use crate::input::scene::{
+    Direction, Effects, FieldOutputSpec, Mode, Scene, SweepMethod, SweepSpec,
+};
 use crate::model::{build, BuildError, Problem};
 use crate::solve::static_step::{self, StaticError, StaticState};
+use crate::solve::sweep::modal_route::{LinearRoute, ModeChoice, BAND_FACTOR};
 use crate::solve::sweep::{self, Options, SweepError, SweepResult};
 
 /// Errors of a run.
@@ -73,6 +76,24 @@ fn sum(r: &SweepResult, keys: &[&str]) -> f64 {
         .sum()
 }
 
+/// The scene's route for the linear part of each frequency (`[sweep] method`): modal
+/// with `modes` modes, or by default every mode below [`BAND_FACTOR`] × the highest of
+/// `freqs` (1/time).
+pub fn linear_route(sweep: &SweepSpec, freqs: &[f64]) -> LinearRoute {
+    match sweep.method {
+        SweepMethod::Direct => LinearRoute::Direct,
+        SweepMethod::Modal => LinearRoute::Modal {
+            modes: match sweep.modes {
+                Some(n) => ModeChoice::Count(n),
+                None => {
+                    ModeChoice::Below(BAND_FACTOR * freqs.iter().fold(0.0, |a, &b| f64::max(a, b)))
+                }
+            },
+            residual: sweep.residual.unwrap_or(true),
+        },
+    }
+}
+
 /// Runs a scene. `progress(label, done, total)` is called per frequency of each pass.
 pub fn run(
     scene: &Scene,
@@ -91,6 +112,7 @@ pub fn run(
     let t_static = t.elapsed().as_secs_f64();
     let freqs = scene.frequencies();
     let mut opts = Options::from_scene(spec.iteration, eff);
+    opts.linear = linear_route(&spec.sweep, &freqs);
     if let Some(c) = extras.condense_max {
         opts.condense_max = c;
     }

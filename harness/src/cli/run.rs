@@ -1,6 +1,7 @@
 //! `jointlin run SCENE --out DIR`: the static step, the steady-state sweep and the
 //! reports; with `--time-domain` the time-domain reference instead.
 
+use jointlin_harness::util::number::sig;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
@@ -151,6 +152,27 @@ pub fn main(a: Args) -> ExitCode {
         r.stat.closed.iter().filter(|&&c| c).count(),
         s.spec.iteration.mode
     );
+    if let Some(mr) = &r.main.modal {
+        let fu = jointlin_harness::input::scene::units::frequency_unit(&s.spec.units);
+        let band = match (mr.band_limit, mr.band_complete) {
+            (Some(l), true) => format!("every mode below {} {}", sig(fu.show(l)), fu.text),
+            (Some(l), false) => format!(
+                "the band below {} {} cut at the cap of {} modes",
+                sig(fu.show(l)),
+                fu.text,
+                mr.modes
+            ),
+            (None, _) => "the count asked for".into(),
+        };
+        eprintln!(
+            "modal route: {} stuck modes up to {} {} ({band}), residual flexibility {}, largest backward error {:.1e}",
+            mr.modes,
+            sig(fu.show(mr.highest_mode_frequency)),
+            fu.text,
+            if mr.residual_flexibility { "on" } else { "off" },
+            mr.largest_backward_error
+        );
+    }
     eprintln!("effects:");
     for e in &r.effects {
         eprintln!(

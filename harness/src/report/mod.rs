@@ -63,6 +63,9 @@ pub fn run_json(scene: &Scene, r: &RunResult) -> serde_json::Value {
         "a_posteriori_checks": m.checks,
         "singular_rcond_threshold": crate::solve::sweep::SINGULAR_RCOND,
         "factorizations": m.factorizations,
+        // The modal route's basis (null for the direct route); its a-posteriori checks'
+        // relative_residual is then the truncation error in the full equations.
+        "modal_route": m.modal,
         "gmres_solves": m.gmres_solves,
         "macroslip_caps": m.macroslip_caps,
         "sweep_direction": scene.spec.sweep.direction,

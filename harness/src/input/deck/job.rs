@@ -181,6 +181,9 @@ impl DeckJob {
                 })
                 .collect(),
             direction: Default::default(),
+            method: Default::default(),
+            modes: None,
+            residual: None,
         })
     }
 

@@ -64,7 +64,10 @@ pub fn adjust(s: &SceneFile, problems: Vec<Problem>) -> Vec<Problem> {
         .into_iter()
         .filter(|(p, _)| {
             let k = first_key(p);
-            let deck_table = k.is_some_and(|k| FROM_THE_DECK.contains(&k));
+            // The sweep's route (method, modes, residual) stays the scene's.
+            let route = k == Some("sweep")
+                && matches!(p.0.get(1), Some(Seg::Key(r)) if ["method", "modes", "residual"].contains(&r.as_str()));
+            let deck_table = k.is_some_and(|k| FROM_THE_DECK.contains(&k)) && !route;
             let outputs_body = k == Some("outputs")
                 && (p.0.len() == 1 || matches!(p.0.get(2), Some(Seg::Key(b)) if b == "body"));
             !deck_table && !outputs_body
@@ -103,19 +106,35 @@ pub fn attach(scene: &mut Scene, path: &Path) -> Result<(), InputError> {
     let Some(model) = &scene.spec.model else {
         return Ok(());
     };
-    if scene.spec.sweep != SweepSpec::default() {
+    // The route of the linear part (method, modes, residual) is the scene's to choose;
+    // the frequencies are the deck's.
+    let own = &scene.spec.sweep;
+    let route_only = SweepSpec {
+        method: own.method,
+        modes: own.modes,
+        residual: own.residual,
+        // A `[sweep]` table present reads bias 1 by default, an absent one is default.
+        bias: if own.bias == 1.0 { 1.0 } else { 0.0 },
+        ..SweepSpec::default()
+    };
+    if *own != route_only {
         return Err(at_path(
             &scene.file,
             &scene.text,
             &KeyPath::root().key("sweep"),
-            "not allowed with `model`: the deck's *STEADY STATE DYNAMICS step gives the sweep"
+            "not allowed with `model` but for `method`, `modes` and `residual`: the deck's *STEADY STATE DYNAMICS step gives the frequencies"
                 .into(),
         )
         .into());
     }
     let deck_path = path.parent().unwrap_or(Path::new("")).join(model);
     let job = DeckJob::load(&deck_path)?;
-    scene.spec.sweep = job.sweep().unwrap_or_default();
+    scene.spec.sweep = SweepSpec {
+        method: route_only.method,
+        modes: route_only.modes,
+        residual: route_only.residual,
+        ..job.sweep().unwrap_or_default()
+    };
     if scene.spec.outputs.is_empty() {
         scene.spec.outputs = job.outputs();
     }

@@ -27,6 +27,7 @@ use super::bracket::Bracket;
 use super::fast_coupled::{correlation, rho_consistent, CoupledPoints, Lin2};
 use super::fast_update::{consistent, next_estimate, predict, updated_product};
 use super::krylov::Gmres;
+use super::modal_route::{LinearRoute, ModalRoute};
 use super::posteriori::{self, Claim};
 use super::receptance::Receptance;
 use super::{Options, PassRecord, PointFreq, Setup, SweepError, SweepResult, C64};
@@ -126,7 +127,8 @@ pub fn sweep(
     res.time("linearization (C API)", t0);
 
     // Scratch, allocated once per sweep (G and O only when condensing).
-    let condensed = m <= opts.condense_max;
+    // The modal route always condenses: its G costs m × p × m, not m solves.
+    let condensed = m <= opts.condense_max || opts.linear != LinearRoute::Direct;
     let mut rec = Receptance::new(n, if condensed { m } else { 0 }, nout);
     rec.r0 = vec![C64::new(0.0, 0.0); m];
     let mut u = vec![C64::new(0.0, 0.0); if condensed { 0 } else { n }];
@@ -250,6 +252,26 @@ pub fn sweep(
         )
     };
 
+    // Modal route: the reference is the stuck structure (κ₀ = κ at amplitude 0, the
+    // springs' linear k) for every frequency, its modes and residual once.
+    let mut modal = None;
+    if let LinearRoute::Modal { modes, residual } = opts.linear {
+        let t = Instant::now();
+        let omega = 2.0 * std::f64::consts::PI * freqs.first().copied().unwrap_or(0.0);
+        let zeros = vec![0.0; m];
+        linearize_all(&zeros, &rho, omega, &mut lin, &mut lin2, &mut 0)?;
+        linearize_springs(&zeros, &mut ks0)?;
+        for j in 0..mc {
+            kappa0[j / 2][j % 2] = kappa_of(&lin[j], omega);
+        }
+        res.time("linearization (C API)", t);
+        let t = Instant::now();
+        let route = ModalRoute::new(setup, &kappa0, &ks0, (m, &row), modes, residual)?;
+        res.modal = Some(route.summary.clone());
+        modal = Some(route);
+        res.time("modal basis (modes, residual)", t);
+    }
+
     'freqs: for (fi, &f) in freqs.iter().enumerate() {
         progress("frequency", fi + 1, freqs.len());
         let omega = 2.0 * std::f64::consts::PI * f;
@@ -291,50 +313,67 @@ pub fn sweep(
             let t = Instant::now();
             per_freq!(linearize_springs(&a, &mut ks));
             res.time(CUBIC_TIMING, t);
-            for j in 0..mc {
-                kappa0[j / 2][j % 2] = kappa_of(&lin[j], omega);
+            if modal.is_none() {
+                for j in 0..mc {
+                    kappa0[j / 2][j % 2] = kappa_of(&lin[j], omega);
+                }
+                ks0.copy_from_slice(&ks);
             }
-            ks0.copy_from_slice(&ks);
             lin_fresh = true;
         }
-        let t = Instant::now();
-        setup.fill(omega, &kappa0, &ks0);
-        let num = per_freq!(setup.factor(f));
-        res.factorizations += 1;
-        res.time("factorization", t);
-        let Some(num) = num else {
-            // Singular dynamic stiffness (e.g. an undamped eigenfrequency with the joint
-            // open): no response; the next frequency starts afresh.
-            res.push_singular(nout, opts.point_results.then_some(p.contacts.len()));
-            hist.clear();
-            continue;
-        };
-
-        let t = Instant::now();
         let umf = |e| SweepError::Umfpack { freq: f, source: e };
         let krylov = !condensed;
-        // Upper bound of ‖S₀‖₂ for FGMRES's round-off floor.
-        let s0_norm = if krylov { setup.s.norm2_bound() } else { 0.0 };
-        if krylov {
-            per_freq!(num.solve_into(&p.excitation, &mut u).map_err(umf));
-            for j in 0..m {
-                rec.r0[j] = row(j).iter().map(|&(i, w)| u[i] * w).sum();
+        let mut s0_norm = 0.0;
+        let num = if let Some(route) = modal.as_mut() {
+            let t = Instant::now();
+            let regular = route.receptance(omega, &mut rec);
+            res.time("modal receptance", t);
+            if !regular {
+                // An undamped eigenfrequency of the stuck structure: as below.
+                res.push_singular(nout, opts.point_results.then_some(p.contacts.len()));
+                hist.clear();
+                continue;
             }
+            None
         } else {
-            per_freq!(rec.load(&num, &p.excitation, &row, &p.outputs).map_err(umf));
-        }
-        // Singular by the bound of the load's solve (an undamped resonance that no pivot
-        // shows): as above.
-        let x0 = if krylov { &u } else { &rec.x };
-        if setup.rcond_bound(&p.excitation, x0) < super::SINGULAR_RCOND {
-            res.push_singular(nout, opts.point_results.then_some(p.contacts.len()));
-            hist.clear();
-            continue;
-        }
-        if !krylov {
-            per_freq!(rec.condense(&num, &row, &p.outputs).map_err(umf));
-        }
-        res.time("receptance solves", t);
+            let t = Instant::now();
+            setup.fill(omega, &kappa0, &ks0);
+            let num = per_freq!(setup.factor(f));
+            res.factorizations += 1;
+            res.time("factorization", t);
+            let Some(num) = num else {
+                // Singular dynamic stiffness (e.g. an undamped eigenfrequency with the
+                // joint open): no response; the next frequency starts afresh.
+                res.push_singular(nout, opts.point_results.then_some(p.contacts.len()));
+                hist.clear();
+                continue;
+            };
+
+            let t = Instant::now();
+            // Upper bound of ‖S₀‖₂ for FGMRES's round-off floor.
+            if krylov {
+                s0_norm = setup.s.norm2_bound();
+                per_freq!(num.solve_into(&p.excitation, &mut u).map_err(umf));
+                for j in 0..m {
+                    rec.r0[j] = row(j).iter().map(|&(i, w)| u[i] * w).sum();
+                }
+            } else {
+                per_freq!(rec.load(&num, &p.excitation, &row, &p.outputs).map_err(umf));
+            }
+            // Singular by the bound of the load's solve (an undamped resonance that no
+            // pivot shows): as above.
+            let x0 = if krylov { &u } else { &rec.x };
+            if setup.rcond_bound(&p.excitation, x0) < super::SINGULAR_RCOND {
+                res.push_singular(nout, opts.point_results.then_some(p.contacts.len()));
+                hist.clear();
+                continue;
+            }
+            if !krylov {
+                per_freq!(rec.condense(&num, &row, &p.outputs).map_err(umf));
+            }
+            res.time("receptance solves", t);
+            Some(num)
+        };
 
         let mut acc = Anderson::new(DEPTH);
         let mut bracket = Bracket::new();
@@ -379,7 +418,7 @@ pub fn sweep(
                 for (q, l) in lin2.iter().enumerate() {
                     delta_off[q] = kappa_of_2(l, 0, 1, omega) * area[q];
                 }
-                if krylov {
+                if let Some(num) = num.as_ref().filter(|_| krylov) {
                     let s0 = &setup.s;
                     // ‖S₀ + BᵀΔB‖₂ ≤ ‖S₀‖₂ + Σⱼ |Δⱼ|‖Bⱼ‖₂².
                     // Coupled: ‖B₁ᵀΔ₁₂B₂ + B₂ᵀΔ₁₂B₁‖₂ ≤ 2|Δ₁₂|‖B₁‖₂‖B₂‖₂.
@@ -515,7 +554,13 @@ pub fn sweep(
                         x_rhs[i] -= c * w;
                     }
                 }
-                per_freq!(num.solve_into(&x_rhs, &mut x_full).map_err(umf));
+                if let Some(num) = &num {
+                    per_freq!(num.solve_into(&x_rhs, &mut x_full).map_err(umf));
+                } else if let Some(route) = modal.as_mut() {
+                    per_freq!(route
+                        .field(&x_rhs, &mut x_full)
+                        .map_err(|source| SweepError::ModalField { freq: f, source }));
+                }
             }
             let kappa: Vec<[C64; 2]> = (0..na)
                 .map(|q| {
@@ -546,7 +591,13 @@ pub fn sweep(
                 super::ATOL_REL.min(it.tolerance) * scale,
             );
             check = Some(v);
-            converged = v.passes(it.tolerance);
+            // The modal route solves the truncated model: its residual in the full
+            // equations is the truncation error (reported), not a convergence test.
+            converged = if modal.is_some() {
+                v.consistency <= 1.0
+            } else {
+                v.passes(it.tolerance)
+            };
             res.time("a-posteriori check", t);
             if converged && opts.keep_fields {
                 res.fields.push((f, x.clone()));

@@ -21,6 +21,7 @@ pub mod harmonic_check;
 pub mod harmonic_fe;
 pub mod harmonic_fe_point3d;
 pub mod krylov;
+pub mod modal_route;
 pub mod posteriori;
 pub mod receptance;
 pub mod scale;
@@ -88,6 +89,16 @@ pub enum SweepError {
         #[source]
         source: crate::mhb::MhbError,
     },
+    #[error(transparent)]
+    Modal(#[from] modal_route::ModalRouteError),
+    #[error("at {} Hz: modal route: {source}", sig(*freq))]
+    ModalField {
+        freq: f64,
+        #[source]
+        source: crate::solve::cholmod::CholmodError,
+    },
+    #[error("[sweep] method = \"modal\" is available in mode fast (first order); set [iteration] mode = \"fast\" or method = \"direct\"")]
+    ModalNeedsFastMode,
     #[error("the harmonic-balance mode does not include cubic springs (their linearization is first order); use mode fast or thesis")]
     CubicInHarmonicBalance,
     #[error("interfaces with `area_samples` are solved in mode fast only (the thesis store and the harmonic balance evaluate each point at its node)")]
@@ -116,6 +127,9 @@ pub struct Options {
     /// Fast mode: keep each converged frequency's displacement field
     /// ([`SweepResult::fields`]).
     pub keep_fields: bool,
+    /// Fast mode: the linear part by a factorization per frequency or by the stuck
+    /// structure's modes ([`modal_route`]).
+    pub linear: modal_route::LinearRoute,
 }
 
 impl Options {
@@ -127,6 +141,7 @@ impl Options {
             condense_max: fast::CONDENSE_MAX,
             descending: false,
             keep_fields: false,
+            linear: modal_route::LinearRoute::Direct,
         }
     }
 }
@@ -200,6 +215,8 @@ pub struct SweepResult {
     pub macroslip_caps: usize,
     /// Seconds per named cost.
     pub timings: BTreeMap<String, f64>,
+    /// The modal route's basis, when the sweep used it.
+    pub modal: Option<modal_route::ModalSummary>,
 }
 
 impl SweepResult {
@@ -456,6 +473,11 @@ pub fn run(
         return Err(SweepError::AreaSamplesNeedFastMode);
     }
     harmonic_fe_point3d::check_effects(problem, &opts.effects, opts.iteration.mode)?;
+    if opts.linear != modal_route::LinearRoute::Direct
+        && opts.iteration.mode != crate::input::scene::Mode::Fast
+    {
+        return Err(SweepError::ModalNeedsFastMode);
+    }
     let zero_load = scale::is_zero_load(&setup);
     let mut r = match opts.iteration.mode {
         _ if zero_load => scale::zero_load(&mut setup, &order, opts)?,

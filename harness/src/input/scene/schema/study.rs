@@ -19,8 +19,13 @@ pub enum Spacing {
 #[derive(Debug, Clone, Deserialize, Serialize, PartialEq, Default)]
 #[serde(deny_unknown_fields)]
 pub struct SweepSpec {
+    /// Absent in a scene over a deck (the deck's step gives them); the validation
+    /// requires them otherwise.
+    #[serde(default)]
     pub f_min: f64,
+    #[serde(default)]
     pub f_max: f64,
+    #[serde(default)]
     pub count: usize,
     #[serde(default)]
     pub spacing: Spacing,
@@ -34,6 +39,27 @@ pub struct SweepSpec {
     /// one's converged state, so multi-valued responses (Duffing) follow their branch.
     #[serde(default)]
     pub direction: Direction,
+    /// How each frequency's linear part is solved: `direct` (a sparse factorization of
+    /// the dynamic stiffness per frequency) or `modal` (the structure's modes with every
+    /// joint stuck, plus the static residual flexibility of the omitted ones; first order,
+    /// mode fast).
+    #[serde(default)]
+    pub method: SweepMethod,
+    /// Modal route: the number of modes (default: every mode below twice `f_max`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub modes: Option<usize>,
+    /// Modal route: add the omitted modes' static residual flexibility (default true).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub residual: Option<bool>,
+}
+
+/// How the steady-state step solves its linear part.
+#[derive(Debug, Clone, Copy, Deserialize, Serialize, PartialEq, Eq, Default)]
+#[serde(rename_all = "snake_case")]
+pub enum SweepMethod {
+    #[default]
+    Direct,
+    Modal,
 }
 
 /// Sweep direction.

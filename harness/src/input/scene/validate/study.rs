@@ -30,6 +30,23 @@ pub(super) fn sweep(c: &mut Checker, s: &SceneFile) {
             "must be > f_min (or equal to it with count = 1)",
         );
     }
+    if s.sweep.method == SweepMethod::Direct {
+        for (key, given) in [
+            ("modes", s.sweep.modes.is_some()),
+            ("residual", s.sweep.residual.is_some()),
+        ] {
+            if given {
+                c.fail(sw.key(key), "applies to method = \"modal\" only");
+            }
+        }
+    } else if s.sweep.modes == Some(0) {
+        c.fail(sw.key("modes"), "must be >= 1");
+    } else if s.iteration.mode != Mode::Fast {
+        c.fail(
+            sw.key("method"),
+            "\"modal\" is available in [iteration] mode = \"fast\" (first order)",
+        );
+    }
 
     for (i, b) in s.sweep.refine.iter().enumerate() {
         let bp = sw.key("refine").index(i);

@@ -1,0 +1,360 @@
+//! The modal route of the first-order steady state (docs/model.md §5, "modal route"):
+//! the linear part is the structure with every active joint stuck (κ₀ = k_T0 per area,
+//! the springs' linear k), S_s(ω) = K_s − ω²M + iωD + iH, represented by its p lowest
+//! modes (K_s φ_r = λ_r M φ_r, φᵀMφ = 1) and, optionally, the static residual flexibility
+//! of the omitted ones:
+//!
+//!   S_s(ω)⁻¹ ≈ Φ Z(ω)⁻¹ Φᵀ + R,   Z = Λ − ω²I + iωΦᵀDΦ + iΦᵀHΦ,   R = K_s⁻¹ − ΦΛ⁻¹Φᵀ.
+//!
+//! The contact nonlinearity is then condensed exactly as in the direct route
+//! ([`super::fast`]): G = B S_s⁻¹ Bᵀ, r₀ = B S_s⁻¹ f̂, O = C S_s⁻¹ Bᵀ, y₀ = C S_s⁻¹ f̂ with
+//! B the contact rows, C the outputs. The modes and B R Bᵀ, C R Bᵀ, B R f̂, C R f̂ come
+//! once per sweep (one Lanczos run, m + 2 solves with one Cholesky factor of K_s); each
+//! frequency then costs a dense p × p factorization and products of sizes m × p × m,
+//! independent of the mesh. R is exact at ω = 0 (the route then equals the direct one);
+//! the error that remains is the omitted modes' dynamic part, O(ω²/λ_{p+1}).
+
+use nalgebra::{DMatrix, Dyn, LU};
+
+use super::{Setup, C64};
+use crate::fe::csc::Csc;
+use crate::solve::cholmod::{Cholesky, CholmodError};
+use crate::solve::modal::{lowest_modes, ModalError, ModalOptions};
+use crate::solve::modal_band::modes_below;
+
+/// Which modes the modal route keeps.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum ModeChoice {
+    /// Exactly this many (fewer if the model has fewer DOFs).
+    Count(usize),
+    /// Every mode below this frequency (1/time), at least [`MIN_MODES`], at most
+    /// [`MAX_MODES`].
+    Below(f64),
+}
+
+/// How the linear part of each frequency is solved.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub enum LinearRoute {
+    /// One sparse factorization of the dynamic stiffness per frequency.
+    #[default]
+    Direct,
+    /// The stuck structure's modes ([`ModalRoute`]), with or without the static
+    /// residual flexibility of the omitted modes.
+    Modal { modes: ModeChoice, residual: bool },
+}
+
+/// Default band of the modal route: modes below this multiple of the sweep's highest
+/// frequency.
+pub const BAND_FACTOR: f64 = 2.0;
+/// Fewest and most modes of a [`ModeChoice::Below`] band.
+pub const MIN_MODES: usize = 6;
+pub const MAX_MODES: usize = 500;
+
+/// What the modal route used (run.json).
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct ModalSummary {
+    /// Modes kept.
+    pub modes: usize,
+    /// Their highest natural frequency (1/time).
+    pub highest_mode_frequency: f64,
+    /// The band asked for (1/time), when the count came from a band.
+    pub band_limit: Option<f64>,
+    /// False when [`MAX_MODES`] stopped the band search before its limit.
+    pub band_complete: bool,
+    /// The static residual flexibility of the omitted modes was added.
+    pub residual_flexibility: bool,
+    /// Largest backward error of the kept modes.
+    pub largest_backward_error: f64,
+}
+
+/// Errors of the modal route's setup.
+#[derive(Debug, thiserror::Error)]
+pub enum ModalRouteError {
+    #[error("modal route: the stuck structure's modes: {0}")]
+    Modes(#[from] ModalError),
+    #[error(
+        "modal route: the stuck structure's mode {mode} has λ = {lambda:e} (rad/time)²: the \
+         structure is not held with its joints stuck; use the direct route"
+    )]
+    NotHeld { mode: usize, lambda: f64 },
+    #[error("modal route: the stuck stiffness K_s (residual flexibility): {0}")]
+    Static(#[from] CholmodError),
+}
+
+/// The modal data of one sweep and the current frequency's factorization of Z.
+pub struct ModalRoute {
+    lambda: Vec<f64>,
+    shapes: Vec<Vec<f64>>,
+    /// U = BΦ (m × p), C Φ (outputs × p), Φᵀf̂ (p).
+    u: DMatrix<C64>,
+    c: DMatrix<C64>,
+    phi_f: Vec<C64>,
+    /// ΦᵀDΦ and ΦᵀHΦ (p × p), when the sweep has them.
+    damping: Option<DMatrix<f64>>,
+    structural: Option<DMatrix<f64>>,
+    /// Residual images: B R Bᵀ (m × m), C R Bᵀ (outputs × m), B R f̂ (m), C R f̂ (outputs);
+    /// zeros without the residual.
+    brb: DMatrix<C64>,
+    crb: DMatrix<C64>,
+    brf: Vec<C64>,
+    crf: Vec<C64>,
+    /// K_s's factor for fields x = ΦZ⁻¹Φᵀg + Rg (None without the residual).
+    static_factor: Option<Cholesky>,
+    z: Option<LU<C64, Dyn, Dyn>>,
+    pub summary: ModalSummary,
+}
+
+impl ModalRoute {
+    /// The stuck structure of `setup` with tangential κ₀ (per area, per active point) and
+    /// spring stiffnesses `ks0`; `row(j)` the sparse contact row j of m.
+    pub fn new<'r>(
+        setup: &mut Setup,
+        kappa0: &[[C64; 2]],
+        ks0: &[f64],
+        (m, row): (usize, &dyn Fn(usize) -> &'r [(usize, f64)]),
+        modes: ModeChoice,
+        residual: bool,
+    ) -> Result<Self, ModalRouteError> {
+        let p = setup.problem;
+        // S(0) with κ₀ is K_s (no mass, damping × 0, structural off at ω = 0).
+        setup.fill(0.0, kappa0, ks0);
+        let ks = Csc {
+            pattern: setup.s.pattern.clone(),
+            values: setup.s.values.iter().map(|v| v.re).collect(),
+        };
+        let opts = ModalOptions::default();
+        let (found, band_limit, band_complete) = match modes {
+            ModeChoice::Count(count) => {
+                let n = count.clamp(1, ks.n());
+                let found = lowest_modes(&ks, &p.sys.m, &ModalOptions { n_modes: n, ..opts })?;
+                (found, None, true)
+            }
+            ModeChoice::Below(limit) => {
+                let b = modes_below(&ks, &p.sys.m, limit, MIN_MODES, MAX_MODES, &opts)?;
+                (b.modes, Some(limit), b.complete)
+            }
+        };
+        if let Some((mode, &lambda)) = found
+            .eigenvalues
+            .iter()
+            .enumerate()
+            .find(|(_, &l)| l <= 0.0)
+        {
+            return Err(ModalRouteError::NotHeld {
+                mode: mode + 1,
+                lambda,
+            });
+        }
+        let np = found.eigenvalues.len();
+        let outputs = &p.outputs;
+        let nout = outputs.len();
+        let shapes = found.shapes;
+        let z = C64::new(0.0, 0.0);
+        let dot_row =
+            |r: &[(usize, f64)], phi: &[f64]| r.iter().map(|&(i, w)| w * phi[i]).sum::<f64>();
+        let u = DMatrix::from_fn(m, np, |j, r| C64::new(dot_row(row(j), &shapes[r]), 0.0));
+        let c = DMatrix::from_fn(nout, np, |k, r| {
+            C64::new(dot_row(&outputs[k].dofs, &shapes[r]), 0.0)
+        });
+        let f = &p.excitation;
+        let phi_f: Vec<C64> = shapes
+            .iter()
+            .map(|phi| phi.iter().zip(f).map(|(a, b)| b * *a).sum())
+            .collect();
+        let project = |a: &Csc<f64>| {
+            let images: Vec<Vec<f64>> = shapes.iter().map(|phi| a.mul_vec(phi)).collect();
+            DMatrix::from_fn(np, np, |r, s| {
+                shapes[r].iter().zip(&images[s]).map(|(x, y)| x * y).sum()
+            })
+        };
+        let damping = setup.damping.map(project);
+        let structural = setup.structural.map(project);
+        let (mut brb, mut crb) = (
+            DMatrix::from_element(m, m, z),
+            DMatrix::from_element(nout, m, z),
+        );
+        let (mut brf, mut crf) = (vec![z; m], vec![z; nout]);
+        let mut static_factor = None;
+        if residual {
+            let mut chol = Cholesky::factor(&ks)?;
+            let n = ks.n();
+            let (mut b, mut x) = (vec![0.0; n], vec![0.0; n]);
+            // R v = K_s⁻¹v − Φ Λ⁻¹ Φᵀv; its images under B and C.
+            let lam = &found.eigenvalues;
+            for j in 0..m {
+                for &(i, w) in row(j) {
+                    b[i] += w;
+                }
+                chol.solve_into(&b, &mut x)?;
+                for &(i, _) in row(j) {
+                    b[i] = 0.0;
+                }
+                let modal = |a: &DMatrix<C64>, k: usize| {
+                    (0..np)
+                        .map(|r| a[(k, r)].re * u[(j, r)].re / lam[r])
+                        .sum::<f64>()
+                };
+                for k in 0..m {
+                    brb[(k, j)] = C64::new(dot_row(row(k), &x) - modal(&u, k), 0.0);
+                }
+                for k in 0..nout {
+                    crb[(k, j)] = C64::new(dot_row(&outputs[k].dofs, &x) - modal(&c, k), 0.0);
+                }
+            }
+            // f̂ complex: its real and imaginary parts in turn.
+            for part in 0..2 {
+                let pick = |v: C64| if part == 0 { v.re } else { v.im };
+                b.iter_mut().zip(f).for_each(|(bi, fi)| *bi = pick(*fi));
+                if b.iter().all(|&v| v == 0.0) {
+                    continue;
+                }
+                chol.solve_into(&b, &mut x)?;
+                let unit = if part == 0 {
+                    C64::new(1.0, 0.0)
+                } else {
+                    C64::new(0.0, 1.0)
+                };
+                let modal = |a: &DMatrix<C64>, k: usize| {
+                    (0..np)
+                        .map(|r| a[(k, r)].re * pick(phi_f[r]) / lam[r])
+                        .sum::<f64>()
+                };
+                for k in 0..m {
+                    brf[k] += unit * (dot_row(row(k), &x) - modal(&u, k));
+                }
+                for k in 0..nout {
+                    crf[k] += unit * (dot_row(&outputs[k].dofs, &x) - modal(&c, k));
+                }
+            }
+            static_factor = Some(chol);
+        }
+        let summary = ModalSummary {
+            modes: np,
+            highest_mode_frequency: found.eigenvalues[np - 1].sqrt() / (2.0 * std::f64::consts::PI),
+            band_limit,
+            band_complete,
+            residual_flexibility: residual,
+            largest_backward_error: found.residuals.iter().fold(0.0, |a: f64, &b| a.max(b)),
+        };
+        Ok(ModalRoute {
+            lambda: found.eigenvalues,
+            shapes,
+            u,
+            c,
+            phi_f,
+            damping,
+            structural,
+            brb,
+            crb,
+            brf,
+            crf,
+            static_factor,
+            z: None,
+            summary,
+        })
+    }
+
+    /// Factors Z(ω) and writes G, O, r₀, y₀ into `rec`. False when Z is singular (an
+    /// undamped eigenfrequency): its pivots' ratio below `super::SINGULAR_RCOND`.
+    pub fn receptance(&mut self, omega: f64, rec: &mut super::receptance::Receptance) -> bool {
+        let np = self.lambda.len();
+        let mut z = DMatrix::from_element(np, np, C64::new(0.0, 0.0));
+        for r in 0..np {
+            z[(r, r)] = C64::new(self.lambda[r] - omega * omega, 0.0);
+        }
+        if let Some(d) = &self.damping {
+            z.zip_apply(d, |a, b| a.im += omega * b);
+        }
+        if let Some(h) = self.structural.as_ref().filter(|_| omega > 0.0) {
+            z.zip_apply(h, |a, b| a.im += b);
+        }
+        let lu = z.lu();
+        let upper = lu.u();
+        let diag: Vec<f64> = (0..np).map(|r| upper[(r, r)].norm()).collect();
+        let (lo, hi) = diag
+            .iter()
+            .fold((f64::INFINITY, 0.0f64), |(a, b), &v| (a.min(v), b.max(v)));
+        if !(hi > 0.0 && lo / hi >= super::SINGULAR_RCOND) {
+            self.z = None;
+            return false;
+        }
+        let m = self.u.nrows();
+        // Y = Z⁻¹ [Uᵀ | Φᵀf̂] (p × (m + 1)).
+        let mut rhs = DMatrix::from_element(np, m + 1, C64::new(0.0, 0.0));
+        rhs.view_mut((0, 0), (np, m)).copy_from(&self.u.transpose());
+        for r in 0..np {
+            rhs[(r, m)] = self.phi_f[r];
+        }
+        if !lu.solve_mut(&mut rhs) {
+            self.z = None;
+            return false;
+        }
+        let y = rhs;
+        let g = &self.u * y.columns(0, m) + &self.brb;
+        let r0 = &self.u * y.column(m);
+        let o = &self.c * y.columns(0, m) + &self.crb;
+        let y0 = &self.c * y.column(m);
+        rec.g.copy_from_slice(g.as_slice());
+        rec.o.copy_from_slice(o.as_slice());
+        for (k, v) in rec.r0.iter_mut().enumerate() {
+            *v = r0[k] + self.brf[k];
+        }
+        for (k, v) in rec.y0.iter_mut().enumerate() {
+            *v = y0[k] + self.crf[k];
+        }
+        self.z = Some(lu);
+        true
+    }
+
+    /// x ≈ S_s(ω)⁻¹ g at the frequency of the last [`ModalRoute::receptance`]: the modal
+    /// part Φ Z⁻¹ Φᵀ g and, with the residual, K_s⁻¹ g − Φ Λ⁻¹ Φᵀ g.
+    pub fn field(&mut self, g: &[C64], x: &mut [C64]) -> Result<(), CholmodError> {
+        let np = self.lambda.len();
+        let proj: Vec<C64> = self
+            .shapes
+            .iter()
+            .map(|phi| phi.iter().zip(g).map(|(a, b)| b * *a).sum())
+            .collect();
+        let mut q = DMatrix::from_column_slice(np, 1, &proj);
+        if let Some(lu) = &self.z {
+            lu.solve_mut(&mut q);
+        }
+        x.iter_mut().for_each(|v| *v = C64::new(0.0, 0.0));
+        for r in 0..np {
+            // With the residual the static modal part −Λ⁻¹Φᵀg is taken off here.
+            let coef = match self.static_factor {
+                Some(_) => q[r] - proj[r] / self.lambda[r],
+                None => q[r],
+            };
+            for (xi, &p) in x.iter_mut().zip(&self.shapes[r]) {
+                *xi += coef * p;
+            }
+        }
+        if let Some(chol) = self.static_factor.as_mut() {
+            let n = g.len();
+            let (mut b, mut s) = (vec![0.0; n], vec![0.0; n]);
+            for part in 0..2 {
+                let unit = if part == 0 {
+                    C64::new(1.0, 0.0)
+                } else {
+                    C64::new(0.0, 1.0)
+                };
+                b.iter_mut()
+                    .zip(g)
+                    .for_each(|(bi, gi)| *bi = if part == 0 { gi.re } else { gi.im });
+                if b.iter().all(|&v| v == 0.0) {
+                    continue;
+                }
+                chol.solve_into(&b, &mut s)?;
+                for (xi, si) in x.iter_mut().zip(&s) {
+                    *xi += unit * *si;
+                }
+            }
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+#[path = "modal_route_tests.rs"]
+mod tests;
