@@ -10,11 +10,14 @@ use thiserror::Error;
 
 use crate::capi::{self, CallCounts};
 use crate::input::scene::{
-    Direction, Effects, FieldOutputSpec, Mode, Scene, SweepMethod, SweepSpec,
+    Direction, Effects, FieldOutputSpec, Interval, Mode, Scene, SweepMethod, SweepSpec,
 };
 use crate::model::{build, BuildError, Problem};
 use crate::solve::static_step::{self, StaticError, StaticState};
-use crate::solve::sweep::modal_route::{LinearRoute, ModeChoice, BAND_FACTOR};
+use crate::solve::modal::{lowest_modes, ModalOptions};
+use crate::solve::modal_band::modes_below;
+use crate::solve::modal_stuck::stuck_stiffness_after;
+use crate::solve::sweep::modal_route::{LinearRoute, ModeChoice, BAND_FACTOR, MAX_MODES, MIN_MODES};
 use crate::solve::sweep::{self, Options, SweepError, SweepResult};
 
 /// Errors of a run.
@@ -26,6 +29,8 @@ pub enum RunError {
     Static(#[from] StaticError),
     #[error("steady-state step: {0}")]
     Sweep(#[from] SweepError),
+    #[error("steady-state step: the stuck eigenfrequencies that divide the range: {0}")]
+    Intervals(String),
 }
 
 /// What to run besides the scene's own sweep.
@@ -94,6 +99,39 @@ pub fn linear_route(sweep: &SweepSpec, freqs: &[f64]) -> LinearRoute {
     }
 }
 
+/// The frequencies of the scene's sweep: with `interval = "eigenfrequency"` divided at
+/// the stuck structure's eigenfrequencies (as many modes as the modal route keeps, or
+/// every mode below [`BAND_FACTOR`] × f_max), else the range's own.
+pub fn sweep_frequencies(
+    scene: &Scene,
+    problem: &Problem,
+    stat: &StaticState,
+) -> Result<Vec<f64>, RunError> {
+    let sw = &scene.spec.sweep;
+    if sw.interval == Interval::Range {
+        return Ok(scene.frequencies());
+    }
+    let err = |e: String| RunError::Intervals(e);
+    let k = stuck_stiffness_after(problem, stat, &scene.spec.effects).map_err(err)?;
+    let opts = ModalOptions::default();
+    let modes = match sw.modes {
+        Some(n) => lowest_modes(
+            &k,
+            &problem.sys.m,
+            &ModalOptions {
+                n_modes: n.clamp(1, k.n()),
+                ..opts
+            },
+        ),
+        None => {
+            let top = scene.frequencies().into_iter().fold(0.0, f64::max);
+            modes_below(&k, &problem.sys.m, BAND_FACTOR * top, MIN_MODES, MAX_MODES, &opts).map(|b| b.modes)
+        }
+    }
+    .map_err(|e| err(e.to_string()))?;
+    Ok(scene.frequencies_between(&modes.frequencies_hz()))
+}
+
 /// Runs a scene. `progress(label, done, total)` is called per frequency of each pass.
 pub fn run(
     scene: &Scene,
@@ -110,7 +148,7 @@ pub fn run(
     let t = Instant::now();
     let stat = static_step::solve(&problem, eff.normal_contact_nonlinearity)?;
     let t_static = t.elapsed().as_secs_f64();
-    let freqs = scene.frequencies();
+    let freqs = sweep_frequencies(scene, &problem, &stat)?;
     let mut opts = Options::from_scene(spec.iteration, eff);
     opts.linear = linear_route(&spec.sweep, &freqs);
     if let Some(c) = extras.condense_max {

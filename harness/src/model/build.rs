@@ -459,6 +459,7 @@ pub fn build(scene: &Scene) -> Result<Problem, BuildError> {
         sys,
         damping,
         structural: None,
+        modal_damping: s.sweep.modal_damping.clone(),
         interfaces,
         contacts,
         cubic_springs,

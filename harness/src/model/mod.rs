@@ -176,6 +176,9 @@ pub struct Problem {
     /// (force/length); `None` when nothing damps so or `material_damping` is off. It has
     /// no time-domain form.
     pub structural: Option<Csc<f64>>,
+    /// Modal damping of the stuck modes (`[sweep] modal_damping`, a deck's `*MODAL
+    /// DAMPING`): applied by the modal route only.
+    pub modal_damping: Vec<crate::input::scene::ModalDampingSpec>,
     pub interfaces: Vec<Interface>,
     pub contacts: Vec<ContactPoint>,
     pub cubic_springs: Vec<CubicSpring>,

@@ -4,11 +4,11 @@
 //! points hold nothing. These are the resonances a sweep should cover.
 
 use crate::fe::csc::Csc;
-use crate::input::scene::Scene;
+use crate::input::scene::{Effects, Scene};
 use crate::model::{build, Problem};
 use crate::solve::modal::ModalOptions;
 use crate::solve::modal_band::{modes_below, BandModes};
-use crate::solve::static_step;
+use crate::solve::static_step::{self, StaticState};
 use crate::solve::sweep::Setup;
 
 /// How many modes [`stuck_modes`] looks for.
@@ -44,9 +44,18 @@ pub struct StuckModes {
 pub fn stuck_stiffness(scene: &Scene, p: &Problem) -> Result<Csc<f64>, String> {
     let stat = static_step::solve(p, scene.spec.effects.normal_contact_nonlinearity)
         .map_err(|e| e.to_string())?;
-    let mut eff = scene.spec.effects;
+    stuck_stiffness_after(p, &stat, &scene.spec.effects)
+}
+
+/// [`stuck_stiffness`] after the static step `stat`, with the scene's `effects`.
+pub fn stuck_stiffness_after(
+    p: &Problem,
+    stat: &StaticState,
+    effects: &Effects,
+) -> Result<Csc<f64>, String> {
+    let mut eff = *effects;
     eff.tangential_microslip = false;
-    let setup = Setup::new(p, &stat, &eff).map_err(|e| e.to_string())?;
+    let setup = Setup::new(p, stat, &eff).map_err(|e| e.to_string())?;
     Ok(Csc {
         pattern: p.sys.pattern.clone(),
         values: setup.base.clone(),

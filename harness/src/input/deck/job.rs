@@ -7,7 +7,9 @@
 use super::error::{DeckError, DeckErrorKind as K, DeckWarning};
 use super::model::{Deck, FrequencyScale, NodeTarget, Procedure, Step};
 use super::props::user_law;
-use crate::input::scene::{BandSpec, OutputSpec, Spacing, SweepSpec, Units};
+use crate::input::scene::{
+    BandSpec, Interval, ModalDampingSpec, OutputSpec, Spacing, SweepMethod, SweepSpec, Units,
+};
 use crate::names::ContactLaw;
 
 /// The comment line that states a deck's units (decks carry none):
@@ -74,6 +76,36 @@ impl DeckJob {
             }
             *slot = Some(i);
             check_step(st)?;
+        }
+        if let Some(d) = dynamics {
+            let st = &deck.steps[d];
+            let direct = matches!(st.procedure, Procedure::SteadyState { direct: true, .. });
+            if !direct && !frequency.is_some_and(|f| f < d) {
+                return Err(st.origin.error(
+                    K::Unsupported,
+                    "*STEADY STATE DYNAMICS",
+                    "mode-based (no DIRECT) needs a preceding *FREQUENCY step: its modes are the basis (or give DIRECT)",
+                ));
+            }
+            if let (true, Some((_, o))) = (direct, st.modal_damping.first()) {
+                return Err(o.error(
+                    K::Unsupported,
+                    "*MODAL DAMPING",
+                    "in a DIRECT steady state: modal damping damps the modes of a mode-based step (give the step without DIRECT, or material damping)",
+                ));
+            }
+        }
+        for st in &deck.steps {
+            if let (false, Some((_, o))) = (
+                matches!(st.procedure, Procedure::SteadyState { .. }),
+                st.modal_damping.first(),
+            ) {
+                return Err(o.error(
+                    K::Unsupported,
+                    "*MODAL DAMPING",
+                    "outside a steady-state step: it damps a mode-based steady state",
+                ));
+            }
         }
         if let (Some(p), Some(d)) = (preload, dynamics) {
             if p > d {
@@ -158,7 +190,13 @@ impl DeckJob {
     /// points, which a band reproduces).
     pub fn sweep(&self) -> Option<SweepSpec> {
         let st = &self.deck.steps[self.dynamics?];
-        let Procedure::SteadyState { ranges, scale } = &st.procedure else {
+        let Procedure::SteadyState {
+            ranges,
+            scale,
+            direct,
+            eigen_intervals,
+        } = &st.procedure
+        else {
             return None;
         };
         let (first, more) = ranges.split_first()?;
@@ -181,9 +219,31 @@ impl DeckJob {
                 })
                 .collect(),
             direction: Default::default(),
-            method: Default::default(),
-            modes: None,
-            residual: None,
+            // Mode-based: the *FREQUENCY step's modes, without residual flexibility
+            // (what Abaqus and CalculiX compute from the same deck).
+            method: if *direct {
+                SweepMethod::Direct
+            } else {
+                SweepMethod::Modal
+            },
+            modes: (!*direct).then(|| self.frequency_modes()).flatten(),
+            residual: (!*direct).then_some(false),
+            interval: if *eigen_intervals {
+                Interval::Eigenfrequency
+            } else {
+                Interval::Range
+            },
+            modal_damping: st
+                .modal_damping
+                .iter()
+                .map(|(d, _)| ModalDampingSpec {
+                    first_mode: d.first,
+                    last_mode: d.last,
+                    ratio: d.ratio,
+                    alpha: d.alpha,
+                    beta: d.beta,
+                })
+                .collect(),
         })
     }
 

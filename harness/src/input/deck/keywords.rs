@@ -224,6 +224,10 @@ pub const KEYWORDS: &[Keyword] = &[
         params: &[
             value("EIGENSOLVER", "LANCZOS, SUBSPACE or AMS: the same modes"),
             value(
+                "STORAGE",
+                "YES or NO (CalculiX): the modes are kept for a modal steady state either way",
+            ),
+            value(
                 "NORMALIZATION",
                 "DISPLACEMENT or MASS (mode shapes are not written)",
             ),
@@ -235,10 +239,31 @@ pub const KEYWORDS: &[Keyword] = &[
     Keyword {
         name: "STEADY STATE DYNAMICS",
         params: &[
-            flag("DIRECT", "required: a direct solve per frequency"),
+            flag(
+                "DIRECT",
+                "a direct solve per frequency; without it mode-based on the *FREQUENCY step's modes (the modal route, no residual flexibility, as Abaqus and CalculiX)",
+            ),
             value("FREQUENCY SCALE", "LOGARITHMIC (the default) or LINEAR"),
-            value("INTERVAL", "RANGE (the default) only"),
+            value(
+                "INTERVAL",
+                "RANGE (DIRECT's default) or EIGENFREQUENCY (the mode-based default: each range divided at the stuck eigenfrequencies inside it, bias 3)",
+            ),
             value("FRICTION DAMPING", "NO (the default) only: friction is jointlin's"),
+        ],
+        fields: Some(4),
+    },
+    Keyword {
+        name: "MODAL DAMPING",
+        params: &[
+            flag(
+                "RAYLEIGH",
+                "data lines first mode, last mode (blank: all), α, β: ζ_r = α/(2ω_r) + βω_r/2",
+            ),
+            value("DEFINITION", "MODE NUMBERS (the default) only"),
+            value(
+                "VISCOUS",
+                "FRACTION OF CRITICAL DAMPING (the default) only: first mode, last mode, ζ",
+            ),
         ],
         fields: Some(4),
     },

@@ -203,12 +203,29 @@ pub enum Procedure {
     Static,
     /// `*FREQUENCY`: the lowest `modes` eigenpairs.
     Frequency { modes: usize },
-    /// `*STEADY STATE DYNAMICS, DIRECT`: one frequency range per data line, run in the
-    /// order given, spaced by `scale`.
+    /// `*STEADY STATE DYNAMICS`: one frequency range per data line, run in the order
+    /// given, spaced by `scale`; `direct` (DIRECT: a solve per frequency) or mode-based
+    /// on the preceding `*FREQUENCY` step's modes; each range divided at the
+    /// eigenfrequencies inside it (`eigen_intervals`, INTERVAL=EIGENFREQUENCY, the
+    /// default without DIRECT) or as a whole.
     SteadyState {
         ranges: Vec<FrequencyRange>,
         scale: FrequencyScale,
+        direct: bool,
+        eigen_intervals: bool,
     },
+}
+
+/// One data line of `*MODAL DAMPING` (viscous, by mode numbers): modes `first`…`last`
+/// (blank: every mode) get the fraction of critical damping `ratio`, or with RAYLEIGH
+/// ζ_r = α/(2ω_r) + βω_r/2.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ModalDamping {
+    pub first: Option<usize>,
+    pub last: Option<usize>,
+    pub ratio: f64,
+    pub alpha: f64,
+    pub beta: f64,
 }
 
 /// One data line of `*STEADY STATE DYNAMICS, DIRECT` as Abaqus reads it: f_low … f_high
@@ -241,6 +258,8 @@ pub struct Step {
     pub dloads: Vec<DLoad>,
     pub dsloads: Vec<DsLoad>,
     pub outputs: Vec<Output>,
+    /// `*MODAL DAMPING` lines of the step, with the card's origin.
+    pub modal_damping: Vec<(ModalDamping, Origin)>,
     pub origin: Origin,
 }
 

@@ -9,7 +9,7 @@ use std::path::Path;
 use std::sync::Arc;
 
 use super::error::{at_path, KeyPath, Seg};
-use super::schema::{SceneFile, SweepSpec};
+use super::schema::{SceneFile, SweepMethod, SweepSpec};
 use super::validate::Problem;
 use super::Scene;
 use crate::input::deck::job::DeckJob;
@@ -129,11 +129,16 @@ pub fn attach(scene: &mut Scene, path: &Path) -> Result<(), InputError> {
     }
     let deck_path = path.parent().unwrap_or(Path::new("")).join(model);
     let job = DeckJob::load(&deck_path)?;
+    // The scene may ask for the modal route and its modes; a modal deck step stays modal.
+    let deck_sweep = job.sweep().unwrap_or_default();
     scene.spec.sweep = SweepSpec {
-        method: route_only.method,
-        modes: route_only.modes,
-        residual: route_only.residual,
-        ..job.sweep().unwrap_or_default()
+        method: match route_only.method {
+            SweepMethod::Direct => deck_sweep.method,
+            m => m,
+        },
+        modes: route_only.modes.or(deck_sweep.modes),
+        residual: route_only.residual.or(deck_sweep.residual),
+        ..deck_sweep
     };
     if scene.spec.outputs.is_empty() {
         scene.spec.outputs = job.outputs();

@@ -384,6 +384,7 @@ pub fn build(scene: &Scene, job: &DeckJob) -> Result<Problem, BuildError> {
         sys,
         damping,
         structural,
+        modal_damping: scene.spec.sweep.modal_damping.clone(),
         interfaces,
         contacts,
         cubic_springs: Vec::new(),

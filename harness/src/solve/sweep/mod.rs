@@ -99,6 +99,8 @@ pub enum SweepError {
     },
     #[error("[sweep] method = \"modal\" is available in mode fast (first order); set [iteration] mode = \"fast\" or method = \"direct\"")]
     ModalNeedsFastMode,
+    #[error("modal damping damps the stuck modes of the modal route ([sweep] method = \"modal\", a deck's steady state without DIRECT); this sweep is direct")]
+    ModalDampingNeedsModalRoute,
     #[error("the harmonic-balance mode does not include cubic springs (their linearization is first order); use mode fast or thesis")]
     CubicInHarmonicBalance,
     #[error("interfaces with `area_samples` are solved in mode fast only (the thesis store and the harmonic balance evaluate each point at its node)")]
@@ -477,6 +479,9 @@ pub fn run(
         && opts.iteration.mode != crate::input::scene::Mode::Fast
     {
         return Err(SweepError::ModalNeedsFastMode);
+    }
+    if opts.linear == modal_route::LinearRoute::Direct && !problem.modal_damping.is_empty() {
+        return Err(SweepError::ModalDampingNeedsModalRoute);
     }
     let zero_load = scale::is_zero_load(&setup);
     let mut r = match opts.iteration.mode {

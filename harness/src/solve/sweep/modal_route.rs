@@ -12,7 +12,8 @@
 //! once per sweep (one Lanczos run, m + 2 solves with one Cholesky factor of K_s); each
 //! frequency then costs a dense p × p factorization and products of sizes m × p × m,
 //! independent of the mesh. R is exact at ω = 0 (the route then equals the direct one);
-//! the error that remains is the omitted modes' dynamic part, O(ω²/λ_{p+1}).
+//! the error that remains is the omitted modes' dynamic part, O(ω²/λ_{p+1}). Modal
+//! damping (`Problem::modal_damping`) adds iω·2ζ_rω_r to Z's diagonal.
 
 use nalgebra::{DMatrix, Dyn, LU};
 
@@ -91,6 +92,8 @@ pub struct ModalRoute {
     phi_f: Vec<C64>,
     /// ΦᵀDΦ and ΦᵀHΦ (p × p), when the sweep has them.
     damping: Option<DMatrix<f64>>,
+    /// Modal damping 2ζ_rω_r per mode (rad/time; empty: none).
+    modal_damping: Vec<f64>,
     structural: Option<DMatrix<f64>>,
     /// Residual images: B R Bᵀ (m × m), C R Bᵀ (outputs × m), B R f̂ (m), C R f̂ (outputs);
     /// zeros without the residual.
@@ -168,6 +171,20 @@ impl ModalRoute {
             })
         };
         let damping = setup.damping.map(project);
+        // ζ_r of the model's modal damping, summed over the ranges that hold mode r.
+        let modal_damping: Vec<f64> = if p.modal_damping.is_empty() {
+            Vec::new()
+        } else {
+            found
+                .eigenvalues
+                .iter()
+                .enumerate()
+                .map(|(r, &l)| {
+                    let w = l.sqrt();
+                    2.0 * w * p.modal_damping.iter().map(|d| d.ratio_of(r + 1, w)).sum::<f64>()
+                })
+                .collect()
+        };
         let structural = setup.structural.map(project);
         let (mut brb, mut crb) = (
             DMatrix::from_element(m, m, z),
@@ -243,6 +260,7 @@ impl ModalRoute {
             c,
             phi_f,
             damping,
+            modal_damping,
             structural,
             brb,
             crb,
@@ -261,6 +279,9 @@ impl ModalRoute {
         let mut z = DMatrix::from_element(np, np, C64::new(0.0, 0.0));
         for r in 0..np {
             z[(r, r)] = C64::new(self.lambda[r] - omega * omega, 0.0);
+        }
+        for (r, c) in self.modal_damping.iter().enumerate() {
+            z[(r, r)].im += omega * c;
         }
         if let Some(d) = &self.damping {
             z.zip_apply(d, |a, b| a.im += omega * b);

@@ -108,11 +108,12 @@ pub(super) fn face_label(label: &str, letter: char) -> Option<usize> {
 
 /// A `*STEADY STATE DYNAMICS` data line as Abaqus reads it: f_low, f_high (zero or
 /// blank: the single frequency f_low), points (fewer than 2 or blank: 20), bias
-/// (default 1).
+/// (default `default_bias`: Abaqus's 1 for INTERVAL=RANGE, 3 for EIGENFREQUENCY).
 pub(super) fn frequency_range(
     card: &Card,
     l: &DataLine,
     log: bool,
+    default_bias: f64,
 ) -> Result<FrequencyRange, DeckError> {
     /// Abaqus's number of points when the line gives fewer than 2.
     const DEFAULT_POINTS: f64 = 20.0;
@@ -143,7 +144,7 @@ pub(super) fn frequency_range(
     if points < 2.0 {
         points = DEFAULT_POINTS;
     }
-    let bias = opt_number(card, l, 3, "bias", 1.0)?;
+    let bias = opt_number(card, l, 3, "bias", default_bias)?;
     if f_low < 0.0 || f_high < f_low || points.fract() != 0.0 || points > 1e7 || bias <= 0.0 {
         return Err(card.error_at(l.line, K::BadValue, format!("need 0 <= f_low <= f_high, a whole number of points and bias > 0; got {f_low}, {f_high}, {points}, {bias}")));
     }

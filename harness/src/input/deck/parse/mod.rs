@@ -406,11 +406,13 @@ impl Reader {
                     dloads: Vec::new(),
                     dsloads: Vec::new(),
                     outputs: Vec::new(),
+                    modal_damping: Vec::new(),
                     origin: card.origin.clone(),
                 });
                 self.procedure = None;
             }
             "STATIC" | "FREQUENCY" | "STEADY STATE DYNAMICS" => self.procedure(card)?,
+            "MODAL DAMPING" => self.modal_damping(card)?,
             "END STEP" => {
                 let mut step = self
                     .step

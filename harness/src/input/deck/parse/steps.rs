@@ -40,13 +40,20 @@ impl Reader {
                 }
             }
             _ => {
-                if !card.flag("DIRECT") {
+                let direct = card.flag("DIRECT");
+                let interval = choice(
+                    card,
+                    "INTERVAL",
+                    &["RANGE", "EIGENFREQUENCY"],
+                    if direct { "RANGE" } else { "EIGENFREQUENCY" },
+                )?;
+                if direct && interval == "EIGENFREQUENCY" {
                     return Err(card.error(
                         K::Unsupported,
-                        "only DIRECT steady-state dynamics (not modal)",
+                        "INTERVAL=EIGENFREQUENCY with DIRECT: Abaqus divides direct ranges as given (INTERVAL=RANGE)",
                     ));
                 }
-                choice(card, "INTERVAL", &["RANGE"], "RANGE")?;
+                let eigen_intervals = interval == "EIGENFREQUENCY";
                 choice(card, "FRICTION DAMPING", &["NO"], "NO")?;
                 let scale = match card
                     .param("FREQUENCY SCALE")
@@ -71,7 +78,7 @@ impl Reader {
                 let mut ranges = Vec::new();
                 let mut total = 0usize;
                 for l in lines(card) {
-                    let r = frequency_range(card, l, log)?;
+                    let r = frequency_range(card, l, log, if eigen_intervals { 3.0 } else { 1.0 })?;
                     total += r.points;
                     if total > MAX_FREQUENCIES {
                         return Err(card.error_at(
@@ -82,7 +89,12 @@ impl Reader {
                     }
                     ranges.push(r);
                 }
-                Procedure::SteadyState { ranges, scale }
+                Procedure::SteadyState {
+                    ranges,
+                    scale,
+                    direct,
+                    eigen_intervals,
+                }
             }
         };
         let name = self.step_mut(card)?.name.clone();
@@ -90,6 +102,60 @@ impl Reader {
             return Err(card.error(K::Syntax, format!("step {name} already has a procedure")));
         }
         self.procedure = Some(procedure);
+        Ok(())
+    }
+
+    /// `*MODAL DAMPING` (viscous by mode numbers, or RAYLEIGH): first mode, last mode
+    /// (blank: all), then ζ, or α and β with RAYLEIGH (CalculiX leaves the modes blank).
+    pub(super) fn modal_damping(&mut self, card: &Card) -> Result<(), DeckError> {
+        choice(card, "DEFINITION", &["MODE NUMBERS"], "MODE NUMBERS")?;
+        choice(
+            card,
+            "VISCOUS",
+            &["FRACTION OF CRITICAL DAMPING"],
+            "FRACTION OF CRITICAL DAMPING",
+        )?;
+        let rayleigh = card.flag("RAYLEIGH");
+        let mut out = Vec::new();
+        for l in lines(card) {
+            let mode = |i: usize, what: &str| -> Result<Option<usize>, DeckError> {
+                match l.fields.get(i).map(|f| f.trim()).filter(|f| !f.is_empty()) {
+                    None => Ok(None),
+                    Some(f) => parse_id(f).map(|v| Some(v as usize)).ok_or_else(|| {
+                        card.error_at(l.line, K::BadValue, format!("{what} {:?} is not a positive integer", truncate(f)))
+                    }),
+                }
+            };
+            let (first, last) = (mode(0, "first mode")?, mode(1, "last mode")?);
+            let value = |i: usize, what: &str| opt_number(card, l, i, what, 0.0);
+            let (ratio, alpha, beta) = if rayleigh {
+                (0.0, value(2, "alpha")?, value(3, "beta")?)
+            } else {
+                if l.fields.len() > 3 {
+                    return Err(card.error_at(l.line, K::Unsupported, "a fourth field: viscous modal damping takes first mode, last mode, fraction of critical damping (α, β need RAYLEIGH)"));
+                }
+                (value(2, "fraction of critical damping")?, 0.0, 0.0)
+            };
+            if [ratio, alpha, beta].iter().any(|v| !(v.is_finite() && *v >= 0.0))
+                || matches!((first, last), (Some(a), Some(b)) if b < a)
+            {
+                return Err(card.error_at(l.line, K::BadValue, format!("need first mode <= last mode and damping >= 0; got {first:?}, {last:?}, {ratio}, {alpha}, {beta}")));
+            }
+            out.push((
+                ModalDamping {
+                    first,
+                    last,
+                    ratio,
+                    alpha,
+                    beta,
+                },
+                data_origin(card, l),
+            ));
+        }
+        if out.is_empty() {
+            return Err(card.error(K::Syntax, "needs a data line (first mode, last mode, damping)"));
+        }
+        self.step_mut(card)?.modal_damping.extend(out);
         Ok(())
     }
 

@@ -51,6 +51,58 @@ pub struct SweepSpec {
     /// Modal route: add the omitted modes' static residual flexibility (default true).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub residual: Option<bool>,
+    /// How the range and each band are divided: `range` (`count` points over the whole
+    /// range) or `eigenfrequency` (Abaqus's INTERVAL=EIGENFREQUENCY: `count` points, ends
+    /// included, from `f_min` to the first stuck eigenfrequency inside the range, between
+    /// each two and from the last to `f_max`, biased toward the ends by `bias`).
+    #[serde(default)]
+    pub interval: Interval,
+    /// Modal damping of the stuck modes (modal route only), summed where ranges overlap.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub modal_damping: Vec<ModalDampingSpec>,
+}
+
+/// How a frequency range is divided into points.
+#[derive(Debug, Clone, Copy, Deserialize, Serialize, PartialEq, Eq, Default)]
+#[serde(rename_all = "snake_case")]
+pub enum Interval {
+    #[default]
+    Range,
+    Eigenfrequency,
+}
+
+/// Viscous modal damping of modes `first_mode`…`last_mode` (1-based, inclusive; absent:
+/// every mode): the fraction of critical damping ζ_r = `ratio` + α/(2ω_r) + βω_r/2
+/// (`alpha` in 1/time, `beta` in time; Rayleigh's form as Abaqus's `*MODAL DAMPING,
+/// RAYLEIGH` states it per mode).
+#[derive(Debug, Clone, Copy, Deserialize, Serialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct ModalDampingSpec {
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub first_mode: Option<usize>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub last_mode: Option<usize>,
+    #[serde(default)]
+    pub ratio: f64,
+    #[serde(default)]
+    pub alpha: f64,
+    #[serde(default)]
+    pub beta: f64,
+}
+
+impl ModalDampingSpec {
+    /// ζ of mode `r` (1-based) with circular frequency ω_r (rad/time); 0 outside the range.
+    pub fn ratio_of(&self, r: usize, omega_r: f64) -> f64 {
+        let inside = self.first_mode.is_none_or(|a| r >= a) && self.last_mode.is_none_or(|b| r <= b);
+        if !inside {
+            return 0.0;
+        }
+        let mut z = self.ratio;
+        if self.alpha != 0.0 {
+            z += self.alpha / (2.0 * omega_r);
+        }
+        z + self.beta * omega_r / 2.0
+    }
 }
 
 /// How the steady-state step solves its linear part.

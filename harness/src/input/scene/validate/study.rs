@@ -39,6 +39,9 @@ pub(super) fn sweep(c: &mut Checker, s: &SceneFile) {
                 c.fail(sw.key(key), "applies to method = \"modal\" only");
             }
         }
+        if !s.sweep.modal_damping.is_empty() {
+            c.fail(sw.key("modal_damping"), "applies to method = \"modal\" only");
+        }
     } else if s.sweep.modes == Some(0) {
         c.fail(sw.key("modes"), "must be >= 1");
     } else if s.iteration.mode != Mode::Fast {
@@ -46,6 +49,19 @@ pub(super) fn sweep(c: &mut Checker, s: &SceneFile) {
             sw.key("method"),
             "\"modal\" is available in [iteration] mode = \"fast\" (first order)",
         );
+    }
+    for (i, d) in s.sweep.modal_damping.iter().enumerate() {
+        let dp = sw.key("modal_damping").index(i);
+        for (key, v) in [("ratio", d.ratio), ("alpha", d.alpha), ("beta", d.beta)] {
+            if !(v.is_finite() && v >= 0.0) {
+                c.fail(dp.key(key), "must be a finite number >= 0");
+            }
+        }
+        if let (Some(a), Some(b)) = (d.first_mode, d.last_mode) {
+            if a == 0 || b < a {
+                c.fail(dp.key("last_mode"), "modes are 1-based, first_mode <= last_mode");
+            }
+        }
     }
 
     for (i, b) in s.sweep.refine.iter().enumerate() {
