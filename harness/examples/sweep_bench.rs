@@ -28,7 +28,13 @@ fn sweep(scene: &Scene, route: Option<(Option<usize>, bool)>) -> Result<RunResul
 
 /// Largest relative differences (amplitude of the first output, power) of `a` from `b`.
 fn difference(a: &RunResult, b: &RunResult) -> (f64, f64) {
-    let rel = |x: f64, y: f64| if y != 0.0 { (x - y).abs() / y.abs() } else { (x - y).abs() };
+    let rel = |x: f64, y: f64| {
+        if y != 0.0 {
+            (x - y).abs() / y.abs()
+        } else {
+            (x - y).abs()
+        }
+    };
     let (a, b) = (&a.main, &b.main);
     (0..a.freqs.len()).fold((0.0f64, 0.0f64), |(amp, pow), i| {
         (

@@ -13,11 +13,13 @@ use crate::input::scene::{
     Direction, Effects, FieldOutputSpec, Interval, Mode, Scene, SweepMethod, SweepSpec,
 };
 use crate::model::{build, BuildError, Problem};
-use crate::solve::static_step::{self, StaticError, StaticState};
 use crate::solve::modal::{lowest_modes, ModalOptions};
 use crate::solve::modal_band::modes_below;
 use crate::solve::modal_stuck::stuck_stiffness_after;
-use crate::solve::sweep::modal_route::{LinearRoute, ModeChoice, BAND_FACTOR, MAX_MODES, MIN_MODES};
+use crate::solve::static_step::{self, StaticError, StaticState};
+use crate::solve::sweep::modal_route::{
+    LinearRoute, ModeChoice, BAND_FACTOR, MAX_MODES, MIN_MODES,
+};
 use crate::solve::sweep::{self, Options, SweepError, SweepResult};
 
 /// Errors of a run.
@@ -125,7 +127,15 @@ pub fn sweep_frequencies(
         ),
         None => {
             let top = scene.frequencies().into_iter().fold(0.0, f64::max);
-            modes_below(&k, &problem.sys.m, BAND_FACTOR * top, MIN_MODES, MAX_MODES, &opts).map(|b| b.modes)
+            modes_below(
+                &k,
+                &problem.sys.m,
+                BAND_FACTOR * top,
+                MIN_MODES,
+                MAX_MODES,
+                &opts,
+            )
+            .map(|b| b.modes)
         }
     }
     .map_err(|e| err(e.to_string()))?;

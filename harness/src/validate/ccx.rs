@@ -137,6 +137,45 @@ pub fn parse_frequencies(dat: &str) -> Vec<f64> {
     out
 }
 
+/// A steady-state dynamics .dat file's displacements of `node`: per frequency (the
+/// blocks' "time", cycles/time) the complex amplitudes of u1…u3; ccx writes each
+/// frequency's real block, then its imaginary one.
+pub fn parse_steady_state(dat: &str, node: usize) -> Vec<(f64, [nalgebra::Complex<f64>; 3])> {
+    let mut parts: Vec<(f64, [f64; 3])> = Vec::new();
+    let mut time = None;
+    for line in dat.lines() {
+        let t = line.trim_start();
+        if t.starts_with("displacements") {
+            time = t
+                .split_whitespace()
+                .last()
+                .and_then(|v| v.parse::<f64>().ok());
+            continue;
+        }
+        let cols: Vec<&str> = t.split_whitespace().collect();
+        if let (Some(f), 4) = (time, cols.len()) {
+            if cols[0].parse::<usize>() == Ok(node) {
+                let v: Vec<f64> = cols[1..].iter().filter_map(|c| c.parse().ok()).collect();
+                if v.len() == 3 {
+                    parts.push((f, [v[0], v[1], v[2]]));
+                    time = None;
+                }
+            }
+        }
+    }
+    parts
+        .chunks(2)
+        .filter(|c| c.len() == 2)
+        .map(|c| {
+            let (re, im) = (c[0].1, c[1].1);
+            (
+                c[0].0,
+                [0, 1, 2].map(|i| nalgebra::Complex::new(re[i], im[i])),
+            )
+        })
+        .collect()
+}
+
 /// The lowest `modes` eigenfrequencies (Hz) of `mesh` with the nodes `fixed` held, by
 /// a dense generalized eigensolve with this crate's elements (small meshes only).
 pub fn dense_frequencies(

@@ -140,6 +140,17 @@ pub fn attach(scene: &mut Scene, path: &Path) -> Result<(), InputError> {
         residual: route_only.residual.or(deck_sweep.residual),
         ..deck_sweep
     };
+    if scene.spec.sweep.method == SweepMethod::Direct
+        && (route_only.modes.is_some() || route_only.residual.is_some())
+    {
+        return Err(at_path(
+            &scene.file,
+            &scene.text,
+            &KeyPath::root().key("sweep"),
+            "`modes` and `residual` apply to the modal route, and the deck's steady state is DIRECT: give method = \"modal\"".into(),
+        )
+        .into());
+    }
     if scene.spec.outputs.is_empty() {
         scene.spec.outputs = job.outputs();
     }

@@ -181,7 +181,11 @@ impl ModalRoute {
                 .enumerate()
                 .map(|(r, &l)| {
                     let w = l.sqrt();
-                    2.0 * w * p.modal_damping.iter().map(|d| d.ratio_of(r + 1, w)).sum::<f64>()
+                    2.0 * w
+                        * p.modal_damping
+                            .iter()
+                            .map(|d| d.ratio_of(r + 1, w))
+                            .sum::<f64>()
                 })
                 .collect()
         };

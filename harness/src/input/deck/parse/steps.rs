@@ -122,7 +122,11 @@ impl Reader {
                 match l.fields.get(i).map(|f| f.trim()).filter(|f| !f.is_empty()) {
                     None => Ok(None),
                     Some(f) => parse_id(f).map(|v| Some(v as usize)).ok_or_else(|| {
-                        card.error_at(l.line, K::BadValue, format!("{what} {:?} is not a positive integer", truncate(f)))
+                        card.error_at(
+                            l.line,
+                            K::BadValue,
+                            format!("{what} {:?} is not a positive integer", truncate(f)),
+                        )
                     }),
                 }
             };
@@ -136,7 +140,9 @@ impl Reader {
                 }
                 (value(2, "fraction of critical damping")?, 0.0, 0.0)
             };
-            if [ratio, alpha, beta].iter().any(|v| !(v.is_finite() && *v >= 0.0))
+            if [ratio, alpha, beta]
+                .iter()
+                .any(|v| !(v.is_finite() && *v >= 0.0))
                 || matches!((first, last), (Some(a), Some(b)) if b < a)
             {
                 return Err(card.error_at(l.line, K::BadValue, format!("need first mode <= last mode and damping >= 0; got {first:?}, {last:?}, {ratio}, {alpha}, {beta}")));
@@ -153,7 +159,10 @@ impl Reader {
             ));
         }
         if out.is_empty() {
-            return Err(card.error(K::Syntax, "needs a data line (first mode, last mode, damping)"));
+            return Err(card.error(
+                K::Syntax,
+                "needs a data line (first mode, last mode, damping)",
+            ));
         }
         self.step_mut(card)?.modal_damping.extend(out);
         Ok(())

@@ -93,7 +93,8 @@ pub struct ModalDampingSpec {
 impl ModalDampingSpec {
     /// ζ of mode `r` (1-based) with circular frequency ω_r (rad/time); 0 outside the range.
     pub fn ratio_of(&self, r: usize, omega_r: f64) -> f64 {
-        let inside = self.first_mode.is_none_or(|a| r >= a) && self.last_mode.is_none_or(|b| r <= b);
+        let inside =
+            self.first_mode.is_none_or(|a| r >= a) && self.last_mode.is_none_or(|b| r <= b);
         if !inside {
             return 0.0;
         }

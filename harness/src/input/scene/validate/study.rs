@@ -30,7 +30,8 @@ pub(super) fn sweep(c: &mut Checker, s: &SceneFile) {
             "must be > f_min (or equal to it with count = 1)",
         );
     }
-    if s.sweep.method == SweepMethod::Direct {
+    // Over a deck the deck's step may be mode-based: checked when it is attached.
+    if s.sweep.method == SweepMethod::Direct && s.model.is_none() {
         for (key, given) in [
             ("modes", s.sweep.modes.is_some()),
             ("residual", s.sweep.residual.is_some()),
@@ -40,7 +41,10 @@ pub(super) fn sweep(c: &mut Checker, s: &SceneFile) {
             }
         }
         if !s.sweep.modal_damping.is_empty() {
-            c.fail(sw.key("modal_damping"), "applies to method = \"modal\" only");
+            c.fail(
+                sw.key("modal_damping"),
+                "applies to method = \"modal\" only",
+            );
         }
     } else if s.sweep.modes == Some(0) {
         c.fail(sw.key("modes"), "must be >= 1");
@@ -59,7 +63,10 @@ pub(super) fn sweep(c: &mut Checker, s: &SceneFile) {
         }
         if let (Some(a), Some(b)) = (d.first_mode, d.last_mode) {
             if a == 0 || b < a {
-                c.fail(dp.key("last_mode"), "modes are 1-based, first_mode <= last_mode");
+                c.fail(
+                    dp.key("last_mode"),
+                    "modes are 1-based, first_mode <= last_mode",
+                );
             }
         }
     }
