@@ -4,7 +4,7 @@
 //! has every effect on). Study tables a deck does not carry are returned as notes.
 
 use super::ExportError;
-use crate::input::scene::{BodyKind, Direction, Mode, Scene};
+use crate::input::scene::{BodyKind, Direction, Interval, Mode, Scene, SweepMethod};
 
 /// Checks `scene`; returns the tables left out of the deck (study settings).
 pub fn check(scene: &Scene) -> Result<Vec<String>, ExportError> {
@@ -30,6 +30,18 @@ pub fn check(scene: &Scene) -> Result<Vec<String>, ExportError> {
         return Err(err(
             format!("bodies[{i}].kind"),
             "a lumped mass: the exported deck holds solid elements only (a deck run reads no *MASS); model the body as a box",
+        ));
+    }
+    if s.sweep.method == SweepMethod::Modal {
+        return Err(err(
+            "sweep.method".into(),
+            "the modal route: the exported job is the UEXTERNALDB iteration over a DIRECT steady state (export the scene with method = \"direct\")",
+        ));
+    }
+    if s.sweep.interval == Interval::Eigenfrequency {
+        return Err(err(
+            "sweep.interval".into(),
+            "eigenfrequency intervals: the exported job lists its frequencies for a DIRECT steady state, which Abaqus divides by range",
         ));
     }
     if !s.springs.is_empty() {
