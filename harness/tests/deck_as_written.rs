@@ -776,3 +776,53 @@ fn a_stuck_stack_pressed_from_one_side_finds_its_preload() {
     assert!(json.contains("\"converged\"") && !json.contains("\"not converged\""));
     let _ = std::fs::remove_dir_all(&d);
 }
+
+#[test]
+fn a_mode_based_step_needs_its_modes_and_modal_damping_a_mode_based_step() {
+    use jointlin_harness::validate::matrices_ccx::{deck, tip_node};
+    let d = dir("modal");
+    let tip = tip_node();
+    let check = |name: &str, step: &str| {
+        let text = deck(&format!("*NSET, NSET=TIPN\n{tip}\n{step}"));
+        let path = d.join(format!("{name}.inp"));
+        std::fs::write(&path, &text).unwrap();
+        let (code, log) = jointlin(&["check", path.to_str().unwrap()]);
+        let line =
+            move |needle: &str| text.lines().position(|l| l.starts_with(needle)).unwrap() + 1;
+        (code, log, line)
+    };
+    let ssd = "*STEADY STATE DYNAMICS, FREQUENCY SCALE=LINEAR\n100., 900., 5\n";
+    let load = "*CLOAD\nTIPN, 3, 1.\n*END STEP\n";
+    // Without a *FREQUENCY step there are no modes to superpose.
+    let (code, log, line) = check("no-modes", &format!("*STEP\n{ssd}{load}"));
+    assert_eq!(code, 2, "{log}");
+    let at = format!("no-modes.inp:{}: *STEADY STATE DYNAMICS", line("*STEP"));
+    assert!(
+        log.contains(&at) && log.contains("preceding *FREQUENCY"),
+        "{log}"
+    );
+    // Modal damping in a DIRECT step would be ignored by Abaqus's direct solve: refused.
+    let direct = "*STEADY STATE DYNAMICS, DIRECT, FREQUENCY SCALE=LINEAR\n100., 900., 5\n";
+    let (code, log, line) = check(
+        "direct-damped",
+        &format!("*STEP\n{direct}*MODAL DAMPING\n1, 10, 0.02\n{load}"),
+    );
+    assert_eq!(code, 2, "{log}");
+    let at = format!("direct-damped.inp:{}: *MODAL DAMPING", line("1, 10, 0.02"));
+    assert!(log.contains(&at), "{log}");
+    // A definition the reader does not implement is refused at its parameter.
+    let modes = "*STEP\n*FREQUENCY\n6\n*END STEP\n";
+    let (code, log, _) = check(
+        "range",
+        &format!("{modes}*STEP\n{ssd}*MODAL DAMPING, DEFINITION=FREQUENCY RANGE\n100., 900., 0.02\n{load}"),
+    );
+    assert_eq!(code, 2, "{log}");
+    assert!(log.contains("*MODAL DAMPING, DEFINITION="), "{log}");
+    // The complete mode-based deck checks.
+    let (code, log, _) = check(
+        "complete",
+        &format!("{modes}*STEP\n{ssd}*MODAL DAMPING, RAYLEIGH\n,,100.,1e-6\n{load}"),
+    );
+    assert_eq!(code, 0, "{log}");
+    let _ = std::fs::remove_dir_all(&d);
+}
