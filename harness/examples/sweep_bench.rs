@@ -12,6 +12,7 @@
 
 use std::path::Path;
 
+use jointlin_harness::input;
 use jointlin_harness::input::scene::{Scene, SweepMethod};
 use jointlin_harness::run::{run, Extras, RunResult};
 
@@ -57,7 +58,9 @@ fn main() -> Result<(), String> {
     println!("| scene | free DOFs | contact points | route | modes | residual | sweep (s) | converged | largest difference, amplitude | largest difference, power |");
     println!("|---|---:|---:|---|---:|---|---:|---:|---:|---:|");
     for file in scenes {
-        let scene = Scene::load(Path::new(&file)).map_err(|e| e.to_string())?;
+        let scene = input::load(Path::new(&file))
+            .map_err(|e| e.to_string())?
+            .into_scene();
         let direct = sweep(&scene, None)?;
         let name = Path::new(&file)
             .file_name()

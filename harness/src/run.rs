@@ -166,13 +166,20 @@ pub fn run(
     }
     opts.descending = spec.sweep.direction == Direction::Down;
     let t = Instant::now();
-    let main = sweep::run(&problem, &stat, &freqs, &opts, progress)?;
+    // One modal basis for every sweep of the run (they share the problem).
+    let mut cache = None;
+    let main = sweep::run_cached(&problem, &stat, &freqs, &opts, progress, &mut cache)?;
     let down = if spec.sweep.direction == Direction::UpDown {
         let mut o = opts;
         o.descending = true;
-        Some(sweep::run(&problem, &stat, &freqs, &o, &|l, i, n| {
-            progress(&format!("sweep down: {l}"), i, n)
-        })?)
+        Some(sweep::run_cached(
+            &problem,
+            &stat,
+            &freqs,
+            &o,
+            &|l, i, n| progress(&format!("sweep down: {l}"), i, n),
+            &mut cache,
+        )?)
     } else {
         None
     };
@@ -188,9 +195,14 @@ pub fn run(
         o.effects.contact_damping = false;
         o.point_results = false;
         o.iteration.mode = Mode::Fast;
-        Some(sweep::run(&problem, &stat, &freqs, &o, &|l, i, n| {
-            progress(&format!("reference without contact damping: {l}"), i, n)
-        })?)
+        Some(sweep::run_cached(
+            &problem,
+            &stat,
+            &freqs,
+            &o,
+            &|l, i, n| progress(&format!("reference without contact damping: {l}"), i, n),
+            &mut cache,
+        )?)
     } else {
         None
     };
@@ -205,9 +217,14 @@ pub fn run(
             o.keep_fields = true;
             o.point_results = true;
             o.descending = false;
-            Some(sweep::run(&problem, &stat, &at, &o, &|l, i, n| {
-                progress(&format!("field output: {l}"), i, n)
-            })?)
+            Some(sweep::run_cached(
+                &problem,
+                &stat,
+                &at,
+                &o,
+                &|l, i, n| progress(&format!("field output: {l}"), i, n),
+                &mut cache,
+            )?)
         }
         None => None,
     };

@@ -23,6 +23,7 @@ use crate::input::scene::Scene;
 pub use crate::input::scene::{LossStudySpec, ReferencePoint};
 use crate::model::{build, BuildError, Problem};
 use crate::solve::static_step::{self, StaticError, StaticState};
+use crate::solve::sweep::modal_route::ModalRoute;
 use crate::solve::sweep::{self, Options, PointFreq, SweepError, C64};
 
 /// Errors of a loss study.
@@ -80,6 +81,8 @@ pub struct Operating {
     output: usize,
     share: f64,
     opts: Options,
+    /// The modal route's basis, kept from one sweep to the next.
+    modal: Option<ModalRoute>,
     /// Solves run so far (each one factorization).
     pub solves: usize,
 }
@@ -97,7 +100,9 @@ impl Operating {
             .ok_or_else(|| LossError::Spec(format!("no output named `{output}`")))?;
         let mut opts = Options::from_scene(scene.spec.iteration, scene.spec.effects);
         opts.point_results = true;
+        opts.linear = crate::run::linear_route(&scene.spec.sweep, &scene.frequencies());
         Ok(Operating {
+            modal: None,
             base_excitation: problem.excitation.clone(),
             problem,
             stat,
@@ -119,12 +124,13 @@ impl Operating {
             *e = b * scale;
         }
         self.solves += freqs.len();
-        Ok(sweep::run(
+        Ok(sweep::run_cached(
             &self.problem,
             &self.stat,
             freqs,
             &self.opts,
             &|_, _, _| {},
+            &mut self.modal,
         )?)
     }
 

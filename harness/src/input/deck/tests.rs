@@ -126,7 +126,9 @@ fn flat_deck_reads_every_keyword() {
                 points: 41,
                 bias: 1.0,
             }],
-            scale: FrequencyScale::Linear
+            scale: FrequencyScale::Linear,
+            direct: true,
+            eigen_intervals: false,
         }
     );
     assert_eq!(sweep.cloads[0].target, NodeTarget::Set("TOPN".into()));

@@ -72,6 +72,7 @@ pub fn sweep(
     freqs: &[f64],
     opts: &Options,
     progress: &dyn Fn(&str, usize, usize),
+    cache: &mut Option<ModalRoute>,
 ) -> Result<SweepResult, SweepError> {
     let p = setup.problem;
     let eff = opts.effects;
@@ -253,8 +254,9 @@ pub fn sweep(
     };
 
     // Modal route: the reference is the stuck structure (κ₀ = κ at amplitude 0, the
-    // springs' linear k) for every frequency, its modes and residual once.
-    let mut modal = None;
+    // springs' linear k) for every frequency, its modes and residual once (or from
+    // `cache`, built by an earlier sweep of the same problem, with this sweep's load).
+    let mut modal: Option<&mut ModalRoute> = None;
     if let LinearRoute::Modal { modes, residual } = opts.linear {
         let t = Instant::now();
         let omega = 2.0 * std::f64::consts::PI * freqs.first().copied().unwrap_or(0.0);
@@ -266,7 +268,27 @@ pub fn sweep(
         }
         res.time("linearization (C API)", t);
         let t = Instant::now();
-        let route = ModalRoute::new(setup, &kappa0, &ks0, (m, &row), modes, residual)?;
+        match cache {
+            Some(route) if route.serves((modes, residual), setup, &kappa0, &ks0) => {
+                route
+                    .set_load(&p.excitation, &row, &p.outputs)
+                    .map_err(|source| SweepError::ModalField {
+                        freq: freqs.first().copied().unwrap_or(0.0),
+                        source,
+                    })?;
+            }
+            _ => {
+                *cache = Some(ModalRoute::new(
+                    setup,
+                    &kappa0,
+                    &ks0,
+                    (m, &row),
+                    modes,
+                    residual,
+                )?)
+            }
+        }
+        let route = cache.as_mut().expect("set above");
         res.modal = Some(route.summary.clone());
         modal = Some(route);
         res.time("modal basis (modes, residual)", t);

@@ -21,6 +21,7 @@ pub mod harmonic_check;
 pub mod harmonic_fe;
 pub mod harmonic_fe_point3d;
 pub mod krylov;
+mod modal_residual;
 pub mod modal_route;
 pub mod posteriori;
 pub mod receptance;
@@ -459,6 +460,19 @@ pub fn run(
     opts: &Options,
     progress: &dyn Fn(&str, usize, usize),
 ) -> Result<SweepResult, SweepError> {
+    run_cached(problem, stat, freqs, opts, progress, &mut None)
+}
+
+/// [`run`] keeping the modal route's basis in `cache` for the next sweep of the same
+/// `problem` and `stat` (a study that sweeps it many times, e.g. with other loads).
+pub fn run_cached(
+    problem: &Problem,
+    stat: &StaticState,
+    freqs: &[f64],
+    opts: &Options,
+    progress: &dyn Fn(&str, usize, usize),
+    cache: &mut Option<modal_route::ModalRoute>,
+) -> Result<SweepResult, SweepError> {
     let t = Instant::now();
     let mut setup =
         Setup::new(problem, stat, &opts.effects).map_err(|source| SweepError::Umfpack {
@@ -486,7 +500,7 @@ pub fn run(
     let zero_load = scale::is_zero_load(&setup);
     let mut r = match opts.iteration.mode {
         _ if zero_load => scale::zero_load(&mut setup, &order, opts)?,
-        crate::input::scene::Mode::Fast => fast::sweep(&mut setup, &order, opts, progress)?,
+        crate::input::scene::Mode::Fast => fast::sweep(&mut setup, &order, opts, progress, cache)?,
         crate::input::scene::Mode::Thesis => {
             thesis::sweep(&mut setup, stat, &order, opts, progress)?
         }

@@ -1,25 +1,26 @@
-//! The modal route of the first-order steady state (docs/model.md §5, "modal route"):
+//! The modal route of the first-order steady state (docs/model.md §10, "modal route"):
 //! the linear part is the structure with every active joint stuck (κ₀ = k_T0 per area,
 //! the springs' linear k), S_s(ω) = K_s − ω²M + iωD + iH, represented by its p lowest
-//! modes (K_s φ_r = λ_r M φ_r, φᵀMφ = 1) and, optionally, the static residual flexibility
-//! of the omitted ones:
+//! modes (K_s φ_r = λ_r M φ_r, φᵀMφ = 1) and, optionally, the omitted ones' residual
+//! flexibility with its first inertia term ([`super::modal_residual`]):
 //!
-//!   S_s(ω)⁻¹ ≈ Φ Z(ω)⁻¹ Φᵀ + R,   Z = Λ − ω²I + iωΦᵀDΦ + iΦᵀHΦ,   R = K_s⁻¹ − ΦΛ⁻¹Φᵀ.
+//!   S_s(ω)⁻¹ ≈ Φ Z(ω)⁻¹ Φᵀ + R + ω²RMR,   Z = Λ − ω²I + iωΦᵀDΦ + iΦᵀHΦ.
 //!
 //! The contact nonlinearity is then condensed exactly as in the direct route
 //! ([`super::fast`]): G = B S_s⁻¹ Bᵀ, r₀ = B S_s⁻¹ f̂, O = C S_s⁻¹ Bᵀ, y₀ = C S_s⁻¹ f̂ with
-//! B the contact rows, C the outputs. The modes and B R Bᵀ, C R Bᵀ, B R f̂, C R f̂ come
-//! once per sweep (one Lanczos run, m + 2 solves with one Cholesky factor of K_s); each
-//! frequency then costs a dense p × p factorization and products of sizes m × p × m,
-//! independent of the mesh. R is exact at ω = 0 (the route then equals the direct one);
-//! the error that remains is the omitted modes' dynamic part, O(ω²/λ_{p+1}). Modal
-//! damping (`Problem::modal_damping`) adds iω·2ζ_rω_r to Z's diagonal.
+//! B the contact rows, C the outputs. The modes and the residual's images come once per
+//! basis (one Lanczos run, 2m solves with one Cholesky factor of K_s; a basis serves
+//! later sweeps of the same problem with another load); each frequency then costs a
+//! dense p × p factorization and products of sizes m × p × m, independent of the mesh.
+//! Modal damping (`Problem::modal_damping`) adds iω·2ζ_rω_r to Z's diagonal.
 
 use nalgebra::{DMatrix, Dyn, LU};
 
+use super::modal_residual::{Kept, Residual};
 use super::{Setup, C64};
 use crate::fe::csc::Csc;
-use crate::solve::cholmod::{Cholesky, CholmodError};
+use crate::model::Output;
+use crate::solve::cholmod::CholmodError;
 use crate::solve::modal::{lowest_modes, ModalError, ModalOptions};
 use crate::solve::modal_band::modes_below;
 
@@ -95,16 +96,24 @@ pub struct ModalRoute {
     /// Modal damping 2ζ_rω_r per mode (rad/time; empty: none).
     modal_damping: Vec<f64>,
     structural: Option<DMatrix<f64>>,
-    /// Residual images: B R Bᵀ (m × m), C R Bᵀ (outputs × m), B R f̂ (m), C R f̂ (outputs);
-    /// zeros without the residual.
-    brb: DMatrix<C64>,
-    crb: DMatrix<C64>,
-    brf: Vec<C64>,
-    crf: Vec<C64>,
-    /// K_s's factor for fields x = ΦZ⁻¹Φᵀg + Rg (None without the residual).
-    static_factor: Option<Cholesky>,
+    /// The omitted modes' residual flexibility and its inertia term, when asked for.
+    residual: Option<Residual>,
+    /// The last [`ModalRoute::receptance`]'s ω² and factorization of Z.
+    w2: f64,
     z: Option<LU<C64, Dyn, Dyn>>,
     pub summary: ModalSummary,
+    /// What the basis was built for ([`ModalRoute::serves`]).
+    key: Key,
+}
+
+/// The settings and stuck structure a basis was built for.
+struct Key {
+    modes: ModeChoice,
+    residual: bool,
+    damping: (bool, bool),
+    active: Vec<usize>,
+    kappa0: Vec<[C64; 2]>,
+    ks0: Vec<f64>,
 }
 
 impl ModalRoute {
@@ -152,18 +161,12 @@ impl ModalRoute {
         let outputs = &p.outputs;
         let nout = outputs.len();
         let shapes = found.shapes;
-        let z = C64::new(0.0, 0.0);
         let dot_row =
             |r: &[(usize, f64)], phi: &[f64]| r.iter().map(|&(i, w)| w * phi[i]).sum::<f64>();
         let u = DMatrix::from_fn(m, np, |j, r| C64::new(dot_row(row(j), &shapes[r]), 0.0));
         let c = DMatrix::from_fn(nout, np, |k, r| {
             C64::new(dot_row(&outputs[k].dofs, &shapes[r]), 0.0)
         });
-        let f = &p.excitation;
-        let phi_f: Vec<C64> = shapes
-            .iter()
-            .map(|phi| phi.iter().zip(f).map(|(a, b)| b * *a).sum())
-            .collect();
         let project = |a: &Csc<f64>| {
             let images: Vec<Vec<f64>> = shapes.iter().map(|phi| a.mul_vec(phi)).collect();
             DMatrix::from_fn(np, np, |r, s| {
@@ -190,90 +193,90 @@ impl ModalRoute {
                 .collect()
         };
         let structural = setup.structural.map(project);
-        let (mut brb, mut crb) = (
-            DMatrix::from_element(m, m, z),
-            DMatrix::from_element(nout, m, z),
-        );
-        let (mut brf, mut crf) = (vec![z; m], vec![z; nout]);
-        let mut static_factor = None;
-        if residual {
-            let mut chol = Cholesky::factor(&ks)?;
-            let n = ks.n();
-            let (mut b, mut x) = (vec![0.0; n], vec![0.0; n]);
-            // R v = K_s⁻¹v − Φ Λ⁻¹ Φᵀv; its images under B and C.
-            let lam = &found.eigenvalues;
-            for j in 0..m {
-                for &(i, w) in row(j) {
-                    b[i] += w;
-                }
-                chol.solve_into(&b, &mut x)?;
-                for &(i, _) in row(j) {
-                    b[i] = 0.0;
-                }
-                let modal = |a: &DMatrix<C64>, k: usize| {
-                    (0..np)
-                        .map(|r| a[(k, r)].re * u[(j, r)].re / lam[r])
-                        .sum::<f64>()
-                };
-                for k in 0..m {
-                    brb[(k, j)] = C64::new(dot_row(row(k), &x) - modal(&u, k), 0.0);
-                }
-                for k in 0..nout {
-                    crb[(k, j)] = C64::new(dot_row(&outputs[k].dofs, &x) - modal(&c, k), 0.0);
-                }
-            }
-            // f̂ complex: its real and imaginary parts in turn.
-            for part in 0..2 {
-                let pick = |v: C64| if part == 0 { v.re } else { v.im };
-                b.iter_mut().zip(f).for_each(|(bi, fi)| *bi = pick(*fi));
-                if b.iter().all(|&v| v == 0.0) {
-                    continue;
-                }
-                chol.solve_into(&b, &mut x)?;
-                let unit = if part == 0 {
-                    C64::new(1.0, 0.0)
-                } else {
-                    C64::new(0.0, 1.0)
-                };
-                let modal = |a: &DMatrix<C64>, k: usize| {
-                    (0..np)
-                        .map(|r| a[(k, r)].re * pick(phi_f[r]) / lam[r])
-                        .sum::<f64>()
-                };
-                for k in 0..m {
-                    brf[k] += unit * (dot_row(row(k), &x) - modal(&u, k));
-                }
-                for k in 0..nout {
-                    crf[k] += unit * (dot_row(&outputs[k].dofs, &x) - modal(&c, k));
-                }
-            }
-            static_factor = Some(chol);
-        }
+        let kept = Kept {
+            shapes: &shapes,
+            lambda: &found.eigenvalues,
+        };
+        let asked_residual = residual;
+        let residual = if residual {
+            Some(Residual::new(&ks, &p.sys.m, &kept, (m, row), outputs)?)
+        } else {
+            None
+        };
         let summary = ModalSummary {
             modes: np,
             highest_mode_frequency: found.eigenvalues[np - 1].sqrt() / (2.0 * std::f64::consts::PI),
             band_limit,
             band_complete,
-            residual_flexibility: residual,
+            residual_flexibility: residual.is_some(),
             largest_backward_error: found.residuals.iter().fold(0.0, |a: f64, &b| a.max(b)),
         };
-        Ok(ModalRoute {
+        let mut route = ModalRoute {
             lambda: found.eigenvalues,
             shapes,
             u,
             c,
-            phi_f,
+            phi_f: vec![C64::new(0.0, 0.0); np],
+            residual,
+            w2: 0.0,
+            z: None,
+            summary,
             damping,
             modal_damping,
             structural,
-            brb,
-            crb,
-            brf,
-            crf,
-            static_factor,
-            z: None,
-            summary,
-        })
+            key: Key {
+                modes,
+                residual: asked_residual,
+                damping: (setup.damping.is_some(), setup.structural.is_some()),
+                active: setup.active.clone(),
+                kappa0: kappa0.to_vec(),
+                ks0: ks0.to_vec(),
+            },
+        };
+        route.set_load(&p.excitation, row, outputs)?;
+        Ok(route)
+    }
+
+    /// Whether this basis serves a sweep of the same problem asking for `modes` and
+    /// `residual` with the same damping parts (material, structural) and the same stuck
+    /// structure (active points, κ₀, spring stiffnesses).
+    pub fn serves(
+        &self,
+        (modes, residual): (ModeChoice, bool),
+        setup: &Setup,
+        kappa0: &[[C64; 2]],
+        ks0: &[f64],
+    ) -> bool {
+        let k = &self.key;
+        k.modes == modes
+            && k.residual == residual
+            && k.damping == (setup.damping.is_some(), setup.structural.is_some())
+            && k.active == setup.active
+            && k.kappa0 == kappa0
+            && k.ks0 == ks0
+    }
+
+    /// The load's images Φᵀf̂ and, with the residual, its B and C images (four solves
+    /// with K_s's factor).
+    pub fn set_load<'r>(
+        &mut self,
+        f: &[C64],
+        row: &dyn Fn(usize) -> &'r [(usize, f64)],
+        outputs: &[Output],
+    ) -> Result<(), CholmodError> {
+        self.phi_f = self
+            .shapes
+            .iter()
+            .map(|phi| phi.iter().zip(f).map(|(a, b)| b * *a).sum())
+            .collect();
+        let kept = Kept {
+            shapes: &self.shapes,
+            lambda: &self.lambda,
+        };
+        match self.residual.as_mut() {
+            Some(r) => r.set_load(&kept, f, row, outputs),
+            None => Ok(()),
+        }
     }
 
     /// Factors Z(ω) and writes G, O, r₀, y₀ into `rec`. False when Z is singular (an
@@ -315,24 +318,24 @@ impl ModalRoute {
             return false;
         }
         let y = rhs;
-        let g = &self.u * y.columns(0, m) + &self.brb;
+        let g = &self.u * y.columns(0, m);
         let r0 = &self.u * y.column(m);
-        let o = &self.c * y.columns(0, m) + &self.crb;
+        let o = &self.c * y.columns(0, m);
         let y0 = &self.c * y.column(m);
         rec.g.copy_from_slice(g.as_slice());
         rec.o.copy_from_slice(o.as_slice());
-        for (k, v) in rec.r0.iter_mut().enumerate() {
-            *v = r0[k] + self.brf[k];
-        }
-        for (k, v) in rec.y0.iter_mut().enumerate() {
-            *v = y0[k] + self.crf[k];
+        rec.r0.copy_from_slice(r0.as_slice());
+        rec.y0.copy_from_slice(y0.as_slice());
+        self.w2 = omega * omega;
+        if let Some(r) = &self.residual {
+            r.add_to(self.w2, &mut rec.g, &mut rec.o, &mut rec.r0, &mut rec.y0);
         }
         self.z = Some(lu);
         true
     }
 
     /// x ≈ S_s(ω)⁻¹ g at the frequency of the last [`ModalRoute::receptance`]: the modal
-    /// part Φ Z⁻¹ Φᵀ g and, with the residual, K_s⁻¹ g − Φ Λ⁻¹ Φᵀ g.
+    /// part Φ Z⁻¹ Φᵀ g and, with the residual, (R + ω²RMR) g.
     pub fn field(&mut self, g: &[C64], x: &mut [C64]) -> Result<(), CholmodError> {
         let np = self.lambda.len();
         let proj: Vec<C64> = self
@@ -345,38 +348,19 @@ impl ModalRoute {
             lu.solve_mut(&mut q);
         }
         x.iter_mut().for_each(|v| *v = C64::new(0.0, 0.0));
-        for r in 0..np {
-            // With the residual the static modal part −Λ⁻¹Φᵀg is taken off here.
-            let coef = match self.static_factor {
-                Some(_) => q[r] - proj[r] / self.lambda[r],
-                None => q[r],
-            };
-            for (xi, &p) in x.iter_mut().zip(&self.shapes[r]) {
-                *xi += coef * p;
+        for (r, phi) in self.shapes.iter().enumerate() {
+            for (xi, &p) in x.iter_mut().zip(phi) {
+                *xi += q[r] * p;
             }
         }
-        if let Some(chol) = self.static_factor.as_mut() {
-            let n = g.len();
-            let (mut b, mut s) = (vec![0.0; n], vec![0.0; n]);
-            for part in 0..2 {
-                let unit = if part == 0 {
-                    C64::new(1.0, 0.0)
-                } else {
-                    C64::new(0.0, 1.0)
-                };
-                b.iter_mut()
-                    .zip(g)
-                    .for_each(|(bi, gi)| *bi = if part == 0 { gi.re } else { gi.im });
-                if b.iter().all(|&v| v == 0.0) {
-                    continue;
-                }
-                chol.solve_into(&b, &mut s)?;
-                for (xi, si) in x.iter_mut().zip(&s) {
-                    *xi += unit * *si;
-                }
-            }
+        let kept = Kept {
+            shapes: &self.shapes,
+            lambda: &self.lambda,
+        };
+        match self.residual.as_mut() {
+            Some(r) => r.add_field(&kept, self.w2, g, x),
+            None => Ok(()),
         }
-        Ok(())
     }
 }
 

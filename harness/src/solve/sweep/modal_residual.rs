@@ -1,0 +1,169 @@
+//! The omitted modes of the modal route ([`super::modal_route`]) by their residual
+//! flexibility and its first inertia term: with R = K_s⁻¹ − ΦΛ⁻¹Φᵀ (the static
+//! flexibility the p kept modes leave out) and the omitted pairs' expansion
+//!
+//!   Σ_{r>p} φ_rφ_rᵀ/(λ_r − ω²) = R + ω² R M R + O(ω⁴/λ_{p+1}²)
+//!
+//! (the mode-acceleration correction and its inertia term, undamped: the omitted modes
+//! sit above the band, where their damping barely acts). Every image under the contact
+//! rows B and the outputs C comes from one Cholesky factor of K_s: 2 solves per contact
+//! direction once per basis, 4 per load, 4 per field.
+
+use nalgebra::DMatrix;
+
+use super::C64;
+use crate::fe::csc::Csc;
+use crate::model::Output;
+use crate::solve::cholmod::{Cholesky, CholmodError};
+
+/// The kept modes: shapes φ_r (M-normalized, on the free DOFs) and λ_r.
+pub struct Kept<'a> {
+    pub shapes: &'a [Vec<f64>],
+    pub lambda: &'a [f64],
+}
+
+/// The residual's factor and images.
+pub struct Residual {
+    factor: Cholesky,
+    /// M, for R M R.
+    mass: Csc<f64>,
+    /// [B R Bᵀ, B R M R Bᵀ] (m × m) and [C R Bᵀ, C R M R Bᵀ] (outputs × m).
+    brb: [DMatrix<f64>; 2],
+    crb: [DMatrix<f64>; 2],
+    /// [B R f̂, B R M R f̂] and [C R f̂, C R M R f̂] of the current load.
+    brf: [Vec<C64>; 2],
+    crf: [Vec<C64>; 2],
+}
+
+fn dot_row(r: &[(usize, f64)], v: &[f64]) -> f64 {
+    r.iter().map(|&(i, w)| w * v[i]).sum()
+}
+
+impl Residual {
+    /// Factors K_s and forms the contact rows' images; `row(j)` is contact row j of m.
+    pub fn new<'r>(
+        ks: &Csc<f64>,
+        mass: &Csc<f64>,
+        kept: &Kept,
+        (m, row): (usize, &dyn Fn(usize) -> &'r [(usize, f64)]),
+        outputs: &[Output],
+    ) -> Result<Self, CholmodError> {
+        let nout = outputs.len();
+        let mut r = Residual {
+            factor: Cholesky::factor(ks)?,
+            mass: mass.clone(),
+            brb: [DMatrix::zeros(m, m), DMatrix::zeros(m, m)],
+            crb: [DMatrix::zeros(nout, m), DMatrix::zeros(nout, m)],
+            brf: [vec![C64::new(0.0, 0.0); m], vec![C64::new(0.0, 0.0); m]],
+            crf: [
+                vec![C64::new(0.0, 0.0); nout],
+                vec![C64::new(0.0, 0.0); nout],
+            ],
+        };
+        let n = ks.n();
+        let mut b = vec![0.0; n];
+        for j in 0..m {
+            for &(i, w) in row(j) {
+                b[i] += w;
+            }
+            let xs = r.images(kept, &b)?;
+            for &(i, _) in row(j) {
+                b[i] = 0.0;
+            }
+            for (order, x) in xs.iter().enumerate() {
+                for k in 0..m {
+                    r.brb[order][(k, j)] = dot_row(row(k), x);
+                }
+                for (k, out) in outputs.iter().enumerate() {
+                    r.crb[order][(k, j)] = dot_row(&out.dofs, x);
+                }
+            }
+        }
+        Ok(r)
+    }
+
+    /// R v and R M R v.
+    fn images(&mut self, kept: &Kept, v: &[f64]) -> Result<[Vec<f64>; 2], CholmodError> {
+        let first = self.apply(kept, v)?;
+        let second = self.apply(kept, &self.mass.mul_vec(&first))?;
+        Ok([first, second])
+    }
+
+    /// R v = K_s⁻¹v − Σ_r φ_r (φ_rᵀv)/λ_r.
+    fn apply(&mut self, kept: &Kept, v: &[f64]) -> Result<Vec<f64>, CholmodError> {
+        let mut x = vec![0.0; v.len()];
+        self.factor.solve_into(v, &mut x)?;
+        for (phi, l) in kept.shapes.iter().zip(kept.lambda) {
+            let c = phi.iter().zip(v).map(|(a, b)| a * b).sum::<f64>() / l;
+            x.iter_mut().zip(phi).for_each(|(xi, p)| *xi -= c * p);
+        }
+        Ok(x)
+    }
+
+    /// The load's images for excitation `f` (complex: real and imaginary parts in turn).
+    pub fn set_load<'r>(
+        &mut self,
+        kept: &Kept,
+        f: &[C64],
+        row: &dyn Fn(usize) -> &'r [(usize, f64)],
+        outputs: &[Output],
+    ) -> Result<(), CholmodError> {
+        let z = C64::new(0.0, 0.0);
+        for v in self.brf.iter_mut().chain(self.crf.iter_mut()) {
+            v.iter_mut().for_each(|x| *x = z);
+        }
+        for unit in [C64::new(1.0, 0.0), C64::new(0.0, 1.0)] {
+            let part: Vec<f64> = f.iter().map(|v| (v * unit.conj()).re).collect();
+            if part.iter().all(|&v| v == 0.0) {
+                continue;
+            }
+            let xs = self.images(kept, &part)?;
+            for (order, x) in xs.iter().enumerate() {
+                for (k, v) in self.brf[order].iter_mut().enumerate() {
+                    *v += unit * dot_row(row(k), x);
+                }
+                for (k, out) in outputs.iter().enumerate() {
+                    self.crf[order][k] += unit * dot_row(&out.dofs, x);
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Adds the omitted modes at ω² = `w2` to G, O (column-major slices), r₀ and y₀.
+    pub fn add_to(&self, w2: f64, g: &mut [C64], o: &mut [C64], r0: &mut [C64], y0: &mut [C64]) {
+        let add = |out: &mut [C64], a: &[DMatrix<f64>; 2]| {
+            for (v, (s, d)) in out.iter_mut().zip(a[0].iter().zip(a[1].iter())) {
+                v.re += s + w2 * d;
+            }
+        };
+        add(g, &self.brb);
+        add(o, &self.crb);
+        for (out, a) in [(r0, &self.brf), (y0, &self.crf)] {
+            for (v, (s, d)) in out.iter_mut().zip(a[0].iter().zip(&a[1])) {
+                *v += s + d * w2;
+            }
+        }
+    }
+
+    /// Adds (R + ω²RMR) g to `x` at ω² = `w2`.
+    pub fn add_field(
+        &mut self,
+        kept: &Kept,
+        w2: f64,
+        g: &[C64],
+        x: &mut [C64],
+    ) -> Result<(), CholmodError> {
+        for unit in [C64::new(1.0, 0.0), C64::new(0.0, 1.0)] {
+            let part: Vec<f64> = g.iter().map(|v| (v * unit.conj()).re).collect();
+            if part.iter().all(|&v| v == 0.0) {
+                continue;
+            }
+            let [first, second] = self.images(kept, &part)?;
+            for (xi, (a, b)) in x.iter_mut().zip(first.iter().zip(&second)) {
+                *xi += unit * (a + w2 * b);
+            }
+        }
+        Ok(())
+    }
+}
