@@ -229,7 +229,7 @@ fn open_joint_at_undamped_eigenfrequencies_is_named_singular() {
         count: 2,
         spacing: Default::default(),
         refine: Vec::new(),
-        direction: Default::default(),
+        ..Default::default()
     };
     // UMFPACK's rcond at f₁ and near it, as the sweep sees it (printed for the docs).
     let p = build(&s).unwrap();

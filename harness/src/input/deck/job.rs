@@ -80,7 +80,7 @@ impl DeckJob {
         if let Some(d) = dynamics {
             let st = &deck.steps[d];
             let direct = matches!(st.procedure, Procedure::SteadyState { direct: true, .. });
-            if !direct && !frequency.is_some_and(|f| f < d) {
+            if !direct && frequency.is_none_or(|f| f >= d) {
                 return Err(st.origin.error(
                     K::Unsupported,
                     "*STEADY STATE DYNAMICS",

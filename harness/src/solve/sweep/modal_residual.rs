@@ -16,6 +16,9 @@ use crate::fe::csc::Csc;
 use crate::model::Output;
 use crate::solve::cholmod::{Cholesky, CholmodError};
 
+/// Contact row j of a sweep's m contact directions (sparse: free DOF, weight).
+pub type RowFn<'a, 'r> = dyn Fn(usize) -> &'r [(usize, f64)] + 'a;
+
 /// The kept modes: shapes φ_r (M-normalized, on the free DOFs) and λ_r.
 pub struct Kept<'a> {
     pub shapes: &'a [Vec<f64>],
@@ -45,7 +48,7 @@ impl Residual {
         ks: &Csc<f64>,
         mass: &Csc<f64>,
         kept: &Kept,
-        (m, row): (usize, &dyn Fn(usize) -> &'r [(usize, f64)]),
+        (m, row): (usize, &RowFn<'_, 'r>),
         outputs: &[Output],
     ) -> Result<Self, CholmodError> {
         let nout = outputs.len();

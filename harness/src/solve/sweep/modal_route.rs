@@ -16,7 +16,7 @@
 
 use nalgebra::{DMatrix, Dyn, LU};
 
-use super::modal_residual::{Kept, Residual};
+use super::modal_residual::{Kept, Residual, RowFn};
 use super::{Setup, C64};
 use crate::fe::csc::Csc;
 use crate::model::Output;
@@ -123,7 +123,7 @@ impl ModalRoute {
         setup: &mut Setup,
         kappa0: &[[C64; 2]],
         ks0: &[f64],
-        (m, row): (usize, &dyn Fn(usize) -> &'r [(usize, f64)]),
+        (m, row): (usize, &RowFn<'_, 'r>),
         modes: ModeChoice,
         residual: bool,
     ) -> Result<Self, ModalRouteError> {
