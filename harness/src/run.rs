@@ -10,7 +10,7 @@ use thiserror::Error;
 
 use crate::capi::{self, CallCounts};
 use crate::input::scene::{
-    Direction, Effects, FieldOutputSpec, Interval, Mode, Scene, SweepMethod, SweepSpec,
+    Direction, Effects, FieldOutputSpec, Interval, Mode, Scene, SweepMethod,
 };
 use crate::model::{build, BuildError, Problem};
 use crate::solve::modal::{lowest_modes, ModalOptions};
@@ -84,17 +84,24 @@ fn sum(r: &SweepResult, keys: &[&str]) -> f64 {
 }
 
 /// The scene's route for the linear part of each frequency (`[sweep] method`): modal
-/// with `modes` modes, or by default every mode below [`BAND_FACTOR`] × the highest of
-/// `freqs` (1/time).
-pub fn linear_route(sweep: &SweepSpec, freqs: &[f64]) -> LinearRoute {
+/// with `modes` modes, or by default every mode below [`BAND_FACTOR`] × the highest
+/// frequency the sweep solves at: the highest of `freqs` (1/time) times the harmonic
+/// balance's H.
+pub fn linear_route(scene: &Scene, freqs: &[f64]) -> LinearRoute {
+    let sweep = &scene.spec.sweep;
+    let it = &scene.spec.iteration;
+    let top_harmonic = match it.mode {
+        Mode::HarmonicBalance => it.harmonics.unwrap_or(1).max(1) as f64,
+        _ => 1.0,
+    };
     match sweep.method {
         SweepMethod::Direct => LinearRoute::Direct,
         SweepMethod::Modal => LinearRoute::Modal {
             modes: match sweep.modes {
                 Some(n) => ModeChoice::Count(n),
-                None => {
-                    ModeChoice::Below(BAND_FACTOR * freqs.iter().fold(0.0, |a, &b| f64::max(a, b)))
-                }
+                None => ModeChoice::Below(
+                    BAND_FACTOR * top_harmonic * freqs.iter().fold(0.0, |a, &b| f64::max(a, b)),
+                ),
             },
             residual: sweep.residual.unwrap_or(true),
         },
@@ -160,7 +167,7 @@ pub fn run(
     let t_static = t.elapsed().as_secs_f64();
     let freqs = sweep_frequencies(scene, &problem, &stat)?;
     let mut opts = Options::from_scene(spec.iteration, eff);
-    opts.linear = linear_route(&spec.sweep, &freqs);
+    opts.linear = linear_route(scene, &freqs);
     if let Some(c) = extras.condense_max {
         opts.condense_max = c;
     }

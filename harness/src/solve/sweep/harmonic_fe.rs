@@ -39,6 +39,7 @@ use crate::mhb::aft::{self, Law, Transforms};
 use crate::mhb::{MhbError, NewtonOptions};
 use crate::solve::contact::tangential;
 use crate::solve::sweep::krylov::Gmres;
+use crate::solve::sweep::modal_route::{ModalRoute, ModalRouteError, ModeChoice};
 use crate::solve::sweep::receptance::Receptance;
 use crate::solve::sweep::{Setup, C64, SINGULAR_RCOND};
 use crate::solve::umfpack::UmfpackError;
@@ -134,6 +135,9 @@ pub struct FeBalance<'s, 'a> {
     pub dirs: Vec<Dir>,
     groups: Vec<Group>,
     rec: Vec<Receptance>,
+    /// The modal route's basis ([`FeBalance::use_modal`]); `None`: a factorization per
+    /// harmonic.
+    pub(super) modal: Option<ModalRoute>,
     /// Factor on the first-harmonic load (1 but inside [`FeBalance::solve_ramped`]).
     load: f64,
     pub(super) omega: f64,
@@ -200,8 +204,28 @@ impl<'s, 'a> FeBalance<'s, 'a> {
             load: 1.0,
             omega: 0.0,
             stats: Stats::default(),
+            modal: None,
             setup,
         }
+    }
+
+    /// The stuck reference k_T0 per active point (both tangential directions).
+    pub(super) fn reference(&self) -> Vec<[C64; 2]> {
+        self.tang
+            .iter()
+            .map(|t| [C64::new(t.k_t0, 0.0); 2])
+            .collect()
+    }
+
+    /// Condenses through the stuck structure's modes ([`ModalRoute`]) instead of a
+    /// factorization per harmonic: G_h, O_h at h·ω from one basis for the whole sweep.
+    pub fn use_modal(&mut self, modes: ModeChoice, residual: bool) -> Result<(), ModalRouteError> {
+        let kref = self.reference();
+        let rows = self.rows();
+        let row = |j: usize| rows[j];
+        let route = ModalRoute::new(self.setup, &kref, &[], (rows.len(), &row), modes, residual)?;
+        self.modal = Some(route);
+        Ok(())
     }
 
     /// Contact directions m.
@@ -240,11 +264,16 @@ impl<'s, 'a> FeBalance<'s, 'a> {
         let p = self.setup.problem;
         let rows = self.rows();
         let row = |j: usize| rows[j];
-        let kref: Vec<[C64; 2]> = self
-            .tang
-            .iter()
-            .map(|t| [C64::new(t.k_t0, 0.0); 2])
-            .collect();
+        let kref = self.reference();
+        if let Some(route) = self.modal.as_mut() {
+            let mut regular = true;
+            for (h, rec) in self.rec.iter_mut().enumerate() {
+                regular &= route.receptance(h as f64 * omega, rec);
+            }
+            self.stats.receptance_seconds += t.elapsed().as_secs_f64();
+            self.stats.receptance_cpu += cpu_seconds() - cpu;
+            return Ok(regular);
+        }
         for (h, rec) in self.rec.iter_mut().enumerate() {
             // No cubic springs here: sweep::run refuses them in this mode.
             self.setup.fill(h as f64 * omega, &kref, &[]);

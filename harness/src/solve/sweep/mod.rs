@@ -98,7 +98,7 @@ pub enum SweepError {
         #[source]
         source: crate::solve::cholmod::CholmodError,
     },
-    #[error("[sweep] method = \"modal\" is available in mode fast (first order); set [iteration] mode = \"fast\" or method = \"direct\"")]
+    #[error("[sweep] method = \"modal\" is available in modes fast and harmonic_balance (the thesis scheme's store iterates over UINTER's own solves); set [iteration] mode = \"fast\" or method = \"direct\"")]
     ModalNeedsFastMode,
     #[error("modal damping damps the stuck modes of the modal route ([sweep] method = \"modal\", a deck's steady state without DIRECT); this sweep is direct")]
     ModalDampingNeedsModalRoute,
@@ -490,7 +490,7 @@ pub fn run_cached(
     }
     harmonic_fe_point3d::check_effects(problem, &opts.effects, opts.iteration.mode)?;
     if opts.linear != modal_route::LinearRoute::Direct
-        && opts.iteration.mode != crate::input::scene::Mode::Fast
+        && opts.iteration.mode == crate::input::scene::Mode::Thesis
     {
         return Err(SweepError::ModalNeedsFastMode);
     }

@@ -48,10 +48,10 @@ pub(super) fn sweep(c: &mut Checker, s: &SceneFile) {
         }
     } else if s.sweep.modes == Some(0) {
         c.fail(sw.key("modes"), "must be >= 1");
-    } else if s.iteration.mode != Mode::Fast {
+    } else if s.iteration.mode == Mode::Thesis {
         c.fail(
             sw.key("method"),
-            "\"modal\" is available in [iteration] mode = \"fast\" (first order)",
+            "\"modal\" is available in [iteration] modes \"fast\" and \"harmonic_balance\"",
         );
     }
     for (i, d) in s.sweep.modal_damping.iter().enumerate() {
