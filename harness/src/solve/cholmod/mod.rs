@@ -24,7 +24,7 @@ extern "C" {
         minor: *mut i64,
         status: *mut c_int,
     ) -> c_int;
-    fn jl_cholmod_solve(h: *mut c_void, b: *const f64, x: *mut f64) -> c_int;
+    fn jl_cholmod_solve(h: *mut c_void, ncol: i64, b: *const f64, x: *mut f64) -> c_int;
     fn jl_cholmod_free(h: *mut c_void);
 }
 
@@ -82,16 +82,37 @@ impl Cholesky {
 
     /// x = A⁻¹ b.
     pub fn solve_into(&mut self, b: &[f64], x: &mut [f64]) -> Result<(), CholmodError> {
+        self.solve_many(1, b, x)
+    }
+
+    /// X = A⁻¹ B for `ncol` right sides at once (B, X n × ncol, column-major): one pass
+    /// over the factor for all of them (blocked triangular solves).
+    pub fn solve_many(
+        &mut self,
+        ncol: usize,
+        b: &[f64],
+        x: &mut [f64],
+    ) -> Result<(), CholmodError> {
         for len in [b.len(), x.len()] {
-            if len != self.n {
+            if len != self.n * ncol {
                 return Err(CholmodError::Length {
                     got: len,
-                    n: self.n,
+                    n: self.n * ncol,
                 });
             }
         }
-        // SAFETY: b and x hold n doubles; the handle is valid while self lives.
-        let status = unsafe { jl_cholmod_solve(self.handle.as_ptr(), b.as_ptr(), x.as_mut_ptr()) };
+        if ncol == 0 {
+            return Ok(());
+        }
+        // SAFETY: b and x hold n × ncol doubles; the handle is valid while self lives.
+        let status = unsafe {
+            jl_cholmod_solve(
+                self.handle.as_ptr(),
+                ncol as i64,
+                b.as_ptr(),
+                x.as_mut_ptr(),
+            )
+        };
         if status != 0 {
             return Err(CholmodError::Failed {
                 call: "cholmod_l_solve",
@@ -168,8 +189,24 @@ mod tests {
         for (u, v) in x.iter().zip(reference.iter()) {
             assert!((u - v).abs() < 1e-13 * reference.amax(), "{u} vs {v}");
         }
-        // Lengths are checked.
+        // Three right sides at once give each one's solve (the same factor, blocked).
         let mut f = Cholesky::factor(&csc).unwrap();
+        let many: Vec<f64> = (0..3 * n)
+            .map(|i| ((i % n) as f64 * (1.0 + (i / n) as f64)).sin())
+            .collect();
+        let mut xs = vec![0.0; 3 * n];
+        f.solve_many(3, &many, &mut xs).unwrap();
+        for (col, (bc, xc)) in many.chunks(n).zip(xs.chunks(n)).enumerate() {
+            let mut one = vec![0.0; n];
+            f.solve_into(bc, &mut one).unwrap();
+            for (u, v) in xc.iter().zip(&one) {
+                assert!(
+                    (u - v).abs() <= 1e-14 * v.abs().max(1.0),
+                    "column {col}: {u} vs {v}"
+                );
+            }
+        }
+        // Lengths are checked.
         assert_eq!(
             f.solve_into(&b[..3], &mut x),
             Err(CholmodError::Length { got: 3, n })

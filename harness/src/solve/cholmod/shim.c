@@ -2,6 +2,7 @@
  * for harness/src/solve/cholmod/mod.rs. The shim owns the cholmod_common, so the Rust
  * side never depends on CHOLMOD's struct layouts. Integers are SuiteSparse_long
  * (64-bit on LP64 Linux), the `cholmod_l_*` interface. */
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 #include <suitesparse/cholmod.h>
@@ -67,14 +68,15 @@ int jl_cholmod_factor(SuiteSparse_long n, const SuiteSparse_long *col_ptr,
     return 0;
 }
 
-/* x = A⁻¹ b (both length n). Returns 0, or the CHOLMOD status on failure. */
-int jl_cholmod_solve(jl_cholmod *h, const double *b, double *x)
+/* X = A⁻¹ B for ncol columns (both n × ncol, column-major). Returns 0, or the CHOLMOD
+ * status on failure. */
+int jl_cholmod_solve(jl_cholmod *h, int64_t ncol, const double *b, double *x)
 {
     cholmod_dense rhs;
     memset(&rhs, 0, sizeof rhs);
     rhs.nrow = (size_t)h->n;
-    rhs.ncol = 1;
-    rhs.nzmax = (size_t)h->n;
+    rhs.ncol = (size_t)ncol;
+    rhs.nzmax = (size_t)h->n * (size_t)ncol;
     rhs.d = (size_t)h->n;
     rhs.x = (void *)b;
     rhs.xtype = CHOLMOD_REAL;
@@ -83,7 +85,7 @@ int jl_cholmod_solve(jl_cholmod *h, const double *b, double *x)
     if (sol == NULL) {
         return h->common.status != CHOLMOD_OK ? h->common.status : CHOLMOD_INVALID;
     }
-    memcpy(x, sol->x, (size_t)h->n * sizeof(double));
+    memcpy(x, sol->x, (size_t)h->n * (size_t)ncol * sizeof(double));
     cholmod_l_free_dense(&sol, &h->common);
     return 0;
 }

@@ -38,6 +38,9 @@ pub struct Residual {
     crf: [Vec<C64>; 2],
 }
 
+/// Contact directions per blocked solve while forming the residual's images.
+const BLOCK: usize = 32;
+
 fn dot_row(r: &[(usize, f64)], v: &[f64]) -> f64 {
     r.iter().map(|&(i, w)| w * v[i]).sum()
 }
@@ -64,41 +67,48 @@ impl Residual {
             ],
         };
         let n = ks.n();
-        let mut b = vec![0.0; n];
-        for j in 0..m {
-            for &(i, w) in row(j) {
-                b[i] += w;
-            }
-            let xs = r.images(kept, &b)?;
-            for &(i, _) in row(j) {
-                b[i] = 0.0;
-            }
-            for (order, x) in xs.iter().enumerate() {
-                for k in 0..m {
-                    r.brb[order][(k, j)] = dot_row(row(k), x);
+        for j0 in (0..m).step_by(BLOCK) {
+            let k = BLOCK.min(m - j0);
+            let mut b = vec![0.0; n * k];
+            for c in 0..k {
+                for &(i, w) in row(j0 + c) {
+                    b[c * n + i] += w;
                 }
-                for (k, out) in outputs.iter().enumerate() {
-                    r.crb[order][(k, j)] = dot_row(&out.dofs, x);
+            }
+            let xs = r.images(kept, &b, k)?;
+            for (order, x) in xs.iter().enumerate() {
+                for (c, x) in x.chunks(n).enumerate() {
+                    for kk in 0..m {
+                        r.brb[order][(kk, j0 + c)] = dot_row(row(kk), x);
+                    }
+                    for (kk, out) in outputs.iter().enumerate() {
+                        r.crb[order][(kk, j0 + c)] = dot_row(&out.dofs, x);
+                    }
                 }
             }
         }
         Ok(r)
     }
 
-    /// R v and R M R v.
-    fn images(&mut self, kept: &Kept, v: &[f64]) -> Result<[Vec<f64>; 2], CholmodError> {
-        let first = self.apply(kept, v)?;
-        let second = self.apply(kept, &self.mass.mul_vec(&first))?;
+    /// R V and R M R V for the `k` columns of V (n × k, column-major).
+    fn images(&mut self, kept: &Kept, v: &[f64], k: usize) -> Result<[Vec<f64>; 2], CholmodError> {
+        let first = self.apply(kept, v, k)?;
+        let n = v.len() / k.max(1);
+        let m_first: Vec<f64> = first.chunks(n).flat_map(|c| self.mass.mul_vec(c)).collect();
+        let second = self.apply(kept, &m_first, k)?;
         Ok([first, second])
     }
 
-    /// R v = K_s⁻¹v − Σ_r φ_r (φ_rᵀv)/λ_r.
-    fn apply(&mut self, kept: &Kept, v: &[f64]) -> Result<Vec<f64>, CholmodError> {
+    /// R V = K_s⁻¹V − Σ_r φ_r (φ_rᵀV)/λ_r, one blocked solve for the k columns.
+    fn apply(&mut self, kept: &Kept, v: &[f64], k: usize) -> Result<Vec<f64>, CholmodError> {
         let mut x = vec![0.0; v.len()];
-        self.factor.solve_into(v, &mut x)?;
-        for (phi, l) in kept.shapes.iter().zip(kept.lambda) {
-            let c = phi.iter().zip(v).map(|(a, b)| a * b).sum::<f64>() / l;
-            x.iter_mut().zip(phi).for_each(|(xi, p)| *xi -= c * p);
+        self.factor.solve_many(k, v, &mut x)?;
+        let n = v.len() / k.max(1);
+        for (vc, xc) in v.chunks(n).zip(x.chunks_mut(n)) {
+            for (phi, l) in kept.shapes.iter().zip(kept.lambda) {
+                let c = phi.iter().zip(vc).map(|(a, b)| a * b).sum::<f64>() / l;
+                xc.iter_mut().zip(phi).for_each(|(xi, p)| *xi -= c * p);
+            }
         }
         Ok(x)
     }
@@ -120,7 +130,7 @@ impl Residual {
             if part.iter().all(|&v| v == 0.0) {
                 continue;
             }
-            let xs = self.images(kept, &part)?;
+            let xs = self.images(kept, &part, 1)?;
             for (order, x) in xs.iter().enumerate() {
                 for (k, v) in self.brf[order].iter_mut().enumerate() {
                     *v += unit * dot_row(row(k), x);
@@ -162,7 +172,7 @@ impl Residual {
             if part.iter().all(|&v| v == 0.0) {
                 continue;
             }
-            let [first, second] = self.images(kept, &part)?;
+            let [first, second] = self.images(kept, &part, 1)?;
             for (xi, (a, b)) in x.iter_mut().zip(first.iter().zip(&second)) {
                 *xi += unit * (a + w2 * b);
             }
