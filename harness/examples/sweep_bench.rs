@@ -1,7 +1,7 @@
 //! What the modal route of the first-order sweep costs and how far it is from the direct
 //! route, in one run on this machine: each scene is swept once directly (a sparse
 //! factorization per frequency) and then modally with the default band of modes (every
-//! mode below twice the sweep's top frequency, at least 6) and with twice and four times
+//! mode below four times the sweep's top frequency, at least 6) and with twice and four times
 //! as many, each with and without the static residual flexibility. Times are the sweep's
 //! wall time (the modal rows include their Lanczos run and residual solves); the
 //! differences are the largest relative ones over the sweep's frequencies of the first

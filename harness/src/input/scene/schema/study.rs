@@ -45,7 +45,8 @@ pub struct SweepSpec {
     /// mode fast).
     #[serde(default)]
     pub method: SweepMethod,
-    /// Modal route: the number of modes (default: every mode below twice `f_max`).
+    /// Modal route: the number of modes (default: every mode below 4 × `f_max`, × H in
+    /// the harmonic balance).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub modes: Option<usize>,
     /// Modal route: add the omitted modes' static residual flexibility (default true).
