@@ -9,7 +9,7 @@ use std::path::{Path, PathBuf};
 
 use jointlin_harness::bench::stuck_modes;
 use jointlin_harness::capi::{self, Tangential, JOINTLIN_REGIME_OPEN};
-use jointlin_harness::input::scene::{Mode, Scene, SchemeName};
+use jointlin_harness::input::scene::{Mode, Scene, SchemeName, SweepMethod};
 use jointlin_harness::model::build;
 use jointlin_harness::report::{self, ReportOptions};
 use jointlin_harness::run::{run, Extras, RunResult};
@@ -183,19 +183,27 @@ fn open_joint_at_undamped_eigenfrequencies_is_named_singular() {
     for (b, m) in bands.iter().zip(&modes) {
         assert!((b / m - 1.0).abs() < 1e-10, "scene {b} vs modes {m}");
     }
-    for mode in [Mode::Fast, Mode::Thesis, Mode::HarmonicBalance] {
+    let routes = [
+        (Mode::Fast, SweepMethod::Direct),
+        (Mode::Thesis, SweepMethod::Direct),
+        (Mode::HarmonicBalance, SweepMethod::Direct),
+        (Mode::Fast, SweepMethod::Modal),
+        (Mode::HarmonicBalance, SweepMethod::Modal),
+    ];
+    for (mode, method) in routes {
         let mut s = s.clone();
         s.spec.iteration.mode = mode;
+        s.spec.sweep.method = method;
         if mode == Mode::HarmonicBalance {
             s.spec.iteration.harmonics = Some(3);
         }
-        let (r, csv, json) = run_cli_path(&s, &format!("open-{mode:?}"));
+        let (r, csv, json) = run_cli_path(&s, &format!("open-{mode:?}-{method:?}"));
         assert_eq!(r.stat.closed.iter().filter(|&&c| c).count(), 0);
         let singular: Vec<f64> = (0..r.main.freqs.len())
             .filter(|&i| r.main.is_singular(i))
             .map(|i| r.main.freqs[i])
             .collect();
-        assert_eq!(singular, bands, "{mode:?}");
+        assert_eq!(singular, bands, "{mode:?} {method:?}");
         // run.json's frequencies come back from ω = 2πf: equal to the last bit or two.
         let listed: Vec<f64> = json["singular_frequencies"]
             .as_array()
@@ -240,10 +248,13 @@ fn open_joint_at_undamped_eigenfrequencies_is_named_singular() {
         let rcond = setup.symbolic.factor(&setup.s).map(|n| n.rcond());
         eprintln!("open joint, {rel:e} below f1: rcond {rcond:?}");
     }
-    let (r, _, _) = run_cli_path(&near, "open-near");
-    assert!(!r.main.is_singular(0) && !r.main.is_singular(1));
-    let ratio = amp(&r.main, 1) / amp(&r.main, 0);
-    assert!((ratio / 2.0 - 1.0).abs() < 1e-4, "{ratio}");
+    for method in [SweepMethod::Direct, SweepMethod::Modal] {
+        near.spec.sweep.method = method;
+        let (r, _, _) = run_cli_path(&near, &format!("open-near-{method:?}"));
+        assert!(!r.main.is_singular(0) && !r.main.is_singular(1));
+        let ratio = amp(&r.main, 1) / amp(&r.main, 0);
+        assert!((ratio / 2.0 - 1.0).abs() < 1e-4, "{method:?}: {ratio}");
+    }
 }
 
 #[test]
