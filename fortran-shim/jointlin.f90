@@ -30,7 +30,7 @@ module jointlin
 
   ! ---- constants (#define in jointlin.h) ----
   integer(c_int32_t), parameter :: JOINTLIN_ABI_VERSION_MAJOR = 0
-  integer(c_int32_t), parameter :: JOINTLIN_ABI_VERSION_MINOR = 5
+  integer(c_int32_t), parameter :: JOINTLIN_ABI_VERSION_MINOR = 6
   integer(c_int32_t), parameter :: JOINTLIN_OK = 0
   integer(c_int32_t), parameter :: JOINTLIN_ERR_NULL = 1
   integer(c_int32_t), parameter :: JOINTLIN_ERR_NON_FINITE = 2
@@ -524,5 +524,13 @@ module jointlin
        type(jointlin_uinter_report), intent(out), optional :: report
        integer(c_int32_t) :: jointlin_uinter
      end function jointlin_uinter
+
+     function jointlin_uinter_props_check(props, nprops) &
+          bind(C, name='jointlin_uinter_props_check')
+       import :: c_int32_t, c_double
+       real(c_double), intent(in) :: props(*)
+       integer(c_int32_t), value :: nprops
+       integer(c_int32_t) :: jointlin_uinter_props_check
+     end function jointlin_uinter_props_check
   end interface
 end module jointlin

@@ -26,7 +26,7 @@
 /**
  * Minor version of the C ABI: additions that keep existing callers working.
  */
-#define JOINTLIN_ABI_VERSION_MINOR 5
+#define JOINTLIN_ABI_VERSION_MINOR 6
 
 /**
  * Success.
@@ -944,6 +944,21 @@ int32_t jointlin_linearize3d_phasors(const struct jointlin_contact3d *contact,
                                      double omega,
                                      int32_t method,
                                      struct jointlin_linearization3d_matrix *out);
+
+/**
+ * Checks a UINTER property table as jointlin_uinter reads it, before a job runs: NPROPS
+ * ≥ 7, integer codes exact and known, values in range (see the table above). A point's
+ * AREA enters only Hertz's contact radius, so the table is read for a unit area.
+ *
+ * Returns JOINTLIN_OK, JOINTLIN_ERR_NULL, JOINTLIN_ERR_SIZE (NPROPS < 7),
+ * JOINTLIN_ERR_NON_FINITE or JOINTLIN_ERR_PROPS, with the entry and the reason in
+ * jointlin_last_error.
+ *
+ * # Safety
+ * `props` must be NULL or point to `nprops` readable doubles.
+ */
+int32_t jointlin_uinter_props_check(const double *props,
+                                    int32_t nprops);
 
 /**
  * Writes to `*preload` the axial force F (force) of a screw tightened to `torque` T

@@ -781,6 +781,42 @@ fn uinter_rejects_non_finite_in_every_double_input_without_writing() {
     unsafe { jointlin_store_free(store) };
 }
 
+/// jointlin_uinter_props_check reads a table as jointlin_uinter does: the same code for
+/// every good or bad table, NULL and non-finite entries named.
+#[test]
+fn props_check_agrees_with_uinter() {
+    use jointlin::ffi::props::jointlin_uinter_props_check;
+    let store = new_store(1e-4, 1e-3, JOINTLIN_KINC_ORIGINAL);
+    let cases: [(&dyn Fn(&mut Vec<f64>), i32); 13] = [
+        (&|_| {}, JOINTLIN_OK),
+        (&|p| p.truncate(6), JOINTLIN_ERR_SIZE),
+        (&|p| p[0] = 2.0, JOINTLIN_ERR_PROPS), // no law 2: refused, not read as Jenkins
+        (&|p| p[0] = 0.5, JOINTLIN_ERR_PROPS),
+        (&|p| p[1] = 2.0, JOINTLIN_ERR_PROPS),
+        (&|p| p[2] = -0.3, JOINTLIN_ERR_PROPS),
+        (&|p| p[3] = 0.0, JOINTLIN_ERR_PROPS),
+        (&|p| p[4] = 2.0, JOINTLIN_ERR_PROPS),
+        (&|p| p[5] = 0.0, JOINTLIN_ERR_PROPS),
+        (&|p| p.extend([1.0, 1.0]), JOINTLIN_ERR_PROPS),
+        (&|p| p.extend([0.0, 0.0, 2.0]), JOINTLIN_ERR_PROPS),
+        (&|p| p.extend([0.0, 0.0, 0.0, 1.0, 3.0]), JOINTLIN_ERR_PROPS),
+        (&|p| p[2] = f64::NAN, JOINTLIN_ERR_NON_FINITE),
+    ];
+    for (n, (change, expect)) in cases.iter().enumerate() {
+        let mut u = closed_point();
+        change(&mut u.props);
+        let checked =
+            unsafe { jointlin_uinter_props_check(u.props.as_ptr(), u.props.len() as i32) };
+        assert_eq!(checked, *expect, "case {n}: props_check");
+        assert_eq!(u.call(store), *expect, "case {n}: uinter");
+    }
+    assert_eq!(
+        unsafe { jointlin_uinter_props_check(null(), 12) },
+        JOINTLIN_ERR_NULL
+    );
+    unsafe { jointlin_store_free(store) };
+}
+
 #[test]
 fn uinter_sizes_codes_and_ranges_have_named_errors() {
     let store = new_store(1e-4, 1e-3, JOINTLIN_KINC_ORIGINAL);

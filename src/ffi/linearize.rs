@@ -89,13 +89,8 @@ pub struct jointlin_linearization {
 impl jointlin_contact {
     /// The core contact, or JOINTLIN_ERR_OUT_OF_RANGE for an unknown law or rule code.
     pub(crate) fn to_core(self) -> FfiResult<Contact> {
-        let law = match self.law {
-            JOINTLIN_LAW_MINDLIN => TangentialLaw::Mindlin,
-            JOINTLIN_LAW_JENKINS => TangentialLaw::Jenkins,
-            other => return Err(bad_code("contact law", other)),
-        };
         Ok(Contact {
-            law,
+            law: law_from_code(self.law).ok_or_else(|| bad_code("contact law", self.law))?,
             rule: rule_from_code(self.rule).ok_or_else(|| bad_code("contact rule", self.rule))?,
             mu: finite(self.mu, "contact mu")?,
             normal_force: finite(self.normal_force, "contact normal_force")?,
@@ -104,6 +99,16 @@ impl jointlin_contact {
     }
 }
 
+/// The tangential law of a JOINTLIN_LAW_* code; None for an unknown code.
+pub(crate) fn law_from_code(code: i32) -> Option<TangentialLaw> {
+    match code {
+        JOINTLIN_LAW_MINDLIN => Some(TangentialLaw::Mindlin),
+        JOINTLIN_LAW_JENKINS => Some(TangentialLaw::Jenkins),
+        _ => None,
+    }
+}
+
+/// The unloading rule of a JOINTLIN_RULE_* code; None for an unknown code.
 pub(crate) fn rule_from_code(code: i32) -> Option<Rule> {
     match code {
         JOINTLIN_RULE_THESIS => Some(Rule::Thesis),

@@ -14,7 +14,7 @@
 //! * [`store_ranks`]: stores of a job with several processes (MPI ranks): per-rank restart
 //!   files and the end-of-pass agreement on the increments to re-run;
 //! * [`uexternaldb`] and [`uinter`]: Abaqus-convention entry points (model.md §7);
-//! * [`props`]: the UINTER PROPS and STATEV layouts.
+//! * [`props`]: the UINTER PROPS and STATEV layouts, `jointlin_uinter_props_check`.
 //!
 //! Conventions for every function: the return value is a `JOINTLIN_*` status code; NULL,
 //! NaN/±∞, out-of-range and size errors give named codes; outputs are written only when the
@@ -47,7 +47,7 @@ use error::{
 /// Major version of the C ABI: changes break existing callers.
 pub const JOINTLIN_ABI_VERSION_MAJOR: u32 = 0;
 /// Minor version of the C ABI: additions that keep existing callers working.
-pub const JOINTLIN_ABI_VERSION_MINOR: u32 = 5;
+pub const JOINTLIN_ABI_VERSION_MINOR: u32 = 6;
 
 /// The ABI version of the loaded library, (major << 16) | minor. A caller compiled against
 /// this header should check that the major part equals JOINTLIN_ABI_VERSION_MAJOR.

@@ -3,8 +3,10 @@
 //! The two tables are the documentation of [`JOINTLIN_UINTER_MIN_NPROPS`] and
 //! [`JOINTLIN_UINTER_MIN_NSTATV`], so that they appear in include/jointlin.h too.
 
-use super::error::{FfiError, FfiResult, JOINTLIN_ERR_PROPS};
-use super::linearize::{method_from_codes, rule_from_code};
+use super::error::{boundary, FfiError, FfiResult, JOINTLIN_ERR_PROPS, JOINTLIN_ERR_SIZE};
+use super::linearize::{law_from_code, method_from_codes, rule_from_code};
+use super::load_finite;
+use super::point3d::{JOINTLIN_NORMAL_HERTZ, JOINTLIN_NORMAL_LINEAR};
 use crate::hysteresis::{Rule, STATE_LEN};
 use crate::law::hertz::{Hertz, NormalLaw};
 use crate::law::mindlin::Mindlin;
@@ -56,6 +58,32 @@ pub const JOINTLIN_UINTER_MAX_NPROPS: i32 = 12;
 ///
 /// A fresh (all-zero) STATEV is a never-closed point with virgin hysteresis.
 pub const JOINTLIN_UINTER_MIN_NSTATV: i32 = 57;
+
+/// Checks a UINTER property table as jointlin_uinter reads it, before a job runs: NPROPS
+/// ≥ 7, integer codes exact and known, values in range (see the table above). A point's
+/// AREA enters only Hertz's contact radius, so the table is read for a unit area.
+///
+/// Returns JOINTLIN_OK, JOINTLIN_ERR_NULL, JOINTLIN_ERR_SIZE (NPROPS < 7),
+/// JOINTLIN_ERR_NON_FINITE or JOINTLIN_ERR_PROPS, with the entry and the reason in
+/// jointlin_last_error.
+///
+/// # Safety
+/// `props` must be NULL or point to `nprops` readable doubles.
+#[no_mangle]
+pub unsafe extern "C" fn jointlin_uinter_props_check(props: *const f64, nprops: i32) -> i32 {
+    boundary("jointlin_uinter_props_check", || {
+        if nprops < JOINTLIN_UINTER_MIN_NPROPS {
+            return Err(FfiError::new(
+                JOINTLIN_ERR_SIZE,
+                format!("NPROPS {nprops} < {JOINTLIN_UINTER_MIN_NPROPS}"),
+            ));
+        }
+        let n = (nprops as usize).min(JOINTLIN_UINTER_MAX_NPROPS as usize);
+        // SAFETY: NULL/alignment checked by load_finite; n ≤ nprops readable by contract.
+        let table: [f64; 12] = unsafe { load_finite(props, n, "PROPS") }?;
+        Props::parse(&table, 1.0).map(|_| ())
+    })
+}
 
 /// 0-based STATEV slots.
 pub(crate) mod slot {
@@ -116,9 +144,12 @@ fn code(props: &[f64; 12], pos: usize, max: i32) -> FfiResult<i32> {
     if v.fract() == 0.0 && (0.0..=f64::from(max)).contains(&v) {
         Ok(v as i32)
     } else {
-        Err(bad(format!(
-            "PROPS({pos}) = {v:?} is not a code in 0..={max}"
-        )))
+        let range = if max == i32::MAX {
+            "an integer code >= 0".to_string()
+        } else {
+            format!("a code in 0..={max}")
+        };
+        Err(bad(format!("PROPS({pos}) = {v:?} is not {range}")))
     }
 }
 
@@ -134,28 +165,41 @@ fn positive(props: &[f64; 12], pos: usize, what: &str) -> FfiResult<f64> {
 impl Props {
     /// Parses PROPS (already checked finite, unread entries 0) for a point of area `area` > 0.
     pub fn parse(props: &[f64; 12], area: f64) -> FfiResult<Self> {
-        let law = match code(props, 1, 1)? {
-            0 => TangentialLaw::Mindlin,
-            _ => TangentialLaw::Jenkins,
-        };
-        let rule = rule_from_code(code(props, 2, 1)?).expect("code checked");
+        let law = law_from_code(code(props, 1, i32::MAX)?).ok_or_else(|| {
+            bad(format!(
+                "PROPS(1) = {:?} is not a tangential law code",
+                props[0]
+            ))
+        })?;
+        let rule = rule_from_code(code(props, 2, i32::MAX)?).ok_or_else(|| {
+            bad(format!(
+                "PROPS(2) = {:?} is not an unloading rule code",
+                props[1]
+            ))
+        })?;
         let mu = props[2];
         if mu < 0.0 {
             return Err(bad(format!(
                 "PROPS(3) = {mu:?}: friction coefficient must be >= 0"
             )));
         }
-        let normal = match code(props, 5, 1)? {
-            0 => NormalLaw::Linear {
+        let normal = match code(props, 5, i32::MAX)? {
+            JOINTLIN_NORMAL_LINEAR => NormalLaw::Linear {
                 stiffness_per_area: positive(props, 6, "k_N")?,
             },
-            _ => {
+            JOINTLIN_NORMAL_HERTZ => {
                 let e_star = positive(props, 6, "E*")?;
                 let r_star = positive(props, 7, "r*")?;
                 NormalLaw::Hertz {
                     hertz: Hertz::new(r_star, e_star)?,
                     area,
                 }
+            }
+            _ => {
+                return Err(bad(format!(
+                    "PROPS(5) = {:?} is not a normal law code",
+                    props[4]
+                )))
             }
         };
         let k_source = match code(props, 8, 1)? {

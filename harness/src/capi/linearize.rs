@@ -11,7 +11,8 @@ use jointlin::ffi::linearize::{
 };
 use jointlin::ffi::screw::jointlin_screw_preload;
 
-use super::{check, count, law_code, rule_code, CapiError, QUADRATURE};
+use super::props::{law_code, rule_code};
+use super::{check, count, CapiError, QUADRATURE};
 use crate::names::{LawName, RuleName};
 
 /// One point's tangential data for [`linearize`] (stress form: normal "force" = pressure,

@@ -11,12 +11,9 @@ use std::ffi::{c_char, CStr};
 
 use jointlin::ffi::error::{jointlin_last_error, jointlin_status_message, JOINTLIN_OK};
 use jointlin::ffi::linearize::{
-    JOINTLIN_LAW_JENKINS, JOINTLIN_LAW_MINDLIN, JOINTLIN_METHOD_GAUSS, JOINTLIN_METHOD_GRADED,
-    JOINTLIN_METHOD_SIMPSON, JOINTLIN_RULE_MASING, JOINTLIN_RULE_THESIS,
+    JOINTLIN_METHOD_GAUSS, JOINTLIN_METHOD_GRADED, JOINTLIN_METHOD_SIMPSON,
 };
 use thiserror::Error;
-
-use crate::names::{LawName, RuleName};
 
 pub use jointlin::ffi::linearize::{
     JOINTLIN_REGIME_MICROSLIP, JOINTLIN_REGIME_OPEN, JOINTLIN_REGIME_SLIDING, JOINTLIN_REGIME_STICK,
@@ -81,7 +78,7 @@ impl Quadrature {
 }
 
 /// Sets the quadrature of this thread's [`linearize`] calls and of the PROPS built by
-/// [`props`] afterwards (`None`: the library's default). For fidelity studies
+/// [`props::encode`] afterwards (`None`: the library's default). For fidelity studies
 /// (`jointlin tradeoff`); returns the previous setting.
 pub fn set_quadrature(q: Option<Quadrature>) -> Option<Quadrature> {
     QUADRATURE.with(|c| c.replace(q))
@@ -120,23 +117,10 @@ fn check(function: &'static str, code: i32) -> Result<(), CapiError> {
     })
 }
 
-fn law_code(l: LawName) -> i32 {
-    match l {
-        LawName::Mindlin => JOINTLIN_LAW_MINDLIN,
-        LawName::Jenkins => JOINTLIN_LAW_JENKINS,
-    }
-}
-
-fn rule_code(r: RuleName) -> i32 {
-    match r {
-        RuleName::Thesis => JOINTLIN_RULE_THESIS,
-        RuleName::Masing => JOINTLIN_RULE_MASING,
-    }
-}
-
 mod linearize;
 mod point;
 mod point3d;
+pub mod props;
 mod store;
 mod uinter;
 

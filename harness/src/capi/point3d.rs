@@ -14,7 +14,8 @@ use jointlin::ffi::point3d::{
 
 use nalgebra::Complex;
 
-use super::{check, law_code, CapiError};
+use super::props::law_code;
+use super::{check, CapiError};
 use crate::names::LawName;
 
 thread_local! {

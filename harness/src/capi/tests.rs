@@ -1,4 +1,5 @@
 use super::*;
+use crate::names::{ContactLaw, LawName, NormalLawName, RuleName};
 
 #[test]
 fn limits_of_the_linearization_through_the_c_api() {
@@ -36,13 +37,16 @@ fn quadrature_setting_reaches_the_library() {
     let d = linearize(&t, a, 1.3).unwrap();
     assert_eq!(set_quadrature(Some(Quadrature::Simpson(16))), None);
     let s = linearize(&t, a, 1.3).unwrap();
-    let pr = props(
-        LawName::Mindlin,
-        RuleName::Thesis,
-        0.3,
-        1.0,
-        NormalProps::Linear { k_n: 1.0 },
-    );
+    let pr = props::encode(&ContactLaw {
+        law: LawName::Mindlin,
+        rule: RuleName::Thesis,
+        mu: 0.3,
+        k_t0_per_area: 1.0,
+        normal_law: NormalLawName::Linear,
+        normal_stiffness_per_area: Some(1.0),
+        hertz_radius: None,
+        hertz_e_star: None,
+    });
     assert_eq!(set_quadrature(None), Some(Quadrature::Simpson(16)));
     assert_eq!((pr[10], pr[11]), (1.0, 16.0));
     let rel = (s.k_star / d.k_star - 1.0).abs();
@@ -52,13 +56,16 @@ fn quadrature_setting_reaches_the_library() {
 
 #[test]
 fn uinter_general_linear_normal_law() {
-    let pr = props(
-        LawName::Mindlin,
-        RuleName::Thesis,
-        0.3,
-        100.0,
-        NormalProps::Linear { k_n: 1e4 },
-    );
+    let pr = props::encode(&ContactLaw {
+        law: LawName::Mindlin,
+        rule: RuleName::Thesis,
+        mu: 0.3,
+        k_t0_per_area: 100.0,
+        normal_law: NormalLawName::Linear,
+        normal_stiffness_per_area: Some(1e4),
+        hertz_radius: None,
+        hertz_e_star: None,
+    });
     let p = UinterPoint {
         name: "joint",
         props: &pr,

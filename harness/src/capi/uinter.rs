@@ -7,49 +7,7 @@ use std::ptr;
 use jointlin::ffi::uinter::{jointlin_uinter, jointlin_uinter_report};
 
 use super::store::Store;
-use super::{check, count, law_code, rule_code, CapiError, Quadrature, NPROPS, NSTATV, QUADRATURE};
-use crate::names::{LawName, RuleName};
-
-/// Normal law of the PROPS table.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum NormalProps {
-    /// p = k_N h (k_N per area).
-    Linear { k_n: f64 },
-    /// Hertz with E* and r*.
-    Hertz { e_star: f64, r_star: f64 },
-}
-
-/// UINTER PROPS (src/ffi/props.rs): law, rule, μ, k_T0 per area, normal law; viscous
-/// damping output; quadrature as set by [`set_quadrature`] (default: the library's).
-pub fn props(
-    law: LawName,
-    rule: RuleName,
-    mu: f64,
-    k_t0: f64,
-    normal: NormalProps,
-) -> [f64; NPROPS] {
-    let (nl, p6, p7) = match normal {
-        NormalProps::Linear { k_n } => (0.0, k_n, 0.0),
-        NormalProps::Hertz { e_star, r_star } => (1.0, e_star, r_star),
-    };
-    let (qk, qn) = QUADRATURE
-        .with(|c| c.get())
-        .map_or((0, 0), Quadrature::code);
-    [
-        law_code(law) as f64,
-        rule_code(rule) as f64,
-        mu,
-        k_t0,
-        nl,
-        p6,
-        p7,
-        0.0,
-        0.0,
-        0.0,
-        f64::from(qk),
-        f64::from(qn),
-    ]
-}
+use super::{check, count, CapiError, NPROPS, NSTATV};
 
 /// Identity and data of one contact point as UINTER sees it.
 #[derive(Debug, Clone, Copy, PartialEq)]

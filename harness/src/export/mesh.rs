@@ -6,13 +6,13 @@ use std::fmt::Write;
 
 use super::names::{face as face_label, Names};
 use super::{num, ExportError};
+use crate::capi::{props::encode, NPROPS};
 use crate::fe::mesh::{Body, Face, Model};
 use crate::fe::ties::find_ties;
 use crate::input::deck::job::UNITS_COMMENT;
-use crate::input::scene::{NormalLawName, Scene};
+use crate::input::scene::Scene;
 use crate::model::mesh_face;
 use crate::model::{Problem, PAIR_TOL};
-use crate::names::{LawName, RuleName};
 
 /// State variables per contact point the shim's UINTER needs (fortran-shim/README.md).
 pub const DEPVAR: usize = 57;
@@ -271,34 +271,17 @@ fn interfaces(out: &mut String, scene: &Scene, m: &Model, names: &Names) {
         surface(out, &format!("{name}_SLAVE"), &slave);
         surface(out, &format!("{name}_MASTER"), &master);
         // The shim's PROPS (fortran-shim/README.md, src/ffi/props.rs).
-        let law = match f.law {
-            LawName::Mindlin => 0,
-            LawName::Jenkins => 1,
-        };
-        let rule = match f.rule {
-            RuleName::Thesis => 0,
-            RuleName::Masing => 1,
-        };
-        let (normal, k6, r) = match f.normal_law {
-            NormalLawName::Linear => (0, f.normal_stiffness_per_area.unwrap_or(0.0), 0.0),
-            NormalLawName::Hertz => (
-                1,
-                f.hertz_e_star.unwrap_or(0.0),
-                f.hertz_radius.unwrap_or(0.0),
-            ),
-        };
+        let p = encode(&f.contact_law()).map(num);
         let _ = writeln!(
             out,
-            "*SURFACE INTERACTION, NAME={name}, USER, DEPVAR={DEPVAR}, PROPERTIES=12\n1.,\n\
+            "*SURFACE INTERACTION, NAME={name}, USER, DEPVAR={DEPVAR}, PROPERTIES={NPROPS}\n1.,\n\
              ** law (0 Mindlin, 1 Jenkins), rule (0 thesis, 1 Masing), mu, k_T0 per area,\n\
              ** normal law (0 linear, 1 Hertz), k_N per area or E*, r*, k_T0 source (0: PROPS 4)\n\
-             {law}., {rule}., {}, {}, {normal}., {}, {}, 0.\n\
+             {}\n\
              ** G*, damping (0 DVISCOUS), quadrature (0 graded), points (0 default)\n\
-             0., 0., 0., 0.",
-            num(f.mu),
-            num(f.k_t0_per_area),
-            num(k6),
-            num(r)
+             {}",
+            p[..8].join(", "),
+            p[8..].join(", ")
         );
         let _ = writeln!(
             out,

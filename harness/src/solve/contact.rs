@@ -1,22 +1,11 @@
 //! Scene interface data → what the C API takes (PROPS, tangential contact data).
 
-use crate::capi::{self, NormalProps, Tangential, NPROPS};
+use crate::capi::{self, Tangential, NPROPS};
 use crate::model::Interface;
-use crate::names::NormalLawName;
 
 /// UINTER PROPS of an interface (src/ffi/props.rs layout).
 pub fn interface_props(i: &Interface) -> [f64; NPROPS] {
-    let c = &i.contact;
-    let normal = match c.normal_law {
-        NormalLawName::Linear => NormalProps::Linear {
-            k_n: c.normal_stiffness_per_area.expect("validated"),
-        },
-        NormalLawName::Hertz => NormalProps::Hertz {
-            e_star: c.hertz_e_star.expect("validated"),
-            r_star: c.hertz_radius.expect("validated"),
-        },
-    };
-    capi::props(c.law, c.rule, c.mu, c.k_t0_per_area, normal)
+    capi::props::encode(&i.contact)
 }
 
 /// Constant normal stiffness per area used when the normal nonlinearity is off.
