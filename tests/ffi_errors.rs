@@ -787,7 +787,8 @@ fn uinter_rejects_non_finite_in_every_double_input_without_writing() {
 fn props_check_agrees_with_uinter() {
     use jointlin::ffi::props::jointlin_uinter_props_check;
     let store = new_store(1e-4, 1e-3, JOINTLIN_KINC_ORIGINAL);
-    let cases: [(&dyn Fn(&mut Vec<f64>), i32); 13] = [
+    type Change = dyn Fn(&mut Vec<f64>);
+    let cases: [(&Change, i32); 13] = [
         (&|_| {}, JOINTLIN_OK),
         (&|p| p.truncate(6), JOINTLIN_ERR_SIZE),
         (&|p| p[0] = 2.0, JOINTLIN_ERR_PROPS), // no law 2: refused, not read as Jenkins
