@@ -160,6 +160,12 @@ fn decks_a_run_cannot_honour_are_named_errors_with_their_line() {
             "needs USER, PROPERTIES >= 7",
         ),
         (
+            "law-code.inp",
+            base.replace("1, 0, 3e-1, 1e5, 0, 1e6, 0", "2, 0, 3e-1, 1e5, 0, 1e6, 0"),
+            "*CONTACT PAIR",
+            "PROPS(1) = 2.0 is not a tangential law code",
+        ),
+        (
             "moving.inp",
             base.replace("CLAMP, ENCASTRE", "CLAMP, 1, 3, 0.1"),
             "*BOUNDARY",
