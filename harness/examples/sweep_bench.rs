@@ -13,8 +13,9 @@
 use std::path::Path;
 
 use jointlin_harness::input;
-use jointlin_harness::input::scene::{Scene, SweepMethod};
+use jointlin_harness::input::scene::Scene;
 use jointlin_harness::run::{run, Extras, RunResult};
+use jointlin_harness::settings::SweepMethod;
 
 fn sweep(scene: &Scene, route: Option<(Option<usize>, bool)>) -> Result<RunResult, String> {
     let mut s = scene.clone();

@@ -2,7 +2,8 @@
 //! Abaqus would (through the C API only, [`capi`]).
 //!
 //! Pipeline of `jointlin run SCENE --out DIR` ([`run`]):
-//! 1. [`input`]: the input path; [`input::scene`]: TOML schema, validation with file:line:key errors, `[effects]` switches.
+//! 1. [`input`]: the input path; [`input::scene`]: TOML schema, validation with file:line:key errors;
+//!    [`settings`]: what a run computes (`[sweep]`, `[iteration]`, `[effects]`, units).
 //! 2. [`model`]: scene → mesh and lumped bodies, K, M, material damping, contact points
 //!    (node pairs with frames and tributary areas), preload and excitation, outputs.
 //! 3. [`solve::static_step`]: the preload step, Newton with UINTER (LINPER = 0).
@@ -36,6 +37,7 @@ pub mod model;
 pub mod names;
 pub mod report;
 pub mod run;
+pub mod settings;
 pub mod solve;
 pub mod time;
 pub mod tradeoff;

@@ -9,10 +9,9 @@ use serde::Serialize;
 use thiserror::Error;
 
 use crate::capi::{self, CallCounts};
-use crate::input::scene::{
-    Direction, Effects, FieldOutputSpec, Interval, Mode, Scene, SweepMethod,
-};
+use crate::input::scene::Scene;
 use crate::model::{build, BuildError, Problem};
+use crate::settings::{Direction, Effects, FieldOutputSpec, Interval, Mode, SweepMethod};
 use crate::solve::modal::{lowest_modes, ModalOptions};
 use crate::solve::modal_band::modes_below;
 use crate::solve::modal_stuck::stuck_stiffness_after;

@@ -1,202 +1,51 @@
-//! The layering check: the harness's top-level modules (its rooms) import each other
-//! without circles. Reads every `crate::ROOM` path in harness/src (comments and test code
-//! left out: a test may compare a room with a higher one, e.g. a solver with its
-//! time-domain reference), builds the graph between rooms and fails on any circle,
-//! listing the imports that close it. The binary's files (main.rs, cli/) sit above every
-//! room and reach them as `jointlin_harness::`, so they are not part of the graph.
+//! The layering checks of both crates.
+//!
+//! - The harness's rooms (top-level modules) import exactly what the table of
+//!   docs/architecture.md says, each only rooms listed below it there, with no circle;
+//!   a room missing from the table fails. The binary's files (main.rs, cli/) sit above
+//!   every room and reach them as `jointlin_harness::`, so they are not rooms.
+//! - No file-level circle in the harness or the library: two files that neither contains
+//!   the other never import each other, directly or around a loop.
+//! - Only `harness/src/capi/` names the library (`jointlin::`).
+//!
+//! Comments and test code are left out: a unit test may compare a room with a higher one,
+//! e.g. a solver with its time-domain reference. Each rule is also run on a planted file
+//! set to show that it fails on a violation.
 //!
 //! Run: `cargo test --release -p jointlin-harness --test layering`.
 
-use std::collections::{BTreeMap, BTreeSet};
-use std::path::Path;
+#[path = "layering/circles.rs"]
+mod circles;
+#[path = "layering/modules.rs"]
+mod modules;
+#[path = "layering/rooms.rs"]
+mod rooms;
+#[path = "layering/source.rs"]
+mod source;
 
-/// An import of one room by another: where it is and the line's text.
-#[derive(Debug, Clone)]
-struct Import {
-    file: String,
-    line: usize,
-    text: String,
+use std::collections::BTreeSet;
+use std::path::{Path, PathBuf};
+
+use circles::circles;
+use source::{crate_files, files};
+
+fn harness_src() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("src")
 }
 
-/// Room → imported room → the imports.
-type Graph = BTreeMap<String, BTreeMap<String, Vec<Import>>>;
-
-/// The room of a file (path relative to src/, `/`-separated), `None` for the crate
-/// roots and the binary's files.
-fn room(file: &str) -> Option<String> {
-    let first = file.split('/').next()?;
-    let name = first.strip_suffix(".rs").unwrap_or(first);
-    (!matches!(name, "lib" | "main" | "cli")).then(|| name.to_string())
+fn architecture() -> String {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../docs/architecture.md");
+    std::fs::read_to_string(path).expect("docs/architecture.md")
 }
 
-/// A file that holds only test code: `tests.rs`, `*_tests.rs`, or any file under a
-/// `tests/` directory (a `#[cfg(test)] mod tests;` split into files).
-fn is_test_file(file: &str) -> bool {
-    let name = file.rsplit('/').next().unwrap_or(file);
-    name == "tests.rs" || name.ends_with("_tests.rs") || file.split('/').any(|d| d == "tests")
-}
-
-/// The lines of `text` outside `#[cfg(test)]` items and `//` comments, numbered from 1.
-fn code_lines(text: &str) -> Vec<(usize, &str)> {
-    let mut out = Vec::new();
-    let mut skip_depth: Option<i64> = None; // brace depth inside a skipped test item
-    let mut cfg_test = false;
-    for (i, line) in text.lines().enumerate() {
-        let t = line.trim();
-        if let Some(d) = skip_depth.as_mut() {
-            *d += t.matches('{').count() as i64 - t.matches('}').count() as i64;
-            if *d <= 0 {
-                skip_depth = None;
-            }
-            continue;
-        }
-        if t == "#[cfg(test)]" {
-            cfg_test = true;
-            continue;
-        }
-        if cfg_test && !t.starts_with("#[") && !t.is_empty() {
-            cfg_test = false;
-            let d = t.matches('{').count() as i64 - t.matches('}').count() as i64;
-            if d > 0 {
-                skip_depth = Some(d);
-            }
-            continue; // the test item's first line (e.g. `mod tests {` or `use …;`)
-        }
-        if t.starts_with("//") {
-            continue;
-        }
-        out.push((i + 1, line));
-    }
-    out
-}
-
-/// The graph between the rooms of `files` (path relative to src/, text).
-fn graph(files: &[(String, String)]) -> Graph {
-    let rooms: BTreeSet<String> = files.iter().filter_map(|(f, _)| room(f)).collect();
-    let mut g = Graph::new();
-    for (file, text) in files {
-        let Some(from) = room(file) else { continue };
-        if is_test_file(file) {
-            continue;
-        }
-        for (n, line) in code_lines(text) {
-            for (at, _) in line.match_indices("crate::") {
-                let rest = &line[at + "crate::".len()..];
-                let to: String = rest
-                    .chars()
-                    .take_while(|c| c.is_alphanumeric() || *c == '_')
-                    .collect();
-                // Not `jointlin_harness::crate`-like prefixes: `crate` must start a path.
-                let before = line[..at].chars().next_back();
-                if before.is_some_and(|c| c.is_alphanumeric() || c == '_') {
-                    continue;
-                }
-                if to != from && rooms.contains(&to) {
-                    g.entry(from.clone())
-                        .or_default()
-                        .entry(to)
-                        .or_default()
-                        .push(Import {
-                            file: file.clone(),
-                            line: n,
-                            text: line.trim().to_string(),
-                        });
-                }
-            }
-        }
-    }
-    g
-}
-
-/// The circles of `g`: each strongly connected set of two or more rooms, as a message
-/// listing the imports between its rooms. Empty when the rooms are layered.
-fn circles(g: &Graph) -> Vec<String> {
-    let nodes: BTreeSet<&String> = g.keys().chain(g.values().flat_map(|m| m.keys())).collect();
-    let reach = |from: &String| -> BTreeSet<String> {
-        let mut seen = BTreeSet::new();
-        let mut stack = vec![from.clone()];
-        while let Some(n) = stack.pop() {
-            for m in g.get(&n).into_iter().flat_map(|e| e.keys()) {
-                if seen.insert(m.clone()) {
-                    stack.push(m.clone());
-                }
-            }
-        }
-        seen
-    };
-    let reachable: BTreeMap<&String, BTreeSet<String>> =
-        nodes.iter().map(|&n| (n, reach(n))).collect();
-    let mut done = BTreeSet::new();
-    let mut out = Vec::new();
-    for &n in &nodes {
-        if done.contains(n) || !reachable[n].contains(n) {
-            continue;
-        }
-        // The rooms that reach n and that n reaches: n's circle.
-        let set: BTreeSet<&String> = nodes
-            .iter()
-            .copied()
-            .filter(|m| reachable[n].contains(*m) && reachable[m].contains(n))
-            .collect();
-        let mut msg = format!(
-            "circle between {}:",
-            set.iter()
-                .map(|s| s.as_str())
-                .collect::<Vec<_>>()
-                .join(", ")
-        );
-        for a in &set {
-            for (b, imports) in g.get(*a).into_iter().flatten() {
-                if set.contains(b) {
-                    for i in imports {
-                        msg += &format!("\n  {a} -> {b}: {}:{}: {}", i.file, i.line, i.text);
-                    }
-                }
-            }
-        }
-        done.extend(set.iter().map(|s| (*s).clone()));
-        out.push(msg);
-    }
-    out
-}
-
-/// Every .rs file under `dir`, path relative to `root` with `/` separators.
-fn read_tree(root: &Path, dir: &Path, out: &mut Vec<(String, String)>) {
-    let mut entries: Vec<_> = std::fs::read_dir(dir)
-        .expect("readable source directory")
-        .map(|e| e.expect("directory entry").path())
-        .collect();
-    entries.sort();
-    for p in entries {
-        if p.is_dir() {
-            read_tree(root, &p, out);
-        } else if p.extension().is_some_and(|e| e == "rs") {
-            let rel = p.strip_prefix(root).expect("under root");
-            let rel = rel
-                .components()
-                .map(|c| c.as_os_str().to_string_lossy())
-                .collect::<Vec<_>>()
-                .join("/");
-            out.push((
-                rel,
-                std::fs::read_to_string(&p).expect("readable source file"),
-            ));
-        }
-    }
-}
-
-fn files(list: &[(&str, &str)]) -> Vec<(String, String)> {
-    list.iter()
-        .map(|(f, t)| (f.to_string(), t.to_string()))
-        .collect()
+fn rooms_of(tree: &[(String, String)]) -> BTreeSet<String> {
+    tree.iter().filter_map(|(f, _)| rooms::room(f)).collect()
 }
 
 #[test]
-fn the_harness_rooms_have_no_circles() {
-    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
-    let mut tree = Vec::new();
-    read_tree(&src, &src, &mut tree);
-    let g = graph(&tree);
+fn the_harness_rooms_import_what_the_architecture_table_says() {
+    let tree = crate_files(&harness_src());
+    let g = rooms::graph(&tree);
     // The check sees the rooms (guards against reading nothing).
     assert!(g.contains_key("capi") && g.contains_key("solve"), "{g:?}");
     let c = circles(&g);
@@ -204,6 +53,40 @@ fn the_harness_rooms_have_no_circles() {
         c.is_empty(),
         "the rooms import each other in circles:\n{}",
         c.join("\n")
+    );
+    let table = rooms::table(&architecture());
+    assert!(table.len() >= 10, "{table:?}");
+    let v = rooms::violations(&g, &rooms_of(&tree), &table);
+    assert!(
+        v.is_empty(),
+        "docs/architecture.md's table of rooms:\n{}",
+        v.join("\n")
+    );
+}
+
+#[test]
+fn no_file_level_circle_in_either_crate() {
+    let library = Path::new(env!("CARGO_MANIFEST_DIR")).join("../src");
+    for src in [harness_src(), library] {
+        let g = modules::graph(&crate_files(&src));
+        assert!(g.len() > 20, "{}: {} files import", src.display(), g.len());
+        let c = circles(&g);
+        assert!(
+            c.is_empty(),
+            "{}: files in circles:\n{}",
+            src.display(),
+            c.join("\n")
+        );
+    }
+}
+
+#[test]
+fn only_capi_names_the_library() {
+    let calls = rooms::library_calls_outside_capi(&crate_files(&harness_src()));
+    assert!(
+        calls.is_empty(),
+        "the library named outside capi/:\n{}",
+        calls.join("\n")
     );
 }
 
@@ -218,7 +101,7 @@ fn a_planted_circle_fails_and_names_its_imports() {
         ),
         ("top.rs", "use crate::mid::B;\nuse crate::low::C;\n"),
     ]);
-    let c = circles(&graph(&tree));
+    let c = circles(&rooms::graph(&tree));
     assert_eq!(c.len(), 1, "{c:?}");
     assert!(c[0].starts_with("circle between mid, top:"), "{}", c[0]);
     assert!(
@@ -250,11 +133,114 @@ fn comments_and_test_code_are_not_imports() {
             "#[cfg(test)]\nuse crate::a::W;\npub fn f() {}\n",
         ),
     ]);
-    assert!(circles(&graph(&tree)).is_empty());
+    assert!(circles(&rooms::graph(&tree)).is_empty());
+    assert!(circles(&modules::graph(&tree)).is_empty());
     // The same import outside test code closes the circle.
     let tree = files(&[
         ("a.rs", "use crate::b::X;\n"),
         ("b/mod.rs", "use crate::a::Y;\n"),
     ]);
-    assert_eq!(circles(&graph(&tree)).len(), 1);
+    assert_eq!(circles(&rooms::graph(&tree)).len(), 1);
+}
+
+/// A planted table: low ← mid ← top, side.
+const TABLE: &str = "# Rooms\n\n## The rooms\n\n| room | what | imports |\n|---|---|---|\n\
+| `low/` | bottom | — |\n| `mid.rs` | middle | low |\n| `top/`, `side/` | top | mid, low |\n\n## Next\n";
+
+#[test]
+fn the_table_is_read_and_each_of_its_rules_fails_when_broken() {
+    let table = rooms::table(TABLE);
+    let names: Vec<&str> = table.iter().map(|(r, _)| r.as_str()).collect();
+    assert_eq!(names, ["low", "mid", "top", "side"]);
+    let check = |list: &[(&str, &str)], table: &rooms::Table| {
+        let tree = files(list);
+        rooms::violations(&rooms::graph(&tree), &rooms_of(&tree), table)
+    };
+    let good = [
+        ("low/mod.rs", "pub fn f() {}\n"),
+        ("mid.rs", "use crate::low::f;\n"),
+        ("top/mod.rs", "use crate::mid::g;\nuse crate::low::f;\n"),
+        ("side/mod.rs", "use crate::{low::f, mid::g};\n"),
+    ];
+    assert_eq!(check(&good, &table), Vec::<String>::new());
+    let mut unlisted = good.to_vec();
+    unlisted[0] = ("low/mod.rs", "use crate::mid::g;\n");
+    let v = check(&unlisted, &table);
+    let first = "low imports mid, which its row does not list: low/mod.rs:1";
+    assert!(v.iter().any(|m| m.starts_with(first)), "{v:?}");
+    let mut stale = good.to_vec();
+    stale[2] = ("top/mod.rs", "use crate::mid::g;\n");
+    assert_eq!(
+        check(&stale, &table),
+        ["top's row lists low, which it does not import"]
+    );
+    let mut missing = good.to_vec();
+    missing.push(("extra.rs", "pub fn h() {}\n"));
+    assert_eq!(
+        check(&missing, &table),
+        ["room extra is not in the table of docs/architecture.md"]
+    );
+    let upside = rooms::table(&TABLE.replace("| bottom | — |", "| bottom | mid |"));
+    let v = check(&good, &upside);
+    let above = "low's row lists mid, which stands above it in the table";
+    assert!(v.iter().any(|m| m == above), "{v:?}");
+}
+
+#[test]
+fn a_planted_file_circle_fails_and_ancestors_do_not_count() {
+    // A parent re-exporting its children, children using their parent: no circle.
+    let family = [
+        ("lib.rs", "pub mod a;\n"),
+        (
+            "a/mod.rs",
+            "mod b;\nmod c;\npub use b::B;\npub use self::c::C;\npub struct P;\n",
+        ),
+        ("a/b.rs", "use super::P;\npub struct B;\n"),
+        ("a/c.rs", "use super::{b::B, P};\npub struct C;\n"),
+    ];
+    assert_eq!(
+        circles(&modules::graph(&files(&family))),
+        Vec::<String>::new()
+    );
+    // Two siblings naming each other, one through a multi-line use tree: a circle.
+    let mut siblings = family.to_vec();
+    siblings[2] = (
+        "a/b.rs",
+        "use crate::a::{\n    c::C,\n    P,\n};\npub struct B;\n",
+    );
+    let c = circles(&modules::graph(&files(&siblings)));
+    assert_eq!(c.len(), 1, "{c:?}");
+    assert!(
+        c[0].starts_with("circle between a/b.rs, a/c.rs:"),
+        "{}",
+        c[0]
+    );
+    let import = "a/b.rs -> a/c.rs: a/b.rs:1: use crate::a::{ c::C, P, };";
+    assert!(c[0].contains(import), "{}", c[0]);
+    // A path in an expression counts too.
+    let mut expr = family.to_vec();
+    expr[2] = ("a/b.rs", "pub fn f() -> u8 { super::c::g() }\n");
+    assert_eq!(circles(&modules::graph(&files(&expr))).len(), 1);
+}
+
+#[test]
+fn a_planted_library_call_outside_capi_fails() {
+    let tree = files(&[
+        (
+            "capi/mod.rs",
+            "use jointlin::ffi::linearize::jointlin_linearize;\n",
+        ),
+        (
+            "solve/x.rs",
+            "// jointlin::ffi in a comment\nlet v = my_jointlin::f();\n",
+        ),
+        (
+            "solve/y.rs",
+            "fn f() { jointlin::ffi::error::jointlin_last_error(); }\n",
+        ),
+    ]);
+    assert_eq!(
+        rooms::library_calls_outside_capi(&tree),
+        ["solve/y.rs:1: fn f() { jointlin::ffi::error::jointlin_last_error(); }"]
+    );
 }

@@ -21,6 +21,7 @@ mod phasors_tests;
 pub mod table;
 #[cfg(test)]
 mod table_tests;
+pub mod unit_cell;
 
 pub use cells::{Cells, DEFAULT_CELLS, MAX_CELLS};
 

@@ -1,7 +1,7 @@
 //! The unit cell's describing function tabulated (docs/contact3d.md §4): the first
 //! harmonics of a Jenkins cell (stiffness 1, stretch at the limit x = 1) on the ellipse
 //! (a cos θ, b sin θ), interpolated from `unit_cell_table.csv` instead of integrated, for
-//! sweeps over many points. [`super::describing::unit_cell`] made the table (the ignored
+//! sweeps over many points. [`super::unit_cell::unit_cell`] made the table (the ignored
 //! test `tabulated_unit_cell::regenerate` writes it) and stays the reference.
 //!
 //! Layout, for a ≥ b (b > a by the roles swapped):
@@ -16,7 +16,7 @@
 //!   v = ln b / ln a for 1 ≤ b ≤ a (up to the circle);
 //! * b < B_MIN: the row b = B_MIN, its minor-direction harmonics scaled by b/B_MIN (a path
 //!   that thin moves the cell sideways linearly; the major direction changes by O(b²));
-//! * a ≥ A_MAX: the rigid–plastic cell ([`super::describing::RIGID_RATIO`]) tabulated in
+//! * a ≥ A_MAX: the rigid–plastic cell ([`super::unit_cell::RIGID_RATIO`]) tabulated in
 //!   ln(b/a) down to E_MIN (thinner: the row E_MIN).
 //!
 //! Accuracy (test `tabulated_unit_cell_matches_the_integrated_one`): the force harmonics
@@ -25,8 +25,8 @@
 use std::f64::consts::PI;
 use std::sync::OnceLock;
 
-use super::describing::{rigid_plastic, unit_cell};
 use super::ellipse::CellHarmonics;
+use super::unit_cell::{rigid_plastic, unit_cell};
 
 /// Largest a of the finite-x table; above it the cell is rigid–plastic (error O(1/a) in
 /// the major direction's harmonics).

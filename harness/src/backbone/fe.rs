@@ -26,10 +26,10 @@ use nalgebra::{Complex, DMatrix};
 
 use crate::capi::Tangential;
 use crate::fe::csc::Csc;
-use crate::input::scene::schema::Effects;
 use crate::mhb::{Element, Law, System};
 use crate::model::lumped::{undamped_frequencies as frequencies, Lumped};
 use crate::model::Problem;
+use crate::settings::Effects;
 use crate::solve::contact::tangential;
 use crate::solve::modal::{lowest_modes, ModalOptions};
 use crate::solve::static_step;

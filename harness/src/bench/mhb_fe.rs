@@ -11,9 +11,10 @@
 use std::fmt::Write as _;
 
 use crate::capi;
-use crate::input::scene::{Mode, Scene, Spacing};
+use crate::input::scene::Scene;
 use crate::mhb::default_samples;
 use crate::run::{run, Extras};
+use crate::settings::{Mode, Spacing};
 use crate::util::rusage::cpu_seconds;
 
 /// One row of the table.

@@ -15,8 +15,9 @@ pub mod mhb_fe;
 use std::io::Write;
 use std::time::Instant;
 
-use crate::input::scene::{Mode, Scene};
+use crate::input::scene::Scene;
 use crate::model::build;
+use crate::settings::Mode;
 use crate::solve::modal_stuck::{self, ModeCount};
 use crate::solve::static_step;
 use crate::solve::sweep::{self, Options};

@@ -6,10 +6,10 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use super::load_scene;
-use jointlin_harness::input::scene::units::frequency_unit;
 use jointlin_harness::input::scene::Scene;
 use jointlin_harness::input::{deck, format_of, Format};
 use jointlin_harness::model::{self, Problem};
+use jointlin_harness::settings::units::frequency_unit;
 use jointlin_harness::solve::cost;
 use jointlin_harness::solve::modal_stuck::{stuck_modes, ModeCount};
 use jointlin_harness::util::number::{sig, sig_n};

@@ -4,8 +4,9 @@
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
-use jointlin_harness::input::scene::{CalibratedParameter, LossStudySpec, Scene};
+use jointlin_harness::input::scene::Scene;
 use jointlin_harness::loss::{self, effects as loss_effects, mesh, LossError};
+use jointlin_harness::settings::{CalibratedParameter, LossStudySpec};
 use jointlin_harness::util::atomic;
 
 use super::{load_scene_with, report_written, with_progress, SceneOverrides};

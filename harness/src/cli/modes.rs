@@ -4,8 +4,8 @@
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use jointlin_harness::input::scene::units::frequency_unit;
 use jointlin_harness::report::modes::ModeTable;
+use jointlin_harness::settings::units::frequency_unit;
 use jointlin_harness::solve::modal_stuck::{stuck_modes, ModeCount};
 use jointlin_harness::util::atomic;
 use jointlin_harness::util::csv_table::CsvTable;

@@ -7,11 +7,12 @@ use std::process::ExitCode;
 
 use clap::ValueEnum;
 
-use jointlin_harness::input::scene::units::frequency_unit;
-use jointlin_harness::input::scene::{validate, Mode, Scene};
+use jointlin_harness::input::scene::{validate, Scene};
 use jointlin_harness::model::BuildError;
 use jointlin_harness::report::{self, ReportOptions};
 use jointlin_harness::run::{run, Extras, RunError};
+use jointlin_harness::settings::units::frequency_unit;
+use jointlin_harness::settings::Mode;
 use jointlin_harness::util::progress::progress_bar;
 
 use super::{load_scene_with, report_written, SceneOverrides};
@@ -153,7 +154,7 @@ pub fn main(a: Args) -> ExitCode {
         s.spec.iteration.mode
     );
     if let Some(mr) = &r.main.modal {
-        let fu = jointlin_harness::input::scene::units::frequency_unit(&s.spec.units);
+        let fu = jointlin_harness::settings::units::frequency_unit(&s.spec.units);
         let band = match (mr.band_limit, mr.band_complete) {
             (Some(l), true) => format!("every mode below {} {}", sig(fu.show(l)), fu.text),
             (Some(l), false) => format!(

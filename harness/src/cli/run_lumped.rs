@@ -13,11 +13,12 @@ use std::process::ExitCode;
 use nalgebra::Complex;
 use serde_json::json;
 
-use jointlin_harness::input::scene::units::{frequency_unit, ColumnUnits};
-use jointlin_harness::input::scene::{Direction, Mode, Scene, Units};
+use jointlin_harness::input::scene::Scene;
 use jointlin_harness::mhb::{default_samples, first_order, Hb, NewtonOptions};
 use jointlin_harness::model::lumped;
 use jointlin_harness::report::svg::{frf_curves, FrfCurve};
+use jointlin_harness::settings::units::{frequency_unit, ColumnUnits};
+use jointlin_harness::settings::{Direction, Mode, Units};
 use jointlin_harness::util::atomic;
 use jointlin_harness::util::csv_table::CsvTable;
 

@@ -16,8 +16,9 @@ pub use report::{csv, markdown, write};
 use std::time::Instant;
 
 use crate::capi;
-use crate::input::scene::{Effects, Mode, Scene, Units};
+use crate::input::scene::Scene;
 use crate::run::{run, Extras, RunError};
+use crate::settings::{Effects, Mode, Units};
 use crate::solve::sweep::SweepResult;
 
 /// One variant of the point model and what it gave.

@@ -5,9 +5,9 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 use super::EffectsStudy;
-use crate::input::scene::units::{frequency_unit, ColumnUnits};
-use crate::input::scene::Mode;
 use crate::report::svg::{frf_curves, FrfCurve};
+use crate::settings::units::{frequency_unit, ColumnUnits};
+use crate::settings::Mode;
 use crate::util::atomic;
 use crate::util::csv_table::CsvTable;
 

@@ -4,7 +4,8 @@
 //! has every effect on). Study tables a deck does not carry are returned as notes.
 
 use super::ExportError;
-use crate::input::scene::{BodyKind, Direction, Interval, Mode, Scene, SweepMethod};
+use crate::input::scene::{BodyKind, Scene};
+use crate::settings::{Direction, Interval, Mode, SweepMethod};
 
 /// Checks `scene`; returns the tables left out of the deck (study settings).
 pub fn check(scene: &Scene) -> Result<Vec<String>, ExportError> {

@@ -20,7 +20,7 @@
 use nalgebra::{Matrix3, Matrix6, SMatrix, Vector3};
 use thiserror::Error;
 
-use crate::fe::mesh::Material;
+use crate::fe::material::Material;
 
 /// 24×24 element matrix.
 pub type Mat24 = SMatrix<f64, 24, 24>;

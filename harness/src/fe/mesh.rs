@@ -11,67 +11,10 @@
 //! Element node order is Abaqus C3D8's: corners at (ξ, η, ζ) =
 //! (−−−), (+−−), (++−), (−+−), (−−+), (+−+), (+++), (−++).
 
-use thiserror::Error;
-
 use crate::fe::elements::ElementKind;
+pub use crate::fe::error::MeshError;
 use crate::fe::grading::Grading;
-
-/// Errors in building a mesh or model.
-#[derive(Debug, Error, PartialEq)]
-pub enum MeshError {
-    #[error("box size must be positive and finite, got {0:?}")]
-    BadSize([f64; 3]),
-    #[error("box grading ratio must be finite and at least 1, got {0}")]
-    BadGrading(f64),
-    #[error("box divisions must be at least 1, got {0:?}")]
-    BadDivisions([usize; 3]),
-    #[error("material {0} does not exist")]
-    UnknownMaterial(usize),
-    #[error("invalid material: E = {e} (must be > 0), nu = {nu} (must be in (-1, 0.5)), rho = {rho} (must be >= 0)")]
-    BadMaterial { e: f64, nu: f64, rho: f64 },
-    #[error("body {0} does not exist")]
-    UnknownBody(usize),
-    #[error("node {0} does not exist")]
-    UnknownNode(usize),
-}
-
-/// Linear isotropic elastic material. Units: E in force/length² (MPa in N-mm-t),
-/// ρ in mass/length³ (t/mm³ in N-mm-t); ν dimensionless.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Material {
-    pub youngs_modulus: f64,
-    pub poisson_ratio: f64,
-    pub density: f64,
-}
-
-impl Material {
-    /// Checks E > 0, −1 < ν < 0.5, ρ ≥ 0 (all finite).
-    pub fn new(youngs_modulus: f64, poisson_ratio: f64, density: f64) -> Result<Self, MeshError> {
-        let ok = youngs_modulus.is_finite()
-            && youngs_modulus > 0.0
-            && poisson_ratio > -1.0
-            && poisson_ratio < 0.5
-            && density.is_finite()
-            && density >= 0.0;
-        if !ok {
-            return Err(MeshError::BadMaterial {
-                e: youngs_modulus,
-                nu: poisson_ratio,
-                rho: density,
-            });
-        }
-        Ok(Material {
-            youngs_modulus,
-            poisson_ratio,
-            density,
-        })
-    }
-
-    /// Shear modulus G = E / (2(1+ν)).
-    pub fn shear_modulus(&self) -> f64 {
-        self.youngs_modulus / (2.0 * (1.0 + self.poisson_ratio))
-    }
-}
+pub use crate::fe::material::Material;
 
 /// An axis-aligned box occupying `origin .. origin + size`, divided into
 /// `divisions` hex8 elements per axis (equal ones, or graded by

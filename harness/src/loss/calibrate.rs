@@ -9,7 +9,8 @@
 use nalgebra::{DMatrix, DVector};
 
 use super::{power_at, LossError};
-use crate::input::scene::{CalibratedParameter, Scene};
+use crate::input::scene::Scene;
+use crate::settings::CalibratedParameter;
 
 /// Most Newton–Broyden steps (the knife's k_T0 alone took 6 secant steps to 0.2 %).
 const STEPS: usize = 16;

@@ -10,8 +10,9 @@ use std::fmt::Write as _;
 
 use super::{powers_at, report::torque_unit, LossError};
 use crate::effects::{measured, solved_by, variants_for, with_point_model};
-use crate::input::scene::units::frequency_unit;
-use crate::input::scene::{Mode, Scene};
+use crate::input::scene::Scene;
+use crate::settings::units::frequency_unit;
+use crate::settings::Mode;
 use crate::util::csv_table::CsvTable;
 
 /// Point models solved for a scene in `mode` (progress steps).

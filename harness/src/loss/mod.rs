@@ -20,8 +20,8 @@ pub mod report;
 use thiserror::Error;
 
 use crate::input::scene::Scene;
-pub use crate::input::scene::{LossStudySpec, ReferencePoint};
 use crate::model::{build, BuildError, Problem};
+pub use crate::settings::{LossStudySpec, ReferencePoint};
 use crate::solve::static_step::{self, StaticError, StaticState};
 use crate::solve::sweep::modal_route::ModalRoute;
 use crate::solve::sweep::{self, Options, PointFreq, SweepError, C64};

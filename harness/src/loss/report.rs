@@ -6,9 +6,9 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 use super::{plot, LossStudySpec, Sample, StudyResult};
-use crate::input::scene::units::{frequency_unit, ColumnUnits};
 use crate::input::scene::Scene;
 use crate::report::contact_map::{self as maps, MapKind};
+use crate::settings::units::{frequency_unit, ColumnUnits};
 use crate::util::csv_table::CsvTable;
 
 /// Power (reported unit) of a curve at `amplitude`: a sample's own (reached within the

@@ -5,10 +5,11 @@ use std::collections::BTreeMap;
 
 use nalgebra::{Complex, Matrix3, Vector3};
 
+use super::damping::material_damping;
 use super::screw_load::{self, Spread};
 use super::subgrid::{coupling_pairs, face_samples, AreaSample};
 use super::{BuildError, ContactPoint, CubicSpring, Interface, Output, Problem, Screw};
-use crate::fe::assembly::{assemble, element_free_dofs, element_matrices, System};
+use crate::fe::assembly::assemble;
 use crate::fe::contact_pairs::{contact_quads, find_pairs_where};
 use crate::fe::csc::Csc;
 use crate::fe::mesh::{Body, BoxSpec, Face, Material, Model};
@@ -474,32 +475,4 @@ pub fn build(scene: &Scene) -> Result<Problem, BuildError> {
 /// Frame with n = +z, t₁ = +x, t₂ = +y (columns).
 fn frame_z() -> Matrix3<f64> {
     Matrix3::new(0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 1.0, 0.0, 0.0)
-}
-
-/// D = Σₑ (αₑ Mₑ + βₑ Kₑ) with each element's material's Rayleigh coefficients
-/// `coef[material]` = (α 1/time, β time); `None` when every α and β is zero.
-pub(super) fn material_damping(
-    model: &Model,
-    sys: &System,
-    coef: &[(f64, f64)],
-) -> Result<Option<Csc<f64>>, BuildError> {
-    if coef.iter().all(|&(a, b)| a == 0.0 && b == 0.0) {
-        return Ok(None);
-    }
-    let mut d = Csc::<f64>::zeros(sys.pattern.clone());
-    for (e, el) in model.elements.iter().enumerate() {
-        let (alpha, beta) = coef[el.material];
-        if alpha == 0.0 && beta == 0.0 {
-            continue;
-        }
-        let (ke, me) = element_matrices(model, e)?;
-        let free = element_free_dofs(model, &sys.dofs, e);
-        for &(lc, c) in &free {
-            for &(lr, r) in &free {
-                let slot = sys.pattern.find(r, c).expect("element entry in pattern");
-                d.values[slot] += alpha * me[(lr, lc)] + beta * ke[(lr, lc)];
-            }
-        }
-    }
-    Ok(Some(d))
 }

@@ -8,6 +8,7 @@
 
 mod build;
 pub mod craig_bampton;
+mod damping;
 pub mod deck;
 mod locate;
 pub mod lumped;
@@ -178,7 +179,7 @@ pub struct Problem {
     pub structural: Option<Csc<f64>>,
     /// Modal damping of the stuck modes (`[sweep] modal_damping`, a deck's `*MODAL
     /// DAMPING`): applied by the modal route only.
-    pub modal_damping: Vec<crate::input::scene::ModalDampingSpec>,
+    pub modal_damping: Vec<crate::settings::ModalDampingSpec>,
     pub interfaces: Vec<Interface>,
     pub contacts: Vec<ContactPoint>,
     pub cubic_springs: Vec<CubicSpring>,

@@ -7,8 +7,8 @@ use std::fmt::Write as _;
 use plotters::prelude::*;
 
 use crate::backbone::BackbonePoint;
-use crate::input::scene::schema::Units;
-use crate::input::scene::units::frequency_unit;
+use crate::settings::units::frequency_unit;
+use crate::settings::Units;
 
 /// One row of the report: the point and its outputs' first-harmonic amplitudes.
 #[derive(Debug, Clone)]

@@ -10,8 +10,8 @@ use std::path::Path;
 use plotters::prelude::*;
 
 use crate::fe::mesh::Face;
-use crate::input::scene::Units;
 use crate::model::Problem;
+use crate::settings::Units;
 use crate::solve::sweep::PointFreq;
 
 /// What a map shows of one contact point.

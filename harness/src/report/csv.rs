@@ -13,9 +13,9 @@
 use crate::capi::{
     JOINTLIN_REGIME_MICROSLIP, JOINTLIN_REGIME_OPEN, JOINTLIN_REGIME_SLIDING, JOINTLIN_REGIME_STICK,
 };
-use crate::input::scene::units::{frequency_unit, ColumnUnits};
-use crate::input::scene::Units;
 use crate::model::Problem;
+use crate::settings::units::{frequency_unit, ColumnUnits};
+use crate::settings::Units;
 use crate::solve::sweep::SweepResult;
 
 use crate::util::csv_table::CsvTable;

@@ -6,9 +6,9 @@ use std::fmt::Write;
 
 use crate::fe::elements::ElementKind;
 use crate::fe::mesh::Model;
-use crate::input::scene::units::frequency_unit;
-use crate::input::scene::Units;
 use crate::report::vtu::{unstructured_grid, CellType, PointField};
+use crate::settings::units::frequency_unit;
+use crate::settings::Units;
 use crate::solve::modal_stuck::StuckModes;
 use crate::solve::mode_labels::{Character, Kind, ModeGeometry};
 use crate::util::csv_table::CsvTable;

@@ -4,8 +4,8 @@
 
 use plotters::prelude::*;
 
-use crate::input::scene::units::frequency_unit;
 use crate::model::Problem;
+use crate::settings::units::frequency_unit;
 use crate::solve::sweep::SweepResult;
 use crate::util::ticks::{at_least_a_decade, log_tick};
 
@@ -23,7 +23,7 @@ fn err<E: std::fmt::Display>(e: E) -> String {
 pub fn frf(
     path: &std::path::Path,
     title: &str,
-    units: &crate::input::scene::Units,
+    units: &crate::settings::Units,
     p: &Problem,
     curves: &[(&SweepResult, &str)],
 ) -> Res {
@@ -53,7 +53,7 @@ pub struct FrfCurve {
 pub fn frf_curves(
     path: &std::path::Path,
     title: &str,
-    units: &crate::input::scene::Units,
+    units: &crate::settings::Units,
     names: &[String],
     curves: &[FrfCurve],
 ) -> Res {
@@ -154,7 +154,7 @@ pub fn frf_curves(
 const MARKED_POINTS: usize = 3;
 
 /// "frequency [Hz]", "frequency [1/<time>]" or "angular frequency [rad/<time>]".
-fn freq_label(units: &crate::input::scene::Units) -> String {
+fn freq_label(units: &crate::settings::Units) -> String {
     let fu = frequency_unit(units);
     if fu.factor == 1.0 {
         format!("frequency [{}]", fu.text)
@@ -221,7 +221,7 @@ pub fn passes(path: &std::path::Path, r: &SweepResult) -> Res {
 /// amplitude from 1e-3 (blue, deep stick) to 10 (red); sliding cells are outlined black.
 pub fn stick_slip(
     path: &std::path::Path,
-    units: &crate::input::scene::Units,
+    units: &crate::settings::Units,
     p: &Problem,
     r: &SweepResult,
     closed: &[bool],

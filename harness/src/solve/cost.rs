@@ -9,8 +9,8 @@ use std::time::Instant;
 use nalgebra::{Matrix3, Vector3};
 
 use crate::fe::pair_blocks::to_global;
-use crate::input::scene::Mode;
 use crate::model::Problem;
+use crate::settings::Mode;
 use crate::solve::sweep::fast::CONDENSE_MAX;
 use crate::solve::sweep::C64;
 use crate::solve::umfpack::{Symbolic, UmfpackError};

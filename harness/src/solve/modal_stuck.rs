@@ -4,8 +4,9 @@
 //! points hold nothing. These are the resonances a sweep should cover.
 
 use crate::fe::csc::Csc;
-use crate::input::scene::{Effects, Scene};
+use crate::input::scene::Scene;
 use crate::model::{build, Problem};
+use crate::settings::Effects;
 use crate::solve::modal::ModalOptions;
 use crate::solve::modal_band::{modes_below, BandModes};
 use crate::solve::static_step::{self, StaticState};

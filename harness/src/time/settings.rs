@@ -14,8 +14,8 @@
 
 use serde::Serialize;
 
-pub use crate::input::scene::{Integrator, Start, TimeDomainSpec};
-use crate::input::scene::{
+pub use crate::settings::{Integrator, Start, TimeDomainSpec};
+use crate::settings::{
     DEFAULT_MAX_CYCLES, DEFAULT_MIN_CYCLES, MAX_STEPS_PER_CYCLE, MIN_STEPS_PER_CYCLE,
 };
 

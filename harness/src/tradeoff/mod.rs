@@ -41,10 +41,11 @@ use std::time::Instant;
 use serde::Serialize;
 
 use crate::capi::{set_quadrature, Quadrature};
-use crate::input::scene::units::{frequency_unit, ColumnUnits};
-use crate::input::scene::{Mode, Scene, Units};
+use crate::input::scene::Scene;
 use crate::mhb::default_samples;
 use crate::run::{run, Extras};
+use crate::settings::units::{frequency_unit, ColumnUnits};
+use crate::settings::{Mode, Units};
 use crate::solve::sweep::harmonic_fe_point3d::{check_effects, PointModel};
 use crate::time::scene_run::{integrator_for, run_scene, FreqResult};
 use crate::time::{Integrator, Start, TimeSettings};

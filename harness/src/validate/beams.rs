@@ -34,7 +34,7 @@ pub fn set_freqs(s: &mut Scene, freqs: &[f64]) {
     s.spec.sweep.spacing = crate::input::scene::Spacing::Linear;
     s.spec.sweep.refine = freqs[1..]
         .iter()
-        .map(|&f| crate::input::scene::BandSpec {
+        .map(|&f| crate::settings::BandSpec {
             bias: 1.0,
             f_min: f,
             f_max: f,

@@ -151,7 +151,7 @@ impl SolidMesh {
     /// the small reference meshes of tests and comparisons.
     pub fn dense_matrices(
         &self,
-        mat: &crate::fe::mesh::Material,
+        mat: &crate::fe::material::Material,
     ) -> Result<(nalgebra::DMatrix<f64>, nalgebra::DMatrix<f64>), super::ElementError> {
         let ndof = 3 * self.nodes.len();
         let mut k = nalgebra::DMatrix::zeros(ndof, ndof);

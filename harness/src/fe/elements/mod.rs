@@ -31,7 +31,7 @@ use nalgebra::{DMatrix, Matrix3, Matrix6};
 use thiserror::Error;
 
 use crate::fe::hex8;
-use crate::fe::mesh::Material;
+use crate::fe::material::Material;
 use rules::QuadPoint;
 
 /// Errors of the element routines.

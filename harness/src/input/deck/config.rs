@@ -13,8 +13,8 @@
 use std::path::{Path, PathBuf};
 
 use super::error::{DeckError, DeckErrorKind as K, Origin};
-use crate::input::scene::IterationSpec;
 use crate::names::SchemeName;
+use crate::settings::IterationSpec;
 
 /// The file name the shim looks for in the job directory.
 pub const CONFIG_FILE: &str = "jointlin.cfg";

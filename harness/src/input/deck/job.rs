@@ -7,10 +7,10 @@
 use super::error::{DeckError, DeckErrorKind as K, DeckWarning};
 use super::model::{Deck, FrequencyScale, NodeTarget, Procedure, Step};
 use super::props::user_law;
-use crate::input::scene::{
+use crate::names::ContactLaw;
+use crate::settings::{
     BandSpec, Interval, ModalDampingSpec, OutputSpec, Spacing, SweepMethod, SweepSpec, Units,
 };
-use crate::names::ContactLaw;
 
 /// The comment line that states a deck's units (decks carry none):
 /// `** jointlin units: length=mm force=N time=s mass=t`.

@@ -17,6 +17,9 @@ pub enum Seg {
     Index(usize),
 }
 
+/// A failed check: where and why.
+pub type Problem = (KeyPath, String);
+
 /// A key path, e.g. `bodies[1].size`.
 #[derive(Debug, Clone, PartialEq, Eq, Default)]
 pub struct KeyPath(pub Vec<Seg>);

@@ -9,8 +9,6 @@ pub mod error;
 pub mod model_file;
 pub mod overrides;
 pub mod schema;
-pub mod studies;
-pub mod units;
 pub mod validate;
 
 use std::path::Path;
@@ -20,7 +18,6 @@ use super::deck::job::DeckJob;
 
 pub use error::SceneError;
 pub use schema::*;
-pub use studies::*;
 
 /// A validated scene and where it came from.
 #[derive(Debug, Clone, PartialEq)]

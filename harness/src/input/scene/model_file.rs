@@ -8,9 +8,9 @@
 use std::path::Path;
 use std::sync::Arc;
 
+use super::error::Problem;
 use super::error::{at_path, KeyPath, Seg};
 use super::schema::{SceneFile, SweepMethod, SweepSpec};
-use super::validate::Problem;
 use super::Scene;
 use crate::input::deck::job::DeckJob;
 use crate::input::InputError;

@@ -11,19 +11,17 @@ use serde::{Deserialize, Serialize};
 
 pub use crate::names::{LawName, NormalLawName, RuleName, SchemeName};
 
-use super::studies::{FieldOutputSpec, LossStudySpec, TimeDomainSpec};
-
 mod bodies;
 mod contact;
 mod loads;
 mod lumped;
-mod study;
 
 pub use bodies::*;
 pub use contact::*;
 pub use loads::*;
 pub use lumped::*;
-pub use study::*;
+
+pub use crate::settings::*;
 
 /// The whole scene file.
 #[derive(Debug, Clone, Deserialize, Serialize, PartialEq)]
@@ -88,20 +86,4 @@ pub struct SceneFile {
     /// (`jointlin run`); optional.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub field_output: Option<FieldOutputSpec>,
-}
-
-/// The scene's unit system, stated (names only; the numbers must be consistent with
-/// them: mass = force·time²/length).
-#[derive(Debug, Clone, Deserialize, Serialize, PartialEq)]
-#[serde(deny_unknown_fields)]
-pub struct Units {
-    pub length: String,
-    pub force: String,
-    pub time: String,
-    pub mass: String,
-    /// How outputs show frequencies: `"Hz"` (time in s) or `"1/<time>"`, cycles per time
-    /// unit (the default), or `"rad/<time>"`, angular frequency ω = 2πf. Display only:
-    /// `[sweep]` and `[[refine]]` frequencies stay in cycles per time unit.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub frequency: Option<String>,
 }

@@ -20,7 +20,7 @@ use std::collections::HashMap;
 
 use nalgebra::{Complex, Matrix3};
 
-use super::build::material_damping;
+use super::damping::material_damping;
 use super::{BuildError, ContactPoint, Interface, Output, Problem};
 use crate::fe::assembly::assemble_couplings;
 use crate::fe::pair_blocks::Coupling;

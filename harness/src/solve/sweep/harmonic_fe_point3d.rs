@@ -19,12 +19,12 @@
 //! difference of the whole marched map, as in [`crate::mhb::contact3d`].
 
 use crate::capi::{Contact3, Tangential, POINT3D_STATE_LEN};
-use crate::input::scene::{Effects, Mode};
 use crate::mhb::aft::Transforms;
 use crate::mhb::contact3d::{march3_from, Period3};
 use crate::mhb::MhbError;
 use crate::model::Problem;
 use crate::names::{NormalLawName, RuleName};
+use crate::settings::{Effects, Mode};
 
 use super::{SweepError, C64};
 

@@ -38,8 +38,8 @@ use thiserror::Error;
 use crate::capi::CapiError;
 use crate::fe::csc::Csc;
 use crate::fe::pair_blocks::to_global;
-use crate::input::scene::{Effects, IterationSpec};
 use crate::model::Problem;
+use crate::settings::{Effects, IterationSpec};
 use crate::solve::contact::normal_stiffness;
 use crate::solve::static_step::StaticState;
 use crate::solve::umfpack::{Numeric, Symbolic, UmfpackError};
@@ -485,12 +485,12 @@ pub fn run_cached(
     } else {
         freqs.to_vec()
     };
-    if opts.iteration.mode != crate::input::scene::Mode::Fast && problem.has_area_samples() {
+    if opts.iteration.mode != crate::settings::Mode::Fast && problem.has_area_samples() {
         return Err(SweepError::AreaSamplesNeedFastMode);
     }
     harmonic_fe_point3d::check_effects(problem, &opts.effects, opts.iteration.mode)?;
     if opts.linear != modal_route::LinearRoute::Direct
-        && opts.iteration.mode == crate::input::scene::Mode::Thesis
+        && opts.iteration.mode == crate::settings::Mode::Thesis
     {
         return Err(SweepError::ModalNeedsFastMode);
     }
@@ -500,14 +500,12 @@ pub fn run_cached(
     let zero_load = scale::is_zero_load(&setup);
     let mut r = match opts.iteration.mode {
         _ if zero_load => scale::zero_load(&mut setup, &order, opts)?,
-        crate::input::scene::Mode::Fast => fast::sweep(&mut setup, &order, opts, progress, cache)?,
-        crate::input::scene::Mode::Thesis => {
-            thesis::sweep(&mut setup, stat, &order, opts, progress)?
-        }
-        crate::input::scene::Mode::HarmonicBalance if !problem.cubic_springs.is_empty() => {
+        crate::settings::Mode::Fast => fast::sweep(&mut setup, &order, opts, progress, cache)?,
+        crate::settings::Mode::Thesis => thesis::sweep(&mut setup, stat, &order, opts, progress)?,
+        crate::settings::Mode::HarmonicBalance if !problem.cubic_springs.is_empty() => {
             return Err(SweepError::CubicInHarmonicBalance)
         }
-        crate::input::scene::Mode::HarmonicBalance => {
+        crate::settings::Mode::HarmonicBalance => {
             harmonic::sweep(&mut setup, &order, opts, progress)?
         }
     };

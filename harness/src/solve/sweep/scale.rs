@@ -13,7 +13,7 @@ use std::time::Instant;
 
 use super::{Options, PassRecord, PointFreq, Setup, SweepError, SweepResult, C64};
 use crate::capi::{self, Linearized};
-use crate::input::scene::Mode;
+use crate::settings::Mode;
 use crate::solve::contact::tangential;
 
 /// A → 0 linearization of every active point (k* = k_T0, d* = 0, regime stick), at ω.

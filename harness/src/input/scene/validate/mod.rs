@@ -13,11 +13,9 @@ mod study;
 use std::collections::{BTreeMap, BTreeSet};
 
 use super::error::KeyPath;
+pub use super::error::Problem;
 use super::schema::*;
-use super::units::frequency_spellings;
-
-/// A failed check: where and why.
-pub type Problem = (KeyPath, String);
+use crate::settings::units::frequency_spellings;
 
 /// Name of the implicit fixed body a mass body can rest on.
 pub const GROUND: &str = "ground";

@@ -9,7 +9,6 @@ use crate::names::MAX_FREQUENCY;
 const TOO_HIGH: &str = "must be <= 1e150 (1/time): (2πf)² of a higher frequency overflows";
 use crate::input::scene::error::KeyPath;
 use crate::input::scene::schema::*;
-use crate::input::scene::studies::*;
 
 /// The sweep's range and its refine bands.
 pub(super) fn sweep(c: &mut Checker, s: &SceneFile) {

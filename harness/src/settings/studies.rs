@@ -1,7 +1,7 @@
 //! The study tables of a scene: `[loss_study]` (read by the loss study),
 //! `[time_domain]` (the time-domain reference's settings, resolved by
 //! `time::TimeSettings`) and `[field_output]` (the displacement fields `jointlin run`
-//! writes for ParaView). They are part of the input, so they live with it.
+//! writes for ParaView). Settings of the studies that read them.
 
 use serde::{Deserialize, Serialize};
 

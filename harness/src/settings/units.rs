@@ -1,8 +1,24 @@
-//! Unit names of the scene's `[units]` for column headers, table headings and axis
+//! The scene's `[units]` and their names for column headers, table headings and axis
 //! labels. Column names append the unit with `_` (products) and `_per_` (quotients),
 //! e.g. `dissipated_power_N_mm_per_s`; labels write it as text, e.g. `N·mm/s`.
 
-use crate::input::scene::schema::Units;
+use serde::{Deserialize, Serialize};
+
+/// The scene's unit system, stated (names only; the numbers must be consistent with
+/// them: mass = force·time²/length).
+#[derive(Debug, Clone, Deserialize, Serialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct Units {
+    pub length: String,
+    pub force: String,
+    pub time: String,
+    pub mass: String,
+    /// How outputs show frequencies: `"Hz"` (time in s) or `"1/<time>"`, cycles per time
+    /// unit (the default), or `"rad/<time>"`, angular frequency ω = 2πf. Display only:
+    /// `[sweep]` and `[[refine]]` frequencies stay in cycles per time unit.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub frequency: Option<String>,
+}
 
 /// How outputs show frequencies (`[units] frequency`).
 #[derive(Debug, Clone, PartialEq)]
