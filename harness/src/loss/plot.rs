@@ -6,10 +6,7 @@ use std::path::Path;
 use plotters::prelude::*;
 
 use super::{LossStudySpec, StudyResult};
-
-fn err<E: std::fmt::Display>(e: E) -> String {
-    e.to_string()
-}
+use crate::report::svg::drawing_error as err;
 
 /// Draws `r` into `path`; axes in the study's reported units, torques in `torque_unit`.
 pub fn curves(

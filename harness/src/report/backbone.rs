@@ -6,6 +6,7 @@ use std::fmt::Write as _;
 
 use plotters::prelude::*;
 
+use super::svg::drawing_error as err;
 use crate::backbone::BackbonePoint;
 use crate::settings::units::frequency_unit;
 use crate::settings::Units;
@@ -55,10 +56,6 @@ pub fn csv(units: &Units, outputs: &[String], elements: &[String], rows: &[Row])
         s.push('\n');
     }
     s
-}
-
-fn err<E: std::fmt::Display>(e: E) -> String {
-    e.to_string()
 }
 
 /// backbone.svg: frequency (top) and damping ratio (bottom) against the first output's

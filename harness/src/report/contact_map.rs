@@ -4,11 +4,12 @@
 //! `.vtu` files (VTK XML UnstructuredGrid, ASCII, one quad cell per element face).
 
 use std::collections::HashMap;
-use std::fmt::Write as _;
 use std::path::Path;
 
 use plotters::prelude::*;
 
+use super::svg::drawing_error as err;
+use super::vtu::{unstructured_grid, CellType, PointField};
 use crate::fe::mesh::Face;
 use crate::model::Problem;
 use crate::settings::Units;
@@ -78,66 +79,34 @@ fn face_mesh(p: &Problem, interface: usize) -> FaceMesh {
     FaceMesh { points, quads }
 }
 
-fn data_array(out: &mut String, name: &str, comps: usize, values: impl Iterator<Item = f64>) {
-    let _ = write!(
-        out,
-        "        <DataArray type=\"Float64\" Name=\"{name}\" NumberOfComponents=\"{comps}\" format=\"ascii\">\n         "
-    );
-    for v in values {
-        let _ = write!(out, " {v:.9e}");
-    }
-    out.push_str("\n        </DataArray>\n");
-}
-
-/// The `.vtu` text of one interface's contact face with point data `pressure`,
-/// `amplitude`, `amplitude_ratio` (A/δ*) and `energy_density`.
+/// The `.vtu` text of one interface's contact face with point data `amplitude_ratio`
+/// (A/δ*, the active scalar), `pressure`, `amplitude` and `energy_density`.
 pub fn vtu(p: &Problem, interface: usize, vals: &[PointValues]) -> String {
     let fm = face_mesh(p, interface);
-    let mut s = String::new();
-    s.push_str("<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n  <UnstructuredGrid>\n");
-    let _ = writeln!(
-        s,
-        "    <Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">",
-        fm.points.len(),
-        fm.quads.len()
-    );
-    s.push_str("      <Points>\n");
-    data_array(
-        &mut s,
-        "position",
-        3,
-        fm.points.iter().flat_map(|&i| p.contacts[i].position),
-    );
-    s.push_str("      </Points>\n      <Cells>\n");
-    s.push_str(
-        "        <DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n         ",
-    );
-    for q in &fm.quads {
-        for k in q {
-            let _ = write!(s, " {k}");
-        }
-    }
-    s.push_str("\n        </DataArray>\n        <DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n         ");
-    for c in 1..=fm.quads.len() {
-        let _ = write!(s, " {}", 4 * c);
-    }
-    s.push_str("\n        </DataArray>\n        <DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n         ");
-    for _ in &fm.quads {
-        s.push_str(" 9"); // VTK_QUAD
-    }
-    s.push_str("\n        </DataArray>\n      </Cells>\n");
-    s.push_str("      <PointData Scalars=\"amplitude_ratio\">\n");
-    let field = |f: fn(&PointValues) -> f64| fm.points.iter().map(move |&i| f(&vals[i]));
-    data_array(&mut s, "pressure", 1, field(|v| v.pressure));
-    data_array(&mut s, "amplitude", 1, field(|v| v.amplitude));
-    data_array(&mut s, "amplitude_ratio", 1, field(|v| v.ratio));
-    data_array(&mut s, "energy_density", 1, field(|v| v.energy_density));
-    s.push_str("      </PointData>\n    </Piece>\n  </UnstructuredGrid>\n</VTKFile>\n");
-    s
-}
-
-fn err<E: std::fmt::Display>(e: E) -> String {
-    e.to_string()
+    let points: Vec<[f64; 3]> = fm.points.iter().map(|&i| p.contacts[i].position).collect();
+    let cells: Vec<(CellType, Vec<usize>)> = fm
+        .quads
+        .iter()
+        .map(|q| (CellType::Quad, q.to_vec()))
+        .collect();
+    let field = |f: fn(&PointValues) -> f64| -> Vec<f64> {
+        fm.points.iter().map(|&i| f(&vals[i])).collect()
+    };
+    let columns = [
+        ("amplitude_ratio", field(|v| v.ratio)),
+        ("pressure", field(|v| v.pressure)),
+        ("amplitude", field(|v| v.amplitude)),
+        ("energy_density", field(|v| v.energy_density)),
+    ];
+    let fields: Vec<PointField> = columns
+        .iter()
+        .map(|(name, values)| PointField {
+            name,
+            components: 1,
+            values,
+        })
+        .collect();
+    unstructured_grid(&points, &cells, &fields)
 }
 
 /// Which value a map shows.

@@ -9,9 +9,12 @@ use crate::settings::units::frequency_unit;
 use crate::solve::sweep::SweepResult;
 use crate::util::ticks::{at_least_a_decade, log_tick};
 
+use drawing_error as err;
+
 type Res = Result<(), String>;
 
-fn err<E: std::fmt::Display>(e: E) -> String {
+/// A plotters error as the message the plot writers return.
+pub fn drawing_error<E: std::fmt::Display>(e: E) -> String {
     e.to_string()
 }
 

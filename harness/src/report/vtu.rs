@@ -12,6 +12,8 @@ use std::fmt::Write;
 pub enum CellType {
     /// One node (VTK_VERTEX = 1): a lumped mass.
     Vertex,
+    /// Four nodes around a face (VTK_QUAD = 9): a contact face's element face.
+    Quad,
     /// Four nodes in C3D4 order, which is VTK's (VTK_TETRA = 10).
     Tetra,
     /// Eight nodes in C3D8 order, which is VTK's (VTK_HEXAHEDRON = 12).
@@ -26,6 +28,7 @@ impl CellType {
     fn code(self) -> u8 {
         match self {
             CellType::Vertex => 1,
+            CellType::Quad => 9,
             CellType::Tetra => 10,
             CellType::Hexahedron => 12,
             CellType::QuadraticTetra => 24,

@@ -5,10 +5,7 @@
 use plotters::prelude::*;
 
 use super::Tradeoff;
-
-fn err<E: std::fmt::Display>(e: E) -> String {
-    e.to_string()
-}
+use crate::report::svg::drawing_error as err;
 
 const FAMILIES: [(&str, &str); 8] = [
     ("linear", "linear stick"),
