@@ -60,6 +60,26 @@ impl System {
     pub fn n(&self) -> usize {
         self.k.nrows()
     }
+
+    /// K with every contact element stuck: its k_T0 between its DOFs (thesis (2.46)). An
+    /// open (F_N ≤ 0) or frictionless point carries no stuck stiffness (it transmits no
+    /// tangential force), and a cubic spring adds nothing at zero amplitude.
+    pub fn stuck_stiffness(&self) -> DMatrix<f64> {
+        let mut k = self.k.clone();
+        for e in &self.elements {
+            let Law::Point(t) = e.law else { continue };
+            if t.normal <= 0.0 || t.mu <= 0.0 {
+                continue;
+            }
+            k[(e.i, e.i)] += t.k_t0;
+            if let Some(j) = e.j {
+                k[(j, j)] += t.k_t0;
+                k[(e.i, j)] -= t.k_t0;
+                k[(j, e.i)] -= t.k_t0;
+            }
+        }
+        k
+    }
 }
 
 /// Zeroth and first harmonics (DOF-major, `m` = 2H + 1 coefficients per DOF, higher ones
@@ -365,22 +385,11 @@ impl<'a> Hb<'a> {
     fn linear_response(&self, omega: f64, stuck: bool) -> Vec<f64> {
         let m = self.tr.ncoef();
         let s = &self.sys;
-        let mut k = s.k.clone();
-        if stuck {
-            for e in &s.elements {
-                // An open (F_N ≤ 0) or frictionless point carries no stuck stiffness.
-                let Law::Point(t) = e.law else { continue };
-                if t.normal <= 0.0 || t.mu <= 0.0 {
-                    continue;
-                }
-                k[(e.i, e.i)] += t.k_t0;
-                if let Some(j) = e.j {
-                    k[(j, j)] += t.k_t0;
-                    k[(e.i, j)] -= t.k_t0;
-                    k[(j, e.i)] -= t.k_t0;
-                }
-            }
-        }
+        let k = if stuck {
+            s.stuck_stiffness()
+        } else {
+            s.k.clone()
+        };
         linear_coefficients(s, &k, &DVector::from_column_slice(&s.f0), omega, m)
     }
 

@@ -33,23 +33,11 @@ pub struct Lumped {
 }
 
 impl Lumped {
-    /// Undamped natural frequencies (1/time, ascending) with every joint stuck (its
-    /// k_T0 between its two DOFs; a cubic element adds nothing at zero amplitude):
-    /// K_s φ = ω² M φ solved as the symmetric (L⁻¹ K_s L⁻ᵀ) with M = L Lᵀ.
+    /// Undamped natural frequencies (1/time, ascending) with every joint stuck
+    /// ([`System::stuck_stiffness`]): K_s φ = ω² M φ solved as the symmetric
+    /// (L⁻¹ K_s L⁻ᵀ) with M = L Lᵀ.
     pub fn stuck_frequencies(&self) -> Result<Vec<f64>, String> {
-        let sys = &self.system;
-        let mut k = sys.k.clone();
-        for e in &sys.elements {
-            if let Law::Point(t) = e.law {
-                k[(e.i, e.i)] += t.k_t0;
-                if let Some(j) = e.j {
-                    k[(j, j)] += t.k_t0;
-                    k[(e.i, j)] -= t.k_t0;
-                    k[(j, e.i)] -= t.k_t0;
-                }
-            }
-        }
-        undamped_frequencies(&k, &sys.m)
+        undamped_frequencies(&self.system.stuck_stiffness(), &self.system.m)
     }
 }
 

@@ -110,3 +110,20 @@ fn jenkins_jacobian_is_exact() {
         }
     }
 }
+
+/// The stuck stiffness adds k_T0 only where the point carries a tangential force: a
+/// closed point with friction; an open point (F_N ≤ 0), a frictionless one and a cubic
+/// spring add nothing, as the start of a sweep and the stuck frequencies both take it.
+#[test]
+fn stuck_stiffness_skips_open_and_frictionless_points() {
+    let stuck = |mu: f64, normal: f64| {
+        let law = point(LawName::Jenkins, RuleName::Thesis, mu, normal, 50.0);
+        let sys = oscillator(1.0, 0.0, 20.0, Complex::new(1.0, 0.0), law);
+        sys.stuck_stiffness()[(0, 0)]
+    };
+    assert_eq!(stuck(0.3, 10.0), 70.0);
+    assert_eq!(stuck(0.3, 0.0), 20.0);
+    assert_eq!(stuck(0.3, -1.0), 20.0);
+    assert_eq!(stuck(0.0, 10.0), 20.0);
+    assert_eq!(duffing().stuck_stiffness()[(0, 0)], 20.0);
+}
