@@ -57,8 +57,8 @@ pub fn is_test_file(file: &str) -> bool {
     name == "tests.rs" || name.ends_with("_tests.rs") || file.split('/').any(|d| d == "tests")
 }
 
-/// The lines of `text` outside `#[cfg(test)]` items and `//` comments, numbered from 1.
-pub fn code_lines(text: &str) -> Vec<(usize, &str)> {
+/// The lines of `text` outside `#[cfg(test)]` items, numbered from 1.
+pub fn non_test_lines(text: &str) -> Vec<(usize, &str)> {
     let mut out = Vec::new();
     let mut skip_depth: Option<i64> = None; // brace depth inside a skipped test item
     let mut cfg_test = false;
@@ -83,10 +83,15 @@ pub fn code_lines(text: &str) -> Vec<(usize, &str)> {
             }
             continue; // the test item's first line (e.g. `mod tests {` or `use …;`)
         }
-        if t.starts_with("//") {
-            continue;
-        }
         out.push((i + 1, line));
     }
     out
+}
+
+/// The lines of `text` outside `#[cfg(test)]` items and `//` comments, numbered from 1.
+pub fn code_lines(text: &str) -> Vec<(usize, &str)> {
+    non_test_lines(text)
+        .into_iter()
+        .filter(|(_, l)| !l.trim().starts_with("//"))
+        .collect()
 }
