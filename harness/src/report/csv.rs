@@ -34,33 +34,18 @@ pub fn results(p: &Problem, r: &SweepResult, units: &Units) -> String {
     let mut t = CsvTable::new(&header);
     for (i, f) in r.freqs.iter().enumerate() {
         let mut row = vec![format!("{:.10e}", fu.show(*f))];
-        if r.is_singular(i) || r.failure(i).is_some() {
+        let status = r.status(i);
+        if status.has_response() {
+            for v in &r.outputs[i] {
+                row.push(format!("{:.10e}", v.norm()));
+                row.push(format!("{:.6}", v.arg().to_degrees()));
+            }
+            row.push(format!("{:.10e}", r.power[i]));
+        } else {
             // No response computed: empty fields, never inf or NaN.
             row.resize(header.len() - 1, String::new());
-            row.push(
-                if r.is_singular(i) {
-                    "singular"
-                } else {
-                    "failed"
-                }
-                .into(),
-            );
-            t.row(&row);
-            continue;
         }
-        for v in &r.outputs[i] {
-            row.push(format!("{:.10e}", v.norm()));
-            row.push(format!("{:.6}", v.arg().to_degrees()));
-        }
-        row.push(format!("{:.10e}", r.power[i]));
-        row.push(
-            if r.converged[i] {
-                "converged"
-            } else {
-                "not_converged"
-            }
-            .into(),
-        );
+        row.push(status.name().into());
         t.row(&row);
     }
     t.finish()
@@ -83,8 +68,8 @@ pub fn harmonics(p: &Problem, r: &SweepResult, units: &Units) -> String {
     let mut t = CsvTable::new(&header);
     for (i, (f, outs)) in r.freqs.iter().zip(&r.harmonics).enumerate() {
         let mut row = vec![format!("{:.10e}", fu.show(*f))];
-        if r.is_singular(i) {
-            // No response computed: empty fields, as in results.csv.
+        if !r.status(i).has_response() {
+            // No response computed (singular or failed): empty fields, as in results.csv.
             row.resize(header.len(), String::new());
         } else {
             row.extend(outs.iter().flatten().map(|v| format!("{:.10e}", v.norm())));

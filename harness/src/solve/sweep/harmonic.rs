@@ -8,9 +8,10 @@
 
 use std::time::Instant;
 
-use super::harmonic_fe::FeBalance;
+use super::driver::{drive, FrequencySolver, Outcome, Row, Shape};
+use super::harmonic_fe::{FeBalance, FeSolution};
 use super::modal_route::LinearRoute;
-use super::{Options, PassRecord, PointFreq, Setup, SweepError, SweepResult, C64};
+use super::{Options, PassRecord, PointFreq, Setup, SweepError, SweepResult};
 use crate::capi;
 use crate::mhb::{default_samples, NewtonOptions};
 use crate::solve::contact::tangential;
@@ -29,16 +30,7 @@ pub fn sweep(
     let h = it.harmonics.unwrap_or(1).max(1);
     let n = it.samples.unwrap_or_else(|| default_samples(h));
     let p = setup.problem;
-    let active = setup.active.clone();
-    let pressure = setup.pressure.clone();
-    let newton = NewtonOptions {
-        rtol: it.tolerance,
-        max_iter: it.max_passes,
-    };
-    let mut res = SweepResult {
-        freqs: freqs.to_vec(),
-        ..Default::default()
-    };
+    let mut res = SweepResult::default();
     let mut hb = FeBalance::new(setup, h, n);
     if let LinearRoute::Modal { modes, residual } = opts.linear {
         let t = Instant::now();
@@ -46,140 +38,25 @@ pub fn sweep(
         res.modal = hb.modal.as_ref().map(|r| r.summary.clone());
         res.time("modal basis (modes, residual)", t);
     }
-    let mut start: Option<Vec<f64>> = None;
-    let nout = p.outputs.len();
-    let npoints = opts.point_results.then_some(p.contacts.len());
-    'freqs: for (fi, &f) in freqs.iter().enumerate() {
-        progress("frequency", fi + 1, freqs.len());
-        let omega = 2.0 * std::f64::consts::PI * f;
-        // A solve or a library call that fails at this frequency fails this frequency
-        // only (status `failed`, the message in run.json); the next one starts cold.
-        macro_rules! per_freq {
-            ($e:expr) => {
-                match $e {
-                    Ok(v) => v,
-                    Err(e) => {
-                        let e: SweepError = e;
-                        res.push_failed(&e, nout, npoints);
-                        res.harmonics
-                            .push(vec![vec![C64::new(0.0, 0.0); h + 1]; nout]);
-                        let _ = start.take();
-                        continue 'freqs;
-                    }
-                }
-            };
-        }
-        let regular = per_freq!(hb
-            .condense(omega)
-            .map_err(|source| SweepError::Umfpack { freq: f, source }));
-        if !regular {
-            // Singular dynamic stiffness (e.g. an undamped eigenfrequency with the joint
-            // open): no response, as in the other modes; the next frequency starts afresh.
-            res.push_singular(nout, npoints);
-            res.harmonics
-                .push(vec![vec![C64::new(0.0, 0.0); h + 1]; nout]);
-            start = None;
-            continue;
-        }
-        let from = start.take().unwrap_or_else(|| hb.linear_start());
-        let balance = |source| SweepError::Balance { freq: f, source };
-        let sol = match hb.solve(&from, newton) {
-            Ok(s) if s.converged => s,
-            // Not converged (or an AFT failure, e.g. a loop that did not close) from the
-            // previous solution: once more from the stuck response, then with the load
-            // raised in steps.
-            first => {
-                let second = if fi > 0 {
-                    hb.solve(&hb.linear_start(), newton)
-                } else {
-                    first
-                };
-                match second {
-                    Ok(s) if s.converged => s,
-                    second => match (second, hb.solve_ramped(RAMP_STEPS, newton)) {
-                        (_, Ok(c)) if c.converged => c,
-                        (Ok(b), Ok(c)) if b.residual < c.residual => b,
-                        (_, Ok(c)) => c,
-                        (Ok(b), Err(_)) => b,
-                        (Err(e), Err(_)) => per_freq!(Err(balance(e))),
-                    },
-                }
-            }
-        };
-        // The uncondensed check of a converged frequency (harmonic_check.rs); one that
-        // fails it is not converged.
-        let check = if sol.converged {
-            let t = Instant::now();
-            let v = per_freq!(hb.check(&sol, it.tolerance, f));
-            res.time("a-posteriori check", t);
-            Some(v)
-        } else {
-            None
-        };
-        // Per point: the energy of its directions (a three-direction point holds its
-        // whole energy on its first one).
-        let mut energy = vec![0.0; active.len()];
-        for (d, e) in hb.dirs.iter().zip(&sol.dissipated) {
-            energy[d.point] += e;
-        }
-        if opts.point_results {
-            let t = Instant::now();
-            let nc = hb.tr.ncoef();
-            let mut pts = vec![PointFreq::default(); p.contacts.len()];
-            for (q, &i) in active.iter().enumerate() {
-                let tg = tangential(&p.interfaces[p.contacts[i].interface], pressure[i]);
-                let mut pf = PointFreq {
-                    energy: energy[q],
-                    ..Default::default()
-                };
-                for d in 0..2 {
-                    let j = hb
-                        .dirs
-                        .iter()
-                        .position(|x| x.point == q && x.comp == 1 + d)
-                        .expect("every active point has both tangential directions");
-                    let amp = sol.r[j * nc + 1].hypot(sol.r[j * nc + 2]);
-                    // A/δ* and the regime of the first-harmonic amplitude (library's).
-                    let l = per_freq!(capi::linearize(&tg, amp, omega).map_err(SweepError::from));
-                    pf.amplitude[d] = amp;
-                    pf.k_star[d] = sol.describing[j].re;
-                    pf.d_star[d] = sol.describing[j].im / omega;
-                    pf.ratio[d] = l.amplitude_ratio;
-                    pf.regime[d] = l.regime;
-                }
-                pts[i] = pf;
-            }
-            res.points.push(pts);
-            res.time("point outputs", t);
-        }
-        res.outputs
-            .push(sol.outputs.iter().map(|hs| hs[1.min(h)]).collect());
-        res.harmonics.push(sol.outputs.clone());
-        res.power.push(energy.iter().sum::<f64>() * f);
-        // The modal route's field solves the truncated model: there the check is the
-        // claim's consistency, the residual the truncation error (as in mode fast).
-        let converged = sol.converged
-            && check.is_some_and(|v| {
-                if hb.modal.is_some() {
-                    v.consistency <= 1.0
-                } else {
-                    v.passes(it.tolerance)
-                }
-            });
-        res.iterations.push(sol.iterations);
-        res.converged.push(converged);
-        res.singular.push(false);
-        res.failed.push(None);
-        res.checks.push(check.filter(|_| converged));
-        start = sol.converged.then_some(sol.r);
-    }
+    let shape = Shape {
+        outputs: p.outputs.len(),
+        points: opts.point_results.then_some(p.contacts.len()),
+    };
+    let mut solver = Harmonic {
+        hb,
+        opts,
+        h,
+        start: None,
+        index: 0,
+    };
+    drive(&mut solver, freqs, shape, progress, &mut res);
+    let hb = solver.hb;
     res.factorizations = hb.stats.factorizations;
     res.gmres_solves = hb.stats.gmres_iterations;
     *res.timings.entry("receptance solves".into()).or_default() += hb.stats.receptance_seconds;
     *res.timings
         .entry("harmonic balance (AFT + Newton)".into())
         .or_default() += hb.stats.contact_seconds;
-    // CPU seconds beside the wall ones: on a shared machine the wall split is noise.
     res.timings
         .insert("CPU: receptance solves".into(), hb.stats.receptance_cpu);
     res.timings.insert(
@@ -193,4 +70,147 @@ pub fn sweep(
         converged: res.converged.iter().filter(|&&c| c).count(),
     });
     Ok(res)
+}
+
+/// The harmonic balance of one frequency after another, each started from the last
+/// converged solution.
+struct Harmonic<'s, 'a> {
+    hb: FeBalance<'s, 'a>,
+    opts: &'s Options,
+    /// Harmonics H.
+    h: usize,
+    /// The last converged solution (the next frequency's start), `None`: start linear.
+    start: Option<Vec<f64>>,
+    /// Frequencies solved so far.
+    index: usize,
+}
+
+impl FrequencySolver for Harmonic<'_, '_> {
+    fn solve(&mut self, f: f64, res: &mut SweepResult) -> Result<Outcome, SweepError> {
+        let first = self.index == 0;
+        self.index += 1;
+        let it = self.opts.iteration;
+        let omega = 2.0 * std::f64::consts::PI * f;
+        let hb = &mut self.hb;
+        let regular = hb
+            .condense(omega)
+            .map_err(|source| SweepError::Umfpack { freq: f, source })?;
+        if !regular {
+            self.start = None;
+            return Ok(Outcome::Singular);
+        }
+        let newton = NewtonOptions {
+            rtol: it.tolerance,
+            max_iter: it.max_passes,
+        };
+        let from = self.start.take().unwrap_or_else(|| hb.linear_start());
+        let balance = |source| SweepError::Balance { freq: f, source };
+        let sol = match hb.solve(&from, newton) {
+            Ok(s) if s.converged => s,
+            first_try => {
+                let second = if first {
+                    first_try
+                } else {
+                    hb.solve(&hb.linear_start(), newton)
+                };
+                match second {
+                    Ok(s) if s.converged => s,
+                    second => match (second, hb.solve_ramped(RAMP_STEPS, newton)) {
+                        (_, Ok(c)) if c.converged => c,
+                        (Ok(b), Ok(c)) if b.residual < c.residual => b,
+                        (_, Ok(c)) => c,
+                        (Ok(b), Err(_)) => b,
+                        (Err(e), Err(_)) => return Err(balance(e)),
+                    },
+                }
+            }
+        };
+        let check = if sol.converged {
+            let t = Instant::now();
+            let v = hb.check(&sol, it.tolerance, f)?;
+            res.time("a-posteriori check", t);
+            Some(v)
+        } else {
+            None
+        };
+        let mut energy = vec![0.0; hb.setup.active.len()];
+        for (d, e) in hb.dirs.iter().zip(&sol.dissipated) {
+            energy[d.point] += e;
+        }
+        let points = if self.opts.point_results {
+            let t = Instant::now();
+            let pts = self.points(&sol, &energy, omega)?;
+            res.time("point outputs", t);
+            Some(pts)
+        } else {
+            None
+        };
+        let hb = &self.hb;
+        let converged = sol.converged
+            && check.is_some_and(|v| {
+                if hb.modal.is_some() {
+                    v.consistency <= 1.0
+                } else {
+                    v.passes(it.tolerance)
+                }
+            });
+        self.start = sol.converged.then(|| sol.r.clone());
+        Ok(Outcome::Solved(Row {
+            outputs: sol.outputs.iter().map(|hs| hs[1.min(self.h)]).collect(),
+            harmonics: Some(sol.outputs.clone()),
+            power: energy.iter().sum::<f64>() * f,
+            points,
+            iterations: sol.iterations,
+            converged,
+            check: check.filter(|_| converged),
+            field: None,
+        }))
+    }
+
+    fn restart(&mut self) {
+        self.start = None;
+    }
+
+    fn harmonics(&self) -> Option<usize> {
+        Some(self.h + 1)
+    }
+}
+
+impl Harmonic<'_, '_> {
+    /// Per contact point: the balance's first-harmonic amplitude and describing function,
+    /// the regime and A/δ* from the library at that amplitude, the energy per cycle.
+    fn points(
+        &self,
+        sol: &FeSolution,
+        energy: &[f64],
+        omega: f64,
+    ) -> Result<Vec<PointFreq>, SweepError> {
+        let hb = &self.hb;
+        let p = hb.setup.problem;
+        let nc = hb.tr.ncoef();
+        let mut pts = vec![PointFreq::default(); p.contacts.len()];
+        for (q, &i) in hb.setup.active.iter().enumerate() {
+            let tg = tangential(&p.interfaces[p.contacts[i].interface], hb.setup.pressure[i]);
+            let mut pf = PointFreq {
+                energy: energy[q],
+                ..Default::default()
+            };
+            for d in 0..2 {
+                let j = hb
+                    .dirs
+                    .iter()
+                    .position(|x| x.point == q && x.comp == 1 + d)
+                    .expect("every active point has both tangential directions");
+                let amp = sol.r[j * nc + 1].hypot(sol.r[j * nc + 2]);
+                let l = capi::linearize(&tg, amp, omega)?;
+                pf.amplitude[d] = amp;
+                pf.k_star[d] = sol.describing[j].re;
+                pf.d_star[d] = sol.describing[j].im / omega;
+                pf.ratio[d] = l.amplitude_ratio;
+                pf.regime[d] = l.regime;
+            }
+            pts[i] = pf;
+        }
+        Ok(pts)
+    }
 }

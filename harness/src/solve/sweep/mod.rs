@@ -13,9 +13,13 @@
 
 pub mod anderson;
 pub mod bracket;
+pub mod driver;
 pub mod fast;
 mod fast_coupled;
+mod fast_results;
+mod fast_unknowns;
 mod fast_update;
+mod fast_workspace;
 pub mod harmonic;
 pub mod harmonic_check;
 pub mod harmonic_fe;
@@ -235,45 +239,6 @@ impl SweepResult {
         self.singular.reverse();
         self.failed.reverse();
         self.checks.reverse();
-    }
-
-    /// The next frequency is singular: a row of zeros, not converged.
-    pub(crate) fn push_singular(&mut self, nout: usize, points: Option<usize>) {
-        self.outputs.push(vec![C64::new(0.0, 0.0); nout]);
-        self.power.push(0.0);
-        if let Some(n) = points {
-            self.points.push(vec![PointFreq::default(); n]);
-        }
-        self.iterations.push(0);
-        self.converged.push(false);
-        self.singular.push(true);
-        self.failed.push(None);
-        self.checks.push(None);
-    }
-
-    /// Why frequency `i` failed, if it did.
-    pub fn failure(&self, i: usize) -> Option<&str> {
-        self.failed.get(i).and_then(|m| m.as_deref())
-    }
-
-    /// The next frequency failed with `e`: a row of zeros (`points` contact points when
-    /// per-point results are kept), not converged.
-    pub(crate) fn push_failed(&mut self, e: &SweepError, nout: usize, points: Option<usize>) {
-        self.outputs.push(vec![C64::new(0.0, 0.0); nout]);
-        self.power.push(0.0);
-        if let Some(n) = points {
-            self.points.push(vec![PointFreq::default(); n]);
-        }
-        self.iterations.push(0);
-        self.converged.push(false);
-        self.singular.push(false);
-        self.failed.push(Some(e.to_string()));
-        self.checks.push(None);
-    }
-
-    /// Whether frequency `i` was singular (no response computed there).
-    pub fn is_singular(&self, i: usize) -> bool {
-        self.singular.get(i).copied().unwrap_or(false)
     }
 
     pub(crate) fn time(&mut self, key: &str, since: Instant) {
