@@ -50,10 +50,7 @@ pub fn main(a: Args) -> ExitCode {
     // between non-conforming meshes), with the scene's location; lumped scenes with
     // [[joints]] are `jointlin backbone`'s and have no FE model.
     let mut built = None;
-    let lumped = !s.spec.joints.is_empty()
-        || !s.spec.matrices.is_empty()
-        || s.spec.springs.iter().any(|sp| sp.between.is_some());
-    if lumped {
+    if s.spec.is_lumped() {
         // The lumped system reads the [[matrices]] files: their errors name file:line.
         if let Err(e) = model::lumped::build(&s) {
             eprintln!("error: {}: {e}", s.file);

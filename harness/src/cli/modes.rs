@@ -36,10 +36,7 @@ pub fn main(a: Args) -> ExitCode {
         Ok(s) => s,
         Err(code) => return code,
     };
-    let lumped = !s.spec.matrices.is_empty()
-        || !s.spec.joints.is_empty()
-        || s.spec.springs.iter().any(|sp| sp.between.is_some());
-    if lumped {
+    if s.spec.is_lumped() {
         return lumped_modes(&a, &s);
     }
     // A deck's *FREQUENCY step says how many modes, unless --count does.

@@ -98,10 +98,7 @@ pub fn main(a: Args) -> ExitCode {
     if a.time_domain {
         return time_domain_run(&s, &a.out, a.quiet);
     }
-    let lumped = !s.spec.matrices.is_empty()
-        || !s.spec.joints.is_empty()
-        || s.spec.springs.iter().any(|sp| sp.between.is_some());
-    if lumped {
+    if s.spec.is_lumped() {
         if s.spec.iteration.mode == Mode::Thesis {
             eprintln!(
                 "error: {}: a lumped system ([[matrices]], [[joints]]) is swept first order (mode \"fast\", the default) or by harmonic balance (mode \"harmonic_balance\"); the thesis's pass scheme is for FE scenes",

@@ -100,10 +100,7 @@ pub fn build(scene: &Scene) -> Result<Problem, BuildError> {
         )));
     }
     let s = &scene.spec;
-    if !s.joints.is_empty()
-        || !s.matrices.is_empty()
-        || s.springs.iter().any(|sp| sp.between.is_some())
-    {
+    if s.is_lumped() {
         return Err(BuildError::Other(
             "[[matrices]], [[joints]] and springs `between` two bodies are read by `jointlin backbone` only"
                 .into(),

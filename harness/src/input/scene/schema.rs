@@ -87,3 +87,14 @@ pub struct SceneFile {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub field_output: Option<FieldOutputSpec>,
 }
+
+impl SceneFile {
+    /// A lumped system rather than an FE model: `[[matrices]]`, `[[joints]]`, or springs
+    /// `between` two bodies (run by the lumped sweep, `jointlin backbone`, the lumped
+    /// modes).
+    pub fn is_lumped(&self) -> bool {
+        !self.matrices.is_empty()
+            || !self.joints.is_empty()
+            || self.springs.iter().any(|sp| sp.between.is_some())
+    }
+}
