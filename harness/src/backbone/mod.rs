@@ -19,6 +19,7 @@ pub mod epmc;
 pub mod fe;
 pub mod first_order;
 pub mod modes;
+pub mod report;
 pub mod ringdown;
 
 #[cfg(test)]

@@ -8,12 +8,12 @@ use std::time::Instant;
 
 use serde_json::json;
 
+use jointlin_harness::backbone::report::{self, Row};
 use jointlin_harness::backbone::{epmc, fe, first_order, log_space, BackbonePoint, C64};
 use jointlin_harness::input::scene::schema::BodyKind;
 use jointlin_harness::input::scene::Scene;
 use jointlin_harness::mhb::default_samples;
 use jointlin_harness::model::lumped::{self, Lumped};
-use jointlin_harness::report::backbone::{self as report, Row};
 use jointlin_harness::settings::units::frequency_unit;
 use jointlin_harness::util::atomic;
 

@@ -1,6 +1,5 @@
 //! Reports of a run: CSV tables, run.json and SVG plots. Reports read results only.
 
-pub mod backbone;
 pub mod contact_map;
 pub mod csv;
 pub mod field;

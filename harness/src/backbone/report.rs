@@ -6,8 +6,8 @@ use std::fmt::Write as _;
 
 use plotters::prelude::*;
 
-use super::svg::drawing_error as err;
-use crate::backbone::BackbonePoint;
+use super::BackbonePoint;
+use crate::report::svg::drawing_error as err;
 use crate::settings::units::frequency_unit;
 use crate::settings::Units;
 
