@@ -34,6 +34,7 @@ use realfft::{ComplexToReal, RealFftPlanner, RealToComplex};
 
 use super::aitken::Aitken;
 use crate::capi::{self, CapiError, Tangential, POINT_STATE_LEN};
+pub use crate::model::lumped_system::Law;
 use crate::names::LawName;
 
 /// Loop closure: consecutive periods' forces agree to this fraction of the force scale
@@ -116,15 +117,6 @@ impl Transforms {
             c[2 * h] = -2.0 * self.spec[h].im / n;
         }
     }
-}
-
-/// The nonlinear force law of an element.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum Law {
-    /// A contact point of the library (tangential direction), marched through the C API.
-    Point(Tangential),
-    /// Cubic spring F = k₃ δ³ (the Duffing oscillator's term; thesis (4.1)).
-    Cubic(f64),
 }
 
 /// One period of an element's force.

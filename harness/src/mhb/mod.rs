@@ -17,7 +17,8 @@
 //! the actual force rather than to the Ersatzfunktion (4.3); [`first_order`] is the
 //! library's linearization (`jointlin_linearize`) iterated to consistency, for comparison.
 //!
-//! Built on this room: the FE sweep's harmonic balance (`solve::sweep::harmonic_fe`), the
+//! The system itself ([`System`], its [`Element`]s and their [`Law`]s) is the model's
+//! (`model::lumped_system`). Built on this room: the FE sweep's harmonic balance (`solve::sweep::harmonic_fe`), the
 //! RK4 reference of these systems (`time::mhb_reference`) and the cost tables of
 //! `jointlin mhb` (`bench::mhb_chain`, `bench::mhb_fe`).
 
@@ -33,54 +34,8 @@ mod tests;
 
 use nalgebra::{DMatrix, DVector};
 
-pub use aft::{AftError, Law, Transforms};
-
-/// One nonlinear element between DOF `i` and DOF `j` (`None`: ground); its force acts
-/// with + on i and − on j.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Element {
-    pub i: usize,
-    pub j: Option<usize>,
-    pub law: Law,
-}
-
-/// A lumped system: dense M, D, K (n × n), first-harmonic load f̂ (f(t) = f₀ +
-/// Re(f̂ e^{iωt}) = f₀ + f̂.re cos ωt − f̂.im sin ωt) and elements.
-#[derive(Debug, Clone)]
-pub struct System {
-    pub m: DMatrix<f64>,
-    pub d: DMatrix<f64>,
-    pub k: DMatrix<f64>,
-    pub f0: Vec<f64>,
-    pub f1: Vec<nalgebra::Complex<f64>>,
-    pub elements: Vec<Element>,
-}
-
-impl System {
-    pub fn n(&self) -> usize {
-        self.k.nrows()
-    }
-
-    /// K with every contact element stuck: its k_T0 between its DOFs (thesis (2.46)). An
-    /// open (F_N ≤ 0) or frictionless point carries no stuck stiffness (it transmits no
-    /// tangential force), and a cubic spring adds nothing at zero amplitude.
-    pub fn stuck_stiffness(&self) -> DMatrix<f64> {
-        let mut k = self.k.clone();
-        for e in &self.elements {
-            let Law::Point(t) = e.law else { continue };
-            if t.normal <= 0.0 || t.mu <= 0.0 {
-                continue;
-            }
-            k[(e.i, e.i)] += t.k_t0;
-            if let Some(j) = e.j {
-                k[(j, j)] += t.k_t0;
-                k[(e.i, j)] -= t.k_t0;
-                k[(j, e.i)] -= t.k_t0;
-            }
-        }
-        k
-    }
-}
+pub use crate::model::lumped_system::{Element, Law, System};
+pub use aft::{AftError, Transforms};
 
 /// Zeroth and first harmonics (DOF-major, `m` = 2H + 1 coefficients per DOF, higher ones
 /// zero) of the linear system with stiffness `k` in place of `sys.k`: K x̄ = f₀ and

@@ -12,11 +12,11 @@ use std::path::Path;
 
 use nalgebra::{Complex, DMatrix, Vector3};
 
+use super::lumped_system::{Element, Law, System};
 use crate::capi::Tangential;
 use crate::input::matrices;
 use crate::input::scene::schema::{BodyKind, SceneFile};
 use crate::input::scene::Scene;
-use crate::mhb::{Element, Law, System};
 
 const GROUND: &str = "ground";
 

@@ -12,6 +12,7 @@ mod damping;
 pub mod deck;
 mod locate;
 pub mod lumped;
+pub mod lumped_system;
 pub mod screw_load;
 pub mod subgrid;
 
