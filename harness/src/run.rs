@@ -17,7 +17,7 @@ use crate::solve::modal_band::modes_below;
 use crate::solve::modal_stuck::stuck_stiffness_after;
 use crate::solve::static_step::{self, StaticError, StaticState};
 use crate::solve::sweep::modal_route::{
-    LinearRoute, ModeChoice, BAND_FACTOR, MAX_MODES, MIN_MODES,
+    LinearRoute, ModalRoute, ModeChoice, BAND_FACTOR, MAX_MODES, MIN_MODES,
 };
 use crate::solve::sweep::{self, Options, SweepError, SweepResult};
 
@@ -148,6 +148,52 @@ pub fn sweep_frequencies(
     Ok(scene.frequencies_between(&modes.frequencies_hz()))
 }
 
+/// The sweep's frequencies and, when the fast modal route's eigenfrequencies divide the
+/// range, its basis (built first, so the modes are computed once) with its cost in
+/// seconds; `opts.linear` set for the basis.
+fn frequencies_and_basis(
+    scene: &Scene,
+    problem: &Problem,
+    stat: &StaticState,
+    opts: &mut Options,
+) -> Result<(Vec<f64>, Option<ModalRoute>, f64), RunError> {
+    if !divides_by_fast_modal_route(scene) {
+        return Ok((sweep_frequencies(scene, problem, stat)?, None, 0.0));
+    }
+    let t = Instant::now();
+    let range = scene.frequencies();
+    opts.linear = linear_route(scene, &range);
+    // The sweep's first frequency, as the sweep will run them.
+    let f0 = if opts.descending {
+        range[range.len() - 1]
+    } else {
+        range[0]
+    };
+    let route = sweep::fast::modal_basis(problem, stat, opts, f0)?;
+    let freqs = scene.frequencies_between(&route.frequencies());
+    Ok((freqs, Some(route), t.elapsed().as_secs_f64()))
+}
+
+/// The main sweep's options: the scene's iteration and effects, the run's extras.
+fn sweep_options(scene: &Scene, extras: Extras) -> Options {
+    let spec = &scene.spec;
+    let mut opts = Options::from_scene(spec.iteration, spec.effects);
+    if let Some(c) = extras.condense_max {
+        opts.condense_max = c;
+    }
+    opts.descending = spec.sweep.direction == Direction::Down;
+    opts
+}
+
+/// Whether the scene's range is divided at the stuck eigenfrequencies and swept in mode
+/// fast by the modal route: then the route's own basis gives the eigenfrequencies.
+fn divides_by_fast_modal_route(scene: &Scene) -> bool {
+    let s = &scene.spec;
+    s.sweep.interval == Interval::Eigenfrequency
+        && s.sweep.method == SweepMethod::Modal
+        && s.iteration.mode == Mode::Fast
+}
+
 /// Runs a scene. `progress(label, done, total)` is called per frequency of each pass.
 pub fn run(
     scene: &Scene,
@@ -164,17 +210,14 @@ pub fn run(
     let t = Instant::now();
     let stat = static_step::solve(&problem, eff.normal_contact_nonlinearity)?;
     let t_static = t.elapsed().as_secs_f64();
-    let freqs = sweep_frequencies(scene, &problem, &stat)?;
-    let mut opts = Options::from_scene(spec.iteration, eff);
-    opts.linear = linear_route(scene, &freqs);
-    if let Some(c) = extras.condense_max {
-        opts.condense_max = c;
-    }
-    opts.descending = spec.sweep.direction == Direction::Down;
-    let t = Instant::now();
+    let mut opts = sweep_options(scene, extras);
     // One modal basis for every sweep of the run (they share the problem).
-    let mut cache = None;
-    let main = sweep::run_cached(&problem, &stat, &freqs, &opts, progress, &mut cache)?;
+    let t = Instant::now();
+    let (freqs, mut cache, t_basis) = frequencies_and_basis(scene, &problem, &stat, &mut opts)?;
+    opts.linear = linear_route(scene, &freqs);
+    let mut main = sweep::run_cached(&problem, &stat, &freqs, &opts, progress, &mut cache)?;
+    // A basis built before the sweep (its eigenfrequencies divided the range): its cost.
+    main.add_seconds("modal basis (modes, residual)", t_basis);
     let down = if spec.sweep.direction == Direction::UpDown {
         let mut o = opts;
         o.descending = true;
@@ -408,5 +451,48 @@ fn point3d_work(on: bool, steps: u64, what: &str) -> String {
         format!("{what}: {steps} jointlin_point3d_step calls (both effects together)")
     } else {
         "none".into()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// With `interval = "eigenfrequency"` the fast modal route's own basis divides the
+    /// range (its modes computed once): at the very frequencies the stuck modes give.
+    #[test]
+    fn the_modal_basis_divides_the_range_as_the_stuck_modes_do() {
+        let path = format!(
+            "{}/../scenes/three-beams-coarse.toml",
+            env!("CARGO_MANIFEST_DIR")
+        );
+        let text = std::fs::read_to_string(&path).unwrap().replace(
+            "[sweep]\n",
+            "[sweep]\nmethod = \"modal\"\ninterval = \"eigenfrequency\"\nbias = 3.0\n",
+        );
+        let scene = Scene::parse(&path, &text).unwrap();
+        assert!(divides_by_fast_modal_route(&scene));
+        let p = build(&scene).unwrap();
+        let stat = static_step::solve(&p, true).unwrap();
+        let mut opts = Options::from_scene(scene.spec.iteration, scene.spec.effects);
+        let range = scene.frequencies();
+        opts.linear = linear_route(&scene, &range);
+        let route = sweep::fast::modal_basis(&p, &stat, &opts, range[0]).unwrap();
+        let by_route = scene.frequencies_between(&route.frequencies());
+        let by_modes = sweep_frequencies(&scene, &p, &stat).unwrap();
+        assert!(
+            by_route.len() > range.len(),
+            "{} ≤ {}",
+            by_route.len(),
+            range.len()
+        );
+        assert_eq!(by_route.len(), by_modes.len());
+        for (a, b) in by_route.iter().zip(&by_modes) {
+            assert!((a - b).abs() <= 1e-9 * b, "{a} vs {b}");
+        }
+        // The sweep over the divided range with that basis.
+        let mut cache = Some(route);
+        let r = sweep::run_cached(&p, &stat, &by_route, &opts, &|_, _, _| {}, &mut cache).unwrap();
+        assert!(r.converged.iter().all(|&c| c));
     }
 }

@@ -28,6 +28,8 @@ use super::fast_update::predict;
 use super::fast_workspace::Workspace;
 use super::modal_route::{LinearRoute, ModalRoute};
 use super::{Options, PassRecord, Setup, SweepError, SweepResult};
+use crate::model::Problem;
+use crate::solve::static_step::StaticState;
 
 /// Condensation (m receptance solves, dense m × m iterations) up to this many contact
 /// unknowns; above it the contact iterations use FGMRES preconditioned by the
@@ -79,6 +81,30 @@ pub fn sweep(
         converged: nconv,
     });
     Ok(res)
+}
+
+/// The fast sweep's modal basis of `problem` after `stat` with `opts` (whose route is
+/// modal), built before any sweep: a study that divides its range at the stuck
+/// eigenfrequencies takes them from it, and hands it to [`super::run_cached`], which uses it
+/// as the sweep would have built it. `f0` (1/time) is the sweep's first frequency.
+pub fn modal_basis(
+    problem: &Problem,
+    stat: &StaticState,
+    opts: &Options,
+    f0: f64,
+) -> Result<ModalRoute, SweepError> {
+    let LinearRoute::Modal { modes, residual } = opts.linear else {
+        return Err(SweepError::ModalBasisNeedsModalRoute);
+    };
+    let mut setup = Setup::new(problem, stat, &opts.effects)
+        .map_err(|source| SweepError::Umfpack { freq: f0, source })?;
+    let un = Unknowns::new(&setup, opts.effects)?;
+    let (n, nout) = (problem.sys.dofs.n_free(), problem.outputs.len());
+    let mut ws = Workspace::new(&un, n, nout, true, opts);
+    let mut cache = None;
+    let mut res = SweepResult::default();
+    ws.modal_basis(&mut setup, &un, (modes, residual), f0, &mut cache, &mut res)?;
+    Ok(cache.expect("modal_basis fills the cache"))
 }
 
 /// The fast mode as a per-frequency solver.

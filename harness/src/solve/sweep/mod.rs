@@ -102,6 +102,8 @@ pub enum SweepError {
         #[source]
         source: crate::solve::cholmod::CholmodError,
     },
+    #[error("a modal basis is built for the modal route only ([sweep] method = \"modal\")")]
+    ModalBasisNeedsModalRoute,
     #[error("[sweep] method = \"modal\" is available in modes fast and harmonic_balance (the thesis scheme's store iterates over UINTER's own solves); set [iteration] mode = \"fast\" or method = \"direct\"")]
     ModalNeedsFastMode,
     #[error("modal damping damps the stuck modes of the modal route ([sweep] method = \"modal\", a deck's steady state without DIRECT); this sweep is direct")]
@@ -239,6 +241,13 @@ impl SweepResult {
         self.singular.reverse();
         self.failed.reverse();
         self.checks.reverse();
+    }
+
+    /// Adds `seconds` to the cost `key`; nothing for 0 s (nothing was done).
+    pub(crate) fn add_seconds(&mut self, key: &str, seconds: f64) {
+        if seconds > 0.0 {
+            *self.timings.entry(key.to_string()).or_default() += seconds;
+        }
     }
 
     pub(crate) fn time(&mut self, key: &str, since: Instant) {

@@ -127,6 +127,15 @@ struct Key {
 }
 
 impl ModalRoute {
+    /// The kept modes' undamped natural frequencies (1/time, ascending): the stuck
+    /// structure's resonances.
+    pub fn frequencies(&self) -> Vec<f64> {
+        self.lambda
+            .iter()
+            .map(|&l| l.max(0.0).sqrt() / (2.0 * std::f64::consts::PI))
+            .collect()
+    }
+
     /// The stuck structure of `setup` with tangential κ₀ (per area, per active point) and
     /// spring stiffnesses `ks0`; `row(j)` the sparse contact row j of m.
     pub fn new<'r>(
