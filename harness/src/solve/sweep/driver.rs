@@ -6,7 +6,8 @@
 //! A solver that finds a frequency singular prepares its own next start.
 
 use super::posteriori::Verdict;
-use super::{PointFreq, SweepError, SweepResult, C64};
+use super::{Options, PointFreq, SweepError, SweepResult, C64};
+use crate::model::Problem;
 
 /// A frequency's status in the results.
 #[derive(Debug, Clone, PartialEq)]
@@ -85,6 +86,16 @@ pub struct Shape {
     pub points: Option<usize>,
 }
 
+impl Shape {
+    /// The rows of a sweep of `p` with `opts`.
+    pub fn of(p: &Problem, opts: &Options) -> Self {
+        Shape {
+            outputs: p.outputs.len(),
+            points: opts.point_results.then_some(p.contacts.len()),
+        }
+    }
+}
+
 /// Runs `solver` over `freqs` in the given order into a result listing them so.
 pub fn drive(
     solver: &mut dyn FrequencySolver,
@@ -121,16 +132,7 @@ fn push_empty_harmonics(solver: &dyn FrequencySolver, shape: Shape, res: &mut Sw
 impl SweepResult {
     /// The next frequency is singular: a row of zeros, not converged.
     pub(crate) fn push_singular(&mut self, nout: usize, points: Option<usize>) {
-        self.outputs.push(vec![C64::new(0.0, 0.0); nout]);
-        self.power.push(0.0);
-        if let Some(n) = points {
-            self.points.push(vec![PointFreq::default(); n]);
-        }
-        self.iterations.push(0);
-        self.converged.push(false);
-        self.singular.push(true);
-        self.failed.push(None);
-        self.checks.push(None);
+        self.push_no_response(nout, points, true, None);
     }
 
     /// Why frequency `i` failed, if it did.
@@ -141,6 +143,22 @@ impl SweepResult {
     /// The next frequency failed with `e`: a row of zeros (`points` contact points when
     /// per-point results are kept), not converged.
     pub(crate) fn push_failed(&mut self, e: &SweepError, nout: usize, points: Option<usize>) {
+        self.push_no_response(nout, points, false, Some(e.to_string()));
+    }
+
+    /// Whether frequency `i` was singular (no response computed there).
+    pub fn is_singular(&self, i: usize) -> bool {
+        self.singular.get(i).copied().unwrap_or(false)
+    }
+
+    /// A row of zeros standing for "no response computed", not converged.
+    fn push_no_response(
+        &mut self,
+        nout: usize,
+        points: Option<usize>,
+        singular: bool,
+        failed: Option<String>,
+    ) {
         self.outputs.push(vec![C64::new(0.0, 0.0); nout]);
         self.power.push(0.0);
         if let Some(n) = points {
@@ -148,14 +166,9 @@ impl SweepResult {
         }
         self.iterations.push(0);
         self.converged.push(false);
-        self.singular.push(false);
-        self.failed.push(Some(e.to_string()));
+        self.singular.push(singular);
+        self.failed.push(failed);
         self.checks.push(None);
-    }
-
-    /// Whether frequency `i` was singular (no response computed there).
-    pub fn is_singular(&self, i: usize) -> bool {
-        self.singular.get(i).copied().unwrap_or(false)
     }
 
     /// Appends the solved frequency `f`.

@@ -61,10 +61,7 @@ pub fn sweep(
         }
         LinearRoute::Direct => None,
     };
-    let shape = Shape {
-        outputs: p.outputs.len(),
-        points: opts.point_results.then_some(p.contacts.len()),
-    };
+    let shape = Shape::of(p, opts);
     let mut solver = Fast {
         setup,
         un,

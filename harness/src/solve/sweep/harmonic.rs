@@ -38,10 +38,7 @@ pub fn sweep(
         res.modal = hb.modal.as_ref().map(|r| r.summary.clone());
         res.time("modal basis (modes, residual)", t);
     }
-    let shape = Shape {
-        outputs: p.outputs.len(),
-        points: opts.point_results.then_some(p.contacts.len()),
-    };
+    let shape = Shape::of(p, opts);
     let mut solver = Harmonic {
         hb,
         opts,
