@@ -188,20 +188,13 @@ fn panel_name(p: &Problem, ks: &[usize]) -> String {
     }
 }
 
-/// SVG map: one panel per plane of interfaces ([`panel_groups`]; the two global axes
-/// across it), a circle per contact point; grey dots are open points.
-pub fn svg(
-    path: &Path,
-    title: &str,
-    units: &Units,
+/// Each panel's plane axes (a, b) and bounds (x0, x1, y0, y1, length) around its
+/// contact points, padded by 5 %; a panel without points spans the unit square.
+fn panel_bounds(
     p: &Problem,
-    vals: &[PointValues],
-    kind: MapKind,
-) -> Result<(), String> {
-    let length_unit = units.length.as_str();
-    let groups = panel_groups(p);
-    let n = groups.len();
-    let panels: Vec<_> = groups
+    groups: &[(Vec<usize>, (usize, usize))],
+) -> Vec<(usize, usize, f64, f64, f64, f64)> {
+    groups
         .iter()
         .map(|(ks, (a, b))| {
             let (a, b) = (*a, *b);
@@ -223,7 +216,23 @@ pub fn svg(
             let pad = 0.05 * (x1 - x0).max(y1 - y0).max(1e-9);
             (a, b, x0 - pad, x1 + pad, y0 - pad, y1 + pad)
         })
-        .collect();
+        .collect()
+}
+
+/// SVG map: one panel per plane of interfaces ([`panel_groups`]; the two global axes
+/// across it), a circle per contact point; grey dots are open points.
+pub fn svg(
+    path: &Path,
+    title: &str,
+    units: &Units,
+    p: &Problem,
+    vals: &[PointValues],
+    kind: MapKind,
+) -> Result<(), String> {
+    let length_unit = units.length.as_str();
+    let groups = panel_groups(p);
+    let n = groups.len();
+    let panels = panel_bounds(p, &groups);
     // Panel height from the flattest face's aspect, so a square face stays square.
     let aspect = panels
         .iter()

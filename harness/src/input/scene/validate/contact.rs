@@ -42,43 +42,7 @@ pub(super) fn interfaces(c: &mut Checker, s: &SceneFile) {
         if let Some(k) = f.normal_stiffness_per_area {
             c.positive(p.key("normal_stiffness_per_area"), k);
         }
-        match f.normal_law {
-            NormalLawName::Linear => {
-                c.require(
-                    p.key("normal_stiffness_per_area"),
-                    &f.normal_stiffness_per_area,
-                    "for normal_law = \"linear\"",
-                );
-                c.forbid(
-                    p.key("hertz_radius"),
-                    &f.hertz_radius,
-                    "for normal_law = \"linear\"",
-                );
-            }
-            NormalLawName::Hertz => {
-                if c.require(
-                    p.key("hertz_radius"),
-                    &f.hertz_radius,
-                    "for normal_law = \"hertz\"",
-                ) {
-                    c.positive(p.key("hertz_radius"), f.hertz_radius.unwrap());
-                }
-                if c.require(
-                    p.key("hertz_e_star"),
-                    &f.hertz_e_star,
-                    "for normal_law = \"hertz\"",
-                ) {
-                    c.positive(p.key("hertz_e_star"), f.hertz_e_star.unwrap());
-                }
-                if !s.effects.normal_contact_nonlinearity {
-                    c.require(
-                        p.key("normal_stiffness_per_area"),
-                        &f.normal_stiffness_per_area,
-                        "when effects.normal_contact_nonlinearity = false",
-                    );
-                }
-            }
-        }
+        normal_law(c, &p, f, s);
         if c.finite(p.key("initial_gap"), f.initial_gap) && f.initial_gap < 0.0 {
             c.fail(
                 p.key("initial_gap"),
@@ -125,6 +89,48 @@ pub(super) fn interfaces(c: &mut Checker, s: &SceneFile) {
                 &f.area,
                 "for box interfaces (tributary areas are used)",
             );
+        }
+    }
+}
+
+/// The normal law's keys of interface `f` at `p`: k_N for linear, r* and E* for Hertz
+/// (and k_N when the normal nonlinearity is off).
+fn normal_law(c: &mut Checker, p: &KeyPath, f: &InterfaceSpec, s: &SceneFile) {
+    match f.normal_law {
+        NormalLawName::Linear => {
+            c.require(
+                p.key("normal_stiffness_per_area"),
+                &f.normal_stiffness_per_area,
+                "for normal_law = \"linear\"",
+            );
+            c.forbid(
+                p.key("hertz_radius"),
+                &f.hertz_radius,
+                "for normal_law = \"linear\"",
+            );
+        }
+        NormalLawName::Hertz => {
+            if c.require(
+                p.key("hertz_radius"),
+                &f.hertz_radius,
+                "for normal_law = \"hertz\"",
+            ) {
+                c.positive(p.key("hertz_radius"), f.hertz_radius.unwrap());
+            }
+            if c.require(
+                p.key("hertz_e_star"),
+                &f.hertz_e_star,
+                "for normal_law = \"hertz\"",
+            ) {
+                c.positive(p.key("hertz_e_star"), f.hertz_e_star.unwrap());
+            }
+            if !s.effects.normal_contact_nonlinearity {
+                c.require(
+                    p.key("normal_stiffness_per_area"),
+                    &f.normal_stiffness_per_area,
+                    "when effects.normal_contact_nonlinearity = false",
+                );
+            }
         }
     }
 }
