@@ -340,11 +340,7 @@ pub fn run(
             name: "material_damping",
             active: eff.material_damping,
             seconds: 0.0,
-            work: if problem.damping.is_some() && eff.material_damping {
-                "Rayleigh/dashpot D assembled once with the model".into()
-            } else {
-                "none".into()
-            },
+            work: material_damping_work(eff.material_damping, &problem),
         },
         EffectLog {
             name: "cubic_springs",
@@ -442,6 +438,22 @@ pub fn field_frequencies(fo: &FieldOutputSpec, main: &SweepResult) -> Vec<f64> {
     at.sort_by(f64::total_cmp);
     at.dedup();
     at
+}
+
+/// The log line of material damping: which damping matrices the model carries.
+fn material_damping_work(on: bool, problem: &Problem) -> String {
+    let parts: Vec<&str> = [
+        (problem.damping.is_some(), "viscous D (Rayleigh, dashpots)"),
+        (problem.structural.is_some(), "structural i·s·K (*DAMPING, STRUCTURAL=)"),
+    ]
+    .into_iter()
+    .filter_map(|(has, what)| (on && has).then_some(what))
+    .collect();
+    if parts.is_empty() {
+        "none".into()
+    } else {
+        format!("{} assembled once with the model", parts.join(" and "))
+    }
 }
 
 /// The log line of a three-direction point effect: what it does and the point's steps
