@@ -444,7 +444,10 @@ pub fn field_frequencies(fo: &FieldOutputSpec, main: &SweepResult) -> Vec<f64> {
 fn material_damping_work(on: bool, problem: &Problem) -> String {
     let parts: Vec<&str> = [
         (problem.damping.is_some(), "viscous D (Rayleigh, dashpots)"),
-        (problem.structural.is_some(), "structural i·s·K (*DAMPING, STRUCTURAL=)"),
+        (
+            problem.structural.is_some(),
+            "structural i·s·K (*DAMPING, STRUCTURAL=)",
+        ),
     ]
     .into_iter()
     .filter_map(|(has, what)| (on && has).then_some(what))

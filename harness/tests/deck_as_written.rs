@@ -685,56 +685,68 @@ fn what_abaqus_cae_writes_is_read_and_included_data_lines_are_named_in_their_fil
     let _ = std::fs::remove_dir_all(&d);
 }
 
-/// Three steel beams 100 × 10 × 2 mm stacked in z, C3D8I, one element thick with
-/// (x, y) cells `cells` per layer (non-conforming), clamped together at x = 0, joined by
-/// contact pairs with the USER interaction `law` (code, μ, k_T0 = k_N per area), pressed
-/// by 1 MPa on the top face only.
-fn pressed_beams(cells: [[usize; 2]; 3], law: (u8, f64, f64)) -> String {
+/// Three steel beams 100 × 10 × 2 mm stacked in z, C3D8I with (x, y, z) cells `cells`
+/// per layer (non-conforming), clamped together at x = 0, joined by contact pairs with
+/// the USER interaction `law` (code, μ, k_T0 = k_N per area), pressed by 1 MPa on the
+/// top face only.
+fn pressed_beams(cells: [[usize; 3]; 3], law: (u8, f64, f64)) -> String {
     let (l, w, t) = (100.0, 10.0, 2.0);
     let mut s =
         String::from("*HEADING\nthree beams\n** jointlin units: length=mm force=N time=s mass=t\n");
     let (mut base, mut ebase, mut clamp, mut tip) = (0, 0, Vec::new(), 0);
-    for (layer, [nx, ny]) in cells.iter().copied().enumerate() {
+    for (layer, [nx, ny, nz]) in cells.iter().copied().enumerate() {
         let id = |i: usize, j: usize, k: usize| base + 1 + i + (nx + 1) * (j + (ny + 1) * k);
         s.push_str("*NODE\n");
-        for k in 0..2 {
+        for k in 0..=nz {
             for j in 0..=ny {
                 for i in 0..=nx {
                     let x = [l * i as f64 / nx as f64, w * j as f64 / ny as f64];
-                    let z = t * (layer + k) as f64;
+                    let z = t * (layer as f64 + k as f64 / nz as f64);
                     s += &format!("{}, {:?}, {:?}, {z:?}\n", id(i, j, k), x[0], x[1]);
                     if i == 0 {
                         clamp.push(id(i, j, k).to_string());
                     }
-                    if layer == 2 && i == nx && j == 0 && k == 1 {
+                    if layer == 2 && i == nx && j == 0 && k == nz {
                         tip = id(i, j, k);
                     }
                 }
             }
         }
         s += &format!("*ELEMENT, TYPE=C3D8I, ELSET=L{}\n", layer + 1);
-        for j in 0..ny {
-            for i in 0..nx {
-                ebase += 1;
-                let n = [
-                    id(i, j, 0),
-                    id(i + 1, j, 0),
-                    id(i + 1, j + 1, 0),
-                    id(i, j + 1, 0),
-                    id(i, j, 1),
-                    id(i + 1, j, 1),
-                    id(i + 1, j + 1, 1),
-                    id(i, j + 1, 1),
-                ];
-                let n: Vec<String> = n.iter().map(usize::to_string).collect();
-                s += &format!("{ebase}, {}\n", n.join(", "));
+        // Element numbers of the layer's bottom and top rows of cells.
+        let (mut bottom, mut top) = (Vec::new(), Vec::new());
+        for k in 0..nz {
+            for j in 0..ny {
+                for i in 0..nx {
+                    ebase += 1;
+                    let n = [
+                        id(i, j, k),
+                        id(i + 1, j, k),
+                        id(i + 1, j + 1, k),
+                        id(i, j + 1, k),
+                        id(i, j, k + 1),
+                        id(i + 1, j, k + 1),
+                        id(i + 1, j + 1, k + 1),
+                        id(i, j + 1, k + 1),
+                    ];
+                    let n: Vec<String> = n.iter().map(usize::to_string).collect();
+                    s += &format!("{ebase}, {}\n", n.join(", "));
+                    if k == 0 {
+                        bottom.push(ebase);
+                    }
+                    if k + 1 == nz {
+                        top.push(ebase);
+                    }
+                }
             }
         }
-        s += &format!(
-            "*SURFACE, NAME=L{0}-BOT\nL{0}, S1\n*SURFACE, NAME=L{0}-TOP\nL{0}, S2\n",
-            layer + 1
-        );
-        base += (nx + 1) * (ny + 1) * 2;
+        for (side, face, list) in [("BOT", "S1", bottom), ("TOP", "S2", top)] {
+            s += &format!("*SURFACE, NAME=L{}-{side}\n", layer + 1);
+            for e in list {
+                s += &format!("{e}, {face}\n");
+            }
+        }
+        base += (nx + 1) * (ny + 1) * (nz + 1);
     }
     let (code, mu, k) = law;
     s.push_str("*NSET, NSET=CLAMP\n");
@@ -753,28 +765,42 @@ fn pressed_beams(cells: [[usize; 2]; 3], law: (u8, f64, f64)) -> String {
 
 #[test]
 fn a_stuck_stack_pressed_from_one_side_finds_its_preload() {
-    // Friction high enough to stick (μ = 10, Mindlin) and an interface far stiffer than
-    // the beams: from rest, Newton's contact states cycle (points open and close between
-    // iterations, 60 iterations were not enough); the preload is found by raising the
-    // contact force gradually, and it is the model's own equilibrium (‖R‖/‖f‖ within
-    // Newton's tolerance, every frequency converged).
+    // Friction high enough to stick (μ = 1000, Mindlin) and an interface far stiffer
+    // than the beams (k_T0 = k_N = 1e7 N/mm³), three beams of 10 × 2 × 2, 13 × 3 × 3 and
+    // 16 × 2 × 2 cells: from rest, Newton's contact states cycle (points open and close
+    // between iterations, 60 iterations are not enough); the preload is found by raising
+    // the contact force gradually, and it is the model's own equilibrium (backward error
+    // at round-off, every frequency converged).
     let d = dir("stuck");
-    let deck = pressed_beams([[6, 2], [8, 2], [10, 2]], (0, 10.0, 2e7));
-    let r = run(&d, "stuck", &deck);
-    assert_eq!(r.0, 0, "{}", r.1);
-    let json = std::fs::read_to_string(d.join("stuck-out/run.json")).unwrap();
-    let iterations: usize = json
-        .split("\"newton_iterations\": ")
-        .nth(1)
-        .and_then(|t| t.split(|c: char| !c.is_ascii_digit()).next())
-        .and_then(|t| t.parse().ok())
-        .unwrap();
+    let deck = pressed_beams([[10, 2, 2], [13, 3, 3], [16, 2, 2]], (0, 1000.0, 1e7));
+    let (iterations, backward) = stuck_run(&d, "stuck", &deck);
     assert!(
         iterations > 60,
         "{iterations}: Newton alone converged, the deck tests nothing"
     );
-    assert!(json.contains("\"converged\"") && !json.contains("\"not converged\""));
+    assert!(backward <= 1e-12, "{backward:e}");
+    // The interface 20× stiffer still (2e8 N/mm³, μ = 10, one cell thick): converged at
+    // the residual's round-off floor (‖R‖ ≈ 1e-6 ‖f‖ there, 1e-13 of the terms it sums),
+    // where a residual tolerance relative to the load alone stalled.
+    let deck = pressed_beams([[6, 2, 1], [8, 2, 1], [10, 2, 1]], (0, 10.0, 2e8));
+    let (_, backward) = stuck_run(&d, "stiffer", &deck);
+    assert!(backward <= 1e-12, "{backward:e}");
     let _ = std::fs::remove_dir_all(&d);
+}
+
+/// Runs a stack deck; (static Newton iterations, static backward error) from run.json,
+/// every frequency converged.
+fn stuck_run(d: &Path, name: &str, deck: &str) -> (usize, f64) {
+    let r = run(d, name, deck);
+    assert_eq!(r.0, 0, "{}", r.1);
+    let json = std::fs::read_to_string(d.join(format!("{name}-out/run.json"))).unwrap();
+    let json: serde_json::Value = serde_json::from_str(&json).unwrap();
+    let stat = &json["static_step"];
+    assert_eq!(json["all_converged"], true);
+    (
+        stat["newton_iterations"].as_u64().unwrap() as usize,
+        stat["backward_error"].as_f64().unwrap(),
+    )
 }
 
 #[test]

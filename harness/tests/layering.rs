@@ -112,7 +112,6 @@ const OVERSIZED: &[(&str, usize)] = &[
     ("model/lumped.rs::build", 222),
     ("run.rs::run", 214),
     ("solve/arpack/mod.rs::shift_invert", 150),
-    ("solve/static_step/mod.rs", 527),
     ("solve/sweep/harmonic_fe.rs", 658),
     ("solve/sweep/thesis.rs::sweep", 318),
     ("time/newmark.rs::step", 161),

@@ -36,6 +36,12 @@ pub struct CapiError {
     pub detail: String,
 }
 
+/// The loaded library's C ABI version, "major.minor" (`jointlin_abi_version`).
+pub fn abi_version() -> String {
+    let v = jointlin::ffi::jointlin_abi_version();
+    format!("{}.{}", v >> 16, v & 0xffff)
+}
+
 /// C-API calls made on this thread, by function.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, serde::Serialize)]
 pub struct CallCounts {

@@ -10,12 +10,13 @@ use serde_json::json;
 
 use jointlin_harness::backbone::report::{self, Row};
 use jointlin_harness::backbone::{epmc, fe, first_order, log_space, BackbonePoint, C64};
+use jointlin_harness::capi;
 use jointlin_harness::input::scene::schema::BodyKind;
 use jointlin_harness::input::scene::Scene;
 use jointlin_harness::mhb::default_samples;
 use jointlin_harness::model::lumped::{self, Lumped};
 use jointlin_harness::settings::units::frequency_unit;
-use jointlin_harness::util::atomic;
+use jointlin_harness::util::{atomic, provenance};
 
 use super::{load_scene, report_written};
 
@@ -275,35 +276,38 @@ fn write(
         })
         .collect();
     let fu = frequency_unit(units);
-    let run = json!({
-        "command": "backbone",
-        "scene": {"file": scene.file, "spec": scene.spec, "text": scene.text},
-        "units": units,
-        "mode": a.mode,
-        "method": method,
-        "dofs": l.dofs,
-        "reduction": reduction.map(|r| {
-            let show = |f: &[f64]| f.iter().map(|&f| fu.show(f)).collect::<Vec<_>>();
-            json!({
-                "closed_points": r.closed,
-                "open_points": r.open,
-                "joints": r.lumped.elements.len(),
-                "interior_modes": r.modes,
-                "stuck_frequencies": show(&r.stuck),
-                "stuck_frequencies_full_model": show(&r.stuck_full),
-                "sliding_frequencies": show(&r.sliding),
-                "sliding_frequencies_half_modes": show(&r.sliding_previous),
-                "converged": r.converged,
-                "tolerance": fe::MODE_TOL,
-            })
+    let head = provenance::head("backbone", &capi::abi_version(), &scene.sources);
+    let run = provenance::with_head(
+        head,
+        json!({
+            "scene": {"file": scene.file, "spec": scene.spec, "text": scene.text},
+            "units": units,
+            "mode": a.mode,
+            "method": method,
+            "dofs": l.dofs,
+            "reduction": reduction.map(|r| {
+                let show = |f: &[f64]| f.iter().map(|&f| fu.show(f)).collect::<Vec<_>>();
+                json!({
+                    "closed_points": r.closed,
+                    "open_points": r.open,
+                    "joints": r.lumped.elements.len(),
+                    "interior_modes": r.modes,
+                    "stuck_frequencies": show(&r.stuck),
+                    "stuck_frequencies_full_model": show(&r.stuck_full),
+                    "sliding_frequencies": show(&r.sliding),
+                    "sliding_frequencies_half_modes": show(&r.sliding_previous),
+                    "converged": r.converged,
+                    "tolerance": fe::MODE_TOL,
+                })
+            }),
+            "frequency_unit": fu.text,
+            "turning_points_modal_amplitude": path.turning,
+            "gaps_modal_amplitude": path.gaps,
+            "skipped_modal_amplitudes": path.skipped,
+            "fixed_amplitude_steps_modal_amplitude": path.fixed_q,
+            "rows": json_rows,
         }),
-        "frequency_unit": fu.text,
-        "turning_points_modal_amplitude": path.turning,
-        "gaps_modal_amplitude": path.gaps,
-        "skipped_modal_amplitudes": path.skipped,
-        "fixed_amplitude_steps_modal_amplitude": path.fixed_q,
-        "rows": json_rows,
-    });
+    );
     let text = serde_json::to_string_pretty(&run).map_err(|e| e.to_string())?;
     let run_path = atomic::write_marker(&a.out, &text)?;
     Ok(vec![csv, svg, run_path])

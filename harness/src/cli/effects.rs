@@ -20,6 +20,7 @@ pub struct Args {
 
 pub fn main(a: Args) -> ExitCode {
     study_main(
+        "effects",
         &a.scene,
         &a.overrides.set,
         &a.out,

@@ -9,7 +9,7 @@ use jointlin_harness::loss::{self, effects as loss_effects, mesh, LossError};
 use jointlin_harness::settings::{CalibratedParameter, LossStudySpec};
 use jointlin_harness::util::atomic;
 
-use super::{load_scene_with, report_written, with_progress, SceneOverrides};
+use super::{begin_outputs, load_scene_with, study_written, with_progress, SceneOverrides};
 
 // The command's help is the doc comment of `Command::Loss`.
 #[derive(clap::Args)]
@@ -82,6 +82,9 @@ pub fn main(a: Args) -> ExitCode {
             a.quiet,
         );
     }
+    if let Err(code) = begin_outputs(&a.out) {
+        return code;
+    }
     let t = std::time::Instant::now();
     let r = match with_progress(a.quiet, st.torques.len(), |p| loss::run_study(&s, p)) {
         Ok(r) => r,
@@ -89,7 +92,7 @@ pub fn main(a: Args) -> ExitCode {
     };
     print!("{}", loss::report::markdown(&s, &st, &r));
     eprintln!("{:.1} s", t.elapsed().as_secs_f64());
-    report_written(loss::report::write(&a.out, &s, &r))
+    study_written("loss", &s, &a.out, t, loss::report::write(&a.out, &s, &r))
 }
 
 /// `jointlin loss --mesh-study`.
@@ -116,6 +119,9 @@ fn mesh_study(
             }
         }
     };
+    if let Err(code) = begin_outputs(out) {
+        return code;
+    }
     let t = std::time::Instant::now();
     let steps = mesh::laws(node_based).len() * mesh::plan(factors, refinements.len()).len();
     let rows = match with_progress(quiet, steps, |p| {
@@ -127,11 +133,28 @@ fn mesh_study(
     let md = mesh::markdown(s, &rows);
     print!("{md}");
     eprintln!("{:.1} s", t.elapsed().as_secs_f64());
-    write_table(out, "mesh_study", &md, &mesh::csv(&rows))
+    write_table(
+        "loss --mesh-study",
+        s,
+        out,
+        t,
+        "mesh_study",
+        &md,
+        &mesh::csv(&rows),
+    )
 }
 
-/// Writes NAME.md and NAME.csv into `out` (created if missing), each atomically.
-fn write_table(out: &Path, name: &str, md: &str, csv: &str) -> ExitCode {
+/// Writes NAME.md and NAME.csv into `out` (created if missing), each atomically, then
+/// run.json for `command` ([`study_written`]).
+fn write_table(
+    command: &str,
+    s: &Scene,
+    out: &Path,
+    started: std::time::Instant,
+    name: &str,
+    md: &str,
+    csv: &str,
+) -> ExitCode {
     let write = || -> Result<Vec<PathBuf>, String> {
         let io = |e: std::io::Error| format!("{}: {e}", out.display());
         std::fs::create_dir_all(out).map_err(io)?;
@@ -143,7 +166,7 @@ fn write_table(out: &Path, name: &str, md: &str, csv: &str) -> ExitCode {
         atomic::write_text(&b, csv)?;
         Ok(vec![a, b])
     };
-    report_written(write())
+    study_written(command, s, out, started, write())
 }
 
 /// `jointlin loss --effects`.
@@ -156,6 +179,9 @@ fn effects(s: &Scene, st: &LossStudySpec, out: &Path, amplitudes: &[f64], quiet:
         return ExitCode::from(2);
     }
     let lengths: Vec<f64> = amplitudes.iter().map(|a| a * st.amplitude_factor).collect();
+    if let Err(code) = begin_outputs(out) {
+        return code;
+    }
     let t = std::time::Instant::now();
     let rows = match with_progress(
         quiet,
@@ -168,7 +194,15 @@ fn effects(s: &Scene, st: &LossStudySpec, out: &Path, amplitudes: &[f64], quiet:
     let md = loss_effects::markdown(s, &rows);
     print!("{md}");
     eprintln!("{:.1} s", t.elapsed().as_secs_f64());
-    write_table(out, "effects", &md, &loss_effects::csv(s, &rows))
+    write_table(
+        "loss --effects",
+        s,
+        out,
+        t,
+        "effects",
+        &md,
+        &loss_effects::csv(s, &rows),
+    )
 }
 
 /// `--calibrate`: fits the study's calibration, prints the fitted values per interface,

@@ -21,8 +21,10 @@ use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
 
+use jointlin_harness::capi;
 use jointlin_harness::input::{self, scene::overrides::Override, scene::Scene};
 use jointlin_harness::util::progress::progress_bar;
+use jointlin_harness::util::{atomic, provenance};
 
 #[derive(Parser)]
 #[command(
@@ -228,9 +230,11 @@ fn load_scene_with(path: &Path, set: &[Override]) -> Result<Scene, ExitCode> {
     }
 }
 
-/// A study command: loads the scene, runs `study` on it, prints its Markdown and writes
-/// its files into `out`; exit code 2 for a bad scene, 1 for a failed study or write.
+/// A study command (`command`, as run.json names it): loads the scene, runs `study` on
+/// it, prints its Markdown and writes its files into `out`, then run.json
+/// ([`study_written`]); exit code 2 for a bad scene, 1 for a failed study or write.
 fn study_main<T, E: std::fmt::Display>(
+    command: &str,
     scene: &Path,
     set: &[Override],
     out: &Path,
@@ -242,6 +246,10 @@ fn study_main<T, E: std::fmt::Display>(
         Ok(s) => s,
         Err(code) => return code,
     };
+    if let Err(code) = begin_outputs(out) {
+        return code;
+    }
+    let started = std::time::Instant::now();
     let t = match study(&s) {
         Ok(t) => t,
         Err(e) => {
@@ -250,7 +258,50 @@ fn study_main<T, E: std::fmt::Display>(
         }
     };
     print!("{}", markdown(&t));
-    report_written(write(out, &t))
+    study_written(command, &s, out, started, write(out, &t))
+}
+
+/// Prepares `out` for a command's files ([`atomic::begin`]: an earlier run.json and
+/// leftover partial files removed, the interrupt notice installed); exit 1 if it cannot.
+fn begin_outputs(out: &Path) -> Result<(), ExitCode> {
+    atomic::begin(out).map_err(|e| {
+        eprintln!("error: {}: {e}", out.display());
+        ExitCode::from(1)
+    })
+}
+
+/// After a study wrote `written` into `out`: run.json last (the provenance head,
+/// the scene echo, the files written and the study's wall time in seconds), then the
+/// list of files on stderr.
+fn study_written(
+    command: &str,
+    scene: &Scene,
+    out: &Path,
+    started: std::time::Instant,
+    written: Result<Vec<PathBuf>, String>,
+) -> ExitCode {
+    let written = written.and_then(|mut files| {
+        let names: Vec<String> = files
+            .iter()
+            .map(|f| {
+                f.file_name()
+                    .unwrap_or_default()
+                    .to_string_lossy()
+                    .into_owned()
+            })
+            .collect();
+        let head = provenance::head(command, &capi::abi_version(), &scene.sources);
+        let body = serde_json::json!({
+            "scene": {"file": scene.file, "spec": scene.spec, "text": scene.text},
+            "files": names,
+            "seconds": started.elapsed().as_secs_f64(),
+        });
+        let text = serde_json::to_string_pretty(&provenance::with_head(head, body))
+            .map_err(|e| e.to_string())?;
+        files.push(atomic::write_marker(out, &text)?);
+        Ok(files)
+    });
+    report_written(written)
 }
 
 /// Runs `work` under a progress bar of `steps` steps (each message it reports is one

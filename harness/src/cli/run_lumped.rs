@@ -13,14 +13,15 @@ use std::process::ExitCode;
 use nalgebra::Complex;
 use serde_json::json;
 
+use jointlin_harness::capi;
 use jointlin_harness::input::scene::Scene;
 use jointlin_harness::mhb::{default_samples, first_order, Hb, NewtonOptions};
 use jointlin_harness::model::lumped;
 use jointlin_harness::report::svg::{frf_curves, FrfCurve};
 use jointlin_harness::settings::units::{frequency_unit, ColumnUnits};
 use jointlin_harness::settings::{Direction, Mode, Units};
-use jointlin_harness::util::atomic;
 use jointlin_harness::util::csv_table::CsvTable;
+use jointlin_harness::util::{atomic, provenance};
 
 /// One sweep pass: its results.csv and (harmonic balance) harmonics.csv tables, the
 /// FRF curve of the outputs and the frequencies that failed.
@@ -106,16 +107,19 @@ pub fn main(s: &Scene, out: &Path, plots: bool) -> ExitCode {
         }
     }
     let solved = up.len() * passes.len();
-    let run = json!({
-        "command": "run",
-        "scene": {"file": s.file, "spec": s.spec, "text": s.text},
-        "units": units,
-        "method": method,
-        "dofs": l.dofs,
-        "frequencies": up.len(),
-        "sweep_direction": s.spec.sweep.direction,
-        "failed_frequencies": failed,
-    });
+    let head = provenance::head("run", &capi::abi_version(), &s.sources);
+    let run = provenance::with_head(
+        head,
+        json!({
+            "scene": {"file": s.file, "spec": s.spec, "text": s.text},
+            "units": units,
+            "method": method,
+            "dofs": l.dofs,
+            "frequencies": up.len(),
+            "sweep_direction": s.spec.sweep.direction,
+            "failed_frequencies": failed,
+        }),
+    );
     let text = serde_json::to_string_pretty(&run).expect("json");
     match atomic::write_marker(out, &text) {
         Ok(p) => {

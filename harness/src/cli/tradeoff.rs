@@ -23,6 +23,7 @@ pub struct Args {
 
 pub fn main(a: Args) -> ExitCode {
     study_main(
+        "tradeoff",
         &a.scene,
         &a.overrides.set,
         &a.out,

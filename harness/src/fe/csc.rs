@@ -98,6 +98,19 @@ impl Csc<f64> {
         }
     }
 
+    /// y = |A| |x| (entrywise absolute values): the size of the terms A x sums, for
+    /// round-off bounds.
+    pub fn abs_mul_vec(&self, x: &[f64]) -> Vec<f64> {
+        let p = &self.pattern;
+        let mut y = vec![0.0; p.n];
+        for j in 0..p.n {
+            for k in p.col_ptr[j] as usize..p.col_ptr[j + 1] as usize {
+                y[p.row_idx[k] as usize] += (self.values[k] * x[j]).abs();
+            }
+        }
+        y
+    }
+
     /// ‖A‖₁, the largest absolute column sum.
     pub fn norm_1(&self) -> f64 {
         let p = &self.pattern;

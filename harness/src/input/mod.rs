@@ -126,6 +126,7 @@ pub fn load_with(path: &Path, set: &[scene::overrides::Override]) -> Result<Inpu
             let mut s = scene::model_file::deck_scene(job, text);
             if let Some(c) = deck::config::ShimConfig::beside(path)? {
                 c.apply(&mut s.spec.iteration);
+                s.sources.extend(c.source);
             }
             Ok(Input::Deck(s))
         }

@@ -13,7 +13,7 @@ use serde_json::json;
 
 use crate::input::scene::Scene;
 use crate::run::RunResult;
-use crate::util::atomic;
+use crate::util::{atomic, provenance};
 
 /// Which plots to draw.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -28,8 +28,14 @@ fn write(dir: &Path, name: &str, text: &str, out: &mut Vec<PathBuf>) -> Result<(
     Ok(())
 }
 
-/// run.json: scene echo, effects (with costs), passes, timings, calls, static step.
+/// run.json: the provenance head ([`provenance::head`]), scene echo, effects (with
+/// costs), passes, timings, calls, static step.
 pub fn run_json(scene: &Scene, r: &RunResult) -> serde_json::Value {
+    let head = provenance::head("run", &crate::capi::abi_version(), &scene.sources);
+    provenance::with_head(head, run_body(scene, r))
+}
+
+fn run_body(scene: &Scene, r: &RunResult) -> serde_json::Value {
     let m = &r.main;
     let closed = r.stat.closed.iter().filter(|&&c| c).count();
     json!({
@@ -50,6 +56,7 @@ pub fn run_json(scene: &Scene, r: &RunResult) -> serde_json::Value {
         "static_step": {
             "newton_iterations": r.stat.newton_iterations,
             "relative_residual": r.stat.residual,
+            "backward_error": r.stat.backward_error,
             "total_contact_force": r.problem.contacts.iter().zip(&r.stat.pressure).map(|(c, p)| c.area * p).sum::<f64>(),
         },
         "mode": scene.spec.iteration.mode,

@@ -16,6 +16,7 @@ use super::periodic::{change, Cycle, CycleStats, SteadyTest};
 use super::rk4::{max_frequency, stable_steps_per_cycle, SceneRk4};
 use super::settings::AUTO_RK4_MAX_DOFS;
 use super::{Forcing, Integrator, Start, State, Stepper, TimeError, TimeSettings, C64};
+use crate::capi;
 use crate::fe::csc::Csc;
 use crate::input::scene::Scene;
 use crate::model::{build, Problem};
@@ -25,6 +26,7 @@ use crate::solve::static_step::{self, StaticState};
 use crate::solve::sweep::harmonic_fe_point3d::{check_laws, PointModel};
 use crate::solve::umfpack::{to_complex, Symbolic};
 use crate::util::csv_table::CsvTable;
+use crate::util::provenance;
 
 /// The time-domain result at one frequency.
 #[derive(Debug, Clone, Serialize)]
@@ -447,15 +449,19 @@ pub fn write(dir: &Path, scene: &Scene, run: &TimeRun) -> std::io::Result<Vec<Pa
         "points_time.csv",
         points_csv(&run.problem, &run.results, units),
     )?;
-    let json = serde_json::json!({
-        "scene": scene.file,
-        "title": scene.spec.title,
-        "settings": run.settings,
-        "free_dofs": run.problem.sys.dofs.n_free(),
-        "contact_points": run.problem.contacts.len(),
-        "seconds": run.seconds,
-        "frequencies": run.results,
-    });
+    let head = provenance::head("run --time-domain", &capi::abi_version(), &scene.sources);
+    let json = provenance::with_head(
+        head,
+        serde_json::json!({
+            "scene": scene.file,
+            "title": scene.spec.title,
+            "settings": run.settings,
+            "free_dofs": run.problem.sys.dofs.n_free(),
+            "contact_points": run.problem.contacts.len(),
+            "seconds": run.seconds,
+            "frequencies": run.results,
+        }),
+    );
     put(
         "run_time.json",
         serde_json::to_string_pretty(&json).unwrap_or_default(),

@@ -15,6 +15,7 @@ use std::path::{Path, PathBuf};
 use super::error::{DeckError, DeckErrorKind as K, Origin};
 use crate::names::SchemeName;
 use crate::settings::IterationSpec;
+use crate::util::provenance::SourceFile;
 
 /// The file name the shim looks for in the job directory.
 pub const CONFIG_FILE: &str = "jointlin.cfg";
@@ -37,6 +38,8 @@ const JOB_KEYS: &[&str] = &[
 pub struct ShimConfig {
     /// Where it was read.
     pub path: PathBuf,
+    /// The file as read (run.json's `inputs`); absent for text not read from a file.
+    pub source: Option<SourceFile>,
     /// Amplitude estimate of the first increment (length).
     pub initial_amplitude: Option<f64>,
     /// Relative tolerance |a − a*| ≤ rtol·max(a, a*) + atol.
@@ -59,7 +62,9 @@ impl ShimConfig {
                 format!("cannot read {}: {e}", path.display()),
             )
         })?;
-        ShimConfig::parse(&path, &text).map(Some)
+        let mut c = ShimConfig::parse(&path, &text)?;
+        c.source = Some(SourceFile::of(&path.display().to_string(), text.as_bytes()));
+        Ok(Some(c))
     }
 
     /// Parses the text of configuration file `path`.

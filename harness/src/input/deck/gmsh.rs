@@ -40,7 +40,7 @@ pub fn deck_mesh_from_gmsh(path: &Path) -> Result<String, DeckError> {
         .file_name()
         .map(|n| n.to_string_lossy().into_owned())
         .unwrap_or_default();
-    convert(&lexer::read_file(path)?, &name)
+    convert(&lexer::read_file(path)?.0, &name)
 }
 
 /// What an element id of the export is.

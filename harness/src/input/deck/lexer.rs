@@ -9,6 +9,7 @@
 use std::path::{Path, PathBuf};
 
 use super::error::{DeckError, DeckErrorKind, Origin};
+use crate::util::provenance::SourceFile;
 
 /// Deepest `*INCLUDE` nesting accepted (a file including itself is an error, not a hang).
 const MAX_INCLUDE_DEPTH: usize = 16;
@@ -104,10 +105,13 @@ struct Lexer {
     current: Option<Card>,
     bytes: u64,
     files: usize,
+    /// Every file read, in reading order, with its digest (run.json's `inputs`).
+    sources: Vec<SourceFile>,
 }
 
-/// Reads the cards of the deck file `path`, following `*INCLUDE`s.
-pub fn read_file(path: &Path) -> Result<Vec<Card>, DeckError> {
+/// Reads the cards of the deck file `path`, following `*INCLUDE`s; also every file
+/// read (the deck first).
+pub fn read_file(path: &Path) -> Result<(Vec<Card>, Vec<SourceFile>), DeckError> {
     let origin = Origin {
         file: path.display().to_string(),
         line: 0,
@@ -116,7 +120,8 @@ pub fn read_file(path: &Path) -> Result<Vec<Card>, DeckError> {
     let text = lx.read(path, &origin, "")?;
     let dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
     lx.lex(&text, &origin.file, &dir, 0)?;
-    Ok(lx.finish())
+    let sources = std::mem::take(&mut lx.sources);
+    Ok((lx.finish(), sources))
 }
 
 /// Reads the cards of deck text `text` named `name` in messages; `*INCLUDE` paths are
@@ -163,6 +168,8 @@ impl Lexer {
             .read_to_end(&mut bytes)
             .map_err(io)?;
         self.bytes += bytes.len() as u64;
+        self.sources
+            .push(SourceFile::of(&path.display().to_string(), &bytes));
         if self.bytes > MAX_DECK_BYTES {
             return Err(from.error(
                 DeckErrorKind::BadValue,

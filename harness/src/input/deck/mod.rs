@@ -53,7 +53,10 @@ pub const IGNORED_KEYWORDS: &[&str] = &[
 
 /// Reads the deck file `path` (with its `*INCLUDE`s).
 pub fn read(path: &Path) -> Result<(Deck, Vec<DeckWarning>), DeckError> {
-    parse::build(lexer::read_file(path)?)
+    let (cards, sources) = lexer::read_file(path)?;
+    let (mut deck, warnings) = parse::build(cards)?;
+    deck.sources = sources;
+    Ok((deck, warnings))
 }
 
 /// Reads deck text `text`, named `name` in messages; `*INCLUDE` paths are relative to

@@ -7,12 +7,16 @@ use std::collections::{BTreeMap, HashMap};
 use crate::fe::elements::ElementKind;
 
 use super::error::Origin;
+use crate::util::provenance::SourceFile;
 
 /// A whole deck.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Deck {
     /// Text of `*HEADING`.
     pub heading: String,
+    /// Every file the deck was read from (the deck, its `*INCLUDE` and `INPUT=` files),
+    /// in reading order; empty for a deck read from text.
+    pub sources: Vec<SourceFile>,
     pub nodes: Vec<Node>,
     pub elements: Vec<Element>,
     /// Node id → index in `nodes`.

@@ -14,6 +14,8 @@ pub mod validate;
 use std::path::Path;
 use std::sync::Arc;
 
+use crate::util::provenance::SourceFile;
+
 use super::deck::job::DeckJob;
 
 pub use error::SceneError;
@@ -30,6 +32,9 @@ pub struct Scene {
     /// The deck of `model = "file.inp"`, or of a deck run (`jointlin run DECK.inp`),
     /// attached by `input::load`; the model is built from it.
     pub deck: Option<Arc<DeckJob>>,
+    /// Every file the input was read from, as read (the scene before `--set`, the deck
+    /// and its files, the shim configuration beside a deck): run.json's `inputs`.
+    pub sources: Vec<SourceFile>,
 }
 
 impl Scene {
@@ -49,6 +54,7 @@ impl Scene {
             key: String::new(),
             message: format!("cannot read: {e}"),
         })?;
+        let source = SourceFile::of(&file, text.as_bytes());
         let text = overrides::apply(&text, set).map_err(|message| SceneError {
             file: file.clone(),
             line: 0,
@@ -56,7 +62,9 @@ impl Scene {
             key: String::new(),
             message,
         })?;
-        Scene::parse(&file, &text)
+        let mut scene = Scene::parse(&file, &text)?;
+        scene.sources.push(source);
+        Ok(scene)
     }
 
     /// Parses and validates scene text; `file` names it in errors.
@@ -71,6 +79,7 @@ impl Scene {
             text: text.to_string(),
             spec,
             deck: None,
+            sources: Vec::new(),
         })
     }
 

@@ -168,6 +168,7 @@ pub fn attach(scene: &mut Scene, path: &Path) -> Result<(), InputError> {
         )
         .into());
     }
+    scene.sources.extend(job.deck.sources.iter().cloned());
     scene.deck = Some(Arc::new(job));
     Ok(())
 }
@@ -210,6 +211,7 @@ pub fn deck_scene(job: DeckJob, text: String) -> Scene {
         file: job.file.clone(),
         text,
         spec,
+        sources: job.deck.sources.clone(),
         deck: Some(Arc::new(job)),
     }
 }

@@ -13,7 +13,8 @@
 //! by stage. The end point is the model's own equation (α = 1 exactly), so a converged
 //! continuation is the same solution Newton would have found.
 
-use super::{Converged, Newton, StaticError, MAX_NEWTON, RESIDUAL_TOL};
+use super::newton::{Converged, Newton};
+use super::{StaticError, MAX_NEWTON, RESIDUAL_TOL};
 
 /// Contact force scale of the first stage.
 pub const ALPHA_START: f64 = 1e-6;

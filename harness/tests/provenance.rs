@@ -1,0 +1,198 @@
+//! run.json's provenance head (docs/outputs.md): the same keys first in every command's
+//! run.json, the library's ABI version as the header states it, and every input file
+//! read — the deck and its `*INCLUDE`, the scene as on disk before `--set` — with the
+//! SHA-256 that coreutils' `sha256sum` prints for it. A study that fails leaves no
+//! run.json (an earlier one is removed before it starts).
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+use serde_json::Value;
+
+use jointlin_harness::validate::matrices_ccx::{deck, tip_node};
+
+const HEAD: [&str; 6] = [
+    "schema_version",
+    "command",
+    "jointlin",
+    "command_line",
+    "written_at",
+    "inputs",
+];
+
+fn dir(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("jointlin-provenance-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+/// Runs jointlin in `cwd`; panics with its stderr unless it exits with `code`.
+fn jointlin(cwd: &Path, args: &[&str], code: i32) {
+    let out = Command::new(env!("CARGO_BIN_EXE_jointlin"))
+        .current_dir(cwd)
+        .args(args)
+        .output()
+        .unwrap();
+    assert_eq!(
+        out.status.code(),
+        Some(code),
+        "{args:?}: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+}
+
+/// `sha256sum FILE`'s digest.
+fn sha256sum(file: &Path) -> String {
+    let out = Command::new("sha256sum").arg(file).output().unwrap();
+    assert!(out.status.success());
+    String::from_utf8(out.stdout).unwrap()[..64].to_string()
+}
+
+/// The run.json in `out`, its head checked: keys first and in order, schema 1, `command`,
+/// the ABI version of include/jointlin.h, a UTC time, and `inputs` equal to `files`
+/// (names relative to `cwd`) with their sizes and digests.
+fn checked_head(cwd: &Path, out: &str, command: &str, files: &[&str]) -> Value {
+    let text = std::fs::read_to_string(cwd.join(out).join("run.json")).unwrap();
+    let json: Value = serde_json::from_str(&text).unwrap();
+    let keys: Vec<&str> = json
+        .as_object()
+        .unwrap()
+        .keys()
+        .map(String::as_str)
+        .collect();
+    assert_eq!(keys[..6], HEAD, "{keys:?}");
+    assert_eq!(json["schema_version"], 1);
+    assert_eq!(json["command"], command);
+    let header = std::fs::read_to_string(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("../include/jointlin.h"),
+    )
+    .unwrap();
+    let part = |name: &str| {
+        header
+            .lines()
+            .find_map(|l| l.strip_prefix(&format!("#define {name} ")))
+            .unwrap()
+            .trim()
+            .to_string()
+    };
+    assert_eq!(
+        json["jointlin"]["library_abi"],
+        format!(
+            "{}.{}",
+            part("JOINTLIN_ABI_VERSION_MAJOR"),
+            part("JOINTLIN_ABI_VERSION_MINOR")
+        )
+    );
+    let at = json["written_at"].as_str().unwrap();
+    assert!(
+        at.len() == 20 && at.ends_with('Z') && at.starts_with("20"),
+        "{at}"
+    );
+    let inputs = json["inputs"].as_array().unwrap();
+    let listed: Vec<&str> = inputs.iter().map(|i| i["file"].as_str().unwrap()).collect();
+    assert_eq!(listed, files);
+    for i in inputs {
+        let f = cwd.join(i["file"].as_str().unwrap());
+        assert_eq!(i["sha256"], sha256sum(&f), "{}", f.display());
+        assert_eq!(i["bytes"], std::fs::metadata(&f).unwrap().len());
+    }
+    json
+}
+
+#[test]
+fn a_deck_run_lists_the_deck_and_its_include_with_their_digests() {
+    let d = dir("deck");
+    let tip = tip_node();
+    std::fs::write(d.join("tip.inp"), format!("*NSET, NSET=TIPN\n{tip}\n")).unwrap();
+    let text = deck(
+        "*INCLUDE, INPUT=tip.inp\n*STEP, PERTURBATION\n*STEADY STATE DYNAMICS, DIRECT, FREQUENCY SCALE=LINEAR\n100., 300., 3\n*CLOAD\nTIPN, 3, 1.\n*NODE PRINT, NSET=TIPN\nU\n*END STEP\n",
+    )
+    .replacen(
+        "*HEADING\n",
+        "*HEADING\n** jointlin units: length=mm force=N time=s mass=t\n",
+        1,
+    );
+    std::fs::write(d.join("beam.inp"), text).unwrap();
+    jointlin(
+        &d,
+        &["run", "beam.inp", "--out", "out", "--quiet", "--no-plots"],
+        0,
+    );
+    let json = checked_head(&d, "out", "run", &["beam.inp", "tip.inp"]);
+    let line: Vec<&str> = json["command_line"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|a| a.as_str().unwrap())
+        .collect();
+    assert_eq!(
+        line[1..],
+        ["run", "beam.inp", "--out", "out", "--quiet", "--no-plots"]
+    );
+    // The body follows the head.
+    assert!(json["static_step"]["backward_error"].is_number());
+    let _ = std::fs::remove_dir_all(&d);
+}
+
+#[test]
+fn a_scene_is_listed_as_on_disk_and_every_command_writes_the_same_head() {
+    let d = dir("scene");
+    let scenes = Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes");
+    for s in ["duffing.toml", "jenkins-chain.toml"] {
+        std::fs::copy(scenes.join(s), d.join(s)).unwrap();
+    }
+    // --set changes the text run.json echoes, not the file it lists.
+    jointlin(
+        &d,
+        &[
+            "run",
+            "duffing.toml",
+            "--out",
+            "run",
+            "--quiet",
+            "--no-plots",
+            "--set",
+            "title='set on the command line'",
+        ],
+        0,
+    );
+    let json = checked_head(&d, "run", "run", &["duffing.toml"]);
+    assert!(json["scene"]["text"]
+        .as_str()
+        .unwrap()
+        .contains("set on the command line"));
+    // A lumped scene's run, a backbone, a study.
+    jointlin(
+        &d,
+        &[
+            "run",
+            "jenkins-chain.toml",
+            "--out",
+            "lumped",
+            "--quiet",
+            "--no-plots",
+        ],
+        0,
+    );
+    checked_head(&d, "lumped", "run", &["jenkins-chain.toml"]);
+    jointlin(
+        &d,
+        &["backbone", "jenkins-chain.toml", "--out", "backbone"],
+        0,
+    );
+    checked_head(&d, "backbone", "backbone", &["jenkins-chain.toml"]);
+    jointlin(&d, &["effects", "duffing.toml", "--out", "effects"], 0);
+    let json = checked_head(&d, "effects", "effects", &["duffing.toml"]);
+    assert!(json["files"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .any(|f| f == "effects.md"));
+    // A study that fails leaves no run.json, not even an earlier one.
+    std::fs::create_dir_all(d.join("failed")).unwrap();
+    std::fs::write(d.join("failed/run.json"), "{}").unwrap();
+    jointlin(&d, &["tradeoff", "duffing.toml", "--out", "failed"], 1);
+    assert!(!d.join("failed/run.json").exists());
+    let _ = std::fs::remove_dir_all(&d);
+}
