@@ -194,7 +194,8 @@ fn divides_by_fast_modal_route(scene: &Scene) -> bool {
         && s.iteration.mode == Mode::Fast
 }
 
-/// Runs a scene. `progress(label, done, total)` is called per frequency of each pass.
+/// Runs a scene. `progress(label, done, total)` is called per frequency of each pass,
+/// and with total 0 when the build, the static step and the basis begin.
 pub fn run(
     scene: &Scene,
     extras: Extras,
@@ -205,14 +206,17 @@ pub fn run(
     let spec = &scene.spec;
     let eff: Effects = spec.effects;
     let t = Instant::now();
+    progress("building the model", 0, 0);
     let problem = build(scene)?;
     let t_build = t.elapsed().as_secs_f64();
     let t = Instant::now();
+    progress("static preload step", 0, 0);
     let stat = static_step::solve(&problem, eff.normal_contact_nonlinearity)?;
     let t_static = t.elapsed().as_secs_f64();
     let mut opts = sweep_options(scene, extras);
     // One modal basis for every sweep of the run (they share the problem).
     let t = Instant::now();
+    progress("frequencies and the modal basis", 0, 0);
     let (freqs, mut cache, t_basis) = frequencies_and_basis(scene, &problem, &stat, &mut opts)?;
     opts.linear = linear_route(scene, &freqs);
     let mut main = sweep::run_cached(&problem, &stat, &freqs, &opts, progress, &mut cache)?;

@@ -85,10 +85,16 @@ pub enum Command {
     ///                 harmonic balance: first-harmonic amplitude, k* + iωd* = F̂₁/δ̂₁ of
     ///                 the closed loop, its energy per cycle
     ///   stick_slip.csv/.svg  points per regime over frequency (effects.stick_slip_map)
-    ///   run.json      scene echo, effects with costs, passes, iterations, timings, C-API calls
+    ///   run.json      written last: provenance (schema version, versions, command
+    ///                 line, time, SHA-256 of every input file; docs/outputs.md), scene
+    ///                 echo, effects with costs, passes, iterations, timings, C-API calls
     ///   frf.svg       FRF of the outputs with and without contact damping (and the
     ///                 sweep down for "up_down")
     ///   passes.svg    frequencies per pass (thesis mode: Fig. 4.33)
+    ///
+    /// Progress on stderr: a bar on a terminal; in a batch job (stderr a file or pipe)
+    /// a line per stage and one at least every JOINTLIN_PROGRESS_SECONDS (default 10)
+    /// with the elapsed time and the time left; none with --quiet.
     #[command(verbatim_doc_comment)]
     Run(run::Args),
     /// Frequency domain vs the time-domain reference: block stick and slip, the Duffing
@@ -311,10 +317,10 @@ fn with_progress<T, E: std::fmt::Display>(
     steps: usize,
     work: impl FnOnce(&(dyn Fn(&str) + Sync)) -> Result<T, E>,
 ) -> Result<T, ExitCode> {
-    let pb = progress_bar(quiet);
+    let mut pb = progress_bar(quiet);
     pb.set_length(steps as u64);
     let r = work(&|l| {
-        pb.set_message(l.to_string());
+        pb.set_message(l);
         pb.inc(1);
     });
     pb.finish_and_clear();

@@ -108,7 +108,7 @@ pub fn main(a: Args) -> ExitCode {
         }
         return super::run_lumped::main(&s, &a.out, !a.no_plots);
     }
-    let pb = progress_bar(a.quiet);
+    let mut pb = progress_bar(a.quiet);
     let r = run(
         &s,
         Extras {
@@ -116,9 +116,9 @@ pub fn main(a: Args) -> ExitCode {
             condense_max: None,
         },
         &|label, done, total| {
+            pb.set_message(label);
             pb.set_length(total as u64);
             pb.set_position(done as u64);
-            pb.set_message(label.to_string());
         },
     );
     pb.finish_and_clear();
@@ -249,11 +249,11 @@ fn time_domain_run(s: &Scene, out: &Path, quiet: bool) -> ExitCode {
             return ExitCode::from(2);
         }
     };
-    let pb = progress_bar(quiet);
+    let mut pb = progress_bar(quiet);
     let r = scene_run::run_scene(s, &settings, &|done, total| {
+        pb.set_message("time domain");
         pb.set_length(total as u64);
         pb.set_position(done as u64);
-        pb.set_message("time domain");
     });
     pb.finish_and_clear();
     let r = match r {
