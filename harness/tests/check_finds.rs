@@ -206,3 +206,73 @@ fn time_domain_max_cycles_below_min_cycles_is_found_by_check() {
         &["--time-domain"],
     );
 }
+
+/// Unit names from a known list, the system consistent (mass = force·time²/length), and
+/// a density far from any solid's in the stated units noted by `check` and `run`: a
+/// density in kg/m³ in an N-mm-t scene gives a first mode near 0.001 Hz and no error.
+#[test]
+fn unit_names_are_known_and_consistent_and_implausible_densities_are_noted() {
+    let path = scene(
+        "unit-name",
+        &[("length = \"mm\"", "length = \"millimetre\"")],
+    );
+    found(
+        &path,
+        line_of(&path, "length ="),
+        "units.length",
+        "unknown unit \"millimetre\"",
+        &[],
+    );
+    let path = scene("unit-mass", &[("mass = \"t\"", "mass = \"kg\"")]);
+    found(
+        &path,
+        line_of(&path, "mass ="),
+        "units.mass",
+        "\"kg\" is not force·time²/length: N·s²/mm = 1e3 kg (\"t\" or \"tonne\" or \"Mg\")",
+        &[],
+    );
+    // kg/m³ in N-mm-t: a warning from check and run, naming both numbers.
+    let path = scene("density", &[("rho = 7.85e-9", "rho = 7850.0")]);
+    let p = path.to_str().unwrap();
+    let out = path.with_file_name("out");
+    for args in [
+        vec!["check", p],
+        vec![
+            "run",
+            p,
+            "--out",
+            out.to_str().unwrap(),
+            "--quiet",
+            "--no-plots",
+        ],
+    ] {
+        let o = Command::new(env!("CARGO_BIN_EXE_jointlin"))
+            .args(&args)
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(o.status.success(), "{args:?}: {err}");
+        assert!(
+            err.contains("warning: material steel: density 7.85e3 t/mm³ is 7.850e15 kg/m³")
+                && err.contains("7.850e-9 t/mm³"),
+            "{args:?}: {err}"
+        );
+    }
+    // A deck's units comment the same way, at its line.
+    let deck = path.with_file_name("unit.inp");
+    std::fs::write(
+        &deck,
+        "*HEADING\n** jointlin units: length=mm force=N time=s mass=kg\n*NODE\n1, 0., 0., 0.\n",
+    )
+    .unwrap();
+    let o = Command::new(env!("CARGO_BIN_EXE_jointlin"))
+        .args(["check", deck.to_str().unwrap()])
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("unit.inp:2: **: mass=: \"kg\" is not force·time²/length"),
+        "{err}"
+    );
+}

@@ -49,27 +49,43 @@ fn run(tag: &str, args: &[&str]) -> Vec<(f64, f64)> {
     rows
 }
 
-/// harmonics.csv of a harmonic-balance run in `out`: columns h0…hH of m3_x, the first
-/// harmonic equal to results.csv's amplitude, the even harmonics zero (the chain and its
-/// Masing loops are odd: x(t + T/2) = −x(t)), a third harmonic where the joints slip.
+/// harmonics.csv of a harmonic-balance run in `out`: m3_x's mean, then amplitude and
+/// phase of h = 1…H; the first harmonic equal to results.csv's amplitude and phase, the
+/// even harmonics zero (the chain and its Masing loops are odd: x(t + T/2) = −x(t)), a
+/// third harmonic where the joints slip.
 fn harmonics_agree(out: &Path, h: usize) {
     let text = std::fs::read_to_string(out.join("harmonics.csv")).unwrap();
     let mut lines = text.lines();
     let head: Vec<&str> = lines.next().unwrap().split(',').collect();
-    let want: Vec<String> = (0..=h).map(|k| format!("m3_x_h{k}_amp_mm")).collect();
+    let mut want = vec!["m3_x_h0_mean_mm".to_string()];
+    for k in 1..=h {
+        want.push(format!("m3_x_h{k}_amp_mm"));
+        want.push(format!("m3_x_h{k}_phase_deg"));
+    }
     assert_eq!(head[1..], want[..], "{head:?}");
     let results = std::fs::read_to_string(out.join("results.csv")).unwrap();
     let mut third = 0.0f64;
+    // Column of harmonic k's amplitude (its phase follows).
+    let amp_col = |k: usize| 2 * k;
     for (hl, rl) in lines.zip(results.lines().skip(1)) {
         let hv: Vec<f64> = hl.split(',').map(|v| v.parse().unwrap()).collect();
         let rv: Vec<&str> = rl.split(',').collect();
         let amp: f64 = rv[1].parse().unwrap();
+        let phase: f64 = rv[2].parse().unwrap();
         assert_eq!(hv[0], rv[0].parse::<f64>().unwrap());
-        assert!((hv[2] - amp).abs() <= 1e-14 * amp, "{hl} against {rl}");
-        for k in (0..=h).step_by(2) {
-            assert!(hv[1 + k] <= 1e-12 * amp, "even harmonic {k}: {hl}");
+        assert!(
+            (hv[amp_col(1)] - amp).abs() <= 1e-14 * amp,
+            "{hl} against {rl}"
+        );
+        assert!(
+            (hv[amp_col(1) + 1] - phase).abs() <= 1e-9,
+            "{hl} against {rl}"
+        );
+        assert!(hv[1].abs() <= 1e-12 * amp, "mean: {hl}");
+        for k in (2..=h).step_by(2) {
+            assert!(hv[amp_col(k)] <= 1e-12 * amp, "even harmonic {k}: {hl}");
         }
-        third = third.max(if h >= 3 { hv[4] / amp } else { 0.0 });
+        third = third.max(if h >= 3 { hv[amp_col(3)] / amp } else { 0.0 });
     }
     // Where the joints slip (near the resonance) the motion has a third harmonic; stuck,
     // the chain is linear.

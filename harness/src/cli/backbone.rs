@@ -18,7 +18,7 @@ use jointlin_harness::model::lumped::{self, Lumped};
 use jointlin_harness::settings::units::frequency_unit;
 use jointlin_harness::util::{atomic, provenance};
 
-use super::{load_scene, report_written};
+use super::{load_scene_with, report_written, SceneOverrides};
 
 // The command's help is the doc comment of `Command::Backbone`.
 #[derive(clap::Args)]
@@ -26,6 +26,8 @@ pub struct Args {
     /// Lumped scene (mass bodies, springs, [[joints]], [[matrices]]) or FE scene (box
     /// bodies with [[interfaces]], or a deck).
     scene: PathBuf,
+    #[command(flatten)]
+    overrides: SceneOverrides,
     /// Mode number (1 = lowest frequency with every contact stuck).
     #[arg(long, default_value_t = 1)]
     mode: usize,
@@ -60,7 +62,7 @@ fn build(scene: &Scene, mode: usize) -> Result<(Lumped, Option<fe::Reduced>), St
 }
 
 pub fn main(a: Args) -> ExitCode {
-    let scene = match load_scene(&a.scene) {
+    let scene = match load_scene_with(&a.scene, &a.overrides.set) {
         Ok(s) => s,
         Err(code) => return code,
     };

@@ -5,7 +5,7 @@
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use super::load_scene;
+use super::{load_scene_with, SceneOverrides};
 use jointlin_harness::input::scene::Scene;
 use jointlin_harness::input::{deck, format_of, Format};
 use jointlin_harness::model::{self, Problem};
@@ -19,6 +19,8 @@ use jointlin_harness::util::number::{sig, sig_n};
 pub struct Args {
     #[arg(required_unless_present = "keywords")]
     scene: Option<PathBuf>,
+    #[command(flatten)]
+    overrides: SceneOverrides,
     /// Print the deck keywords the reader implements, each with its parameters, as
     /// the README's Markdown table, and exit.
     #[arg(long)]
@@ -42,7 +44,7 @@ pub fn main(a: Args) -> ExitCode {
     if format_of(&scene) == Format::AbaqusDeck {
         return check_deck(&scene, &a);
     }
-    let s = match load_scene(&scene) {
+    let s = match load_scene_with(&scene, &a.overrides.set) {
         Ok(s) => s,
         Err(code) => return code,
     };
@@ -86,6 +88,9 @@ pub fn main(a: Args) -> ExitCode {
             p.sys.dofs.n_free(),
             p.contacts.len()
         );
+        for w in &p.warnings {
+            eprintln!("warning: {w}");
+        }
         extras(&a, &s, &p);
     }
     ExitCode::SUCCESS
@@ -100,10 +105,11 @@ fn check_deck(path: &std::path::Path, a: &Args) -> ExitCode {
     match result {
         Ok((summary, warnings)) => {
             print!("{summary}");
-            for w in warnings {
+            let printed: Vec<String> = warnings.iter().map(|w| w.to_string()).collect();
+            for w in &printed {
                 eprintln!("warning: {w}");
             }
-            run_checks(path, a)
+            run_checks(path, a, &printed)
         }
         Err(e) => {
             eprintln!("error: {e}");
@@ -114,9 +120,10 @@ fn check_deck(path: &std::path::Path, a: &Args) -> ExitCode {
 
 /// What `jointlin run` meets before its first solve on a deck: the run-level reading
 /// (units comment, property tables, densities, steps a run can honour) and the model
-/// build (ties, contact pairs, loads, outputs); exit 2 with the deck's file:line.
-fn run_checks(path: &std::path::Path, a: &Args) -> ExitCode {
-    let s = match load_scene(path) {
+/// build (ties, contact pairs, loads, outputs); exit 2 with the deck's file:line. The
+/// build's warnings are printed but for those in `printed` (the reader's, already out).
+fn run_checks(path: &std::path::Path, a: &Args, printed: &[String]) -> ExitCode {
+    let s = match load_scene_with(path, &a.overrides.set) {
         Ok(s) => s,
         Err(code) => return code,
     };
@@ -128,6 +135,9 @@ fn run_checks(path: &std::path::Path, a: &Args) -> ExitCode {
                 p.contacts.len(),
                 s.frequencies().len()
             );
+            for w in p.warnings.iter().filter(|w| !printed.contains(w)) {
+                eprintln!("warning: {w}");
+            }
             extras(a, &s, &p);
             ExitCode::SUCCESS
         }

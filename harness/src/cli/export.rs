@@ -7,13 +7,15 @@ use std::process::ExitCode;
 
 use jointlin_harness::export::{check_target, export, write, ExportError};
 
-use super::{load_scene, report_written};
+use super::{load_scene_with, report_written, SceneOverrides};
 
 // The command's help is the doc comment of `Command::Export`.
 #[derive(clap::Args)]
 pub struct Args {
     /// Scene file (TOML, see scenes/).
     scene: PathBuf,
+    #[command(flatten)]
+    overrides: SceneOverrides,
     /// The deck to write (its directory is the job directory: sweep.frq and
     /// jointlin.cfg are written beside it).
     #[arg(long)]
@@ -21,7 +23,7 @@ pub struct Args {
 }
 
 pub fn main(a: Args) -> ExitCode {
-    let s = match load_scene(&a.scene) {
+    let s = match load_scene_with(&a.scene, &a.overrides.set) {
         Ok(s) => s,
         Err(code) => return code,
     };

@@ -76,8 +76,10 @@ pub enum Command {
     ///                 harmonic balance: first harmonic
     ///   results_down.csv  the same columns for the descending sweep (direction = "up_down";
     ///                 results.csv then holds the ascending one)
-    ///   harmonics.csv harmonic balance only: frequency_Hz, then per output and h = 0..H
-    ///                 <name>_h<h>_amp_mm (h = 0: mean deviation from the static state)
+    ///   harmonics.csv harmonic balance only: frequency_Hz, then per output
+    ///                 <name>_h0_mean_mm (mean deviation from the static state) and per
+    ///                 h = 1..H <name>_h<h>_amp_mm, <name>_h<h>_phase_deg: over a period
+    ///                 u(t) = mean + Σ amp_h cos(h ω t + phase_h)
     ///   results_without_contact_damping.csv  the same with d* = 0 (fast mode; written
     ///                 with the plots when the scene has contact damping)
     ///   points.csv    per contact point and frequency: position, pressure, amplitude,

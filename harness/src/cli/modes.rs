@@ -11,13 +11,15 @@ use jointlin_harness::util::atomic;
 use jointlin_harness::util::csv_table::CsvTable;
 use jointlin_harness::util::number::sig;
 
-use super::load_scene;
+use super::{load_scene_with, SceneOverrides};
 
 // The command's help is the doc comment of `Command::Modes`.
 #[derive(clap::Args)]
 pub struct Args {
     /// Scene file (TOML) or Abaqus-format deck (.inp).
     scene: PathBuf,
+    #[command(flatten)]
+    overrides: SceneOverrides,
     /// Number of modes (default: every mode below 1.5 × the sweep's highest frequency,
     /// at least 6, at most 200).
     #[arg(long)]
@@ -32,7 +34,7 @@ pub fn main(a: Args) -> ExitCode {
         eprintln!("error: --count must be at least 1");
         return ExitCode::from(2);
     }
-    let s = match load_scene(&a.scene) {
+    let s = match load_scene_with(&a.scene, &a.overrides.set) {
         Ok(s) => s,
         Err(code) => return code,
     };

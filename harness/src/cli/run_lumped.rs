@@ -17,6 +17,7 @@ use jointlin_harness::capi;
 use jointlin_harness::input::scene::Scene;
 use jointlin_harness::mhb::{default_samples, first_order, Hb, NewtonOptions};
 use jointlin_harness::model::lumped;
+use jointlin_harness::report::csv::{harmonic_columns, harmonic_values};
 use jointlin_harness::report::svg::{frf_curves, FrfCurve};
 use jointlin_harness::settings::units::{frequency_unit, ColumnUnits};
 use jointlin_harness::settings::{Direction, Mode, Units};
@@ -166,7 +167,7 @@ fn sweep_pass(
     let mut hheader = vec![fu.column.clone()];
     if let Some((h, _)) = harmonic {
         for (name, _) in &l.outputs {
-            hheader.extend((0..=h).map(|k| format!("{name}_h{k}_amp_{len}")));
+            hheader.extend(harmonic_columns(name, h, &len));
         }
     }
     let mut sweep = Sweep::new(l, harmonic);
@@ -186,8 +187,14 @@ fn sweep_pass(
                         let c = |k: usize| -> f64 {
                             w.iter().enumerate().map(|(d, w)| w * u[d * m + k]).sum()
                         };
-                        hrow.push(format!("{:e}", c(0).abs()));
-                        hrow.extend((1..=h).map(|k| format!("{:e}", c(2 * k - 1).hypot(c(2 * k)))));
+                        // a cos + b sin = Re((a − i b) e^{iωt}), as x̂ of results.csv.
+                        let u: Vec<Complex<f64>> = (0..=h)
+                            .map(|k| match k {
+                                0 => Complex::new(c(0), 0.0),
+                                _ => Complex::new(c(2 * k - 1), -c(2 * k)),
+                            })
+                            .collect();
+                        hrow.extend(harmonic_values(&u).iter().map(|v| format!("{v:e}")));
                     }
                 }
                 let mut a = Vec::new();

@@ -16,8 +16,36 @@ pub mod lumped_system;
 pub mod screw_load;
 pub mod subgrid;
 
-pub use build::{build, mesh_face, PAIR_TOL};
+pub use build::{mesh_face, PAIR_TOL};
 pub use locate::locate;
+
+/// The problem of a scene or deck ([`build::build`]), its warnings joined by a note on
+/// each material whose E or ρ lies far outside those of solids in the stated units
+/// ([`unit_names::implausible_material`]).
+pub fn build(scene: &Scene) -> Result<Problem, BuildError> {
+    let mut p = build::build(scene)?;
+    let units = &scene.spec.units;
+    let materials: Vec<(String, f64, f64)> = match &scene.deck {
+        Some(job) => job
+            .deck
+            .materials
+            .values()
+            .filter_map(|m| Some((m.name.clone(), m.elastic?.0, m.density.unwrap_or(0.0))))
+            .collect(),
+        None => scene
+            .spec
+            .materials
+            .iter()
+            .map(|(name, m)| (name.clone(), m.e, m.rho))
+            .collect(),
+    };
+    p.warnings.extend(
+        materials
+            .iter()
+            .filter_map(|(name, e, rho)| unit_names::implausible_material(units, name, *e, *rho)),
+    );
+    Ok(p)
+}
 
 /// The one [`Problem`] of an input, whatever its format: a scene through [`build`], a
 /// deck (or a scene with `model`) through [`deck::build`].
@@ -34,8 +62,10 @@ use crate::fe::assembly::{AssemblyError, System};
 use crate::fe::contact_pairs::PairError;
 use crate::fe::csc::Csc;
 use crate::fe::mesh::{MeshError, Model};
+use crate::input::scene::Scene;
 use crate::input::Input;
 use crate::names::ContactLaw;
+use crate::settings::unit_names;
 
 /// Errors building a problem from a (valid) scene: mesh-level inconsistencies.
 #[derive(Debug, Error)]

@@ -51,8 +51,37 @@ pub fn results(p: &Problem, r: &SweepResult, units: &Units) -> String {
     t.finish()
 }
 
-/// harmonics.csv text (harmonic balance): the frequency, then per output and harmonic
-/// h = 0..H `<name>_h<h>_amp_<length>` (h = 0 the mean deviation from the static state).
+/// The harmonics.csv columns of output `name` at harmonics 0..=`h`:
+/// `<name>_h0_mean_<length>` (signed mean deviation from the static state), then per
+/// h ≥ 1 `<name>_h<h>_amp_<length>` and `<name>_h<h>_phase_deg`, so that the output over
+/// a period is u(t) = mean + Σ_h amp_h cos(h ω t + phase_h) — results.csv's amplitude
+/// and phase are those of h = 1.
+pub fn harmonic_columns(name: &str, h: usize, length: &str) -> Vec<String> {
+    let mut c = vec![format!("{name}_h0_mean_{length}")];
+    for k in 1..=h {
+        c.push(format!("{name}_h{k}_amp_{length}"));
+        c.push(format!("{name}_h{k}_phase_deg"));
+    }
+    c
+}
+
+/// The values of [`harmonic_columns`] for the complex amplitudes û_h, h = 0..=H
+/// (u(t) = Re Σ û_h e^{ihωt}; û_0 real).
+pub fn harmonic_values(u: &[nalgebra::Complex<f64>]) -> Vec<f64> {
+    let mut v = Vec::with_capacity(2 * u.len());
+    for (k, c) in u.iter().enumerate() {
+        if k == 0 {
+            v.push(c.re);
+        } else {
+            v.push(c.norm());
+            v.push(c.arg().to_degrees());
+        }
+    }
+    v
+}
+
+/// harmonics.csv text (harmonic balance): the frequency, then per output its
+/// [`harmonic_columns`].
 pub fn harmonics(p: &Problem, r: &SweepResult, units: &Units) -> String {
     let length = ColumnUnits::new(units).length;
     let nh = r
@@ -63,7 +92,7 @@ pub fn harmonics(p: &Problem, r: &SweepResult, units: &Units) -> String {
     let fu = frequency_unit(units);
     let mut header = vec![fu.column.clone()];
     for o in &p.outputs {
-        header.extend((0..nh).map(|h| format!("{}_h{h}_amp_{length}", o.name)));
+        header.extend(harmonic_columns(&o.name, nh.saturating_sub(1), &length));
     }
     let mut t = CsvTable::new(&header);
     for (i, (f, outs)) in r.freqs.iter().zip(&r.harmonics).enumerate() {
@@ -72,7 +101,9 @@ pub fn harmonics(p: &Problem, r: &SweepResult, units: &Units) -> String {
             // No response computed (singular or failed): empty fields, as in results.csv.
             row.resize(header.len(), String::new());
         } else {
-            row.extend(outs.iter().flatten().map(|v| format!("{:.10e}", v.norm())));
+            for o in outs {
+                row.extend(harmonic_values(o).iter().map(|v| format!("{v:.10e}")));
+            }
         }
         t.row(&row);
     }

@@ -13,6 +13,7 @@ use serde_json::json;
 
 use crate::input::scene::Scene;
 use crate::run::RunResult;
+use crate::settings::units::frequency_unit;
 use crate::util::{atomic, provenance};
 
 /// Which plots to draw.
@@ -60,13 +61,15 @@ fn run_body(scene: &Scene, r: &RunResult) -> serde_json::Value {
             "total_contact_force": r.problem.contacts.iter().zip(&r.stat.pressure).map(|(c, p)| c.area * p).sum::<f64>(),
         },
         "mode": scene.spec.iteration.mode,
+        // The unit of every frequency below (frequencies, checks, field output).
+        "frequency_unit": frequency_unit(&scene.spec.units).text,
         "passes": m.passes,
         "iterations_per_frequency": m.iterations,
         "converged": m.converged,
         "all_converged": m.converged.iter().all(|&c| c),
         "singular_frequencies": m.freqs.iter().enumerate().filter(|(i, _)| m.is_singular(*i)).map(|(_, f)| *f).collect::<Vec<f64>>(),
         "failed_frequencies": m.freqs.iter().enumerate().filter_map(|(i, f)| m.failure(i).map(|e| json!({"frequency": f, "error": e}))).collect::<Vec<_>>(),
-        "a_posteriori_checks": m.checks,
+        "a_posteriori_checks": checks_at(&m.freqs, &m.checks),
         "singular_rcond_threshold": crate::solve::sweep::SINGULAR_RCOND,
         "factorizations": m.factorizations,
         // The modal route's basis (null for the direct route); its a-posteriori checks'
@@ -100,6 +103,26 @@ fn run_body(scene: &Scene, r: &RunResult) -> serde_json::Value {
         },
         "c_api_calls": r.calls,
     })
+}
+
+/// The a-posteriori check of each frequency, the frequency first (null where a
+/// frequency has none: failed, singular, or a mode without the check).
+fn checks_at<T: serde::Serialize>(freqs: &[f64], checks: &[Option<T>]) -> Vec<serde_json::Value> {
+    freqs
+        .iter()
+        .zip(checks)
+        .map(|(f, c)| {
+            let mut entry = serde_json::Map::new();
+            entry.insert("frequency".into(), json!(f));
+            match serde_json::to_value(c) {
+                Ok(serde_json::Value::Object(fields)) => entry.extend(fields),
+                _ => {
+                    entry.insert("check".into(), serde_json::Value::Null);
+                }
+            }
+            serde_json::Value::Object(entry)
+        })
+        .collect()
 }
 
 /// The files `jointlin run` writes with fixed names; besides them it writes

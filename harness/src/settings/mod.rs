@@ -1,12 +1,13 @@
 //! The settings of a run, below every room that reads them: what a run computes
 //! (`[sweep]`, `[iteration]` with the mode, `[[outputs]]`, `[effects]`), the studies'
 //! tables (`[loss_study]`, `[time_domain]`, `[field_output]`) and the units with their
-//! names in columns and labels. The scene schema deserializes into these types and the
+//! names in columns and labels (`units`) and the names a system may state (`unit_names`). The scene schema deserializes into these types and the
 //! deck reader fills them; solvers, the time domain and reports read them here, never
 //! from an input reader.
 
 pub mod studies;
 pub mod study;
+pub mod unit_names;
 pub mod units;
 
 pub use studies::*;

@@ -406,13 +406,20 @@ pub fn stated_units(file: &str, text: &str) -> Result<Option<Units>, DeckError> 
         let [Some(length), Some(force), Some(time), Some(mass)] = u else {
             return Err(err("units need length, force, time and mass".into()));
         };
-        return Ok(Some(Units {
+        let units = Units {
             length,
             force,
             time,
             mass,
             frequency: None,
-        }));
+        };
+        if let Some((k, m)) = crate::settings::unit_names::problems(&units)
+            .into_iter()
+            .next()
+        {
+            return Err(err(format!("{k}=: {m}")));
+        }
+        return Ok(Some(units));
     }
     Ok(None)
 }

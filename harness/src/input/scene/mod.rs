@@ -37,6 +37,24 @@ pub struct Scene {
     pub sources: Vec<SourceFile>,
 }
 
+/// An error at a key a `--set` gave: placed on the command line (`--set KEY=VALUE:`),
+/// not at a line of the file that does not hold that value.
+fn on_command_line(e: SceneError, set: &[overrides::Override]) -> SceneError {
+    match set
+        .iter()
+        .rev()
+        .find(|o| !e.key.is_empty() && o.covers(&e.key))
+    {
+        Some(o) => SceneError {
+            file: format!("--set {}", o.text()),
+            line: 0,
+            column: 0,
+            ..e
+        },
+        None => e,
+    }
+}
+
 impl Scene {
     /// Reads and validates a scene file.
     pub fn load(path: &Path) -> Result<Scene, SceneError> {
@@ -62,7 +80,7 @@ impl Scene {
             key: String::new(),
             message,
         })?;
-        let mut scene = Scene::parse(&file, &text)?;
+        let mut scene = Scene::parse(&file, &text).map_err(|e| on_command_line(e, set))?;
         scene.sources.push(source);
         Ok(scene)
     }

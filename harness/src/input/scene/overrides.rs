@@ -13,9 +13,36 @@ use toml_edit::{DocumentMut, Item, Value};
 /// One `KEY=VALUE`.
 #[derive(Debug, Clone)]
 pub struct Override {
+    /// As given on the command line.
+    text: String,
     path: Vec<String>,
     /// `None`: remove the key.
     value: Option<Value>,
+}
+
+impl Override {
+    /// Whether this override set the value at `key` or a table holding it: `key` in
+    /// the errors' form (`interfaces[0].mu`), the override's path with `*` for any index.
+    pub fn covers(&self, key: &str) -> bool {
+        let segments: Vec<String> = key
+            .replace('[', ".")
+            .replace(']', "")
+            .split('.')
+            .filter(|s| !s.is_empty())
+            .map(str::to_string)
+            .collect();
+        self.path.len() <= segments.len()
+            && self
+                .path
+                .iter()
+                .zip(&segments)
+                .all(|(p, s)| p == s || (p == "*" && s.parse::<usize>().is_ok()))
+    }
+
+    /// `KEY=VALUE` as given.
+    pub fn text(&self) -> &str {
+        &self.text
+    }
 }
 
 impl FromStr for Override {
@@ -35,7 +62,11 @@ impl FromStr for Override {
                 .unwrap_or_else(|_| Value::from(value))
                 .decorated(" ", "")
         });
-        Ok(Override { path, value })
+        Ok(Override {
+            text: s.to_string(),
+            path,
+            value,
+        })
     }
 }
 
@@ -130,6 +161,16 @@ fn set_in_table(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn an_override_covers_the_keys_it_set() {
+        let o: Override = "interfaces.*.mu=-1".parse().unwrap();
+        assert!(o.covers("interfaces[0].mu") && o.covers("interfaces[3].mu"));
+        assert!(!o.covers("interfaces[0].rule") && !o.covers("interfaces"));
+        let o: Override = "sweep=".parse().unwrap();
+        assert!(o.covers("sweep.count") && !o.covers("sweeps"));
+        assert_eq!(o.text(), "sweep=");
+    }
 
     fn set_all(text: &str, overrides: &[&str]) -> Result<String, String> {
         let o: Vec<Override> = overrides

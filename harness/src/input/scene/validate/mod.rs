@@ -138,18 +138,11 @@ pub fn validate(s: &SceneFile) -> Vec<Problem> {
     super::model_file::adjust(s, c.problems)
 }
 
-/// Unit names are not empty.
+/// Unit names known and consistent (mass = force·time²/length).
 fn units(c: &mut Checker, s: &SceneFile) {
     let u = KeyPath::root().key("units");
-    for (k, v) in [
-        ("length", &s.units.length),
-        ("force", &s.units.force),
-        ("time", &s.units.time),
-        ("mass", &s.units.mass),
-    ] {
-        if v.trim().is_empty() {
-            c.fail(u.key(k), "unit name must not be empty");
-        }
+    for (k, message) in crate::settings::unit_names::problems(&s.units) {
+        c.fail(u.key(k), message);
     }
     if let Some(f) = &s.units.frequency {
         let ok = frequency_spellings(&s.units);
