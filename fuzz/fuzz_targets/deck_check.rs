@@ -37,7 +37,7 @@ fn run(data: &[u8]) {
         Ok(r) => r,
         Err(e) => return assert_line_within(text, e.line, &e),
     };
-    if let Err(e) = summary::summary(&d, "fuzz.inp") {
+    if let Err(e) = summary::summary(&d, "fuzz.inp", "1/time") {
         assert_line_within(text, e.line, &e);
     }
     let job = match DeckJob::new("fuzz.inp".into(), text, d, warnings) {

@@ -90,7 +90,7 @@ fn check_lap(d: &Deck, file: &str) {
         .sum();
     assert_eq!(parts, d.elements.len());
     assert_eq!(d.sections.len(), 3);
-    let s = summary(d, file).unwrap();
+    let s = summary(d, file, "1/time").unwrap();
     eprintln!("{s}");
     assert!(!s.contains("warning"), "{s}");
     let slave = surface_nodes(d, "LAP_UPPER").len();

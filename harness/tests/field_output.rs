@@ -195,7 +195,7 @@ fn contact_maps_at_the_field_frequencies() {
         p.to_str().unwrap(),
     ]);
     assert!(ok, "{log}");
-    // "…: 1234 free DOFs, 90 contact points (72 closed), mode Fast"
+    // "…: 1234 free DOFs, 90 contact points (72 closed), mode fast"
     let points: usize = log
         .split(" contact points")
         .next()

@@ -52,11 +52,15 @@ pub fn main(a: Args) -> ExitCode {
     // between non-conforming meshes), with the scene's location; lumped scenes with
     // [[joints]] are `jointlin backbone`'s and have no FE model.
     let mut built = None;
+    let mut parts = model_parts(&s);
     if s.spec.is_lumped() {
         // The lumped system reads the [[matrices]] files: their errors name file:line.
-        if let Err(e) = model::lumped::build(&s) {
-            eprintln!("error: {}: {e}", s.file);
-            return ExitCode::from(2);
+        match model::lumped::build(&s) {
+            Ok(l) => parts = format!("{parts} ({} DOFs)", l.dofs.len()),
+            Err(e) => {
+                eprintln!("error: {}: {e}", s.file);
+                return ExitCode::from(2);
+            }
         }
     } else {
         match model::build(&s) {
@@ -72,15 +76,15 @@ pub fn main(a: Args) -> ExitCode {
             Ok(p) => built = Some(p),
         }
     }
+    let fu = frequency_unit(&s.spec.units);
     println!(
-        "{}: ok — {} bodies, {} interfaces, {} frequencies ({} to {}), mode {:?}",
+        "{}: ok — {parts}, {} frequencies ({} to {} {}), mode {}",
         s.file,
-        s.spec.bodies.len(),
-        s.spec.interfaces.len(),
         s.frequencies().len(),
-        s.frequencies().first().copied().unwrap_or(0.0),
-        s.frequencies().last().copied().unwrap_or(0.0),
-        s.spec.iteration.mode
+        fu.show(s.frequencies().first().copied().unwrap_or(0.0)),
+        fu.show(s.frequencies().last().copied().unwrap_or(0.0)),
+        fu.text,
+        s.spec.iteration.mode.name()
     );
     if let Some(p) = built {
         println!(
@@ -96,57 +100,102 @@ pub fn main(a: Args) -> ExitCode {
     ExitCode::SUCCESS
 }
 
-/// `jointlin check DECK.inp`: reads the deck, pairs its contact surfaces, prints the
-/// summary and the reader's warnings; exit 2 with `file:line: *KEYWORD: message`.
-fn check_deck(path: &std::path::Path, a: &Args) -> ExitCode {
-    let result = deck::read(path).and_then(|(d, warnings)| {
-        deck::summary::summary(&d, &path.display().to_string()).map(|s| (s, warnings))
-    });
-    match result {
-        Ok((summary, warnings)) => {
-            print!("{summary}");
-            let printed: Vec<String> = warnings.iter().map(|w| w.to_string()).collect();
-            for w in &printed {
-                eprintln!("warning: {w}");
-            }
-            run_checks(path, a, &printed)
+/// What the scene's model is made of, counted: the deck of `model` (nodes, elements,
+/// contact pairs, ties), or the bodies, matrices, springs, joints and interfaces the
+/// scene lists (those it has).
+fn model_parts(s: &Scene) -> String {
+    let count = |n: usize, word: &str| match n {
+        1 => format!("1 {word}"),
+        _ => format!("{n} {word}s"),
+    };
+    if let Some(job) = &s.deck {
+        let d = &job.deck;
+        return format!(
+            "deck {}: {}, {}, {}, {}",
+            job.file,
+            count(d.nodes.len(), "node"),
+            count(d.elements.len(), "element"),
+            count(d.contact_pairs.len(), "contact pair"),
+            count(d.ties.len(), "tie")
+        );
+    }
+    let sp = &s.spec;
+    let listed: Vec<String> = [
+        (sp.bodies.len(), "body"),
+        (sp.matrices.len(), "matrix model"),
+        (sp.springs.len(), "spring"),
+        (sp.joints.len(), "joint"),
+        (sp.interfaces.len(), "interface"),
+        (sp.ties.len(), "tie"),
+    ]
+    .into_iter()
+    .filter(|&(n, _)| n > 0)
+    .map(|(n, w)| {
+        if w == "body" && n != 1 {
+            format!("{n} bodies")
+        } else {
+            count(n, w)
         }
-        Err(e) => {
-            eprintln!("error: {e}");
-            ExitCode::from(2)
-        }
+    })
+    .collect();
+    if listed.is_empty() {
+        "no model parts".into()
+    } else {
+        listed.join(", ")
     }
 }
 
-/// What `jointlin run` meets before its first solve on a deck: the run-level reading
-/// (units comment, property tables, densities, steps a run can honour) and the model
-/// build (ties, contact pairs, loads, outputs); exit 2 with the deck's file:line. The
-/// build's warnings are printed but for those in `printed` (the reader's, already out).
-fn run_checks(path: &std::path::Path, a: &Args, printed: &[String]) -> ExitCode {
+/// `jointlin check DECK.inp`: reads the deck, pairs its contact surfaces, prints the
+/// summary and the reader's warnings; exit 2 with `file:line: *KEYWORD: message`.
+fn check_deck(path: &std::path::Path, a: &Args) -> ExitCode {
+    // Everything a run reads first (the deck, its units comment, jointlin.cfg beside
+    // it), so nothing is called ok that the run then refuses.
     let s = match load_scene_with(path, &a.overrides.set) {
         Ok(s) => s,
         Err(code) => return code,
     };
-    match model::build(&s) {
+    let Some(job) = s.deck.as_ref() else {
+        eprintln!("error: {}: not read as a deck", path.display());
+        return ExitCode::from(2);
+    };
+    let frequency = frequency_unit(&s.spec.units).text;
+    match deck::summary::summary(&job.deck, &job.file, &frequency) {
+        Ok(summary) => print!("{summary}"),
+        Err(e) => {
+            eprintln!("error: {e}");
+            return ExitCode::from(2);
+        }
+    }
+    run_checks(&s, a)
+}
+
+/// What `jointlin run` meets before its first solve on a deck after reading it: the
+/// model build (ties, contact pairs, loads, outputs); exit 2 with the deck's file:line.
+/// The reader's and the build's warnings are printed.
+fn run_checks(s: &Scene, a: &Args) -> ExitCode {
+    match model::build(s) {
         Ok(p) => {
+            for w in &p.warnings {
+                eprintln!("warning: {w}");
+            }
             println!(
                 "run checks: ok — {} free DOFs, {} contact points, {} frequencies",
                 p.sys.dofs.n_free(),
                 p.contacts.len(),
                 s.frequencies().len()
             );
-            for w in p.warnings.iter().filter(|w| !printed.contains(w)) {
-                eprintln!("warning: {w}");
-            }
-            extras(a, &s, &p);
+            extras(a, s, &p);
             ExitCode::SUCCESS
         }
         Err(model::BuildError::Deck(e)) => {
+            for w in s.deck.iter().flat_map(|j| &j.warnings) {
+                eprintln!("warning: {w}");
+            }
             eprintln!("error: {e}");
             ExitCode::from(2)
         }
         Err(e) => {
-            eprintln!("error: {}: building the model: {e}", path.display());
+            eprintln!("error: {}: building the model: {e}", s.file);
             ExitCode::from(2)
         }
     }
@@ -173,12 +222,12 @@ fn print_forecast(s: &Scene, p: &Problem) {
                 true,
             );
             println!(
-                "time forecast: one factorization of the dynamic stiffness {} s, one solve {} s (measured here at {} {unit}); {} frequencies in mode {:?}: {}–{} factorizations, {}–{} solves, about {}–{} s with the plots' reference sweep (--no-plots halves it), plus the static step",
+                "time forecast: one factorization of the dynamic stiffness {} s, one solve {} s (measured here at {} {unit}); {} frequencies in mode {}: {}–{} factorizations, {}–{} solves, about {}–{} s with the plots' reference sweep (--no-plots halves it), plus the static step",
                 sig_n(m.factorization, 2),
                 sig_n(m.solve, 2),
                 sig(fu.show(f0)),
                 freqs.len(),
-                it.mode,
+                it.mode.name(),
                 f.factorizations[0],
                 f.factorizations[1],
                 f.solves[0],

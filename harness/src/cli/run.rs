@@ -143,12 +143,12 @@ pub fn main(a: Args) -> ExitCode {
         eprintln!("warning: {w}");
     }
     eprintln!(
-        "{}: {} free DOFs, {} contact points ({} closed), mode {:?}",
+        "{}: {} free DOFs, {} contact points ({} closed), mode {}",
         s.file,
         r.problem.sys.dofs.n_free(),
         r.problem.contacts.len(),
         r.stat.closed.iter().filter(|&&c| c).count(),
-        s.spec.iteration.mode
+        s.spec.iteration.mode.name()
     );
     if let Some(mr) = &r.main.modal {
         let fu = jointlin_harness::settings::units::frequency_unit(&s.spec.units);

@@ -173,6 +173,17 @@ pub enum Mode {
     HarmonicBalance,
 }
 
+impl Mode {
+    /// The name a scene writes (`fast`, `thesis`, `harmonic_balance`).
+    pub fn name(self) -> &'static str {
+        match self {
+            Mode::Fast => "fast",
+            Mode::Thesis => "thesis",
+            Mode::HarmonicBalance => "harmonic_balance",
+        }
+    }
+}
+
 /// Amplitude-consistency iteration.
 #[derive(Debug, Clone, Copy, Deserialize, Serialize, PartialEq)]
 #[serde(deny_unknown_fields)]

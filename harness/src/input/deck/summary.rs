@@ -128,8 +128,19 @@ fn typical_face_diagonal(deck: &Deck, name: &str) -> f64 {
     }
 }
 
-/// The model summary printed by `jointlin check`.
-pub fn summary(deck: &Deck, file: &str) -> Result<String, DeckError> {
+/// `n` and `word`, plural unless n = 1 ("1 material", "3 node sets").
+fn count(n: usize, word: &str) -> String {
+    if n == 1 {
+        format!("1 {word}")
+    } else {
+        format!("{n} {word}s")
+    }
+}
+
+/// The model summary printed by `jointlin check`; `frequency` names the unit of the
+/// steady-state steps' frequencies (`Hz`, `1/ms`, or `1/time` when the deck states no
+/// units).
+pub fn summary(deck: &Deck, file: &str, frequency: &str) -> Result<String, DeckError> {
     let mut s = String::new();
     let _ = writeln!(
         s,
@@ -151,12 +162,12 @@ pub fn summary(deck: &Deck, file: &str) -> Result<String, DeckError> {
     );
     let _ = writeln!(
         s,
-        "  {} node sets, {} element sets, {} surfaces, {} materials, {} sections",
-        deck.node_sets.len(),
-        deck.element_sets.len(),
-        deck.surfaces.len(),
-        deck.materials.len(),
-        deck.sections.len()
+        "  {}, {}, {}, {}, {}",
+        count(deck.node_sets.len(), "node set"),
+        count(deck.element_sets.len(), "element set"),
+        count(deck.surfaces.len(), "surface"),
+        count(deck.materials.len(), "material"),
+        count(deck.sections.len(), "section")
     );
     let ids = |n: usize| deck.nodes[n].id;
     for c in &deck.contact_pairs {
@@ -204,7 +215,7 @@ pub fn summary(deck: &Deck, file: &str) -> Result<String, DeckError> {
                 let hi = ranges.iter().map(|r| r.f_high).fold(0.0, f64::max);
                 let points: usize = ranges.iter().map(|r| r.points).sum();
                 format!(
-                    "steady-state dynamics {lo}…{hi} (1/time), {points} points on {} data lines",
+                    "steady-state dynamics {lo}…{hi} ({frequency}), {points} points on {} data lines",
                     ranges.len()
                 )
             }

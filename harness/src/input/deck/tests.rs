@@ -195,7 +195,7 @@ Upper.DOWN, Lower.UP
     assert_eq!(d.sections.len(), 2);
     assert_eq!(d.ties[0].slave, "UPPER.DOWN");
     // The upper instance's bottom lies on the lower's top: 4 tied nodes.
-    let s = summary::summary(&d, "test.inp").unwrap();
+    let s = summary::summary(&d, "test.inp", "1/time").unwrap();
     assert!(
         s.contains("tie T (UPPER.DOWN / LOWER.UP): 4 tied nodes"),
         "{s}"
@@ -210,7 +210,7 @@ Upper.DOWN, Lower.UP
 fn contact_surfaces_that_do_not_overlap_are_an_error() {
     // FLAT pairs the brick's top with its own bottom, 20 length units apart.
     let (d, _) = read_text(FLAT).unwrap();
-    let e = summary::summary(&d, "test.inp").unwrap_err();
+    let e = summary::summary(&d, "test.inp", "1/time").unwrap_err();
     assert_eq!(e.kind, DeckErrorKind::BadValue);
     assert!(
         e.to_string()
