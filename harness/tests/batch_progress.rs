@@ -6,9 +6,9 @@
 use std::path::Path;
 use std::process::Command;
 
-/// The progress lines (`[   1.2 s] …`) of a run of `scene` with stderr a pipe, and the
-/// elapsed seconds each states.
-fn progress_lines(scene: &str, interval: &str, quiet: bool) -> Vec<(f64, String)> {
+/// The progress lines (`[   1.2 s] …`) of a run of `scene` (and `extra` arguments) with
+/// stderr a pipe, and the elapsed seconds each states.
+fn progress_lines(scene: &str, extra: &[&str], interval: &str, quiet: bool) -> Vec<(f64, String)> {
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
     let out = std::env::temp_dir().join(format!(
         "jointlin-batch-progress-{}-{quiet}",
@@ -18,6 +18,7 @@ fn progress_lines(scene: &str, interval: &str, quiet: bool) -> Vec<(f64, String)
     cmd.args(["run", root.join(scene).to_str().unwrap(), "--out"])
         .arg(&out)
         .arg("--no-plots")
+        .args(extra)
         .env("JOINTLIN_PROGRESS_SECONDS", interval);
     if quiet {
         cmd.arg("--quiet");
@@ -37,7 +38,7 @@ fn progress_lines(scene: &str, interval: &str, quiet: bool) -> Vec<(f64, String)
 
 #[test]
 fn a_batch_run_prints_each_stage_and_a_line_every_interval() {
-    let lines = progress_lines("scenes/three-beams-coarse.toml", "0.05", false);
+    let lines = progress_lines("scenes/three-beams-coarse.toml", &[], "0.05", false);
     let text: Vec<&str> = lines.iter().map(|(_, l)| l.as_str()).collect();
     // The first stage at once; stages that follow within a second share its line.
     assert_eq!(text[0], "building the model", "{text:?}");
@@ -53,5 +54,23 @@ fn a_batch_run_prints_each_stage_and_a_line_every_interval() {
     }
     // Steps counted with the time left while the sweep runs.
     assert!(text.iter().any(|l| l.contains("s left")), "{text:?}");
-    assert!(progress_lines("scenes/three-beams-coarse.toml", "0.05", true).is_empty());
+    assert!(progress_lines("scenes/three-beams-coarse.toml", &[], "0.05", true).is_empty());
+}
+
+#[test]
+fn every_pass_of_a_multi_pass_run_gets_its_time_left() {
+    // Thesis mode runs the frequencies in passes, each counting from 1 again: the time
+    // left is measured from where each pass starts, not from the first.
+    let lines = progress_lines(
+        "scenes/three-beams-coarse.toml",
+        &["--set", "iteration.mode=thesis"],
+        "0.02",
+        false,
+    );
+    let later: Vec<&String> = lines
+        .iter()
+        .map(|(_, l)| l)
+        .filter(|l| l.starts_with("pass ") && !l.starts_with("pass 1 "))
+        .collect();
+    assert!(later.iter().any(|l| l.contains("s left")), "{lines:?}");
 }

@@ -132,6 +132,18 @@ fn a_deck_run_lists_the_deck_and_its_include_with_their_digests() {
     );
     // The body follows the head.
     assert!(json["static_step"]["backward_error"].is_number());
+    // A scene over the deck: the scene first, then the deck and its include.
+    std::fs::write(
+        d.join("over.toml"),
+        "model = \"beam.inp\"\n[units]\nlength = \"mm\"\nforce = \"N\"\ntime = \"s\"\nmass = \"t\"\n",
+    )
+    .unwrap();
+    jointlin(
+        &d,
+        &["run", "over.toml", "--out", "over", "--quiet", "--no-plots"],
+        0,
+    );
+    checked_head(&d, "over", "run", &["over.toml", "beam.inp", "tip.inp"]);
     let _ = std::fs::remove_dir_all(&d);
 }
 
@@ -162,6 +174,22 @@ fn a_scene_is_listed_as_on_disk_and_every_command_writes_the_same_head() {
         .as_str()
         .unwrap()
         .contains("set on the command line"));
+    // The time domain's run.json, written last as the frequency domain's.
+    std::fs::copy(scenes.join("block-stick.toml"), d.join("block-stick.toml")).unwrap();
+    jointlin(
+        &d,
+        &[
+            "run",
+            "block-stick.toml",
+            "--time-domain",
+            "--out",
+            "td",
+            "--quiet",
+        ],
+        0,
+    );
+    let json = checked_head(&d, "td", "run --time-domain", &["block-stick.toml"]);
+    assert_eq!(json["frequency_unit"], "1/s");
     // A lumped scene's run, a backbone, a study.
     jointlin(
         &d,

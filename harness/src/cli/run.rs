@@ -54,7 +54,7 @@ pub struct Args {
     /// hysteresis, or with [effects] coupled_slip / normal_load_variation the library's
     /// three-direction point, the balance's model; RK4 or Newmark, the scene's
     /// [time_domain] table): per frequency until periodic; writes results_time.csv,
-    /// points_time.csv, run_time.json.
+    /// points_time.csv, run.json.
     #[arg(long)]
     time_domain: bool,
 }

@@ -114,11 +114,12 @@ pub fn main(s: &Scene, out: &Path, plots: bool) -> ExitCode {
         json!({
             "scene": {"file": s.file, "spec": s.spec, "text": s.text},
             "units": units,
+            "frequency_unit": frequency_unit(units).text,
             "method": method,
             "dofs": l.dofs,
             "frequencies": up.len(),
             "sweep_direction": s.spec.sweep.direction,
-            "failed_frequencies": failed,
+            "failed_frequencies": failed.iter().map(|&f| frequency_unit(units).show(f)).collect::<Vec<f64>>(),
         }),
     );
     let text = serde_json::to_string_pretty(&run).expect("json");

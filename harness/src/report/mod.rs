@@ -38,6 +38,9 @@ pub fn run_json(scene: &Scene, r: &RunResult) -> serde_json::Value {
 
 fn run_body(scene: &Scene, r: &RunResult) -> serde_json::Value {
     let m = &r.main;
+    // Every frequency as the outputs show it ([units] frequency: cycles or angular).
+    let fu = frequency_unit(&scene.spec.units);
+    let shown = |f: f64| fu.show(f);
     let closed = r.stat.closed.iter().filter(|&&c| c).count();
     json!({
         "scene": {
@@ -58,18 +61,19 @@ fn run_body(scene: &Scene, r: &RunResult) -> serde_json::Value {
             "newton_iterations": r.stat.newton_iterations,
             "relative_residual": r.stat.residual,
             "backward_error": r.stat.backward_error,
+            "stopped_by": r.stat.stopped_by,
             "total_contact_force": r.problem.contacts.iter().zip(&r.stat.pressure).map(|(c, p)| c.area * p).sum::<f64>(),
         },
         "mode": scene.spec.iteration.mode,
         // The unit of every frequency below (frequencies, checks, field output).
-        "frequency_unit": frequency_unit(&scene.spec.units).text,
+        "frequency_unit": fu.text,
         "passes": m.passes,
         "iterations_per_frequency": m.iterations,
         "converged": m.converged,
         "all_converged": m.converged.iter().all(|&c| c),
-        "singular_frequencies": m.freqs.iter().enumerate().filter(|(i, _)| m.is_singular(*i)).map(|(_, f)| *f).collect::<Vec<f64>>(),
-        "failed_frequencies": m.freqs.iter().enumerate().filter_map(|(i, f)| m.failure(i).map(|e| json!({"frequency": f, "error": e}))).collect::<Vec<_>>(),
-        "a_posteriori_checks": checks_at(&m.freqs, &m.checks),
+        "singular_frequencies": m.freqs.iter().enumerate().filter(|(i, _)| m.is_singular(*i)).map(|(_, f)| shown(*f)).collect::<Vec<f64>>(),
+        "failed_frequencies": m.freqs.iter().enumerate().filter_map(|(i, f)| m.failure(i).map(|e| json!({"frequency": shown(*f), "error": e}))).collect::<Vec<_>>(),
+        "a_posteriori_checks": checks_at(&m.freqs.iter().map(|&f| shown(f)).collect::<Vec<_>>(), &m.checks),
         "singular_rcond_threshold": crate::solve::sweep::SINGULAR_RCOND,
         "factorizations": m.factorizations,
         // The modal route's basis (null for the direct route); its a-posteriori checks'
@@ -82,7 +86,7 @@ fn run_body(scene: &Scene, r: &RunResult) -> serde_json::Value {
         "field_output": r.fields.as_ref().map(|f| f.freqs.iter().enumerate().map(|(i, &fr)| {
             let kept = f.fields.iter().any(|(k, _)| *k == fr);
             json!({
-                "frequency": fr,
+                "frequency": shown(fr),
                 "file": kept.then(|| field::file_name(fr, &scene.spec.units)),
                 "converged": f.converged.get(i).copied().unwrap_or(false),
             })

@@ -430,7 +430,7 @@ pub fn points_csv(p: &Problem, r: &[FreqResult], units: &Units) -> String {
     t.finish()
 }
 
-/// Writes results_time.csv, points_time.csv and run_time.json into `dir`.
+/// Writes results_time.csv, points_time.csv and, last, run.json into `dir`.
 pub fn write(dir: &Path, scene: &Scene, run: &TimeRun) -> std::io::Result<Vec<PathBuf>> {
     std::fs::create_dir_all(dir)?;
     let mut files = Vec::new();
@@ -455,6 +455,8 @@ pub fn write(dir: &Path, scene: &Scene, run: &TimeRun) -> std::io::Result<Vec<Pa
         serde_json::json!({
             "scene": scene.file,
             "title": scene.spec.title,
+            // The frequencies below are cycles per time unit.
+            "frequency_unit": format!("1/{}", units.time),
             "settings": run.settings,
             "free_dofs": run.problem.sys.dofs.n_free(),
             "contact_points": run.problem.contacts.len(),
@@ -462,9 +464,8 @@ pub fn write(dir: &Path, scene: &Scene, run: &TimeRun) -> std::io::Result<Vec<Pa
             "frequencies": run.results,
         }),
     );
-    put(
-        "run_time.json",
-        serde_json::to_string_pretty(&json).unwrap_or_default(),
-    )?;
+    let text = serde_json::to_string_pretty(&json).map_err(std::io::Error::other)?;
+    // Last: its presence marks a complete directory, as for a frequency-domain run.
+    files.push(crate::util::atomic::write_marker(dir, &text).map_err(std::io::Error::other)?);
     Ok(files)
 }

@@ -16,8 +16,9 @@ pub fn batch_interval() -> Duration {
     std::env::var("JOINTLIN_PROGRESS_SECONDS")
         .ok()
         .and_then(|v| v.parse::<f64>().ok())
-        .filter(|s| s.is_finite() && *s > 0.0)
-        .map_or(Duration::from_secs(10), Duration::from_secs_f64)
+        .and_then(|s| Duration::try_from_secs_f64(s).ok())
+        .filter(|d| !d.is_zero())
+        .unwrap_or(Duration::from_secs(10))
 }
 
 /// A command's progress: a stage (`message`) with `position` of `length` steps done.
@@ -47,7 +48,7 @@ struct Lines {
     message: String,
     position: u64,
     length: u64,
-    /// When the stage began and its position then (for the time left).
+    /// When the count last started over and its position then (for the time left).
     stage: (Instant, u64),
     printed: Option<Instant>,
 }
@@ -124,7 +125,6 @@ impl Progress {
                 let mut l = shared.state.lock().unwrap_or_else(|e| e.into_inner());
                 if l.message != message {
                     l.message = message.to_string();
-                    l.stage = (Instant::now(), l.position);
                     // At most a line a second when stages follow each other fast.
                     let gap = shared.interval.min(Duration::from_secs(1));
                     if l.printed.is_none_or(|t| t.elapsed() >= gap) {
@@ -159,10 +159,16 @@ impl Drop for Progress {
 }
 
 impl Shared {
-    /// Applies `change`, then prints a line if the last is `interval` old.
+    /// Applies `change`, then prints a line if the last is `interval` old. A count that
+    /// starts over (a new length, or a position going back: the next pass or sweep)
+    /// starts the stage's clock for the time left anew.
     fn update(&self, change: impl FnOnce(&mut Lines)) {
         let mut l = self.state.lock().unwrap_or_else(|e| e.into_inner());
+        let (position, length) = (l.position, l.length);
         change(&mut l);
+        if l.length != length || l.position < position {
+            l.stage = (Instant::now(), l.position);
+        }
         if !l.message.is_empty() && l.printed.is_none_or(|t| t.elapsed() >= self.interval) {
             print_line(&mut l);
         }

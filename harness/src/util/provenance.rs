@@ -1,8 +1,8 @@
-//! Where an output came from: the head every run.json (and run_time.json) starts with —
-//! the schema version, the jointlin that wrote it, the command line, the time, and every
-//! input file read (scene, deck, its `*INCLUDE` and `INPUT=` files) with its size and
-//! SHA-256, so a result can be traced to the exact bytes it was computed from
-//! (`sha256sum FILE` prints the same digest).
+//! Where an output came from: the head every run.json starts with — the schema version,
+//! the jointlin that wrote it, the command line, the time, and the input files read
+//! (the scene, the deck, its `*INCLUDE` and `INPUT=` files, a shim configuration; not
+//! yet the `[[matrices]]` files) with their sizes and SHA-256, so a result can be traced
+//! to the exact bytes it was computed from (`sha256sum FILE` prints the same digest).
 
 use std::time::SystemTime;
 
@@ -58,7 +58,10 @@ pub fn head(command: &str, library_abi: &str, inputs: &[SourceFile]) -> Map<Stri
     );
     m.insert(
         "command_line".into(),
-        json!(std::env::args().collect::<Vec<_>>()),
+        // Lossy: a path that is not UTF-8 is still recorded, never a panic.
+        json!(std::env::args_os()
+            .map(|a| a.to_string_lossy().into_owned())
+            .collect::<Vec<_>>()),
     );
     m.insert(
         "written_at".into(),

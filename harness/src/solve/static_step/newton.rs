@@ -5,8 +5,9 @@
 
 use nalgebra::Matrix3;
 
-use super::{dot, evaluate, norm, Eval, StaticError, BACKWARD_TOL, OPEN_STAND_IN};
+use super::{dot, evaluate, norm, Eval, StaticError, BACKWARD_TOL, FLOOR_CEILING, OPEN_STAND_IN};
 use crate::capi::CapiError;
+use crate::fe::csc::Csc;
 use crate::fe::pair_blocks::to_global;
 use crate::model::Problem;
 use crate::solve::line_search;
@@ -19,12 +20,8 @@ pub(super) struct NewtonMatrix<'a> {
 }
 
 impl NewtonMatrix<'_> {
-    pub(super) fn solve(
-        &self,
-        tangents: &[Matrix3<f64>],
-        couplings: &[(usize, usize, f64)],
-        rhs: &[f64],
-    ) -> Result<Vec<f64>, UmfpackError> {
+    /// K + Σ tangents + the sampled couplings.
+    fn assemble(&self, tangents: &[Matrix3<f64>], couplings: &[(usize, usize, f64)]) -> Csc<f64> {
         let p = self.p;
         let mut kt = p.sys.k.clone();
         for (c, t) in p.contacts.iter().zip(tangents) {
@@ -40,8 +37,37 @@ impl NewtonMatrix<'_> {
                 }
             }
         }
+        kt
+    }
+
+    /// The matrix factored and solved for `rhs`.
+    pub(super) fn solve(
+        &self,
+        tangents: &[Matrix3<f64>],
+        couplings: &[(usize, usize, f64)],
+        rhs: &[f64],
+    ) -> Result<Vec<f64>, UmfpackError> {
+        let kt = self.assemble(tangents, couplings);
         let x = self.sym.factor(&kt)?.solve(rhs)?;
         Ok(x)
+    }
+
+    /// The matrix solved for `rhs` with its residual: (x, ‖A x − rhs‖,
+    /// ‖ |A||x| + |rhs| ‖).
+    pub(super) fn solve_checked(
+        &self,
+        tangents: &[Matrix3<f64>],
+        rhs: &[f64],
+    ) -> Result<(Vec<f64>, f64, f64), UmfpackError> {
+        let kt = self.assemble(tangents, &[]);
+        let x = self.sym.factor(&kt)?.solve(rhs)?;
+        let mut r = kt.mul_vec(&x);
+        let mut terms = kt.abs_mul_vec(&x);
+        for ((ri, ti), b) in r.iter_mut().zip(terms.iter_mut()).zip(rhs) {
+            *ri -= b;
+            *ti += b.abs();
+        }
+        Ok((x, norm(&r), norm(&terms)))
     }
 }
 
@@ -62,11 +88,14 @@ pub(super) struct Converged {
     pub(super) eval: Eval,
     pub(super) iterations: usize,
     pub(super) residual: f64,
+    /// Which rule ended it ([`super::StaticState::stopped_by`]).
+    pub(super) stopped_by: &'static str,
 }
 
 impl Newton<'_> {
     /// Newton from `u` with first matrix from `tangents` and `couplings`, each step
-    /// along the line search's length, until ‖R‖ ≤ `tol` ‖f_pre‖ or after
+    /// along the line search's length, until ‖R‖ ≤ `tol` ‖f_pre‖, or ‖R‖ at its
+    /// round-off floor ([`BACKWARD_TOL`], below [`FLOOR_CEILING`] ‖f_pre‖), or after
     /// `max_iterations`.
     pub(super) fn run(
         &self,
@@ -93,13 +122,18 @@ impl Newton<'_> {
             res = norm(&ev.residual) / self.fnorm;
             couplings.clone_from(&ev.couplings);
             tangents = self.newton_tangents(&ev, alpha);
-            let at_floor = res * self.fnorm <= BACKWARD_TOL * ev.scale;
+            let at_floor = res * self.fnorm <= BACKWARD_TOL * ev.scale && res <= FLOOR_CEILING;
             if res <= tol || at_floor {
                 return Ok(Converged {
                     u,
                     eval: ev,
                     iterations: it,
                     residual: res,
+                    stopped_by: if res <= tol {
+                        "load tolerance"
+                    } else {
+                        "round-off floor"
+                    },
                 });
             }
         }
