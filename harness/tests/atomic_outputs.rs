@@ -239,3 +239,20 @@ fn a_second_run_leaves_no_outputs_of_the_first() {
         "{names:?}"
     );
 }
+
+/// `--out` naming a file: a message that says so (was "File exists (os error 17)"), the
+/// file untouched.
+#[test]
+fn an_output_directory_that_is_a_file_is_named_as_such() {
+    let d = scratch("out-file");
+    let out = d.join("results.csv");
+    std::fs::write(&out, "mine").unwrap();
+    let o = jointlin(&scene("block-stick.toml"), &out).output().unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(1), "{err}");
+    assert!(
+        err.contains("results.csv: is a file, not a directory"),
+        "{err}"
+    );
+    assert_eq!(std::fs::read_to_string(&out).unwrap(), "mine");
+}

@@ -92,7 +92,7 @@ pub enum Command {
     ///                 echo, effects with costs, passes, iterations, timings, C-API calls
     ///   frf.svg       FRF of the outputs with and without contact damping (and the
     ///                 sweep down for "up_down")
-    ///   passes.svg    frequencies per pass (thesis mode: Fig. 4.33)
+    ///   passes.svg    frequencies per pass (thesis mode: Fig. 4.33; not for one pass)
     ///
     /// Progress on stderr: a bar on a terminal; in a batch job (stderr a file or pipe)
     /// a line per stage and one at least every JOINTLIN_PROGRESS_SECONDS (default 10)

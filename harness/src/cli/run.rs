@@ -10,7 +10,7 @@ use clap::ValueEnum;
 use jointlin_harness::input::scene::{validate, Scene};
 use jointlin_harness::model::BuildError;
 use jointlin_harness::report::{self, ReportOptions};
-use jointlin_harness::run::{run, Extras, RunError};
+use jointlin_harness::run::{run, Extras, RunError, RunResult};
 use jointlin_harness::settings::units::frequency_unit;
 use jointlin_harness::settings::Mode;
 use jointlin_harness::util::progress::progress_bar;
@@ -213,6 +213,13 @@ pub fn main(a: Args) -> ExitCode {
             return ExitCode::from(1);
         }
     }
+    print_warnings(&s, &r, unconverged);
+    ExitCode::SUCCESS
+}
+
+/// The run's closing warnings: failed, singular and unconverged frequencies, and
+/// amplitudes too large for linear kinematics ([`report::kinematics_note`]).
+fn print_warnings(s: &Scene, r: &RunResult, unconverged: usize) {
     let fu = frequency_unit(&s.spec.units);
     for (i, f) in r.main.freqs.iter().enumerate() {
         if let Some(e) = r.main.failure(i) {
@@ -236,7 +243,9 @@ pub fn main(a: Args) -> ExitCode {
             unconverged - singular - failed
         );
     }
-    ExitCode::SUCCESS
+    if let Some(note) = report::kinematics_note(&s.spec.units, r) {
+        eprintln!("warning: {note}");
+    }
 }
 
 /// `jointlin run --time-domain`.

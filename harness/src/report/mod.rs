@@ -106,6 +106,46 @@ fn run_body(scene: &Scene, r: &RunResult) -> serde_json::Value {
             "sweep_breakdown": m.timings,
         },
         "c_api_calls": r.calls,
+        "notes": kinematics_note(&scene.spec.units, r).into_iter().collect::<Vec<_>>(),
+    })
+}
+
+/// An output amplitude beyond this fraction of the model's thinnest extent is a large
+/// deflection: a plate bent by about its thickness stiffens by membrane action, which a
+/// linear (small-displacement) model leaves out.
+pub const LARGE_DEFLECTION: f64 = 0.5;
+
+/// A note when the largest output amplitude of the run exceeds [`LARGE_DEFLECTION`] of
+/// the model's thinnest bounding-box extent (FE models; lumped ones have no geometry).
+pub fn kinematics_note(units: &crate::settings::Units, r: &RunResult) -> Option<String> {
+    let nodes = &r.problem.model.nodes;
+    let extent = (0..3)
+        .map(|k| {
+            let (lo, hi) = nodes
+                .iter()
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), x| {
+                    (lo.min(x[k]), hi.max(x[k]))
+                });
+            hi - lo
+        })
+        .filter(|e| e.is_finite() && *e > 0.0)
+        .fold(f64::INFINITY, f64::min);
+    let (amp, f) = r
+        .main
+        .outputs
+        .iter()
+        .zip(&r.main.freqs)
+        .flat_map(|(o, f)| o.iter().map(move |u| (u.norm(), *f)))
+        .filter(|(a, _)| a.is_finite())
+        .fold((0.0, 0.0), |best, x| if x.0 > best.0 { x } else { best });
+    (extent.is_finite() && amp > LARGE_DEFLECTION * extent).then(|| {
+        let fu = frequency_unit(units);
+        format!(
+            "an output moves {amp:.3e} {l} at {:.6e} {}, more than {LARGE_DEFLECTION} × the model's thinnest extent ({extent:.3e} {l}): a deflection this large stiffens plates and shells by membrane action and turns sections; linear kinematics no longer hold there",
+            fu.show(f),
+            fu.text,
+            l = units.length
+        )
     })
 }
 
@@ -242,9 +282,13 @@ pub fn write_all(
             svg::frf(t, title, &scene.spec.units, &r.problem, &curves)
         })?;
         out.push(p);
-        let p = dir.join("passes.svg");
-        atomic::with_temp(&p, |t| svg::passes(t, &r.main))?;
-        out.push(p);
+        // Frequencies per pass: a picture only where there are passes (thesis mode's
+        // Fig. 4.33); a one-pass sweep would draw a single bar.
+        if r.main.passes.len() > 1 {
+            let p = dir.join("passes.svg");
+            atomic::with_temp(&p, |t| svg::passes(t, &r.main))?;
+            out.push(p);
+        }
         if let Some(fields) = &r.fields {
             for p in field::contact_maps(dir, scene, r, fields)? {
                 out.push(p);

@@ -82,6 +82,11 @@ pub fn write_marker(dir: &Path, text: &str) -> Result<PathBuf, String> {
 
 /// Creates `dir` and removes an earlier run's marker and leftover `.partial` files.
 pub fn prepare(dir: &Path) -> io::Result<()> {
+    if dir.exists() && !dir.is_dir() {
+        return Err(io::Error::other(
+            "is a file, not a directory: --out names the directory the outputs go into",
+        ));
+    }
     std::fs::create_dir_all(dir)?;
     match std::fs::remove_file(dir.join(MARKER)) {
         Err(e) if e.kind() != io::ErrorKind::NotFound => return Err(e),
