@@ -326,3 +326,77 @@ fn field_output_of_a_scene_with_model_uses_the_deck_outputs() {
     );
     let _ = std::fs::remove_dir_all(&d);
 }
+
+/// points.csv names each point by the deck's own slave node id (not the model's index:
+/// an orphan node listed first shifts every index by one) and gives its frame n, t1, t2
+/// in global components, orthonormal.
+#[test]
+fn points_carry_the_decks_node_ids_and_their_frames() {
+    let d = dir("points");
+    let deck = contact_deck().replacen("*NODE\n", "*NODE\n999999, -50., -50., -50.\n", 1);
+    std::fs::write(d.join("stack.inp"), &deck).unwrap();
+    std::fs::write(
+        d.join("points.toml"),
+        "model = \"stack.inp\"\n[units]\nlength = \"mm\"\nforce = \"N\"\ntime = \"s\"\nmass = \"t\"\n[effects]\npoint_energy_output = true\n",
+    )
+    .unwrap();
+    let out = d.join("out");
+    let (code, log) = jointlin(&[
+        "run",
+        d.join("points.toml").to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--quiet",
+        "--no-plots",
+    ]);
+    assert_eq!(code, 0, "{log}");
+    // The deck's node coordinates by id, read from its *NODE lines.
+    let mut coords = std::collections::HashMap::new();
+    let mut in_nodes = false;
+    for l in deck.lines() {
+        if l.starts_with('*') {
+            in_nodes = l.starts_with("*NODE") && !l.starts_with("*NODE PRINT");
+            continue;
+        }
+        if in_nodes {
+            let f: Vec<f64> = l.split(',').map(|v| v.trim().parse().unwrap()).collect();
+            coords.insert(f[0] as u64, [f[1], f[2], f[3]]);
+        }
+    }
+    let text = std::fs::read_to_string(out.join("points.csv")).unwrap();
+    let mut lines = text.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let col = |name: &str| header.iter().position(|h| *h == name).unwrap();
+    let first = lines.next().unwrap().split(',').next().unwrap().to_string();
+    let mut rows = 0;
+    for l in text.lines().skip(1).filter(|l| l.starts_with(&first)) {
+        let v: Vec<&str> = l.split(',').collect();
+        let id: u64 = v[col("node")].parse().unwrap();
+        let at = coords[&id];
+        for (k, axis) in ["x_mm", "y_mm", "z_mm"].iter().enumerate() {
+            let x: f64 = v[col(axis)].parse().unwrap();
+            assert!((x - at[k]).abs() < 1e-9, "node {id}: {x} vs {}", at[k]);
+        }
+        let vec3 = |a: &str| -> [f64; 3] {
+            ["x", "y", "z"].map(|c| v[col(&format!("{a}_{c}"))].parse().unwrap())
+        };
+        let (n, t1, t2) = (vec3("n"), vec3("t1"), vec3("t2"));
+        let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+        for (a, b, want) in [
+            (n, n, 1.0),
+            (t1, t1, 1.0),
+            (t2, t2, 1.0),
+            (n, t1, 0.0),
+            (n, t2, 0.0),
+            (t1, t2, 0.0),
+        ] {
+            assert!(
+                (dot(a, b) - want).abs() < 1e-12,
+                "node {id}: frame {n:?} {t1:?} {t2:?}"
+            );
+        }
+        rows += 1;
+    }
+    assert!(rows > 0, "{text}");
+    let _ = std::fs::remove_dir_all(&d);
+}

@@ -83,7 +83,8 @@ pub enum Command {
     ///   results_without_contact_damping.csv  the same with d* = 0 (fast mode; written
     ///                 with the plots when the scene has contact damping)
     ///   points.csv    per contact point and frequency: position, pressure, amplitude,
-    ///                 k*, d* (per area), energy per cycle, A/δ* (effects.point_energy_output);
+    ///                 k*, d* (per area), energy per cycle, A/δ*, the node (a deck's slave
+    ///                 node id) and the frame n, t1, t2 (effects.point_energy_output);
     ///                 harmonic balance: first-harmonic amplitude, k* + iωd* = F̂₁/δ̂₁ of
     ///                 the closed loop, its energy per cycle
     ///   stick_slip.csv/.svg  points per regime over frequency (effects.stick_slip_map)

@@ -47,6 +47,15 @@ pub fn build(scene: &Scene) -> Result<Problem, BuildError> {
     Ok(p)
 }
 
+/// The id of each model node as the user knows it: a deck's own node ids (node i is the
+/// deck's i-th), else i + 1 (the numbering `jointlin export` writes).
+pub fn node_ids(scene: &Scene, p: &Problem) -> Vec<u64> {
+    match &scene.deck {
+        Some(job) => job.deck.nodes.iter().map(|n| n.id).collect(),
+        None => (1..=p.model.nodes.len() as u64).collect(),
+    }
+}
+
 /// The one [`Problem`] of an input, whatever its format: a scene through [`build`], a
 /// deck (or a scene with `model`) through [`deck::build`].
 pub fn problem(input: &Input) -> Result<Problem, BuildError> {

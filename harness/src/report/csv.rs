@@ -125,8 +125,9 @@ pub fn regime_name(code: i32) -> &'static str {
 /// Columns (N, mm, s): frequency_Hz, point, interface, x_mm, y_mm, z_mm, closed,
 /// pressure_N_per_mm2, amp_t1_mm, amp_t2_mm, k_star_t1_N_per_mm3, k_star_t2_N_per_mm3
 /// (per area), d_star_t1_N_s_per_mm3, d_star_t2_N_s_per_mm3 (per area),
-/// energy_per_cycle_N_mm, ratio_t1, ratio_t2 (A/δ*), and with the stick/slip map
-/// regime_t1, regime_t2.
+/// energy_per_cycle_N_mm, ratio_t1, ratio_t2 (A/δ*), with the stick/slip map
+/// regime_t1, regime_t2, then node (`node_ids` of the upper/slave node) and the frame
+/// n_x … t2_z.
 pub fn points(
     p: &Problem,
     r: &SweepResult,
@@ -134,6 +135,7 @@ pub fn points(
     pressure: &[f64],
     regimes: bool,
     units: &Units,
+    node_ids: &[u64],
 ) -> String {
     let u = ColumnUnits::new(units);
     let (l, k, d) = (&u.length, &u.stiffness_per_area, &u.damping_per_area);
@@ -160,6 +162,13 @@ pub fn points(
     if regimes {
         header.push("regime_t1".into());
         header.push("regime_t2".into());
+    }
+    // The point's node (the deck's slave node id; a scene's node number as its exported
+    // deck numbers it) and its frame: normal n and the tangential t1, t2 of the
+    // amplitude, k* and d* columns, each in global components.
+    header.push("node".into());
+    for axis in ["n", "t1", "t2"] {
+        header.extend(["x", "y", "z"].map(|c| format!("{axis}_{c}")));
     }
     let mut t = CsvTable::new(&header);
     for (fi, f) in r.freqs.iter().enumerate() {
@@ -195,6 +204,12 @@ pub fn points(
                 row.push(regime_name(q.regime[0]).into());
                 row.push(regime_name(q.regime[1]).into());
             }
+            row.push(
+                node_ids
+                    .get(c.nodes[1])
+                    .map_or(String::new(), u64::to_string),
+            );
+            row.extend(c.frame.iter().map(|v| format!("{:.10e}", v + 0.0)));
             t.row(&row);
         }
     }

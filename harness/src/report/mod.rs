@@ -247,6 +247,7 @@ pub fn write_all(
             &r.stat.pressure,
             eff.stick_slip_map,
             units,
+            &crate::model::node_ids(scene, &r.problem),
         );
         write(dir, "points.csv", &text, &mut out)?;
     }
