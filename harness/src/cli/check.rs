@@ -17,6 +17,7 @@ use jointlin_harness::util::number::{sig, sig_n};
 // The command's help is the doc comment of `Command::Check`.
 #[derive(clap::Args)]
 pub struct Args {
+    /// Scene file (TOML, see scenes/) or Abaqus-format deck (.inp).
     #[arg(required_unless_present = "keywords")]
     scene: Option<PathBuf>,
     #[command(flatten)]

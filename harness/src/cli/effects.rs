@@ -10,6 +10,7 @@ use super::{study_main, SceneOverrides};
 // The command's help is the doc comment of `Command::Effects`.
 #[derive(clap::Args)]
 pub struct Args {
+    /// Scene file (TOML, see scenes/), or a deck (.inp).
     scene: PathBuf,
     #[command(flatten)]
     overrides: SceneOverrides,

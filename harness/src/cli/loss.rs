@@ -14,6 +14,7 @@ use super::{begin_outputs, load_scene_with, study_written, with_progress, SceneO
 // The command's help is the doc comment of `Command::Loss`.
 #[derive(clap::Args)]
 pub struct Args {
+    /// Scene file (TOML) with a [loss_study] table (scenes/knife.toml).
     scene: PathBuf,
     #[command(flatten)]
     overrides: SceneOverrides,

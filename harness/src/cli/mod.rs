@@ -143,8 +143,9 @@ pub enum Command {
     /// gives the scene's results (with --mode thesis for a thesis-mode scene).
     ///
     /// What a deck cannot express is an error naming the scene key (exit 2, nothing
-    /// written): lumped masses, springs, joints, an initial gap, area_samples, a load
-    /// phase, a downward sweep, harmonic balance, physics switched off in [effects].
+    /// written): lumped masses, springs, joints, an initial gap, area_samples, a
+    /// downward sweep, harmonic balance, physics switched off in [effects]. A load's
+    /// phase is exported (real and imaginary parts of *CLOAD).
     #[command(verbatim_doc_comment)]
     Export(export::Args),
     /// Modes of the scene's (or deck's) model with every closed joint stuck (k_T0) after
@@ -181,11 +182,13 @@ pub enum Command {
     /// frequency split into mesh and contact parts), beside the first-order
     /// linearization. Prints a Markdown table per system.
     Mhb(mhb::Args),
-    /// Backbone of a lumped scene's mode: natural frequency and damping ratio against the
-    /// modal amplitude, first order (complex eigenvalues with every joint's k*, d*
-    /// through jointlin_linearize consistent with the mode's own amplitudes) or with
-    /// --harmonics H the extended periodic motion concept (AFT through
-    /// jointlin_point_step). Writes backbone.csv, backbone.svg and run.json.
+    /// Backbone of a scene's mode: natural frequency and damping ratio against the
+    /// modal amplitude, of a lumped scene directly and of an FE scene or deck reduced
+    /// onto its contact directions (docs/backbone-fe.md); first order (complex
+    /// eigenvalues with every joint's k*, d* through jointlin_linearize consistent with
+    /// the mode's own amplitudes) or with --harmonics H the extended periodic motion
+    /// concept (AFT through jointlin_point_step). Writes backbone.csv, backbone.svg and
+    /// run.json.
     Backbone(backbone::Args),
     /// Models given by their matrices (`[[matrices]]` of a scene): converters of FE
     /// codes' matrix output.

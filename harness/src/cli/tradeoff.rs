@@ -10,6 +10,7 @@ use super::{study_main, SceneOverrides};
 // The command's help is the doc comment of `Command::Tradeoff`.
 #[derive(clap::Args)]
 pub struct Args {
+    /// Scene file (TOML, see scenes/).
     scene: PathBuf,
     #[command(flatten)]
     overrides: SceneOverrides,
