@@ -230,6 +230,7 @@ fn a_second_run_leaves_no_outputs_of_the_first() {
         names,
         [
             "field_1100.000_Hz.vtu",
+            "fields.pvd",
             "notes.txt",
             "points.csv",
             "results.csv",

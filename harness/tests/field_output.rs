@@ -138,6 +138,47 @@ fn fields_at_the_peaks_and_named_frequencies_match_the_sweep() {
         assert!(a["contact_amplitude_ratio"]
             .iter()
             .all(|&r| r.is_finite() && r >= 0.0));
+        // The contact point data: static pressure and k* where the points are closed
+        // (every one here), d* and energy ≥ 0, none elsewhere; node ids as the exported
+        // deck numbers the scene's nodes.
+        let contact: Vec<usize> = (0..regime.len()).filter(|&n| regime[n] >= 1.0).collect();
+        for key in [
+            "contact_pressure_N_per_mm2",
+            "k_star_t1_N_per_mm3",
+            "k_star_t2_N_per_mm3",
+        ] {
+            assert!(contact.iter().all(|&n| a[key][n] > 0.0), "{name}: {key}");
+        }
+        for key in ["d_star_t1_N_s_per_mm3", "energy_per_cycle_N_mm"] {
+            assert!(
+                a[key].iter().all(|&v| v.is_finite() && v >= 0.0),
+                "{name}: {key}"
+            );
+        }
+        assert!((0..regime.len())
+            .filter(|&n| regime[n] < 0.0)
+            .all(|n| a["contact_pressure_N_per_mm2"][n] == 0.0));
+        let ids = &a["node_id"];
+        assert!((0..ids.len()).all(|n| ids[n] == (n + 1) as f64));
+    }
+    // fields.pvd: the three files as a series over frequency (Hz).
+    let pvd = std::fs::read_to_string(out.join("fields.pvd")).unwrap();
+    for name in &files {
+        let got: f64 = name[6..name.len() - 7].parse().unwrap();
+        let line = pvd
+            .lines()
+            .find(|l| l.contains(&format!("file=\"{name}\"")))
+            .unwrap_or_else(|| panic!("{name} not in {pvd}"));
+        let t: f64 = line
+            .split("timestep=\"")
+            .nth(1)
+            .unwrap()
+            .split('"')
+            .next()
+            .unwrap()
+            .parse()
+            .unwrap();
+        assert!((t - got).abs() <= 1e-3 * got, "{line}");
     }
 }
 

@@ -182,6 +182,7 @@ const RUN_FILES: &[&str] = &[
     "frf.svg",
     "passes.svg",
     "stick_slip.svg",
+    "fields.pvd",
 ];
 
 /// Removes from `dir` the outputs an earlier `jointlin run` may have left there (its
@@ -260,7 +261,13 @@ pub fn write_all(
         )?;
     }
     if let Some(fields) = &r.fields {
-        for (name, text) in field::files(&r.problem, fields, &r.stat.closed, units) {
+        let node_ids = crate::model::node_ids(scene, &r.problem);
+        let ctx = field::FieldContext {
+            closed: &r.stat.closed,
+            pressure: &r.stat.pressure,
+            node_ids: &node_ids,
+        };
+        for (name, text) in field::files(&r.problem, fields, &ctx, units) {
             write(dir, &name, &text, &mut out)?;
         }
     }
