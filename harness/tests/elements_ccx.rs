@@ -7,7 +7,7 @@
 //! | C3D8, C3D20 | ≤ 2.2e-7 | same formulation (ccx prints 7 digits) |
 //! | C3D10 | −1.6e-5 … −3.1e-3 | ccx integrates the mass with the 4-point rule (exact only for degree 2); ours is exact |
 //! | C3D20R | −2.8e-5 … −5.7e-3 | same reduced stiffness; ccx's mass integration differs from our 3×3×3 |
-//! | C3D8I | −3.9e-3 … +1.6e-1 | ccx's incompatible-modes formulation differs from ours (Taylor-corrected, 9 modes) |
+//! | C3D8I | −3.9e-3 … +1.6e-1 | the same stiffness and nodal mass, but ccx gives its incompatible-mode (bubble) DOFs mass; with them massless, ccx's own K and M give ours to 1e-8 (`c3d8i_is_ccxs_element_with_massless_incompatible_modes`) |
 //! | C3D4 | −1.0e-1 … −4.5e-3 | ccx does not use the consistent mass for C3D4 |
 //!
 //! Skipped where ccx is missing, except under CI=true (scripts/deps.sh installs it).
@@ -16,6 +16,7 @@
 mod tools;
 
 use jointlin_harness::fe::elements::ElementKind;
+use jointlin_harness::validate::c3d8i_ccx::c3d8i_frequencies;
 use jointlin_harness::validate::ccx::{ccx_missing, element_case};
 
 fn differences(kind: ElementKind) -> Option<Vec<f64>> {
@@ -58,12 +59,40 @@ fn quadratic_tet_and_reduced_hex_agree_in_the_first_modes() {
 
 #[test]
 fn different_formulations_stay_within_the_documented_bands() {
-    // Not agreement: documents how far ccx's C3D8I and C3D4 are from ours on this mesh.
-    for (kind, lo, hi) in [
-        (ElementKind::C3D8I, -0.01, 0.2),
-        (ElementKind::C3D4, -0.12, 0.0),
-    ] {
-        let Some(d) = differences(kind) else { return };
-        assert!(d.iter().all(|&x| x > lo && x < hi), "{kind}: {d:?}");
+    // Not agreement: documents how far ccx's C3D4 is from ours on this mesh.
+    let Some(d) = differences(ElementKind::C3D4) else {
+        return;
+    };
+    assert!(d.iter().all(|&x| x > -0.12 && x < 0.0), "C3D4: {d:?}");
+}
+
+#[test]
+fn c3d8i_is_ccxs_element_with_massless_incompatible_modes() {
+    // ccx's own K and M of the same mesh, its bubble DOFs condensed without their mass:
+    // the element jointlin forms, to round-off on parallelepipeds and within 1e-3 on
+    // the distorted cells (measured 7.3e-12 and 9.3e-4). ccx's eigenvalue run gives the
+    // bubbles mass: its modes 1–8 lie from +0.5 % to −13.7 % of ours on the regular mesh.
+    if let Some(why) = ccx_missing() {
+        tools::missing("elements_ccx_C3D8I", "ccx", &why);
+        return;
+    }
+    for (jitter, tol) in [(0.0, 1e-8), (0.15, 1e-3)] {
+        let dir = std::env::temp_dir().join(format!(
+            "jointlin-c3d8i-ccx-{}-{jitter}",
+            std::process::id()
+        ));
+        let f = c3d8i_frequencies(&dir, jitter).unwrap();
+        let _ = std::fs::remove_dir_all(&dir);
+        let worst = f
+            .ours
+            .iter()
+            .zip(&f.ccx_massless_bubbles)
+            .map(|(a, b)| (a / b - 1.0).abs())
+            .fold(0.0f64, f64::max);
+        eprintln!(
+            "C3D8I, jitter {jitter}: ours {:.2?}\n  ccx massless bubbles {:.2?} (worst {worst:.1e})\n  ccx {:.2?}",
+            f.ours, f.ccx_massless_bubbles, f.ccx
+        );
+        assert!(worst < tol, "jitter {jitter}: {worst:e}");
     }
 }

@@ -190,7 +190,15 @@ pub fn dense_frequencies(
     let free: Vec<usize> = (0..k.nrows()).filter(|r| !held[r / 3]).collect();
     let sub =
         |a: &DMatrix<f64>| DMatrix::from_fn(free.len(), free.len(), |i, j| a[(free[i], free[j])]);
-    let (kf, mf) = (sub(&k), sub(&m));
+    generalized_frequencies(sub(&k), sub(&m), modes)
+}
+
+/// The lowest `modes` frequencies (Hz) of K φ = λ M φ, dense, M positive definite.
+pub fn generalized_frequencies(
+    kf: DMatrix<f64>,
+    mf: DMatrix<f64>,
+    modes: usize,
+) -> Result<Vec<f64>, CcxError> {
     // K φ = λ M φ with M = L Lᵀ → (L⁻¹ K L⁻ᵀ) ψ = λ ψ.
     let l = mf.cholesky().ok_or(CcxError::Mass)?.l();
     let linv = l.clone().try_inverse().ok_or(CcxError::Mass)?;
@@ -213,8 +221,21 @@ pub fn element_case(
     kind: crate::fe::elements::ElementKind,
     dir: &Path,
 ) -> Result<(Vec<f64>, Vec<f64>), CcxError> {
+    let (mesh, mat, fixed) = case_model(kind, 0.15)?;
+    let ours = dense_frequencies(&mesh, &mat, &fixed, CASE_MODES)?;
+    let deck = frequency_deck(&mesh, &mat, &fixed, CASE_MODES);
+    let theirs = run_frequencies(&deck, dir, &kind.name().to_lowercase())?;
+    Ok((ours, theirs))
+}
+
+/// The mesh, material and clamped nodes (x = 0) of [`element_case`], its interior
+/// corners moved by up to `jitter` of a cell (0.15 there).
+pub fn case_model(
+    kind: crate::fe::elements::ElementKind,
+    jitter: f64,
+) -> Result<(SolidMesh, Material, Vec<usize>), CcxError> {
     let mesh =
-        crate::fe::elements::box_mesh::box_mesh(kind, [40.0, 10.0, 10.0], [4, 2, 2], 0.15, 3);
+        crate::fe::elements::box_mesh::box_mesh(kind, [40.0, 10.0, 10.0], [4, 2, 2], jitter, 3);
     // N, mm, s, t: E in MPa, ρ in t/mm³.
     let mat = Material::new(210_000.0, 0.3, 7.85e-9).map_err(|e| CcxError::Failed {
         job: "material".into(),
@@ -223,10 +244,7 @@ pub fn element_case(
     let fixed: Vec<usize> = (0..mesh.nodes.len())
         .filter(|&n| mesh.nodes[n][0] == 0.0)
         .collect();
-    let ours = dense_frequencies(&mesh, &mat, &fixed, CASE_MODES)?;
-    let deck = frequency_deck(&mesh, &mat, &fixed, CASE_MODES);
-    let theirs = run_frequencies(&deck, dir, &kind.name().to_lowercase())?;
-    Ok((ours, theirs))
+    Ok((mesh, mat, fixed))
 }
 
 /// Modes compared per element type.

@@ -19,6 +19,7 @@
 
 pub mod beams;
 pub mod block;
+pub mod c3d8i_ccx;
 pub mod ccx;
 pub mod deck_ccx;
 pub mod duffing;
