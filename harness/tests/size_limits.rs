@@ -183,3 +183,37 @@ fn check_forecasts_the_factorizations_a_run_needs() {
         std::fs::remove_dir_all(&dir).unwrap();
     }
 }
+
+/// The modal route's basis counts: mode shapes and residual columns are full vectors,
+/// so 1e8 modes of a 180-DOF scene (144 GB) are refused at `sweep.modes`, and a deck's
+/// `*FREQUENCY` asking for as many at its line.
+#[test]
+fn a_modal_basis_too_large_is_refused_at_its_mode_count() {
+    let (path, _) = scene_with("modal", "count = 12", "count = 12");
+    let text = std::fs::read_to_string(&path).unwrap().replacen(
+        "count = 12",
+        "count = 12\nmethod = \"modal\"\nmodes = 100000000",
+        1,
+    );
+    std::fs::write(&path, &text).unwrap();
+    let line = text.lines().position(|l| l.starts_with("modes =")).unwrap() + 1;
+    refused(&path, line, "sweep.modes", None, 100.0);
+    let deck =
+        jointlin_harness::validate::matrices_ccx::deck("*STEP\n*FREQUENCY\n100000000\n*END STEP\n")
+            .replacen(
+                "*HEADING\n",
+                "*HEADING\n** jointlin units: length=mm force=N time=s mass=t\n",
+                1,
+            );
+    let p = path.with_file_name("modal.inp");
+    std::fs::write(&p, &deck).unwrap();
+    let line = deck.lines().position(|l| l == "*STEP").unwrap() + 1;
+    let out = jointlin(&["check", p.to_str().unwrap()], None);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains(&format!("modal.inp:{line}: *FREQUENCY"))
+            && err.contains("100000000 mode shapes"),
+        "{err}"
+    );
+}

@@ -57,6 +57,15 @@ fn parts(deck: &Deck) -> Vec<Part> {
         .map(|o| 3.0 * deck.node_sets[&o.node_set].len() as f64)
         .sum();
     for st in &deck.steps {
+        if let Procedure::Frequency { modes } = &st.procedure {
+            // Kept as the mode-based steady state's basis: full vectors of doubles.
+            out.push(Part {
+                origin: st.origin.clone(),
+                keyword: "*FREQUENCY",
+                bytes: 8.0 * *modes as f64 * dofs,
+                what: format!("{modes} mode shapes of {dofs:.0} DOFs"),
+            });
+        }
         if let Procedure::SteadyState { ranges, .. } = &st.procedure {
             let count: f64 = ranges.iter().map(|r| r.points as f64).sum();
             out.push(Part {

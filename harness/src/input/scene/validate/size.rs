@@ -77,9 +77,11 @@ fn interface_points(s: &SceneFile, f: &InterfaceSpec) -> f64 {
 pub fn estimate(s: &SceneFile) -> Estimate {
     let root = KeyPath::root();
     let mut parts = Vec::new();
+    let mut all_dofs = 0.0;
     for (i, b) in s.bodies.iter().enumerate() {
         let Some(nodes) = box_nodes(b) else { continue };
         let dofs = 3.0 * nodes.iter().product::<f64>();
+        all_dofs += dofs;
         let factor = factor_entries(nodes);
         parts.push(Part {
             key: root.key("bodies").index(i).key("divisions"),
@@ -123,6 +125,19 @@ pub fn estimate(s: &SceneFile) -> Estimate {
             what: format!(
                 "{} refine frequencies × {points:.0} contact points",
                 r.count
+            ),
+        });
+    }
+    if let (SweepMethod::Modal, Some(modes)) = (s.sweep.method, s.sweep.modes) {
+        // The modal route keeps its mode shapes and the residual flexibility's columns
+        // (three per contact point), each a full vector of doubles.
+        let columns = modes as f64 + 3.0 * points;
+        parts.push(Part {
+            key: sw.key("modes"),
+            bytes: 8.0 * columns * all_dofs,
+            what: format!(
+                "modal route: {modes} mode shapes and {:.0} residual columns of {all_dofs:.0} DOFs",
+                3.0 * points
             ),
         });
     }
