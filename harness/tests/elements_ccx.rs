@@ -94,5 +94,13 @@ fn c3d8i_is_ccxs_element_with_massless_incompatible_modes() {
             f.ours, f.ccx_massless_bubbles, f.ccx
         );
         assert!(worst < tol, "jitter {jitter}: {worst:e}");
+        // ccx's own frequencies are those of its matrices with the bubbles' mass: the
+        // gap to ours is that mass.
+        for (a, b) in f.ccx_matrices.iter().zip(&f.ccx) {
+            assert!(
+                (a / b - 1.0).abs() < 1e-5,
+                "jitter {jitter}: {a} vs ccx {b}"
+            );
+        }
     }
 }

@@ -184,36 +184,71 @@ fn check_forecasts_the_factorizations_a_run_needs() {
     }
 }
 
-/// The modal route's basis counts: mode shapes and residual columns are full vectors,
-/// so 1e8 modes of a 180-DOF scene (144 GB) are refused at `sweep.modes`, and a deck's
-/// `*FREQUENCY` asking for as many at its line.
+/// The modal route's basis counts: mode shapes and residual columns are full vectors
+/// (as many modes as asked, never more than the DOFs; 500 when not given), so 100 000
+/// modes of a two-box scene of 340k DOFs (272 GB) are refused at `sweep.modes`, and a
+/// deck's `*FREQUENCY` asking for as many of its 176k DOFs at its step.
 #[test]
 fn a_modal_basis_too_large_is_refused_at_its_mode_count() {
-    let (path, _) = scene_with("modal", "count = 12", "count = 12");
-    let text = std::fs::read_to_string(&path).unwrap().replacen(
-        "count = 12",
-        "count = 12\nmethod = \"modal\"\nmodes = 100000000",
-        1,
+    let (path, _) = scene_with(
+        "modal",
+        "divisions = [4, 2, 1]",
+        "divisions = [100, 50, 10]",
     );
+    let text = std::fs::read_to_string(&path)
+        .unwrap()
+        .replacen("divisions = [4, 2, 1]", "divisions = [100, 50, 10]", 1)
+        .replacen(
+            "count = 12",
+            "count = 12\nmethod = \"modal\"\nmodes = 100000",
+            1,
+        );
     std::fs::write(&path, &text).unwrap();
     let line = text.lines().position(|l| l.starts_with("modes =")).unwrap() + 1;
     refused(&path, line, "sweep.modes", None, 100.0);
-    let deck =
-        jointlin_harness::validate::matrices_ccx::deck("*STEP\n*FREQUENCY\n100000000\n*END STEP\n")
-            .replacen(
-                "*HEADING\n",
-                "*HEADING\n** jointlin units: length=mm force=N time=s mass=t\n",
-                1,
-            );
+    // A deck of 61 × 31 × 31 nodes asking for 1e6 modes (capped at its DOFs: 245 GB).
+    let (nx, ny, nz) = (60usize, 30usize, 30usize);
+    let id = |i: usize, j: usize, k: usize| 1 + i + (nx + 1) * (j + (ny + 1) * k);
+    let mut deck =
+        String::from("*HEADING\nbig\n** jointlin units: length=mm force=N time=s mass=t\n*NODE\n");
+    for k in 0..=nz {
+        for j in 0..=ny {
+            for i in 0..=nx {
+                deck += &format!("{}, {i}., {j}., {k}.\n", id(i, j, k));
+            }
+        }
+    }
+    deck += "*ELEMENT, TYPE=C3D8, ELSET=ALL\n";
+    let mut e = 0;
+    for k in 0..nz {
+        for j in 0..ny {
+            for i in 0..nx {
+                e += 1;
+                deck += &format!(
+                    "{e}, {}, {}, {}, {}, {}, {}, {}, {}\n",
+                    id(i, j, k),
+                    id(i + 1, j, k),
+                    id(i + 1, j + 1, k),
+                    id(i, j + 1, k),
+                    id(i, j, k + 1),
+                    id(i + 1, j, k + 1),
+                    id(i + 1, j + 1, k + 1),
+                    id(i, j + 1, k + 1)
+                );
+            }
+        }
+    }
+    deck += "*MATERIAL, NAME=STEEL\n*ELASTIC\n210000., 0.3\n*DENSITY\n7.85e-9\n*SOLID SECTION, ELSET=ALL, MATERIAL=STEEL\n*BOUNDARY\n1, 1, 3\n";
+    let line = deck.lines().count() + 1;
+    deck += "*STEP\n*FREQUENCY\n1000000\n*END STEP\n";
     let p = path.with_file_name("modal.inp");
     std::fs::write(&p, &deck).unwrap();
-    let line = deck.lines().position(|l| l == "*STEP").unwrap() + 1;
     let out = jointlin(&["check", p.to_str().unwrap()], None);
     let err = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(2), "{err}");
     assert!(
         err.contains(&format!("modal.inp:{line}: *FREQUENCY"))
-            && err.contains("100000000 mode shapes"),
+            && err.contains("175863 mode shapes of 175863 DOFs"),
         "{err}"
     );
 }

@@ -16,6 +16,10 @@ pub enum Spacing {
 /// The frequencies of the steady-state step (1/time, Hz for seconds): `count` points
 /// from `f_min` to `f_max`, plus the points of any `refine` bands (e.g. around
 /// resonances), merged in ascending order. The default (count 0) stands for "absent".
+/// Most modes the modal route keeps when `[sweep] modes` is not given (its band of
+/// modes below a multiple of the sweep's top); also what the memory estimate counts then.
+pub const MODAL_MAX_MODES: usize = 500;
+
 #[derive(Debug, Clone, Deserialize, Serialize, PartialEq, Default)]
 #[serde(deny_unknown_fields)]
 pub struct SweepSpec {

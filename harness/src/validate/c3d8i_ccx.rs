@@ -25,6 +25,8 @@ use crate::input::matrices::{ccx, dofs, mtx};
 pub struct C3d8iFrequencies {
     pub ours: Vec<f64>,
     pub ccx: Vec<f64>,
+    /// ccx's K and M over all its DOFs, the bubbles' mass included.
+    pub ccx_matrices: Vec<f64>,
     pub ccx_massless_bubbles: Vec<f64>,
 }
 
@@ -77,6 +79,26 @@ pub fn c3d8i_frequencies(dir: &Path, jitter: f64) -> Result<C3d8iFrequencies, Cc
     Ok(C3d8iFrequencies {
         ours,
         ccx: ccx_own,
+        ccx_matrices: frequencies_singular_mass(&k, &m)
+            .ok_or_else(|| failed("ccx's stiffness is not positive definite".into()))?,
         ccx_massless_bubbles: massless,
     })
+}
+
+/// The lowest [`CASE_MODES`] frequencies (Hz) of K φ = ω² M φ with K positive definite
+/// and M only semidefinite (ccx's M is singular): the largest eigenvalues 1/ω² of
+/// L⁻¹ M L⁻ᵀ, K = L Lᵀ.
+fn frequencies_singular_mass(k: &DMatrix<f64>, m: &DMatrix<f64>) -> Option<Vec<f64>> {
+    let l = k.clone().cholesky()?.l();
+    let linv = l.try_inverse()?;
+    let a = &linv * m * linv.transpose();
+    let a = (&a + a.transpose()) * 0.5;
+    let mut mu: Vec<f64> = a.symmetric_eigenvalues().iter().copied().collect();
+    mu.sort_by(|x, y| y.total_cmp(x));
+    Some(
+        mu.into_iter()
+            .take(CASE_MODES)
+            .map(|x| 1.0 / (x.max(f64::MIN_POSITIVE).sqrt() * 2.0 * std::f64::consts::PI))
+            .collect(),
+    )
 }

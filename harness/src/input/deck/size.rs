@@ -58,12 +58,14 @@ fn parts(deck: &Deck) -> Vec<Part> {
         .sum();
     for st in &deck.steps {
         if let Procedure::Frequency { modes } = &st.procedure {
-            // Kept as the mode-based steady state's basis: full vectors of doubles.
+            // Kept as the mode-based steady state's basis: full vectors of doubles (never
+            // more modes than DOFs).
+            let modes = (*modes as f64).min(dofs);
             out.push(Part {
                 origin: st.origin.clone(),
                 keyword: "*FREQUENCY",
-                bytes: 8.0 * *modes as f64 * dofs,
-                what: format!("{modes} mode shapes of {dofs:.0} DOFs"),
+                bytes: 8.0 * modes * dofs,
+                what: format!("{modes:.0} mode shapes of {dofs:.0} DOFs"),
             });
         }
         if let Procedure::SteadyState { ranges, .. } = &st.procedure {

@@ -60,7 +60,7 @@ pub const SINGULAR_MODAL_REL: f64 = 1e-9;
 pub const BAND_FACTOR: f64 = 4.0;
 /// Fewest and most modes of a [`ModeChoice::Below`] band.
 pub const MIN_MODES: usize = 6;
-pub const MAX_MODES: usize = 500;
+pub const MAX_MODES: usize = crate::settings::MODAL_MAX_MODES;
 
 /// What the modal route used (run.json).
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]

@@ -128,15 +128,19 @@ pub fn estimate(s: &SceneFile) -> Estimate {
             ),
         });
     }
-    if let (SweepMethod::Modal, Some(modes)) = (s.sweep.method, s.sweep.modes) {
-        // The modal route keeps its mode shapes and the residual flexibility's columns
-        // (three per contact point), each a full vector of doubles.
-        let columns = modes as f64 + 3.0 * points;
+    if s.sweep.method == SweepMethod::Modal && all_dofs > 0.0 {
+        // The modal route keeps its mode shapes (the given count, else at most
+        // MODAL_MAX_MODES; never more than the DOFs) and the residual flexibility's
+        // columns (three per contact point), each a full vector of doubles. (A scene
+        // over a deck: the deck's *FREQUENCY step is counted by the deck's estimate.)
+        let modes = s.sweep.modes.unwrap_or(crate::settings::MODAL_MAX_MODES) as f64;
+        let modes = modes.min(all_dofs);
+        let columns = modes + 3.0 * points;
         parts.push(Part {
             key: sw.key("modes"),
             bytes: 8.0 * columns * all_dofs,
             what: format!(
-                "modal route: {modes} mode shapes and {:.0} residual columns of {all_dofs:.0} DOFs",
+                "modal route: {modes:.0} mode shapes and {:.0} residual columns of {all_dofs:.0} DOFs",
                 3.0 * points
             ),
         });
