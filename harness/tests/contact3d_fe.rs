@@ -119,17 +119,17 @@ fn lumped(f: [(f64, f64); 3]) -> System3 {
             f1,
             elements: Vec::new(),
         },
-        elements: vec![Element3 {
-            dofs: [0, 1, 2],
-            contact: Contact3 {
+        elements: vec![Element3::on_plane(
+            [0, 1, 2],
+            Contact3 {
                 law: LawName::Jenkins,
                 cells: 0,
                 mu: 0.5,
                 k_t0: 1000.0,
                 k_n: 1e4,
             },
-            gap: 0.0,
-        }],
+            0.0,
+        )],
     }
 }
 

@@ -54,11 +54,7 @@ fn system(law: LawName, f1: [C64; 3]) -> System3 {
             f1: f1.to_vec(),
             elements: Vec::new(),
         },
-        elements: vec![Element3 {
-            dofs: [0, 1, 2],
-            contact: contact(law),
-            gap: 0.0,
-        }],
+        elements: vec![Element3::on_plane([0, 1, 2], contact(law), 0.0)],
     }
 }
 

@@ -6,31 +6,20 @@
 //! [`super::mhb_reference`] does with the one-direction point; periodic steady state by
 //! the harness's cycle test ([`crate::time::periodic`]).
 
-use crate::capi::{self, POINT3D_STATE_LEN};
-use crate::mhb::contact3d::{Element3, System3};
+use crate::mhb::contact3d::{step, States, System3, VIRGIN};
 use crate::mhb::{AftError, MhbError};
 use crate::time::mhb_reference::{Run, Steady};
 
-/// The point's displacement (u₁, u₂, h) at the system displacements `y`.
-fn disp(e: &Element3, y: &[f64]) -> [f64; 3] {
-    [y[e.dofs[0]], y[e.dofs[1]], e.gap - y[e.dofs[2]]]
-}
-
 /// Internal force vector of the points at `y` from their committed `states` (a trial:
-/// the states are not changed): +F₁, +F₂ on t₁, t₂ and −N on n.
-fn internal(
-    sys: &System3,
-    y: &[f64],
-    states: &[[f64; POINT3D_STATE_LEN]],
-) -> Result<Vec<f64>, MhbError> {
+/// the states are not changed): +F₁, +F₂ along the tangential rows, −N along the normal
+/// row ([`crate::mhb::contact3d::Element3::add_internal`]).
+fn internal(sys: &System3, y: &[f64], states: &[States]) -> Result<Vec<f64>, MhbError> {
     let mut out = vec![0.0; sys.linear.n()];
-    let mut scratch = [0.0; POINT3D_STATE_LEN];
+    let mut scratch = VIRGIN;
     for (e, st) in sys.elements.iter().zip(states) {
-        let s =
-            capi::point3d_step(&e.contact, st, disp(e, y), &mut scratch).map_err(AftError::from)?;
-        out[e.dofs[0]] += s.force[0];
-        out[e.dofs[1]] += s.force[1];
-        out[e.dofs[2]] -= s.force[2];
+        let (force, _) = step(&e.contact, e.coupled, st, e.displacement(y), &mut scratch)
+            .map_err(AftError::from)?;
+        e.add_internal(force, &mut out);
     }
     Ok(out)
 }
@@ -48,7 +37,11 @@ pub fn steady3<const S: usize>(
     tol: f64,
     max_cycles: usize,
 ) -> Result<Steady, MhbError> {
-    let mut states = vec![[0.0; POINT3D_STATE_LEN]; sys.elements.len()];
+    assert!(
+        sys.linear.elements.is_empty(),
+        "the reference integrates three-direction points only"
+    );
+    let mut states = vec![VIRGIN; sys.elements.len()];
     let run = Run {
         sys: &sys.linear,
         omega,
@@ -64,11 +57,11 @@ pub fn steady3<const S: usize>(
         |y, states| {
             let mut dissipated = 0.0;
             for (e, st) in sys.elements.iter().zip(states.iter_mut()) {
-                let mut next = [0.0; POINT3D_STATE_LEN];
-                let s = capi::point3d_step(&e.contact, st, disp(e, y), &mut next)
+                let mut next = VIRGIN;
+                let (_, d) = step(&e.contact, e.coupled, st, e.displacement(y), &mut next)
                     .map_err(AftError::from)?;
                 *st = next;
-                dissipated += s.dissipated;
+                dissipated += d;
             }
             Ok(dissipated)
         },

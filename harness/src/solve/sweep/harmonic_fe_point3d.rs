@@ -18,9 +18,9 @@
 //! N − N₀ = −k_N r_n. The Jacobian of a point's force coefficients is a forward
 //! difference of the whole marched map, as in [`crate::mhb::contact3d`].
 
-use crate::capi::{Contact3, Tangential, POINT3D_STATE_LEN};
+use crate::capi::{Contact3, Tangential};
 use crate::mhb::aft::Transforms;
-use crate::mhb::contact3d::{march3_from, Period3};
+use crate::mhb::contact3d::{march_point, Marched, VIRGIN};
 use crate::mhb::MhbError;
 use crate::model::Problem;
 use crate::names::{NormalLawName, RuleName};
@@ -154,21 +154,16 @@ pub struct PointForces {
 }
 
 /// Where the marches of a point start: virgin, or the closed states of a nearby path's
-/// marches (the forward-difference columns: docs of [`march3_from`]).
+/// marches (the forward-difference columns: docs of [`march_point`]).
 #[derive(Clone, Copy)]
 enum Start<'a> {
     Virgin,
     Near(&'a Marched),
 }
 
-/// A point's closed marches: one coupled, or one per tangential direction.
-struct Marched {
-    first: Period3,
-    second: Option<Period3>,
-}
-
 /// The point's stress coefficients (t₁, t₂ or −(N − N₀) per direction), dissipation (per
-/// area) and closed marches at the direction coefficients `dc`.
+/// area) and closed marches at the direction coefficients `dc`: one coupled point, or
+/// one per tangential direction sharing h ([`march_point`]).
 fn stresses(
     tr: &mut Transforms,
     p: &Point3,
@@ -177,58 +172,32 @@ fn stresses(
 ) -> Result<(Vec<f64>, f64, Marched), MhbError> {
     let (n, nc) = (tr.n, tr.ncoef());
     let comps = p.model.components();
-    let mut samples = [vec![0.0; n], vec![0.0; n], vec![p.h0; n]];
+    let mut path = vec![[0.0, 0.0, p.h0]; n];
     let mut x = vec![0.0; n];
     for (d, &c) in comps.iter().enumerate() {
         tr.synthesize(&dc[d * nc..(d + 1) * nc], &mut x);
-        match c {
-            0 => samples[2]
-                .iter_mut()
-                .zip(&x)
-                .for_each(|(h, r)| *h = p.h0 - r),
-            _ => samples[c - 1].clone_from(&x),
+        for (s, r) in path.iter_mut().zip(&x) {
+            match c {
+                0 => s[2] = p.h0 - r,
+                _ => s[c - 1] = *r,
+            }
         }
     }
-    let path = |a: bool, b: bool| -> Vec<[f64; 3]> {
-        (0..n)
-            .map(|k| {
-                [
-                    if a { samples[0][k] } else { 0.0 },
-                    if b { samples[1][k] } else { 0.0 },
-                    samples[2][k],
-                ]
-            })
-            .collect()
+    let states = match start {
+        Start::Virgin => &VIRGIN,
+        Start::Near(m) => &m.states,
     };
-    let virgin = [0.0; POINT3D_STATE_LEN];
-    let (start1, start2) = match start {
-        Start::Virgin => (&virgin, &virgin),
-        Start::Near(m) => (
-            &m.first.state,
-            m.second.as_ref().map_or(&virgin, |s| &s.state),
-        ),
-    };
-    // Coupled: one point; else one point per tangential direction, sharing h.
-    let (first, second) = if p.model.coupled_slip {
-        (march3_from(&p.contact, &path(true, true), start1)?, None)
-    } else {
-        (
-            march3_from(&p.contact, &path(true, false), start1)?,
-            Some(march3_from(&p.contact, &path(false, true), start2)?),
-        )
-    };
+    let marched = march_point(&p.contact, p.model.coupled_slip, &path, states)?;
     let n0 = p.contact.k_n * p.h0;
     let mut out = vec![0.0; comps.len() * nc];
     for (d, &c) in comps.iter().enumerate() {
-        let series: Vec<f64> = match (c, &second) {
-            (0, _) => first.force[2].iter().map(|v| -(v - n0)).collect(),
-            (2, Some(s)) => s.force[1].clone(),
-            _ => first.force[c - 1].clone(),
+        let series: Vec<f64> = match c {
+            0 => marched.force[2].iter().map(|v| -(v - n0)).collect(),
+            _ => marched.force[c - 1].clone(),
         };
         tr.analyse(&series, &mut out[d * nc..(d + 1) * nc]);
     }
-    let dissipated = first.dissipated + second.as_ref().map_or(0.0, |s| s.dissipated);
-    Ok((out, dissipated, Marched { first, second }))
+    Ok((out, marched.dissipated, marched))
 }
 
 /// ĝ of point `p` at its direction coefficients `dc` (and Γ when `jac`).

@@ -1,41 +1,11 @@
-//! Harmonic balance of lumped systems with three-direction contact points
-//! (docs/contact3d.md): a unilateral normal law, so the normal force N(t) varies within
-//! the cycle and the point may separate, and two tangential directions under one
-//! circular slip limit ‖t‖ ≤ μN(t). The AFT ([`super::aft`]'s transforms) marches the
-//! library's point (`jointlin_point3d_step`) over the periodic samples of the two
-//! tangential displacements and the overclosure together until the loop closes; the
-//! Jacobian of the element's force coefficients is a forward difference of that whole
-//! map (the coupled, path-dependent law has no exact incremental rule here).
-//!
-//! Kinematics of element e on DOFs (t₁, t₂, n) of one body against a rigid plane: u₁ =
-//! x_{t₁}, u₂ = x_{t₂}, overclosure h = g₀ − x_n (n points from the plane into the body,
-//! g₀ the overclosure at x = 0). Internal forces on the body: +F₁, +F₂ on t₁, t₂ (the
-//! point returns them with the sign of the displacement) and −N on n.
+//! Marching a three-direction point over one period's samples until its loop closes
+//! (the AFT's time part for [`super::Hb3`] and the FE balance), coupled or as two
+//! points: without coupled slip each tangential direction is its own point, (u₁, 0, h)
+//! and (0, u₂, h), sharing the overclosure h (docs/contact3d.md).
 
-use nalgebra::{DMatrix, DVector};
-
-use super::aft::{AftError, Transforms, CLOSE_TOL, MAX_PERIODS};
-use super::aitken::Aitken;
-use super::{linear_coefficients, Hb, MhbError, NewtonOptions, System};
-use crate::capi::{self, Contact3, POINT3D_STATE_LEN};
-
-/// One three-direction point between a body's DOFs and the ground plane.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Element3 {
-    /// DOF indices (t₁, t₂, n).
-    pub dofs: [usize; 3],
-    pub contact: Contact3,
-    /// Overclosure g₀ at x = 0 (length).
-    pub gap: f64,
-}
-
-/// A lumped system (M, D, K, loads as [`System`], which holds them; its 1D elements are
-/// not used here) with three-direction points.
-#[derive(Debug, Clone)]
-pub struct System3 {
-    pub linear: System,
-    pub elements: Vec<Element3>,
-}
+use crate::capi::{self, CapiError, Contact3, POINT3D_STATE_LEN};
+use crate::mhb::aft::{AftError, CLOSE_TOL, MAX_PERIODS};
+use crate::mhb::aitken::Aitken;
 
 /// One closed period of a point: forces (t₁, t₂, N) per sample, the energy dissipated
 /// over the period, the periods marched and the point's state at the period's end.
@@ -134,238 +104,81 @@ fn march_with(
 /// header's layout: cell count, u₁, u₂, h, energy, then two slots per cell).
 const SLIDER_SLOTS: usize = 5;
 
-/// Residual, Jacobian and each point's energy dissipated per period at one state.
-pub type Evaluated3 = (DVector<f64>, DMatrix<f64>, Vec<f64>);
+/// The states of one point: the coupled point in the first slot, or the two tangential
+/// directions' points (second slot unused when coupled).
+pub type States = [[f64; POINT3D_STATE_LEN]; 2];
 
-/// The harmonic balance of a [`System3`] at H harmonics and N samples.
-pub struct Hb3<'a> {
-    sys: &'a System3,
-    linear: Hb<'a>,
-    tr: Transforms,
+/// Virgin states.
+pub const VIRGIN: States = [[0.0; POINT3D_STATE_LEN]; 2];
+
+/// One step of a point from `from` to `disp` = (u₁, u₂, h), coupled or as two points
+/// sharing h: the forces (F₁, F₂, N) and the energy dissipated in the step; the new
+/// states go to `to`.
+pub fn step(
+    c: &Contact3,
+    coupled: bool,
+    from: &States,
+    disp: [f64; 3],
+    to: &mut States,
+) -> Result<([f64; 3], f64), CapiError> {
+    if coupled {
+        let s = capi::point3d_step(c, &from[0], disp, &mut to[0])?;
+        return Ok((s.force, s.dissipated));
+    }
+    let a = capi::point3d_step(c, &from[0], [disp[0], 0.0, disp[2]], &mut to[0])?;
+    let b = capi::point3d_step(c, &from[1], [0.0, disp[1], disp[2]], &mut to[1])?;
+    Ok((
+        [a.force[0], b.force[1], a.force[2]],
+        a.dissipated + b.dissipated,
+    ))
 }
 
-/// A converged periodic solution: coefficients DOF-major (layout of [`super::aft`]) and
-/// the energy dissipated per period by each point (force·length).
+/// One closed period of a point, coupled or as two points: forces (F₁, F₂, N) per
+/// sample, the energy dissipated over the period (force·length), the periods marched
+/// (the longer of the two) and the states at the period's end.
 #[derive(Debug, Clone)]
-pub struct Solution3 {
-    pub omega: f64,
-    pub u: Vec<f64>,
-    pub dissipated: Vec<f64>,
-    pub iterations: usize,
-    pub residual: f64,
+pub struct Marched {
+    pub force: [Vec<f64>; 3],
+    pub dissipated: f64,
+    pub periods: usize,
+    pub states: States,
 }
 
-impl<'a> Hb3<'a> {
-    pub fn new(sys: &'a System3, h: usize, n: usize) -> Self {
-        Hb3 {
-            sys,
-            linear: Hb::new(&sys.linear, h, n),
-            tr: Transforms::new(n, h),
-        }
+/// [`march3_from`], coupled or as two points sharing h, from `start`.
+pub fn march_point(
+    c: &Contact3,
+    coupled: bool,
+    disp: &[[f64; 3]],
+    start: &States,
+) -> Result<Marched, AftError> {
+    if coupled {
+        let p = march3_from(c, disp, &start[0])?;
+        return Ok(Marched {
+            force: p.force,
+            dissipated: p.dissipated,
+            periods: p.periods,
+            states: [p.state, start[1]],
+        });
     }
-
-    fn m(&self) -> usize {
-        self.tr.ncoef()
-    }
-
-    /// The element's relative coefficients (u₁, u₂, h) from the system's u.
-    fn element_coefficients(&self, e: &Element3, u: &[f64]) -> Vec<f64> {
-        let m = self.m();
-        let mut c = vec![0.0; 3 * m];
-        for q in 0..m {
-            c[q] = u[e.dofs[0] * m + q];
-            c[m + q] = u[e.dofs[1] * m + q];
-            c[2 * m + q] = -u[e.dofs[2] * m + q];
-        }
-        c[2 * m] += e.gap;
-        c
-    }
-
-    /// Force coefficients (F₁, F₂, N; 3(2H+1)) and the closed period at relative
-    /// coefficients `c`, marched from `start`.
-    fn element_forces(
-        &mut self,
-        e: &Element3,
-        c: &[f64],
-        start: &[f64; POINT3D_STATE_LEN],
-    ) -> Result<(Vec<f64>, Period3), AftError> {
-        let (n, m) = (self.tr.n, self.m());
-        let mut samples = vec![[0.0; 3]; n];
-        let mut x = vec![0.0; n];
-        for a in 0..3 {
-            self.tr.synthesize(&c[a * m..(a + 1) * m], &mut x);
-            for k in 0..n {
-                samples[k][a] = x[k];
-            }
-        }
-        let period = march3_from(&e.contact, &samples, start)?;
-        let mut f = vec![0.0; 3 * m];
-        for a in 0..3 {
-            self.tr
-                .analyse(&period.force[a], &mut f[a * m..(a + 1) * m]);
-        }
-        Ok((f, period))
-    }
-
-    /// Residual and Jacobian at (u, ω), with each point's dissipated energy per period.
-    pub fn eval(&mut self, u: &[f64], omega: f64) -> Result<Evaluated3, MhbError> {
-        let ev = self.linear.eval(u, omega)?;
-        let (mut r, mut j) = (ev.r, ev.j);
-        let m = self.m();
-        let mut dissipated = Vec::with_capacity(self.sys.elements.len());
-        // Sign of each relative coefficient block in x (u₁, u₂: +; h: −) and of each force
-        // block in the internal force (F₁, F₂: +; N: −).
-        const SIGN: [f64; 3] = [1.0, 1.0, -1.0];
-        for e in &self.sys.elements {
-            let c = self.element_coefficients(e, u);
-            let (f, period) = self.element_forces(e, &c, &[0.0; POINT3D_STATE_LEN])?;
-            dissipated.push(period.dissipated);
-            for a in 0..3 {
-                for q in 0..m {
-                    r[e.dofs[a] * m + q] += SIGN[a] * f[a * m + q];
-                }
-            }
-            // Forward differences of the element map: step 1e-7 of the larger of max|c|
-            // and the stick displacement μN/k_T0 at the mean normal force.
-            let n0 = (e.contact.k_n * c[2 * m]).max(0.0);
-            let scale = c
-                .iter()
-                .fold(e.contact.mu * n0 / e.contact.k_t0, |s, v| s.max(v.abs()));
-            let eps = 1e-7 * scale.max(f64::MIN_POSITIVE);
-            let mut cp = c.clone();
-            for b in 0..3 {
-                for qb in 0..m {
-                    let col = b * m + qb;
-                    cp[col] = c[col] + eps;
-                    let (fp, _) = self.element_forces(e, &cp, &period.state)?;
-                    cp[col] = c[col];
-                    for a in 0..3 {
-                        for qa in 0..m {
-                            let d = (fp[a * m + qa] - f[a * m + qa]) / eps;
-                            j[(e.dofs[a] * m + qa, e.dofs[b] * m + qb)] += SIGN[a] * SIGN[b] * d;
-                        }
-                    }
-                }
-            }
-        }
-        Ok((r, j, dissipated))
-    }
-
-    /// Newton from `u0` at fixed ω with step halving (as [`Hb::solve`]).
-    pub fn solve(
-        &mut self,
-        u0: &[f64],
-        omega: f64,
-        opt: NewtonOptions,
-    ) -> Result<Solution3, MhbError> {
-        let scale = self.linear.load().norm().max(f64::MIN_POSITIVE);
-        let mut u = DVector::from_column_slice(u0);
-        let (mut r, mut j, mut diss) = self.eval(u.as_slice(), omega)?;
-        let mut res = r.norm() / scale;
-        for it in 0..=opt.max_iter {
-            if res <= opt.rtol {
-                return Ok(Solution3 {
-                    omega,
-                    u: u.as_slice().to_vec(),
-                    dissipated: diss,
-                    iterations: it,
-                    residual: res,
-                });
-            }
-            if it == opt.max_iter {
-                break;
-            }
-            let du = j
-                .clone()
-                .lu()
-                .solve(&r)
-                .ok_or(MhbError::Singular { omega })?;
-            let mut lambda = 1.0;
-            loop {
-                let trial = &u - lambda * &du;
-                let (r2, j2, d2) = self.eval(trial.as_slice(), omega)?;
-                let res2 = r2.norm() / scale;
-                if res2 < res || lambda < 1e-2 {
-                    (u, r, j, diss, res) = (trial, r2, j2, d2, res2);
-                    break;
-                }
-                lambda *= 0.5;
-            }
-        }
-        Err(MhbError::Newton {
-            omega,
-            residual: res,
-            iterations: opt.max_iter,
-        })
-    }
-
-    /// The linear response with every point stuck and closed (k_T0 on t₁, t₂ and k_N on
-    /// n, the normal spring preloaded by k_N·g₀): the start of a solve.
-    pub fn stuck_start(&self, omega: f64) -> Vec<f64> {
-        let s = &self.sys.linear;
-        let m = self.m();
-        let mut k = s.k.clone();
-        let mut f0 = DVector::from_column_slice(&s.f0);
-        for e in &self.sys.elements {
-            let [t1, t2, nn] = e.dofs;
-            k[(t1, t1)] += e.contact.k_t0;
-            k[(t2, t2)] += e.contact.k_t0;
-            k[(nn, nn)] += e.contact.k_n;
-            f0[nn] += e.contact.k_n * e.gap;
-        }
-        linear_coefficients(s, &k, &f0, omega, m)
-    }
-
-    /// First-harmonic amplitude of DOF `dof` in `u`.
-    pub fn amplitude(&self, u: &[f64], dof: usize) -> f64 {
-        self.linear.amplitude(u, dof)
-    }
-}
-
-/// Load-step halvings before [`solve_ramped`] gives up.
-const MAX_RAMP_HALVINGS: usize = 12;
-
-/// Solves `sys` at ω with its harmonic load ramped from 0: `steps` equal steps, each
-/// solve starting from the last converged one (the first from the stuck start), a step
-/// whose Newton fails halved (at most [`MAX_RAMP_HALVINGS`] times in a row): the way
-/// through separation or sliding, where Newton from the stuck start at the full load may
-/// not converge.
-pub fn solve_ramped(
-    sys: &System3,
-    h: usize,
-    n: usize,
-    omega: f64,
-    steps: usize,
-    opt: NewtonOptions,
-) -> Result<Solution3, MhbError> {
-    let full = 1.0 / steps.max(1) as f64;
-    let (mut at, mut step, mut halvings) = (0.0f64, full, 0);
-    let mut last: Option<Solution3> = None;
-    loop {
-        let w = (at + step).min(1.0);
-        let mut part = sys.clone();
-        part.linear.f1.iter_mut().for_each(|f| *f *= w);
-        let mut hb = Hb3::new(&part, h, n);
-        let start = match &last {
-            Some(s) => s.u.clone(),
-            None => hb.stuck_start(omega),
-        };
-        match hb.solve(&start, omega, opt) {
-            Ok(sol) => {
-                if w >= 1.0 {
-                    return Ok(sol);
-                }
-                (at, halvings) = (w, 0);
-                step = (2.0 * step).min(full);
-                last = Some(sol);
-            }
-            Err(e) if halvings >= MAX_RAMP_HALVINGS => return Err(e),
-            Err(_) => {
-                halvings += 1;
-                step *= 0.5;
-            }
-        }
-    }
+    let only = |keep: usize| -> Vec<[f64; 3]> {
+        disp.iter()
+            .map(|d| {
+                let mut x = *d;
+                x[1 - keep] = 0.0;
+                x
+            })
+            .collect()
+    };
+    let a = march3_from(c, &only(0), &start[0])?;
+    let b = march3_from(c, &only(1), &start[1])?;
+    let [fa, _, na] = a.force;
+    let [_, fb, _] = b.force;
+    Ok(Marched {
+        force: [fa, fb, na],
+        dissipated: a.dissipated + b.dissipated,
+        periods: a.periods.max(b.periods),
+        states: [a.state, b.state],
+    })
 }
 
 #[cfg(test)]
