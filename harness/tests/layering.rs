@@ -109,7 +109,7 @@ const OVERSIZED: &[(&str, usize)] = &[
     ("mhb/continuation.rs::trace", 155),
     ("model/build.rs::build", 382),
     ("model/deck/mod.rs::build", 286),
-    ("model/lumped.rs::build", 222),
+    ("model/lumped.rs::build", 201),
     ("run.rs::run", 214),
     ("solve/arpack/mod.rs::shift_invert", 150),
     ("solve/sweep/harmonic_fe.rs", 658),

@@ -138,11 +138,11 @@ fn run_sweeps_the_reduced_model_first_order() {
     let mut lines = csv.lines();
     assert_eq!(
         lines.next().unwrap(),
-        "frequency_Hz,tip_z_amp_mm,tip_z_phase_deg,mid_z_amp_mm,mid_z_phase_deg,tip_amplitude_mm,status"
+        "frequency_Hz,tip_z_amp_mm,tip_z_phase_deg,mid_z_amp_mm,mid_z_phase_deg,tip_amplitude_mm,tip_energy_N_mm,status"
     );
     let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
     assert_eq!(rows.len(), 100);
-    assert!(rows.iter().all(|r| r[6] == "converged"), "{csv}");
+    assert!(rows.iter().all(|r| r[7] == "converged"), "{csv}");
     // The resonance lies below the stuck 1575 Hz (the joint slips: measured 1502 Hz,
     // tip 3.5e-3 mm) and above the free cantilever's 687 Hz.
     let peak = rows

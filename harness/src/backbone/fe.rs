@@ -273,8 +273,8 @@ pub fn reduce(p: &Problem, effects: &Effects, mode: usize) -> Result<Reduced, St
                 .collect();
             let closed = stat.closed.iter().filter(|&&c| c).count();
             return Ok(Reduced {
-                lumped: Lumped {
-                    system: System {
+                lumped: Lumped::of_system(
+                    System {
                         m: mr,
                         d: dr,
                         k: kr,
@@ -283,9 +283,9 @@ pub fn reduce(p: &Problem, effects: &Effects, mode: usize) -> Result<Reduced, St
                         elements,
                     },
                     dofs,
-                    elements: names,
+                    names,
                     outputs,
-                },
+                ),
                 closed,
                 open: p.contacts.len() - closed,
                 modes: ni,

@@ -39,7 +39,29 @@ pub struct Contact3 {
     pub k_n: f64,
 }
 
+/// Mindlin–Masing cells of a three-direction Mindlin point (docs/contact3d.md §2: energy
+/// of the straight-path loop within 0.27 % of the continuous law; Jenkins has one cell).
+pub const MINDLIN_CELLS: i32 = 128;
+
 impl Contact3 {
+    /// The point of law `law` with [`MINDLIN_CELLS`] cells for Mindlin (one for Jenkins),
+    /// friction coefficient μ, tangential and normal stiffness (force/length, or per area
+    /// in stress form).
+    pub fn new(law: LawName, mu: f64, k_t0: f64, k_n: f64) -> Self {
+        let cells = if law == LawName::Mindlin {
+            MINDLIN_CELLS
+        } else {
+            0
+        };
+        Contact3 {
+            law,
+            cells,
+            mu,
+            k_t0,
+            k_n,
+        }
+    }
+
     fn c(&self) -> jointlin_contact3d {
         jointlin_contact3d {
             law: law_code(self.law),

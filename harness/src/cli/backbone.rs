@@ -51,7 +51,11 @@ fn build(scene: &Scene, mode: usize) -> Result<(Lumped, Option<fe::Reduced>), St
         || !s.interfaces.is_empty()
         || s.bodies.iter().any(|b| b.kind != BodyKind::Mass);
     if !fe_scene {
-        return lumped::build(scene).map(|l| (l, None));
+        let l = lumped::build(scene)?;
+        if !l.points.is_empty() {
+            return Err("the backbone follows one-direction joints: joints with `normal` need [effects] normal_load_variation = false and coupled_slip = false here (the thesis's model: two directions at the static normal force)".into());
+        }
+        return Ok((l, None));
     }
     let p = jointlin_harness::model::build(scene).map_err(|e| e.to_string())?;
     for w in &p.warnings {

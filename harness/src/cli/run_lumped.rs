@@ -15,7 +15,8 @@ use serde_json::json;
 
 use jointlin_harness::capi;
 use jointlin_harness::input::scene::Scene;
-use jointlin_harness::mhb::{default_samples, first_order, Hb, NewtonOptions};
+use jointlin_harness::mhb::default_samples;
+use jointlin_harness::mhb::lumped_sweep::{Solved, Sweep};
 use jointlin_harness::model::lumped;
 use jointlin_harness::report::csv::{harmonic_columns, harmonic_values};
 use jointlin_harness::report::svg::{frf_curves, FrfCurve};
@@ -87,8 +88,11 @@ pub fn main(s: &Scene, out: &Path, plots: bool) -> ExitCode {
     }
     let method = match harmonic {
         None => "first order (jointlin_linearize), lumped system".to_string(),
-        Some((h, n)) => format!(
+        Some((h, n)) if l.points.is_empty() => format!(
             "harmonic balance, H = {h}, {n} samples per period (jointlin_point_step by AFT), lumped system"
+        ),
+        Some((h, n)) => format!(
+            "harmonic balance, H = {h}, {n} samples per period (jointlin_point_step and, for the three-direction points, jointlin_point3d_step by AFT), lumped system"
         ),
     };
     let has_points = curves.iter().any(|c| !c.points.is_empty());
@@ -117,6 +121,12 @@ pub fn main(s: &Scene, out: &Path, plots: bool) -> ExitCode {
             "frequency_unit": frequency_unit(units).text,
             "method": method,
             "dofs": l.dofs,
+            "joints": l.joints.iter().map(|j| json!({
+                "name": j.name,
+                "static_normal_force": j.static_normal,
+                "normal_force_varies": j.normal_varies,
+                "three_direction_point": j.point.is_some(),
+            })).collect::<Vec<_>>(),
             "frequencies": up.len(),
             "sweep_direction": s.spec.sweep.direction,
             "failed_frequencies": failed.iter().map(|&f| frequency_unit(units).show(f)).collect::<Vec<f64>>(),
@@ -164,6 +174,7 @@ fn sweep_pass(
     for name in &l.elements {
         header.push(format!("{name}_amplitude_{len}"));
     }
+    header.extend(joint_columns(l, units));
     header.push("status".into());
     let mut hheader = vec![fu.column.clone()];
     if let Some((h, _)) = harmonic {
@@ -171,7 +182,8 @@ fn sweep_pass(
             hheader.extend(harmonic_columns(name, h, &len));
         }
     }
-    let mut sweep = Sweep::new(l, harmonic);
+    let sys3 = l.system3();
+    let mut sweep = Sweep::new(l, &sys3, harmonic);
     // (frequency, results row, harmonics row, output amplitudes if converged)
     let mut rows = Vec::with_capacity(order.len());
     let mut failed = Vec::new();
@@ -181,8 +193,8 @@ fn sweep_pass(
         let mut hrow = row.clone();
         let mut amps = None;
         match sweep.solve(omega) {
-            Ok((x, elements, coefficients)) => {
-                if let (Some((h, _)), Some(u)) = (harmonic, &coefficients) {
+            Ok(solved) => {
+                if let (Some((h, _)), Some(u)) = (harmonic, &solved.coefficients) {
                     let m = 2 * h + 1;
                     for (_, w) in &l.outputs {
                         let c = |k: usize| -> f64 {
@@ -200,13 +212,14 @@ fn sweep_pass(
                 }
                 let mut a = Vec::new();
                 for (_, w) in &l.outputs {
-                    let v: Complex<f64> = w.iter().zip(&x).map(|(w, x)| x * *w).sum();
+                    let v: Complex<f64> = w.iter().zip(&solved.x).map(|(w, x)| x * *w).sum();
                     row.push(format!("{:e}", v.norm()));
                     row.push(format!("{:e}", v.arg().to_degrees()));
                     a.push(v.norm());
                 }
                 amps = Some(a);
-                row.extend(elements.iter().map(|a| format!("{a:e}")));
+                row.extend(solved.elements.iter().map(|a| format!("{a:e}")));
+                row.extend(joint_values(l, &solved).iter().map(|v| format!("{v:e}")));
                 row.push("converged".into());
             }
             Err(e) => {
@@ -244,58 +257,39 @@ fn sweep_pass(
     }
 }
 
-/// One frequency's DOF amplitudes, element amplitudes and (harmonic balance) coefficients.
-type Solved = (Vec<Complex<f64>>, Vec<f64>, Option<Vec<f64>>);
-
-/// The sweep's solver and the last converged state it continues from.
-struct Sweep<'a> {
-    l: &'a lumped::Lumped,
-    /// First order: the last element amplitudes.
-    a0: Vec<f64>,
-    /// Harmonic balance (H, N) and the last converged coefficients.
-    hb: Option<(Hb<'a>, Option<Vec<f64>>)>,
-}
-
-impl<'a> Sweep<'a> {
-    fn new(l: &'a lumped::Lumped, harmonic: Option<(usize, usize)>) -> Self {
-        Sweep {
-            l,
-            a0: vec![0.0; l.system.elements.len()],
-            hb: harmonic.map(|(h, n)| (Hb::new(&l.system, h, n), None)),
+/// Per joint: the tangential amplitudes of a three-direction point, the energy
+/// dissipated per cycle and, where the normal force varies, its range.
+fn joint_columns(l: &lumped::Lumped, units: &Units) -> Vec<String> {
+    let cu = ColumnUnits::new(units);
+    let mut h = Vec::new();
+    for j in &l.joints {
+        let name = &j.name;
+        if j.point.is_some() {
+            h.push(format!("{name}_t1_amplitude_{}", cu.length));
+            h.push(format!("{name}_t2_amplitude_{}", cu.length));
+        }
+        h.push(format!("{name}_energy_{}", cu.energy));
+        if j.normal_varies {
+            h.push(format!("{name}_normal_force_min_{}", units.force));
+            h.push(format!("{name}_normal_force_max_{}", units.force));
         }
     }
+    h
+}
 
-    /// The first-harmonic complex amplitude of every DOF (x(t) = Re(x̂ e^{iωt})), the
-    /// first-harmonic amplitude of every element's relative displacement at ω (rad per
-    /// time unit) and, for the harmonic balance, all coefficients (DOF-major).
-    fn solve(&mut self, omega: f64) -> Result<Solved, String> {
-        let sys = &self.l.system;
-        let Some((hb, last)) = &mut self.hb else {
-            let x = first_order::solve(sys, omega, &self.a0).map_err(|e| e.to_string())?;
-            self.a0 = first_order::element_amplitudes(sys, &x);
-            return Ok((x, self.a0.clone(), None));
-        };
-        let opt = NewtonOptions::default();
-        // From the last solution, else (or when that fails) from the stuck response.
-        let sol = match last.as_ref().map(|u| hb.solve(u, omega, opt)) {
-            Some(Ok(sol)) => sol,
-            _ => {
-                let start = hb.stuck_start(omega);
-                hb.solve(&start, omega, opt).map_err(|e| {
-                    *last = None;
-                    e.to_string()
-                })?
-            }
-        };
-        let m = 2 * hb.h() + 1;
-        let first = |c: &dyn Fn(usize) -> f64| Complex::new(c(1), -c(2));
-        let x: Vec<Complex<f64>> = (0..sys.n()).map(|d| first(&|c| sol.u[d * m + c])).collect();
-        let elements = sys
-            .elements
-            .iter()
-            .map(|e| first(&|c| sol.u[e.i * m + c] - e.j.map_or(0.0, |j| sol.u[j * m + c])).norm())
-            .collect();
-        *last = Some(sol.u.clone());
-        Ok((x, elements, Some(sol.u)))
+/// The values of [`joint_columns`] at one solution.
+fn joint_values(l: &lumped::Lumped, s: &Solved) -> Vec<f64> {
+    let mut v = Vec::new();
+    for j in &l.joints {
+        let point = j.point.map(|p| s.points[p]);
+        if let Some(p) = point {
+            v.extend(p.amplitude);
+        }
+        let elements: f64 = j.elements.iter().map(|&e| s.element_energy[e]).sum();
+        v.push(elements + point.map_or(0.0, |p| p.energy));
+        if let (true, Some(p)) = (j.normal_varies, point) {
+            v.extend([p.normal_range.0, p.normal_range.1]);
+        }
     }
+    v
 }

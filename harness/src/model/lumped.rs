@@ -12,10 +12,11 @@ use std::path::Path;
 
 use nalgebra::{Complex, DMatrix, Vector3};
 
-use super::lumped_system::{Element, Law, System};
+use super::lumped_joints::{self, JointInfo, Planned, Site};
+use super::lumped_system::{Element, Element3, Law, System, System3};
 use crate::capi::Tangential;
-use crate::input::matrices;
-use crate::input::scene::schema::{BodyKind, SceneFile};
+use crate::input::matrices::{self, MatrixModel};
+use crate::input::scene::schema::{BodyKind, SceneFile, SpringSpec};
 use crate::input::scene::Scene;
 
 const GROUND: &str = "ground";
@@ -30,14 +31,44 @@ pub struct Lumped {
     pub elements: Vec<String>,
     /// Per `[[outputs]]`: name and weights over the DOFs (the unit direction).
     pub outputs: Vec<(String, Vec<f64>)>,
+    /// The three-direction points of joints with `normal` whose `[effects]` need them.
+    pub points: Vec<Element3>,
+    /// Per `[[joints]]` entry: its elements or point and its static normal force.
+    pub joints: Vec<JointInfo>,
 }
 
 impl Lumped {
-    /// Undamped natural frequencies (1/time, ascending) with every joint stuck
-    /// ([`System::stuck_stiffness`]): K_s φ = ω² M φ solved as the symmetric
+    /// A lumped system of 1D elements only (a reduced FE scene's), with its DOF, element
+    /// and output names.
+    pub fn of_system(
+        system: System,
+        dofs: Vec<String>,
+        elements: Vec<String>,
+        outputs: Vec<(String, Vec<f64>)>,
+    ) -> Self {
+        Lumped {
+            system,
+            dofs,
+            elements,
+            outputs,
+            points: Vec::new(),
+            joints: Vec::new(),
+        }
+    }
+
+    /// Undamped natural frequencies (1/time, ascending) with every joint stuck and
+    /// every point closed ([`System3::stuck`]): K_s φ = ω² M φ solved as the symmetric
     /// (L⁻¹ K_s L⁻ᵀ) with M = L Lᵀ.
     pub fn stuck_frequencies(&self) -> Result<Vec<f64>, String> {
-        undamped_frequencies(&self.system.stuck_stiffness(), &self.system.m)
+        undamped_frequencies(&self.system3().stuck().0, &self.system.m)
+    }
+
+    /// The system with its three-direction points.
+    pub fn system3(&self) -> System3 {
+        System3 {
+            linear: self.system.clone(),
+            elements: self.points.clone(),
+        }
     }
 }
 
@@ -45,9 +76,6 @@ fn axis(d: &[f64; 3]) -> Option<usize> {
     let nz: Vec<usize> = (0..3).filter(|&c| d[c] != 0.0).collect();
     (nz.len() == 1).then(|| nz[0])
 }
-
-/// Per axis x, y, z: the DOF of a named end in the full system, if it has one.
-type Site = [Option<usize>; 3];
 
 /// A named end and its site.
 type End = (String, Site);
@@ -71,42 +99,15 @@ pub fn build(scene: &Scene) -> Result<Lumped, String> {
         .collect::<Result<Vec<_>, _>>()
         .map_err(|e| e.to_string())?;
     let nm: usize = models.iter().map(|m| m.dofs.len()).sum();
-    let nb = s.bodies.len();
-    let n = nm + 3 * nb;
     // Full system first; unused and clamped directions are removed at the end.
-    let mut k = DMatrix::<f64>::zeros(n, n);
-    let mut d = DMatrix::<f64>::zeros(n, n);
-    let mut m = DMatrix::<f64>::zeros(n, n);
-    let mut sites: BTreeMap<String, Site> = BTreeMap::new();
-    let mut all_names = Vec::with_capacity(n);
-    let mut off = 0;
-    for model in &models {
-        let r = model.dofs.len();
-        m.view_mut((off, off), (r, r)).copy_from(&model.m);
-        k.view_mut((off, off), (r, r)).copy_from(&model.k);
-        if let Some(md) = &model.d {
-            d.view_mut((off, off), (r, r)).copy_from(md);
-        }
-        for (i, dof) in model.dofs.iter().enumerate() {
-            all_names.push(format!("{}.{}", model.name, dof.name()));
-            if let Some(a) = dof.axis {
-                sites
-                    .entry(format!("{}.{}", model.name, dof.point))
-                    .or_insert([None; 3])[a] = Some(off + i);
-            }
-        }
-        off += r;
-    }
-    for (b, body) in s.bodies.iter().enumerate() {
-        for c in 0..3 {
-            m[(nm + 3 * b + c, nm + 3 * b + c)] = body.mass.unwrap_or(0.0);
-            all_names.push(format!("{}.{}", body.name, ["x", "y", "z"][c]));
-        }
-        sites.insert(
-            body.name.clone(),
-            std::array::from_fn(|c| Some(nm + 3 * b + c)),
-        );
-    }
+    let Full {
+        mut k,
+        mut d,
+        m,
+        sites,
+        names: all_names,
+    } = full_system(s, &models);
+    let n = k.nrows();
     let site = |name: &str| -> Result<Site, String> {
         sites.get(name).copied().ok_or_else(|| match name.split_once('.') {
             Some((mat, _)) if s.matrices.iter().any(|x| x.name == mat) => format!(
@@ -114,10 +115,6 @@ pub fn build(scene: &Scene) -> Result<Lumped, String> {
             ),
             _ => format!("unknown body `{name}`"),
         })
-    };
-    // The DOF of `name` along axis `c`, or an error naming what lacks it.
-    let component = |name: &str, st: &Site, c: usize| -> Result<usize, String> {
-        st[c].ok_or_else(|| format!("`{name}` has no {} DOF in its DOF list", ["x", "y", "z"][c]))
     };
     let ends = |x: &str, y: &str| -> Result<(End, Option<End>), String> {
         let look = |n: &str| -> Result<Option<End>, String> {
@@ -140,56 +137,37 @@ pub fn build(scene: &Scene) -> Result<Lumped, String> {
             Some([x, y]) => ends(x, y)?,
             None => ((sp.body.clone(), site(&sp.body)?), None),
         };
-        let dir = Vector3::from(sp.direction).normalize();
-        let axes: Vec<usize> = (0..3).filter(|&c| dir[c] != 0.0).collect();
-        let da = axes
-            .iter()
-            .map(|&c| component(&a.0, &a.1, c))
-            .collect::<Result<Vec<_>, _>>()
-            .map_err(|e| format!("springs[{i}]: {e}"))?;
-        let db = match &b {
-            Some(b) => Some(
-                axes.iter()
-                    .map(|&c| component(&b.0, &b.1, c))
-                    .collect::<Result<Vec<_>, _>>()
-                    .map_err(|e| format!("springs[{i}]: {e}"))?,
-            ),
-            None => None,
-        };
-        for (mat, v) in [(&mut k, sp.stiffness), (&mut d, sp.damping)] {
-            for (p, &r) in axes.iter().enumerate() {
-                for (q, &c) in axes.iter().enumerate() {
-                    let x = v * dir[r] * dir[c];
-                    mat[(da[p], da[q])] += x;
-                    if let Some(db) = &db {
-                        mat[(db[p], db[q])] += x;
-                        mat[(da[p], db[q])] -= x;
-                        mat[(db[p], da[q])] -= x;
-                    }
-                }
-            }
-        }
-        if sp.cubic != 0.0 {
-            let c = axis(&sp.direction).ok_or(format!(
-                "springs[{i}]: a cubic term needs a coordinate axis"
-            ))?;
-            let p = axes
-                .iter()
-                .position(|&x| x == c)
-                .expect("the axis is a component");
-            elements.push(Element {
-                i: da[p],
-                j: db.as_ref().map(|db| db[p]),
-                law: Law::Cubic(sp.cubic),
-            });
+        if let Some(e) = add_spring(sp, &a, b.as_ref(), &mut k, &mut d)
+            .map_err(|e| format!("springs[{i}]: {e}"))?
+        {
+            elements.push(e);
             names.push(format!("spring{i}_cubic"));
         }
     }
+    let mut joints = Vec::new();
+    let mut planned: Vec<Planned> = Vec::new();
     for j in &s.joints {
+        if let (Some(normal), Some(k_n)) = (j.normal, j.normal_stiffness) {
+            let mut ends = [None, None];
+            for (e, x) in ends.iter_mut().zip(&j.between) {
+                if x != GROUND {
+                    *e = Some((x.as_str(), site(x)?));
+                }
+            }
+            planned.push(lumped_joints::plan(j, normal, k_n, ends)?);
+            continue;
+        }
         let c =
             axis(&j.direction).ok_or(format!("joint `{}`: direction must be an axis", j.name))?;
         let (a, b) = ends(&j.between[0], &j.between[1])?;
         let at = |e: &End| component(&e.0, &e.1, c).map_err(|m| format!("joint `{}`: {m}", j.name));
+        joints.push(JointInfo {
+            name: j.name.clone(),
+            elements: vec![elements.len()],
+            point: None,
+            static_normal: None,
+            normal_varies: false,
+        });
         elements.push(Element {
             i: at(&a)?,
             j: b.as_ref().map(at).transpose()?,
@@ -197,7 +175,7 @@ pub fn build(scene: &Scene) -> Result<Lumped, String> {
                 law: j.law,
                 rule: j.rule,
                 mu: j.mu,
-                normal: j.normal_force,
+                normal: j.normal_force.unwrap_or(0.0),
                 k_t0: j.k_t0,
             }),
         });
@@ -217,6 +195,9 @@ pub fn build(scene: &Scene) -> Result<Lumped, String> {
         r < nm
             || (0..n).any(|c| k[(r, c)] != 0.0 || d[(r, c)] != 0.0)
             || elements.iter().any(|e| e.i == r || e.j == Some(r))
+            || planned
+                .iter()
+                .any(|p| p.rows.iter().flatten().any(|&(d, _)| d == r))
     };
     let keep: Vec<usize> = (0..n).filter(|&r| !clamped[r] && used(r)).collect();
     let new = |r: usize| keep.iter().position(|&x| x == r);
@@ -229,6 +210,9 @@ pub fn build(scene: &Scene) -> Result<Lumped, String> {
         };
         kept_elements.push(Element { i, j, law: e.law });
     }
+    for p in &mut planned {
+        lumped_joints::renumber(p, new)?;
+    }
     let pick =
         |a: &DMatrix<f64>| DMatrix::from_fn(keep.len(), keep.len(), |r, c| a[(keep[r], keep[c])]);
     let mk = pick(&m);
@@ -236,46 +220,209 @@ pub fn build(scene: &Scene) -> Result<Lumped, String> {
         return Err("every loaded direction needs a mass body with mass > 0".into());
     }
     let dofs = keep.iter().map(|&r| all_names[r].clone()).collect();
-    let mut outputs = Vec::new();
-    for o in &s.outputs {
-        let st = site(&o.body).map_err(|e| format!("output `{}`: {e}", o.name))?;
-        let dir = Vector3::from(o.direction).normalize();
-        let mut w = vec![0.0; keep.len()];
-        for c in (0..3).filter(|&c| dir[c] != 0.0) {
-            let r = component(&o.body, &st, c).map_err(|e| format!("output `{}`: {e}", o.name))?;
-            if let Some(p) = new(r) {
-                w[p] = dir[c];
-            }
-        }
-        outputs.push((o.name.clone(), w));
-    }
-    let zero = Complex::new(0.0, 0.0);
+    let dir = |name: &str, d: [f64; 3], loaded: bool| -> Result<Vec<f64>, String> {
+        let at = Along {
+            n: keep.len(),
+            new: &new,
+            clamped: &clamped,
+        };
+        at.weights(name, &site(name)?, d, loaded)
+    };
+    let outputs = s
+        .outputs
+        .iter()
+        .map(|o| {
+            let w = dir(&o.body, o.direction, false)
+                .map_err(|e| format!("output `{}`: {e}", o.name))?;
+            Ok((o.name.clone(), w))
+        })
+        .collect::<Result<Vec<_>, String>>()?;
     // Point excitations: f̂ = F e^{iφ} along their direction (f(t) = Re(f̂ e^{iωt})).
-    let mut f1 = vec![zero; keep.len()];
+    let mut f1 = vec![Complex::new(0.0, 0.0); keep.len()];
     for (i, e) in s.excitation.iter().enumerate() {
-        let st = site(&e.body).map_err(|m| format!("excitation[{i}]: {m}"))?;
-        let dir = Vector3::from(e.direction).normalize();
+        let w = dir(&e.body, e.direction, true).map_err(|m| format!("excitation[{i}]: {m}"))?;
         let amp = Complex::from_polar(e.amplitude, e.phase_deg.to_radians());
-        for c in (0..3).filter(|&c| dir[c] != 0.0) {
-            let r = component(&e.body, &st, c).map_err(|m| format!("excitation[{i}]: {m}"))?;
-            if let Some(p) = new(r) {
-                f1[p] += amp * dir[c];
-            }
+        f1.iter_mut().zip(&w).for_each(|(f, w)| *f += amp * *w);
+    }
+    let mut f0 = vec![0.0; keep.len()];
+    for (i, l) in s.preload.iter().enumerate() {
+        let force = Vector3::from(l.force.unwrap_or([0.0; 3]));
+        if force.norm() > 0.0 {
+            let w = dir(&l.body, force.into(), true).map_err(|m| format!("preload[{i}]: {m}"))?;
+            f0.iter_mut()
+                .zip(&w)
+                .for_each(|(f, w)| *f += force.norm() * w);
         }
     }
+    let damping = if s.effects.material_damping {
+        pick(&d)
+    } else {
+        DMatrix::zeros(keep.len(), keep.len())
+    };
+    let mut system = System {
+        m: mk,
+        d: damping,
+        k: pick(&k),
+        f0,
+        f1,
+        elements: kept_elements,
+    };
+    let (points, more) = if planned.is_empty() {
+        (Vec::new(), Vec::new())
+    } else {
+        lumped_joints::finish(&mut system, &mut names, &planned, &s.effects)?
+    };
+    // The joints in file order: 1D ones were numbered as read, those with `normal` follow.
+    joints.extend(more);
+    joints.sort_by_key(|j| s.joints.iter().position(|x| x.name == j.name));
     Ok(Lumped {
-        system: System {
-            m: mk,
-            d: pick(&d),
-            k: pick(&k),
-            f0: vec![0.0; keep.len()],
-            f1,
-            elements: kept_elements,
-        },
+        system,
         dofs,
         elements: names,
         outputs,
+        points,
+        joints,
     })
+}
+
+/// The DOF of `name` along axis `c`, or an error naming what lacks it.
+fn component(name: &str, st: &Site, c: usize) -> Result<usize, String> {
+    st[c].ok_or_else(|| format!("`{name}` has no {} DOF in its DOF list", ["x", "y", "z"][c]))
+}
+
+/// Adds spring `sp` between ends `a` and `b` (None: ground) to K and D (k·nnᵀ, c·nnᵀ
+/// blocks); its cubic term, along a coordinate axis, as an element F = αδ³.
+fn add_spring(
+    sp: &SpringSpec,
+    a: &End,
+    b: Option<&End>,
+    k: &mut DMatrix<f64>,
+    d: &mut DMatrix<f64>,
+) -> Result<Option<Element>, String> {
+    let dir = Vector3::from(sp.direction).normalize();
+    let axes: Vec<usize> = (0..3).filter(|&c| dir[c] != 0.0).collect();
+    let dofs = |e: &End| -> Result<Vec<usize>, String> {
+        axes.iter().map(|&c| component(&e.0, &e.1, c)).collect()
+    };
+    let da = dofs(a)?;
+    let db = b.map(dofs).transpose()?;
+    for (mat, v) in [(k, sp.stiffness), (d, sp.damping)] {
+        for (p, &r) in axes.iter().enumerate() {
+            for (q, &c) in axes.iter().enumerate() {
+                let x = v * dir[r] * dir[c];
+                mat[(da[p], da[q])] += x;
+                if let Some(db) = &db {
+                    mat[(db[p], db[q])] += x;
+                    mat[(da[p], db[q])] -= x;
+                    mat[(db[p], da[q])] -= x;
+                }
+            }
+        }
+    }
+    if sp.cubic == 0.0 {
+        return Ok(None);
+    }
+    let c = axis(&sp.direction).ok_or("a cubic term needs a coordinate axis")?;
+    let p = axes
+        .iter()
+        .position(|&x| x == c)
+        .expect("the axis is a component");
+    Ok(Some(Element {
+        i: da[p],
+        j: db.as_ref().map(|db| db[p]),
+        law: Law::Cubic(sp.cubic),
+    }))
+}
+
+/// The full system before DOFs are removed: `[[matrices]]` blocks, then three
+/// translations per mass body (its mass on the diagonal), each DOF's name and each
+/// named end's site.
+struct Full {
+    k: DMatrix<f64>,
+    d: DMatrix<f64>,
+    m: DMatrix<f64>,
+    sites: BTreeMap<String, Site>,
+    names: Vec<String>,
+}
+
+fn full_system(s: &SceneFile, models: &[MatrixModel]) -> Full {
+    let nm: usize = models.iter().map(|m| m.dofs.len()).sum();
+    let n = nm + 3 * s.bodies.len();
+    let mut f = Full {
+        k: DMatrix::zeros(n, n),
+        d: DMatrix::zeros(n, n),
+        m: DMatrix::zeros(n, n),
+        sites: BTreeMap::new(),
+        names: Vec::with_capacity(n),
+    };
+    let mut off = 0;
+    for model in models {
+        let r = model.dofs.len();
+        f.m.view_mut((off, off), (r, r)).copy_from(&model.m);
+        f.k.view_mut((off, off), (r, r)).copy_from(&model.k);
+        if let Some(md) = &model.d {
+            f.d.view_mut((off, off), (r, r)).copy_from(md);
+        }
+        for (i, dof) in model.dofs.iter().enumerate() {
+            f.names.push(format!("{}.{}", model.name, dof.name()));
+            if let Some(a) = dof.axis {
+                f.sites
+                    .entry(format!("{}.{}", model.name, dof.point))
+                    .or_insert([None; 3])[a] = Some(off + i);
+            }
+        }
+        off += r;
+    }
+    for (b, body) in s.bodies.iter().enumerate() {
+        for c in 0..3 {
+            f.m[(nm + 3 * b + c, nm + 3 * b + c)] = body.mass.unwrap_or(0.0);
+            f.names
+                .push(format!("{}.{}", body.name, ["x", "y", "z"][c]));
+        }
+        f.sites.insert(
+            body.name.clone(),
+            std::array::from_fn(|c| Some(nm + 3 * b + c)),
+        );
+    }
+    f
+}
+
+/// The kept DOFs: their count, the new index of a full one, which full ones are clamped.
+struct Along<'a> {
+    n: usize,
+    new: &'a dyn Fn(usize) -> Option<usize>,
+    clamped: &'a [bool],
+}
+
+impl Along<'_> {
+    /// Weights over the kept DOFs of the unit vector along `d` at end `name` (its
+    /// components at the end's DOFs; a clamped component carries none). A `loaded`
+    /// direction (a force) with a component along a direction nothing holds is an
+    /// error; an output there reads zero.
+    fn weights(
+        &self,
+        name: &str,
+        st: &Site,
+        d: [f64; 3],
+        loaded: bool,
+    ) -> Result<Vec<f64>, String> {
+        let d = Vector3::from(d).normalize();
+        let mut w = vec![0.0; self.n];
+        for c in (0..3).filter(|&c| d[c] != 0.0) {
+            let axis = ["x", "y", "z"][c];
+            let r = st[c].ok_or_else(|| format!("`{name}` has no {axis} DOF in its DOF list"))?;
+            match (self.new)(r) {
+                Some(p) => w[p] = d[c],
+                None if self.clamped[r] || !loaded => {}
+                None => {
+                    return Err(format!(
+                        "a force along {axis} of `{name}`, where nothing holds the body"
+                    ))
+                }
+            }
+        }
+        Ok(w)
+    }
 }
 
 /// Undamped frequencies (1/time, ascending) of (K, M), M positive definite: the

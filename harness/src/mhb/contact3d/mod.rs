@@ -18,72 +18,13 @@
 use nalgebra::{DMatrix, DVector};
 
 use super::aft::{AftError, Transforms};
-use super::{linear_coefficients, Hb, MhbError, NewtonOptions, System};
-use crate::capi::Contact3;
+use super::{linear_coefficients, Hb, MhbError, NewtonOptions};
+use crate::model::lumped_system::SIGN;
 
 mod march;
 
+pub use crate::model::lumped_system::{Element3, Row, System3};
 pub use march::{march3, march3_from, march_point, step, Marched, Period3, States, VIRGIN};
-
-/// Weighted DOFs (index, weight) whose sum is one relative displacement component.
-pub type Row = Vec<(usize, f64)>;
-
-/// One three-direction point between DOFs of a system (or them and the ground).
-#[derive(Debug, Clone, PartialEq)]
-pub struct Element3 {
-    /// Rows of u₁, u₂ and the opening g (length); an empty normal row keeps h at
-    /// [`Element3::gap`] (a constant normal force: the normal direction is then linear,
-    /// outside the point).
-    pub rows: [Row; 3],
-    pub contact: Contact3,
-    /// Overclosure g₀ at x = 0 (length).
-    pub gap: f64,
-    /// Both tangential directions under one circular slip limit; false: each direction
-    /// its own point, the two sharing h ([`march::step`]).
-    pub coupled: bool,
-}
-
-impl Element3 {
-    /// A coupled point on a body's DOFs (t₁, t₂, n) against a rigid plane.
-    pub fn on_plane(dofs: [usize; 3], contact: Contact3, gap: f64) -> Self {
-        Element3 {
-            rows: dofs.map(|d| vec![(d, 1.0)]),
-            contact,
-            gap,
-            coupled: true,
-        }
-    }
-
-    /// The point's displacement (u₁, u₂, h) at the system displacements `y`.
-    pub fn displacement(&self, y: &[f64]) -> [f64; 3] {
-        let sum = |r: &Row| r.iter().map(|&(d, w)| w * y[d]).sum::<f64>();
-        [
-            sum(&self.rows[0]),
-            sum(&self.rows[1]),
-            self.gap - sum(&self.rows[2]),
-        ]
-    }
-
-    /// Adds the point's internal forces (F₁, F₂, N) to `out` (per DOF).
-    pub fn add_internal(&self, force: [f64; 3], out: &mut [f64]) {
-        for (a, row) in self.rows.iter().enumerate() {
-            for &(d, w) in row {
-                out[d] += SIGN[a] * w * force[a];
-            }
-        }
-    }
-}
-
-/// Sign of ∂u_a/∂(row sum) per component (u₁, u₂: +; h = g₀ − g: −).
-const SIGN: [f64; 3] = [1.0, 1.0, -1.0];
-
-/// A lumped system (M, D, K, loads and its 1D elements as [`System`]) with
-/// three-direction points.
-#[derive(Debug, Clone)]
-pub struct System3 {
-    pub linear: System,
-    pub elements: Vec<Element3>,
-}
 
 /// Residual, Jacobian and per element energies and normal force ranges at one state.
 pub struct Evaluated3 {
@@ -95,6 +36,8 @@ pub struct Evaluated3 {
     pub dissipated: Vec<f64>,
     /// Smallest and largest normal force over the period per point (force).
     pub normal_range: Vec<(f64, f64)>,
+    /// Each point's closed states.
+    pub states: Vec<States>,
 }
 
 /// The harmonic balance of a [`System3`] at H harmonics and N samples.
@@ -102,6 +45,12 @@ pub struct Hb3<'a> {
     sys: &'a System3,
     linear: Hb<'a>,
     tr: Transforms,
+    /// Where each point's march starts: the closed states of the last accepted iterate
+    /// (virgin at first). A stuck point keeps its sliders where they are, so the
+    /// balance's map depends on this memory; the Jacobian's columns start from the same
+    /// states as the residual (consistent), and the memory moves with the accepted
+    /// iterates as the history of a stepped sweep would.
+    memory: Vec<States>,
 }
 
 /// A converged periodic solution: coefficients DOF-major (layout of [`super::aft`]), the
@@ -116,6 +65,8 @@ pub struct Solution3 {
     pub normal_range: Vec<(f64, f64)>,
     pub iterations: usize,
     pub residual: f64,
+    /// Each point's closed states: where a nearby solve's marches may start.
+    pub memory: Vec<States>,
 }
 
 impl<'a> Hb3<'a> {
@@ -124,6 +75,7 @@ impl<'a> Hb3<'a> {
             sys,
             linear: Hb::new(&sys.linear, h, n),
             tr: Transforms::new(n, h),
+            memory: vec![VIRGIN; sys.elements.len()],
         }
     }
 
@@ -180,10 +132,13 @@ impl<'a> Hb3<'a> {
         let m = self.m();
         let mut dissipated = Vec::with_capacity(self.sys.elements.len());
         let mut normal_range = Vec::with_capacity(self.sys.elements.len());
-        for e in &self.sys.elements {
+        let mut states = Vec::with_capacity(self.sys.elements.len());
+        for (k, e) in self.sys.elements.iter().enumerate() {
             let c = self.element_coefficients(e, u);
-            let (f, period) = self.element_forces(e, &c, &VIRGIN)?;
+            let memory = self.memory[k];
+            let (f, period) = self.element_forces(e, &c, &memory)?;
             dissipated.push(period.dissipated);
+            states.push(period.states);
             let n = &period.force[2];
             normal_range.push((
                 n.iter().copied().fold(f64::INFINITY, f64::min),
@@ -196,9 +151,9 @@ impl<'a> Hb3<'a> {
                     }
                 }
             }
-            // Forward differences of the element map: step 1e-7 of the larger of max|c|
-            // and the stick displacement μN/k_T0 at the mean normal force; only the
-            // components with a row move.
+            // Forward differences of the element map (marched from the same memory):
+            // step 1e-7 of the larger of max|c| and the stick displacement μN/k_T0 at the
+            // mean normal force; only the components with a row move.
             let n0 = (e.contact.k_n * c[2 * m]).max(0.0);
             let scale = c
                 .iter()
@@ -209,7 +164,7 @@ impl<'a> Hb3<'a> {
                 for qb in 0..m {
                     let col = b * m + qb;
                     cp[col] = c[col] + eps;
-                    let (fp, _) = self.element_forces(e, &cp, &period.states)?;
+                    let (fp, _) = self.element_forces(e, &cp, &memory)?;
                     cp[col] = c[col];
                     for (a, row_a) in e.rows.iter().enumerate() {
                         for qa in 0..m {
@@ -230,6 +185,7 @@ impl<'a> Hb3<'a> {
             element_dissipated: ev.dissipated,
             dissipated,
             normal_range,
+            states,
         })
     }
 
@@ -254,6 +210,7 @@ impl<'a> Hb3<'a> {
                     normal_range: ev.normal_range,
                     iterations: it,
                     residual: res,
+                    memory: ev.states,
                 });
             }
             if it == opt.max_iter {
@@ -271,6 +228,7 @@ impl<'a> Hb3<'a> {
                 let res2 = e2.r.norm() / scale;
                 if res2 < res || lambda < 1e-2 {
                     (u, ev, res) = (trial, e2, res2);
+                    self.memory.clone_from(&ev.states);
                     break;
                 }
                 lambda *= 0.5;
@@ -288,7 +246,7 @@ impl<'a> Hb3<'a> {
     /// row, that spring preloaded by k_N·g₀): the start of a solve.
     pub fn stuck_start(&self, omega: f64) -> Vec<f64> {
         let s = &self.sys.linear;
-        let (k, f0) = stuck_system(self.sys);
+        let (k, f0) = self.sys.stuck();
         linear_coefficients(s, &k, &f0, omega, self.m())
     }
 
@@ -308,33 +266,6 @@ impl<'a> Hb3<'a> {
         };
         coef(1).hypot(coef(2))
     }
-}
-
-/// The stiffness of `sys` with its 1D elements and points stuck and closed, and its
-/// constant load with the normal springs' preloads k_N·g₀ (the static step's stuck
-/// system; [`Hb3::stuck_start`]).
-pub fn stuck_system(sys: &System3) -> (DMatrix<f64>, DVector<f64>) {
-    let s = &sys.linear;
-    let mut k = s.stuck_stiffness();
-    let mut f0 = DVector::from_column_slice(&s.f0);
-    for e in &sys.elements {
-        for (a, row) in e.rows.iter().enumerate() {
-            let kk = if a == 2 {
-                e.contact.k_n
-            } else {
-                e.contact.k_t0
-            };
-            for &(p, wp) in row {
-                for &(q, wq) in row {
-                    k[(p, q)] += kk * wp * wq;
-                }
-                if a == 2 {
-                    f0[p] += e.contact.k_n * e.gap * wp;
-                }
-            }
-        }
-    }
-    (k, f0)
 }
 
 /// Load-step halvings before [`solve_ramped`] gives up.
@@ -362,7 +293,10 @@ pub fn solve_ramped(
         part.linear.f1.iter_mut().for_each(|f| *f *= w);
         let mut hb = Hb3::new(&part, h, n);
         let start = match &last {
-            Some(s) => s.u.clone(),
+            Some(s) => {
+                hb.memory.clone_from(&s.memory);
+                s.u.clone()
+            }
             None => hb.stuck_start(omega),
         };
         match hb.solve(&start, omega, opt) {

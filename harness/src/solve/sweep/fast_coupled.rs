@@ -10,13 +10,8 @@
 //! fast sweep iterates a as for the thesis's model and ρ beside it.
 
 use crate::capi::{self, CapiError, Contact3, Tangential};
-use crate::names::LawName;
 
 use super::C64;
-
-/// Mindlin–Masing cells of the point: as in the harmonic balance
-/// ([`super::harmonic_fe_point3d`]), so both modes describe the same element.
-const MINDLIN_CELLS: i32 = 128;
 
 /// A point's describing function at one ellipse (per area).
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -44,18 +39,9 @@ impl CoupledPoints {
             .iter()
             .zip(samples)
             .map(|(t, s)| {
-                let contact = Contact3 {
-                    law: t.law,
-                    cells: if t.law == LawName::Mindlin {
-                        MINDLIN_CELLS
-                    } else {
-                        0
-                    },
-                    mu: t.mu,
-                    k_t0: t.k_t0,
-                    // Not used at constant normal load; any valid stiffness.
-                    k_n: 1.0,
-                };
+                // k_N is not used at constant normal load; any valid stiffness. The
+                // cells as in the harmonic balance: both modes describe the same element.
+                let contact = Contact3::new(t.law, t.mu, t.k_t0, 1.0);
                 let pressures = if s.is_empty() {
                     vec![(t.normal, 1.0)]
                 } else {

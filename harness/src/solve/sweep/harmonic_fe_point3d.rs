@@ -28,10 +28,6 @@ use crate::settings::{Effects, Mode};
 
 use super::{SweepError, C64};
 
-/// Mindlin–Masing cells of the three-direction point (docs/contact3d.md §2: energy of
-/// the straight-path loop within 0.27 % of the continuous law; Jenkins has one cell).
-const MINDLIN_CELLS: i32 = 128;
-
 /// Which of the two effects are on.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct PointModel {
@@ -115,19 +111,8 @@ impl Point3 {
     /// The point for tangential data `t` (pressure N₀ = t.normal), normal stiffness k_N
     /// per area of the law and `k_ref_n` of the condensation.
     pub fn new(t: &Tangential, k_n: f64, k_ref_n: f64, area: f64, model: PointModel) -> Self {
-        let cells = if t.law == crate::names::LawName::Mindlin {
-            MINDLIN_CELLS
-        } else {
-            0
-        };
         Point3 {
-            contact: Contact3 {
-                law: t.law,
-                cells,
-                mu: t.mu,
-                k_t0: t.k_t0,
-                k_n,
-            },
+            contact: Contact3::new(t.law, t.mu, t.k_t0, k_n),
             h0: t.normal / k_n,
             area,
             k_ref_n,

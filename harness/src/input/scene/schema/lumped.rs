@@ -30,24 +30,38 @@ pub enum DofsSpec {
     Inline(Vec<String>),
 }
 
-/// A discrete contact element (`[[joints]]`): one tangential direction between two mass
-/// bodies (or a mass body and `"ground"`), force form (not per area).
+/// A discrete contact element (`[[joints]]`) between two mass bodies or `[[matrices]]`
+/// points (or one and `"ground"`), force form (not per area): one tangential direction
+/// at a fixed normal force, or with `normal` a three-direction point (docs/contact3d.md):
+/// a linear unilateral normal law N = max(0, −k_N·g), g the displacement of the second
+/// end relative to the first along `normal`, zero where the bodies start (touching), and
+/// two tangential directions, `direction` and normal × direction.
 #[derive(Debug, Clone, Deserialize, Serialize, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub struct JointSpec {
     pub name: String,
     pub between: [String; 2],
-    /// Tangential direction (a coordinate axis).
+    /// Tangential direction (a coordinate axis); with `normal` the first tangential axis.
     pub direction: [f64; 3],
     pub law: LawName,
     #[serde(default)]
     pub rule: RuleName,
     /// Friction coefficient μ > 0.
     pub mu: f64,
-    /// Normal force F_N > 0 (force).
-    pub normal_force: f64,
+    /// Normal force F_N > 0 (force). Without `normal` required; with it the force the
+    /// joint carries where the bodies start (a preload inside the joint), else the
+    /// static step's normal force.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub normal_force: Option<f64>,
     /// Tangential stiffness k_T0 > 0 (force/length).
     pub k_t0: f64,
+    /// Normal direction (a coordinate axis, pointing from the first end of `between` to
+    /// the second: the gap opens when the second end moves along it).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub normal: Option<[f64; 3]>,
+    /// Normal stiffness k_N > 0 (force/length), with `normal`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub normal_stiffness: Option<f64>,
 }
 
 /// A spring and dashpot on a mass body (grounded) or `between` two bodies along a

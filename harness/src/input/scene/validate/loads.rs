@@ -29,6 +29,9 @@ pub(super) fn preload(c: &mut Checker, s: &SceneFile) {
                 if kind == Some(BodyKind::Box) && c.require(p.key("at"), &l.at, why) {
                     c.vec3(p.key("at"), l.at.as_ref().unwrap());
                 }
+                if kind == Some(BodyKind::Mass) {
+                    c.forbid(p.key("at"), &l.at, "on a mass body (it acts at the body)");
+                }
                 if c.require(p.key("force"), &l.force, why) {
                     c.vec3(p.key("force"), l.force.as_ref().unwrap());
                 }

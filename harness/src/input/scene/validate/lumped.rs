@@ -16,16 +16,99 @@ pub(super) fn joints(c: &mut Checker, s: &SceneFile) {
             c.fail(p.key("name"), format!("duplicate joint `{}`", j.name));
         }
         lumped_ends(c, p.key("between"), &j.between);
-        c.direction(p.key("direction"), &j.direction);
-        if j.direction.iter().filter(|v| **v != 0.0).count() > 1 {
+        axis(c, p.key("direction"), &j.direction);
+        c.positive(p.key("mu"), j.mu);
+        c.positive(p.key("k_t0"), j.k_t0);
+        if let Some(f) = j.normal_force {
+            c.positive(p.key("normal_force"), f);
+        }
+        let Some(n) = &j.normal else {
+            let why = "without `normal` (a joint of one tangential direction)";
+            c.require(p.key("normal_force"), &j.normal_force, why);
+            c.forbid(p.key("normal_stiffness"), &j.normal_stiffness, why);
+            continue;
+        };
+        axis(c, p.key("normal"), n);
+        if n.iter().zip(&j.direction).any(|(a, b)| a * b != 0.0) {
             c.fail(
                 p.key("direction"),
-                "must be a coordinate axis, e.g. [1, 0, 0]",
+                "must be perpendicular to `normal` (the first tangential axis)",
             );
         }
-        c.positive(p.key("mu"), j.mu);
-        c.positive(p.key("normal_force"), j.normal_force);
-        c.positive(p.key("k_t0"), j.k_t0);
+        if c.require(
+            p.key("normal_stiffness"),
+            &j.normal_stiffness,
+            "with `normal` (k_N, force/length)",
+        ) {
+            c.positive(p.key("normal_stiffness"), j.normal_stiffness.unwrap());
+        }
+        let e = &s.effects;
+        if (e.normal_load_variation || e.coupled_slip) && j.rule != RuleName::Masing {
+            c.fail(
+                p.key("rule"),
+                "must be \"masing\" with [effects] normal_load_variation or coupled_slip (the three-direction point unloads by Masing's rule)",
+            );
+        }
+    }
+}
+
+/// A coordinate axis, e.g. [1, 0, 0] or [0, 0, -1].
+fn axis(c: &mut Checker, path: KeyPath, v: &[f64; 3]) {
+    c.direction(path.clone(), v);
+    if v.iter().filter(|x| **x != 0.0).count() > 1 {
+        c.fail(path, "must be a coordinate axis, e.g. [1, 0, 0]");
+    }
+}
+
+/// The `[effects]` a lumped system switches: `material_damping` (the springs' dashpots
+/// and the matrices' D) and, on joints with `normal` in the harmonic balance,
+/// `normal_load_variation` and `coupled_slip`; the others belong to FE interfaces and
+/// are refused when changed.
+pub(super) fn effects(c: &mut Checker, s: &SceneFile) {
+    if !s.is_lumped() {
+        return;
+    }
+    let p = KeyPath::root().key("effects");
+    let e = &s.effects;
+    let fe_only = [
+        (
+            "normal_contact_nonlinearity",
+            e.normal_contact_nonlinearity,
+            true,
+        ),
+        ("tangential_microslip", e.tangential_microslip, true),
+        ("macroslip", e.macroslip, true),
+        ("contact_damping", e.contact_damping, true),
+        ("point_energy_output", e.point_energy_output, false),
+        ("stick_slip_map", e.stick_slip_map, false),
+    ];
+    for (key, value, default) in fe_only {
+        if value != default {
+            c.fail(
+                p.key(key),
+                format!("a lumped system does not switch this effect (it belongs to FE interfaces): leave it at {default}"),
+            );
+        }
+    }
+    for (key, on) in [
+        ("normal_load_variation", e.normal_load_variation),
+        ("coupled_slip", e.coupled_slip),
+    ] {
+        if !on {
+            continue;
+        }
+        if !s.joints.iter().any(|j| j.normal.is_some()) {
+            c.fail(
+                p.key(key),
+                "acts on joints with `normal` (three-direction points): no joint has one",
+            );
+        }
+        if s.iteration.mode != Mode::HarmonicBalance {
+            c.fail(
+                p.key(key),
+                "a lumped system computes it by the harmonic balance: set [iteration] mode = \"harmonic_balance\"",
+            );
+        }
     }
 }
 

@@ -128,6 +128,7 @@ pub fn validate(s: &SceneFile) -> Vec<Problem> {
     loads::clamp(&mut c, s);
     lumped::joints(&mut c, s);
     lumped::springs(&mut c, s);
+    lumped::effects(&mut c, s);
     loads::excitation(&mut c, s);
     study::sweep(&mut c, s);
     study::iteration(&mut c, s);
