@@ -2,7 +2,10 @@
 # Regenerates the measured tables of README.md and docs/accuracy.md: each block between
 #   <!-- BEGIN name -->  and  <!-- END name -->
 # is replaced by the output of the command registered for `name` below. With arguments,
-# only the named blocks (e.g. `bash scripts/readme-tables.sh knife`).
+# only the named blocks (e.g. `bash scripts/readme-tables.sh knife`). With `--check`
+# first, the named blocks are regenerated and compared with the documents instead (no
+# file is written): a difference is printed and fails (the test suite checks the blocks
+# whose output holds no timings and takes seconds).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 declare -A commands=(
@@ -63,8 +66,15 @@ copy_plots() {
     cp "${matches[0]}" "$to"
   done
 }
+check=0
+if [ "${1:-}" = "--check" ]; then
+  check=1
+  shift
+  [ $# -gt 0 ] || { echo "--check needs the blocks to check" >&2; exit 2; }
+fi
 names=("$@")
 [ ${#names[@]} -gt 0 ] || names=("${!commands[@]}")
+stale=0
 for name in "${names[@]}"; do
   [ -n "${commands[$name]:-}" ] || { echo "unknown block: $name" >&2; exit 2; }
   targets=()
@@ -72,6 +82,7 @@ for name in "${names[@]}"; do
     if grep -q "<!-- BEGIN $name -->" "$f"; then targets+=("$f"); fi
   done
   if [ ${#targets[@]} -eq 0 ]; then
+    [ "$check" = 0 ] || { echo "no block $name in ${files[*]} to check" >&2; exit 2; }
     [ -n "${plots[$name]:-}" ] || continue
     echo "== $name (plot only): ${commands[$name]}"
     eval "${commands[$name]}" > /dev/null
@@ -90,10 +101,24 @@ for name in "${names[@]}"; do
     fi
   fi
   for f in "${targets[@]}"; do
+    if [ "$check" = 1 ]; then
+      written=$(mktemp)
+      perl -0ne "print \$1 if /<!-- BEGIN $name -->\n(.*?)<!-- END $name -->/s" "$f" > "$written"
+      if ! diff -u "$written" "$out" --label "$f ($name, as written)" --label "$name, regenerated"; then
+        stale=1
+      fi
+      rm -f "$written"
+      continue
+    fi
     perl -0pi -e "my \$t = do { local \$/; open my \$f, '<', '$out' or die; <\$f> }; s/(<!-- BEGIN $name -->\n).*?(<!-- END $name -->)/\$1\$t\$2/s" "$f"
   done
   rm -f "$out"
+  [ "$check" = 0 ] || continue
   if [ -n "${plots[$name]:-}" ]; then
     copy_plots "${plots[$name]}"
   fi
 done
+if [ "$stale" = 1 ]; then
+  echo "error: the blocks above differ from their commands' output: run bash scripts/readme-tables.sh NAME" >&2
+  exit 1
+fi

@@ -23,6 +23,8 @@ if [ -d target/tmp/skipped ]; then
     skipped=$(find target/tmp/skipped -type f | wc -l)
 fi
 echo "tests skipped for a missing tool: $skipped"
+echo "== README blocks regenerated and compared (those without timings)"
+bash scripts/readme-tables.sh --check seed_cases deck_keywords
 if [ "$skipped" -gt 0 ]; then
     for f in target/tmp/skipped/*; do echo "  $(basename "$f"): $(cat "$f")"; done
 fi

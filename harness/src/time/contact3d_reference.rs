@@ -37,10 +37,12 @@ pub fn steady3<const S: usize>(
     tol: f64,
     max_cycles: usize,
 ) -> Result<Steady, MhbError> {
-    assert!(
-        sys.linear.elements.is_empty(),
-        "the reference integrates three-direction points only"
-    );
+    if !sys.linear.elements.is_empty() {
+        return Err(MhbError::Continuation(
+            "the three-direction reference integrates points only: the system has 1D elements"
+                .into(),
+        ));
+    }
     let mut states = vec![VIRGIN; sys.elements.len()];
     let run = Run {
         sys: &sys.linear,
