@@ -190,6 +190,33 @@ fn a_scene_is_listed_as_on_disk_and_every_command_writes_the_same_head() {
     );
     let json = checked_head(&d, "td", "run --time-domain", &["block-stick.toml"]);
     assert_eq!(json["frequency_unit"], "1/s");
+    // points_time.csv names each point's node and frame as points.csv does: an id of the
+    // scene's numbering and an orthonormal frame (n, t1, t2).
+    let points = std::fs::read_to_string(d.join("td/points_time.csv")).unwrap();
+    let mut lines = points.lines();
+    let header = lines.next().unwrap();
+    assert!(
+        header.ends_with(",node,n_x,n_y,n_z,t1_x,t1_y,t1_z,t2_x,t2_y,t2_z"),
+        "{header}"
+    );
+    let rows: Vec<Vec<f64>> = lines
+        .map(|l| l.split(',').skip(7).map(|v| v.parse().unwrap()).collect())
+        .collect();
+    assert!(!rows.is_empty());
+    for r in &rows {
+        assert!(r[0] >= 1.0 && r[0].fract() == 0.0, "node {}", r[0]);
+        let axis = |k: usize| nalgebra::Vector3::new(r[1 + 3 * k], r[2 + 3 * k], r[3 + 3 * k]);
+        let (n, t1, t2) = (axis(0), axis(1), axis(2));
+        for (a, b, want) in [
+            (n, n, 1.0),
+            (t1, t1, 1.0),
+            (t2, t2, 1.0),
+            (n, t1, 0.0),
+            (n, t2, 0.0),
+        ] {
+            assert!((a.dot(&b) - want).abs() < 1e-9, "{r:?}");
+        }
+    }
     // A lumped scene's run, a backbone, a study.
     jointlin(
         &d,

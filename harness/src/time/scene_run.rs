@@ -400,12 +400,13 @@ pub fn results_csv(p: &Problem, r: &[FreqResult], units: &Units) -> String {
 }
 
 /// points_time.csv (e.g. N, mm, s): frequency_Hz, point, interface, x_mm, y_mm, z_mm,
-/// energy_per_cycle_N_mm.
-pub fn points_csv(p: &Problem, r: &[FreqResult], units: &Units) -> String {
+/// energy_per_cycle_N_mm, then as points.csv the point's node (`node_ids` of its
+/// upper/slave node) and its frame n_x … t2_z in global components.
+pub fn points_csv(p: &Problem, r: &[FreqResult], units: &Units, node_ids: &[u64]) -> String {
     let u = ColumnUnits::new(units);
     let l = &u.length;
     let fu = frequency_unit(units);
-    let mut t = CsvTable::new([
+    let mut header = vec![
         fu.column.clone(),
         "point".into(),
         "interface".into(),
@@ -413,10 +414,15 @@ pub fn points_csv(p: &Problem, r: &[FreqResult], units: &Units) -> String {
         format!("y_{l}"),
         format!("z_{l}"),
         format!("energy_per_cycle_{}", u.energy),
-    ]);
+        "node".into(),
+    ];
+    for axis in ["n", "t1", "t2"] {
+        header.extend(["x", "y", "z"].map(|c| format!("{axis}_{c}")));
+    }
+    let mut t = CsvTable::new(&header);
     for x in r {
         for (i, (c, e)) in p.contacts.iter().zip(&x.last.point_energy).enumerate() {
-            t.row([
+            let mut row = vec![
                 format!("{:.10e}", fu.show(x.freq)),
                 i.to_string(),
                 p.interfaces[c.interface].name.clone(),
@@ -424,7 +430,12 @@ pub fn points_csv(p: &Problem, r: &[FreqResult], units: &Units) -> String {
                 c.position[1].to_string(),
                 c.position[2].to_string(),
                 format!("{e:.10e}"),
-            ]);
+                node_ids
+                    .get(c.nodes[1])
+                    .map_or(String::new(), u64::to_string),
+            ];
+            row.extend(c.frame.iter().map(|v| format!("{:.10e}", v + 0.0)));
+            t.row(&row);
         }
     }
     t.finish()
@@ -447,7 +458,12 @@ pub fn write(dir: &Path, scene: &Scene, run: &TimeRun) -> std::io::Result<Vec<Pa
     )?;
     put(
         "points_time.csv",
-        points_csv(&run.problem, &run.results, units),
+        points_csv(
+            &run.problem,
+            &run.results,
+            units,
+            &crate::model::node_ids(scene, &run.problem),
+        ),
     )?;
     let head = provenance::head("run --time-domain", &capi::abi_version(), &scene.sources);
     let json = provenance::with_head(
