@@ -3,7 +3,7 @@
 # Sourced by scripts/main-job.sh and scripts/test.sh.
 set -euo pipefail
 JOINTLIN_DEBS=(gcc g++ make gfortran pkg-config libsuitesparse-dev libarpack2-dev libopenblas0-pthread valgrind
-  openmpi-bin libopenmpi-dev calculix-ccx gmsh python3)
+  openmpi-bin libopenmpi-dev calculix-ccx gmsh python3 python3-venv)
 missing=()
 for pkg in "${JOINTLIN_DEBS[@]}"; do
   dpkg-query -W -f='${Status}' "$pkg" 2>/dev/null | grep -q "install ok installed" || missing+=("$pkg")

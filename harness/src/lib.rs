@@ -24,9 +24,15 @@
 // would hide the maths.
 #![allow(clippy::needless_range_loop)]
 
+// The commands (`cli`) name the rooms as `jointlin_harness::`, as a program outside the
+// crate would: they sit above every room, and the `jointlin` program and the Python
+// package's extension both run them.
+extern crate self as jointlin_harness;
+
 pub mod backbone;
 pub mod bench;
 pub mod capi;
+pub mod cli;
 pub mod effects;
 pub mod export;
 pub mod fe;

@@ -2,14 +2,12 @@
 //! under [`cli`] (one file per command; the harness reaches the library only through
 //! its C API).
 
-mod cli;
-
 use std::process::ExitCode;
 
-use clap::Parser;
+use jointlin_harness::cli;
 
 fn main() -> ExitCode {
     #[cfg(unix)]
     cli::default_sigpipe();
-    cli::dispatch(cli::Cli::parse().command)
+    ExitCode::from(cli::run_args(std::env::args_os()))
 }

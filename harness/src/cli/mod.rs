@@ -196,6 +196,28 @@ pub enum Command {
     Matrices(matrices::Args),
 }
 
+/// Runs `jointlin` with the command line `args` (the program's name first), as the
+/// program does: clap's help, version and errors printed, the exit code returned. The
+/// `jointlin` program and the Python package's child process both start here.
+pub fn run_args<I, T>(args: I) -> u8
+where
+    I: IntoIterator<Item = T>,
+    T: Into<std::ffi::OsString> + Clone,
+{
+    let code = match Cli::try_parse_from(args) {
+        Ok(cli) => dispatch(cli.command),
+        Err(e) => {
+            // Help and version go to stdout, errors to stderr, as `Cli::parse` prints them.
+            let _ = e.print();
+            return u8::try_from(e.exit_code()).unwrap_or(2);
+        }
+    };
+    // ExitCode keeps its value private; the commands only return 0, 1 and 2.
+    (0u8..=255)
+        .find(|&v| ExitCode::from(v) == code)
+        .unwrap_or(1)
+}
+
 /// Runs the command.
 pub fn dispatch(command: Command) -> ExitCode {
     match command {
