@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
 # The whole test suite: formatting, lints, every Rust/C/Fortran test, the header check,
+# the Python package's tests,
 # sanitizer runs of the host programs and a short fuzz run.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -23,6 +24,8 @@ if [ -d target/tmp/skipped ]; then
     skipped=$(find target/tmp/skipped -type f | wc -l)
 fi
 echo "tests skipped for a missing tool: $skipped"
+echo "== Python package: wheel, fresh virtual environment, pytest"
+bash scripts/python-tests.sh
 echo "== README blocks regenerated and compared (those without timings)"
 bash scripts/readme-tables.sh --check seed_cases deck_keywords
 if [ "$skipped" -gt 0 ]; then

@@ -67,6 +67,7 @@ def _command(args: list[str]) -> str:
         env=env,
     )
     errors: list[str] = []
+    stdout: list[str] = []
 
     def forward() -> None:
         for line in child.stderr:
@@ -79,24 +80,37 @@ def _command(args: list[str]) -> str:
             elif line:
                 log.info(line)
 
-    reader = threading.Thread(target=forward, daemon=True)
-    reader.start()
+    readers = [
+        threading.Thread(target=forward, daemon=True),
+        threading.Thread(target=lambda: stdout.append(child.stdout.read()), daemon=True),
+    ]
+    for r in readers:
+        r.start()
     try:
-        stdout = child.stdout.read()
-        code = child.wait()
+        # Polled, so that a Ctrl-C reaches this thread whichever thread the signal hit.
+        while True:
+            try:
+                code = child.wait(timeout=0.2)
+                break
+            except subprocess.TimeoutExpired:
+                continue
     except KeyboardInterrupt:
+        # From a terminal the child has the signal too; from elsewhere (a notebook's
+        # interrupt, a signal to this process) it is passed on. Its outputs are then
+        # complete or absent, as the program leaves them.
         if child.poll() is None:
             child.send_signal(signal.SIGINT)
         child.wait()
-        reader.join()
         raise
-    reader.join()
+    finally:
+        for r in readers:
+            r.join()
     message = "\n".join(errors) or f"jointlin {' '.join(args[:1])} ended with exit code {code}"
     if code == 2:
         raise InputError(message)
     if code != 0:
         raise RunError(message)
-    return stdout
+    return "".join(stdout)
 
 
 def _csv(path: Path) -> pd.DataFrame | None:
