@@ -33,6 +33,8 @@ declare -A commands=(
   [sweep_bench]="cargo run --release -q -p jointlin-harness --example sweep_bench"
   [modal_deck_bench]="cargo run --release -q -p jointlin-harness --example modal_deck_bench"
   [deck_keywords]="cargo run --release -q -p jointlin-harness --bin jointlin -- check --keywords"
+  [python_cost]="bash scripts/python-bench.sh"
+  [python_study]="bash scripts/python.sh python/examples/study.py out/python-study"
 )
 # Plots a block's command writes that the documents show: "from to" pairs, several
 # separated by ";"; a "from" may be a glob matching one file (a name with the peak's
@@ -43,14 +45,15 @@ declare -A plots=(
   [tradeoff_block]="out/tradeoff-block/tradeoff.svg docs/accuracy-block.svg"
   [three_beams_frf]="out/three-beams/frf.svg harness/assets/three-beams-frf.svg"
   [duffing_frf]="out/duffing/frf.svg harness/assets/duffing-frf.svg"
+  [python_study]="out/python-study/study.svg docs/python-study.svg"
   [bolted_lap_frf]="out/bolted-lap/frf.svg harness/assets/bolted-lap-frf.svg; out/bolted-lap/contact_ratio_*.svg harness/assets/bolted-lap-contact-ratio.svg; out/bolted-lap/contact_energy_*.svg harness/assets/bolted-lap-contact-energy.svg"
 )
 # Blocks whose command may stop part way and say so (exit status 1 with what it reached
 # written): the block shows the message and the exit status instead of ending the script.
 may_stop=" backbone_fe_h7 "
 # Blocks whose command prints Markdown (the others are shown as terminal output).
-markdown=" contact_effects accuracy_table knife knife_graded_mesh knife_effects knife_graded_effects knife_mesh tradeoff_beams tradeoff_block backbone_cost deck_stack deck_bench modes_bench sweep_bench modal_deck_bench deck_keywords "
-files=(README.md docs/accuracy.md)
+markdown=" python_cost contact_effects accuracy_table knife knife_graded_mesh knife_effects knife_graded_effects knife_mesh tradeoff_beams tradeoff_block backbone_cost deck_stack deck_bench modes_bench sweep_bench modal_deck_bench deck_keywords "
+files=(README.md docs/accuracy.md docs/python.md)
 # Copies each "from to" pair of a plots entry; a glob must match exactly one file.
 copy_plots() {
   local pair from to matches
