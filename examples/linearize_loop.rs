@@ -39,8 +39,7 @@ fn main() {
         for (k, &a) in k_star.iter_mut().zip(&amplitudes) {
             let mut out = jointlin_linearization::default();
             // SAFETY: pointers to live locals; NULL method = the default.
-            let status =
-                unsafe { jointlin_linearize(&c, a, 1.3, std::ptr::null(), &mut out) };
+            let status = unsafe { jointlin_linearize(&c, a, 1.3, std::ptr::null(), &mut out) };
             assert_eq!(status, 0, "jointlin_linearize failed at A = {a:e}");
             *k = out.k_star;
         }
@@ -48,5 +47,8 @@ fn main() {
         best = best.min(started.elapsed().as_secs_f64());
         sum = k_star.iter().sum();
     }
-    println!("ns_per_call {:.1} sum_k_star {sum:.12e}", best * 1e9 / n as f64);
+    println!(
+        "ns_per_call {:.1} sum_k_star {sum:.12e}",
+        best * 1e9 / n as f64
+    );
 }

@@ -27,7 +27,7 @@ echo "tests skipped for a missing tool: $skipped"
 echo "== Python package: wheel, fresh virtual environment, pytest"
 bash scripts/python-tests.sh
 echo "== README blocks regenerated and compared (those without timings)"
-bash scripts/readme-tables.sh --check seed_cases deck_keywords
+bash scripts/readme-tables.sh --check seed_cases deck_keywords python_study
 if [ "$skipped" -gt 0 ]; then
     for f in target/tmp/skipped/*; do echo "  $(basename "$f"): $(cat "$f")"; done
 fi

@@ -128,3 +128,17 @@ def test_python_m_jointlin_is_the_program(repo, program):
     assert a.returncode == b.returncode == 0 and a.stdout == b.stdout
     a = subprocess.run([sys.executable, "-m", "jointlin", "run"], capture_output=True, text=True)
     assert a.returncode == 2 and "--out" in a.stderr
+
+
+def test_plot_draws_every_output(repo):
+    import matplotlib
+
+    matplotlib.use("Agg")
+    r = jointlin.Scene.load(repo / "scenes" / "three-beams.toml").run()
+    ax = r.plot()
+    labels = [line.get_label() for line in ax.get_lines()]
+    assert labels == ["middle_tip_amp_mm", "top_tip_amp_mm"]
+    assert ax.get_xlabel() == "frequency_Hz" and ax.get_ylabel() == "amplitude (mm)"
+    assert ax.get_yscale() == "log"
+    phase = r.plot(phase=True)
+    assert [line.get_label() for line in phase.get_lines()] == ["middle_tip_phase_deg", "top_tip_phase_deg"]
