@@ -113,8 +113,13 @@ def _command(args: list[str]) -> str:
     return "".join(stdout)
 
 
+def _read_csv(path: Path) -> pd.DataFrame:
+    """A CSV of the commands, every number to the bit (they write round-trip digits)."""
+    return pd.read_csv(path, float_precision="round_trip")
+
+
 def _csv(path: Path) -> pd.DataFrame | None:
-    return pd.read_csv(path) if path.exists() else None
+    return _read_csv(path) if path.exists() else None
 
 
 @dataclasses.dataclass
@@ -139,7 +144,7 @@ class Result:
         """The outputs of a complete run in ``out`` (run.json written last)."""
         suffix = "_time" if time_domain else ""
         return cls(
-            frf=pd.read_csv(out / f"results{suffix}.csv"),
+            frf=_read_csv(out / f"results{suffix}.csv"),
             points=_csv(out / f"points{suffix}.csv"),
             harmonics=_csv(out / "harmonics.csv"),
             frf_down=_csv(out / "results_down.csv"),
@@ -222,7 +227,7 @@ class Scene:
             if count is not None:
                 args += ["--count", str(int(count))]
             _command(args)
-            return pd.read_csv(Path(d) / "modes.csv")
+            return _read_csv(Path(d) / "modes.csv")
 
     def run(
         self,
@@ -296,6 +301,6 @@ def backbone(
         args += ["--amplitudes", f"{float(lo)!r},{float(hi)!r},{int(count)}"]
     with _output_dir(out) as d:
         _command(args + ["--out", str(d)])
-        table = pd.read_csv(d / "backbone.csv")
+        table = _read_csv(d / "backbone.csv")
         table.attrs["meta"] = json.loads((d / "run.json").read_text())
         return table

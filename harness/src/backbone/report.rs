@@ -10,6 +10,7 @@ use super::BackbonePoint;
 use crate::report::svg::drawing_error as err;
 use crate::settings::units::frequency_unit;
 use crate::settings::Units;
+use crate::util::number::exact;
 
 /// One row of the report: the point and its outputs' first-harmonic amplitudes.
 #[derive(Debug, Clone)]
@@ -42,16 +43,16 @@ pub fn csv(units: &Units, outputs: &[String], elements: &[String], rows: &[Row])
         let p = &r.point;
         let _ = write!(
             s,
-            "{:.10e},{:.10e},{:.10e}",
-            p.modal_amplitude,
-            frequency(p.omega, units),
-            p.damping_ratio
+            "{},{},{}",
+            exact(p.modal_amplitude),
+            exact(frequency(p.omega, units)),
+            exact(p.damping_ratio)
         );
         for a in &r.outputs {
-            let _ = write!(s, ",{a:.10e}");
+            let _ = write!(s, ",{}", exact(*a));
         }
         for e in &p.energy_per_cycle {
-            let _ = write!(s, ",{e:.10e}");
+            let _ = write!(s, ",{}", exact(*e));
         }
         s.push('\n');
     }

@@ -9,6 +9,7 @@ use jointlin_harness::settings::units::frequency_unit;
 use jointlin_harness::solve::modal_stuck::{stuck_modes, ModeCount};
 use jointlin_harness::util::atomic;
 use jointlin_harness::util::csv_table::CsvTable;
+use jointlin_harness::util::number::exact;
 use jointlin_harness::util::number::sig;
 
 use super::{load_scene_with, SceneOverrides};
@@ -138,7 +139,7 @@ fn lumped_modes(a: &Args, s: &jointlin_harness::input::scene::Scene) -> ExitCode
     let mut csv = CsvTable::new(["mode", column]);
     for (i, x) in f.iter().take(n).enumerate() {
         md.push_str(&format!("| {} | {} |\n", i + 1, sig(unit.show(*x))));
-        csv.row([(i + 1).to_string(), format!("{:e}", unit.show(*x))]);
+        csv.row([(i + 1).to_string(), exact(unit.show(*x))]);
     }
     print!("{md}");
     if let Some(dir) = &a.out {

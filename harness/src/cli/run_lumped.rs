@@ -23,6 +23,7 @@ use jointlin_harness::report::svg::{frf_curves, FrfCurve};
 use jointlin_harness::settings::units::{frequency_unit, ColumnUnits};
 use jointlin_harness::settings::{Direction, Mode, Units};
 use jointlin_harness::util::csv_table::CsvTable;
+use jointlin_harness::util::number::exact;
 use jointlin_harness::util::{atomic, provenance};
 
 /// One sweep pass: its results.csv and (harmonic balance) harmonics.csv tables, the
@@ -189,7 +190,7 @@ fn sweep_pass(
     let mut failed = Vec::new();
     for &f in order {
         let omega = 2.0 * std::f64::consts::PI * f;
-        let mut row = vec![format!("{:e}", fu.show(f))];
+        let mut row = vec![exact(fu.show(f))];
         let mut hrow = row.clone();
         let mut amps = None;
         match sweep.solve(omega) {
@@ -207,19 +208,19 @@ fn sweep_pass(
                                 _ => Complex::new(c(2 * k - 1), -c(2 * k)),
                             })
                             .collect();
-                        hrow.extend(harmonic_values(&u).iter().map(|v| format!("{v:e}")));
+                        hrow.extend(harmonic_values(&u).iter().map(|v| exact(*v)));
                     }
                 }
                 let mut a = Vec::new();
                 for (_, w) in &l.outputs {
                     let v: Complex<f64> = w.iter().zip(&solved.x).map(|(w, x)| x * *w).sum();
-                    row.push(format!("{:e}", v.norm()));
-                    row.push(format!("{:e}", v.arg().to_degrees()));
+                    row.push(exact(v.norm()));
+                    row.push(exact(v.arg().to_degrees()));
                     a.push(v.norm());
                 }
                 amps = Some(a);
-                row.extend(solved.elements.iter().map(|a| format!("{a:e}")));
-                row.extend(joint_values(l, &solved).iter().map(|v| format!("{v:e}")));
+                row.extend(solved.elements.iter().map(|a| exact(*a)));
+                row.extend(joint_values(l, &solved).iter().map(|v| exact(*v)));
                 row.push("converged".into());
             }
             Err(e) => {

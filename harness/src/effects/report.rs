@@ -10,6 +10,7 @@ use crate::settings::units::{frequency_unit, ColumnUnits};
 use crate::settings::Mode;
 use crate::util::atomic;
 use crate::util::csv_table::CsvTable;
+use crate::util::number::exact;
 
 /// effects.csv: one row per variant.
 pub fn csv(t: &EffectsStudy) -> String {
@@ -31,7 +32,7 @@ pub fn csv(t: &EffectsStudy) -> String {
     ]);
     for v in &t.variants {
         let (f, a) = v.peak.map_or((String::new(), String::new()), |(f, a)| {
-            (format!("{:.10e}", fu.show(f)), format!("{a:.10e}"))
+            (exact(fu.show(f)), exact(a))
         });
         table.row([
             v.label.to_string(),
@@ -40,12 +41,12 @@ pub fn csv(t: &EffectsStudy) -> String {
             v.first_order.to_string(),
             f,
             a,
-            format!("{:.10e}", v.power_at_peak),
-            format!("{:.10e}", v.power_max),
+            exact(v.power_at_peak),
+            exact(v.power_max),
             v.converged.to_string(),
             v.frequencies.to_string(),
             v.point3d_steps.to_string(),
-            format!("{:.3}", v.seconds),
+            exact(v.seconds),
         ]);
     }
     table.finish()

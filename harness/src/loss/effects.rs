@@ -14,6 +14,7 @@ use crate::input::scene::Scene;
 use crate::settings::units::frequency_unit;
 use crate::settings::Mode;
 use crate::util::csv_table::CsvTable;
+use crate::util::number::exact;
 
 /// Point models solved for a scene in `mode` (progress steps).
 pub fn variant_count(mode: Mode) -> usize {
@@ -143,11 +144,11 @@ pub fn csv(scene: &Scene, rows: &[EffectsRow]) -> String {
     for r in rows {
         t.row([
             r.label.to_string(),
-            format!("{:.6e}", r.amplitude / af),
-            format!("{:.10e}", fu.show(r.freq)),
-            format!("{:.10e}", r.power),
+            exact(r.amplitude / af),
+            exact(fu.show(r.freq)),
+            exact(r.power),
             r.point3d_steps.to_string(),
-            format!("{:.3}", r.seconds),
+            exact(r.seconds),
         ]);
     }
     t.finish()

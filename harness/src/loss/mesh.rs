@@ -12,6 +12,7 @@ use std::sync::Mutex;
 
 use super::{powers_at, LossError};
 use crate::input::scene::Scene;
+use crate::util::number::exact;
 
 /// Samples per quarter face and direction of the area-sampled variant.
 pub const STUDY_AREA_SAMPLES: usize = 4;
@@ -368,20 +369,20 @@ pub fn csv(rows: &[MeshRow]) -> String {
     let mut s = String::from(
         "factor,refined,free_dofs,contact_points,frequency,amplitude,power_node_based,power_area_sampled,low_pressure_share\n",
     );
-    let opt = |x: Option<f64>| x.map_or(String::new(), |v| format!("{v:.6e}"));
+    let opt = |x: Option<f64>| x.map_or(String::new(), exact);
     for r in rows {
         for k in 0..2 {
             let _ = writeln!(
                 s,
-                "{},\"{}\",{},{},{:.6e},{:.6e},{},{:.6e},{}",
+                "{},\"{}\",{},{},{},{},{},{},{}",
                 r.factor,
                 r.refined,
                 r.free_dofs,
                 r.contact_points,
-                r.freq[k],
-                r.amplitudes[k],
+                exact(r.freq[k]),
+                exact(r.amplitudes[k]),
                 opt(r.node.map(|n| n.power[k])),
-                r.sampled[k],
+                exact(r.sampled[k]),
                 opt(r.node.map(|n| n.low_pressure_share[k]))
             );
         }

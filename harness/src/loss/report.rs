@@ -10,6 +10,7 @@ use crate::input::scene::Scene;
 use crate::report::contact_map::{self as maps, MapKind};
 use crate::settings::units::{frequency_unit, ColumnUnits};
 use crate::util::csv_table::CsvTable;
+use crate::util::number::exact;
 
 /// Power (reported unit) of a curve at `amplitude`: a sample's own (reached within the
 /// level search's tolerance), or by linear interpolation between its samples; `None`
@@ -61,7 +62,7 @@ pub fn csv(scene: &Scene, st: &LossStudySpec, r: &StudyResult) -> String {
                     x.scale,
                     x.max_ratio(),
                 ]
-                .map(|v| format!("{v:.6e}")),
+                .map(exact),
             );
         }
     }

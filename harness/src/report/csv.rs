@@ -17,6 +17,7 @@ use crate::model::Problem;
 use crate::settings::units::{frequency_unit, ColumnUnits};
 use crate::settings::Units;
 use crate::solve::sweep::SweepResult;
+use crate::util::number::exact;
 
 use crate::util::csv_table::CsvTable;
 
@@ -33,14 +34,14 @@ pub fn results(p: &Problem, r: &SweepResult, units: &Units) -> String {
     header.push("status".into());
     let mut t = CsvTable::new(&header);
     for (i, f) in r.freqs.iter().enumerate() {
-        let mut row = vec![format!("{:.10e}", fu.show(*f))];
+        let mut row = vec![exact(fu.show(*f))];
         let status = r.status(i);
         if status.has_response() {
             for v in &r.outputs[i] {
-                row.push(format!("{:.10e}", v.norm()));
-                row.push(format!("{:.6}", v.arg().to_degrees()));
+                row.push(exact(v.norm()));
+                row.push(exact(v.arg().to_degrees()));
             }
-            row.push(format!("{:.10e}", r.power[i]));
+            row.push(exact(r.power[i]));
         } else {
             // No response computed: empty fields, never inf or NaN.
             row.resize(header.len() - 1, String::new());
@@ -96,13 +97,13 @@ pub fn harmonics(p: &Problem, r: &SweepResult, units: &Units) -> String {
     }
     let mut t = CsvTable::new(&header);
     for (i, (f, outs)) in r.freqs.iter().zip(&r.harmonics).enumerate() {
-        let mut row = vec![format!("{:.10e}", fu.show(*f))];
+        let mut row = vec![exact(fu.show(*f))];
         if !r.status(i).has_response() {
             // No response computed (singular or failed): empty fields, as in results.csv.
             row.resize(header.len(), String::new());
         } else {
             for o in outs {
-                row.extend(harmonic_values(o).iter().map(|v| format!("{v:.10e}")));
+                row.extend(harmonic_values(o).iter().map(|v| exact(*v)));
             }
         }
         t.row(&row);
@@ -176,7 +177,7 @@ pub fn points(
             let q = &r.points[fi][i];
             let x = c.position;
             let mut row = vec![
-                format!("{:.10e}", fu.show(*f)),
+                exact(fu.show(*f)),
                 i.to_string(),
                 p.interfaces[c.interface].name.clone(),
                 x[0].to_string(),
@@ -198,7 +199,7 @@ pub fn points(
                     q.ratio[1],
                 ]
                 .iter()
-                .map(|v| format!("{v:.6e}")),
+                .map(|v| exact(*v)),
             );
             if regimes {
                 row.push(regime_name(q.regime[0]).into());
@@ -209,7 +210,7 @@ pub fn points(
                     .get(c.nodes[1])
                     .map_or(String::new(), u64::to_string),
             );
-            row.extend(c.frame.iter().map(|v| format!("{:.10e}", v + 0.0)));
+            row.extend(c.frame.iter().map(|v| exact(v + 0.0)));
             t.row(&row);
         }
     }
@@ -258,10 +259,10 @@ pub fn stick_slip(r: &SweepResult, closed: &[bool], units: &Units) -> String {
         ratios.sort_by(f64::total_cmp);
         let max = ratios.last().copied().unwrap_or(0.0);
         let median = ratios.get(ratios.len() / 2).copied().unwrap_or(0.0);
-        let mut row = vec![format!("{:.10e}", fu.show(*f))];
+        let mut row = vec![exact(fu.show(*f))];
         row.extend(c.iter().map(usize::to_string));
-        row.push(format!("{max:.6e}"));
-        row.push(format!("{median:.6e}"));
+        row.push(exact(max));
+        row.push(exact(median));
         t.row(&row);
     }
     t.finish()

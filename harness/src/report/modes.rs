@@ -12,7 +12,7 @@ use crate::settings::Units;
 use crate::solve::modal_stuck::StuckModes;
 use crate::solve::mode_labels::{Character, Kind, ModeGeometry};
 use crate::util::csv_table::CsvTable;
-use crate::util::number::sig;
+use crate::util::number::{exact, sig};
 
 /// An eigenvalue at most this fraction of the table's largest is a rigid-body mode's
 /// (three-beams-coarse unclamped: its six rigid ones are 1e-11 of the largest; the
@@ -94,9 +94,9 @@ impl<'a> ModeTable<'a> {
         s
     }
 
-    /// modes.csv: mode, frequency (shortest round-trip form), label, dominant, the four
-    /// kind shares (fractions; empty for lumped masses), effective masses and inertias
-    /// per direction, the eigen-residual; 7 significant digits.
+    /// modes.csv: mode, frequency, label, dominant, the four kind shares (fractions;
+    /// empty for lumped masses), effective masses and inertias per direction, the
+    /// eigen-residual; every number in the shortest round-trip form, as in every CSV.
     pub fn csv(&self) -> String {
         let fcol = frequency_unit(self.units).column;
         let (m, l) = (&self.units.mass, &self.units.length);
@@ -117,20 +117,19 @@ impl<'a> ModeTable<'a> {
         let mut t = CsvTable::new(&header);
         let modes = &self.modes.band.modes;
         for (i, (f, c)) in self.frequencies().iter().zip(&self.characters).enumerate() {
-            // Frequency in the shortest round-trip form: a sweep can hold it exactly.
             let mut row = vec![
                 (i + 1).to_string(),
-                f.to_string(),
+                exact(*f),
                 self.label(i),
                 c.dominant_name().to_string(),
             ];
-            row.extend(shares(c).map(|v| v.map_or(String::new(), sig)));
+            row.extend(shares(c).map(|v| v.map_or(String::new(), exact)));
             let values = c
                 .effective_mass
                 .iter()
                 .chain(&c.effective_inertia)
                 .chain(std::iter::once(&modes.residuals[i]));
-            row.extend(values.map(|v| sig(*v)));
+            row.extend(values.map(|v| exact(*v)));
             t.row(&row);
         }
         t.finish()

@@ -26,6 +26,7 @@ use crate::solve::static_step::{self, StaticState};
 use crate::solve::sweep::harmonic_fe_point3d::{check_laws, PointModel};
 use crate::solve::umfpack::{to_complex, Symbolic};
 use crate::util::csv_table::CsvTable;
+use crate::util::number::exact;
 use crate::util::provenance;
 
 /// The time-domain result at one frequency.
@@ -373,26 +374,26 @@ pub fn results_csv(p: &Problem, r: &[FreqResult], units: &Units) -> String {
     );
     let mut t = CsvTable::new(&header);
     for x in r {
-        let mut row = vec![format!("{:.10e}", fu.show(x.freq))];
+        let mut row = vec![exact(fu.show(x.freq))];
         for o in &x.last.outputs {
             row.extend([
-                format!("{:.10e}", o.amplitude),
-                format!("{:.6}", o.phase_deg),
-                format!("{:.10e}", o.half_range()),
-                format!("{:.10e}", o.max),
-                format!("{:.10e}", o.min),
+                exact(o.amplitude),
+                exact(o.phase_deg),
+                exact(o.half_range()),
+                exact(o.max),
+                exact(o.min),
             ]);
         }
         row.extend([
-            format!("{:.10e}", x.last.energy * x.freq),
-            format!("{:.10e}", x.last.energy),
-            format!("{:.10e}", x.last.energy_trapezoid),
+            exact(x.last.energy * x.freq),
+            exact(x.last.energy),
+            exact(x.last.energy_trapezoid),
             x.integrator.to_string(),
             x.steps_per_cycle.to_string(),
             x.cycles.to_string(),
             x.steady.to_string(),
-            format!("{:.3e}", x.distance),
-            format!("{:.3}", x.seconds),
+            exact(x.distance),
+            exact(x.seconds),
         ]);
         t.row(&row);
     }
@@ -423,18 +424,18 @@ pub fn points_csv(p: &Problem, r: &[FreqResult], units: &Units, node_ids: &[u64]
     for x in r {
         for (i, (c, e)) in p.contacts.iter().zip(&x.last.point_energy).enumerate() {
             let mut row = vec![
-                format!("{:.10e}", fu.show(x.freq)),
+                exact(fu.show(x.freq)),
                 i.to_string(),
                 p.interfaces[c.interface].name.clone(),
                 c.position[0].to_string(),
                 c.position[1].to_string(),
                 c.position[2].to_string(),
-                format!("{e:.10e}"),
+                exact(*e),
                 node_ids
                     .get(c.nodes[1])
                     .map_or(String::new(), u64::to_string),
             ];
-            row.extend(c.frame.iter().map(|v| format!("{:.10e}", v + 0.0)));
+            row.extend(c.frame.iter().map(|v| exact(v + 0.0)));
             t.row(&row);
         }
     }

@@ -2,6 +2,7 @@
 //! tradeoff.svg, each written atomically.
 
 use super::*;
+use crate::util::number::exact;
 
 /// tradeoff.csv.
 pub fn csv(t: &Tradeoff) -> String {
@@ -22,11 +23,11 @@ pub fn csv(t: &Tradeoff) -> String {
             r.family.to_string(),
             r.label.clone(),
             r.frequency_domain.to_string(),
-            format!("{:.6e}", r.seconds),
-            format!("{:.10e}", r.amplitude),
-            format!("{:.3e}", r.amplitude_error),
-            format!("{:.10e}", r.energy),
-            format!("{:.3e}", r.energy_error),
+            exact(r.seconds),
+            exact(r.amplitude),
+            exact(r.amplitude_error),
+            exact(r.energy),
+            exact(r.energy_error),
             r.converged.to_string(),
         ]);
     }

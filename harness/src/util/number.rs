@@ -1,5 +1,5 @@
 //! Numbers in messages and tables: a fixed number of significant digits, never the
-//! 301 digits `{}` prints for 1e300.
+//! 301 digits `{}` prints for 1e300; in CSV files every digit that round-trips.
 
 /// Significant digits of printed numbers: 31718.04 Hz, 1.234568e-6 t.
 const DIGITS: usize = 7;
@@ -7,6 +7,12 @@ const DIGITS: usize = 7;
 /// `v` with `DIGITS` significant digits: fixed-point from 1e-3 to 1e7, else scientific.
 pub fn sig(v: f64) -> String {
     sig_n(v, DIGITS)
+}
+
+/// `v` as every CSV writes a number: the shortest decimal (scientific) that reads back
+/// to the same double, so a table loses no digit (−0 is written 0).
+pub fn exact(v: f64) -> String {
+    format!("{:e}", v + 0.0)
 }
 
 /// `v` with `digits` (≥ 1) significant digits, as [`sig`].
@@ -37,5 +43,27 @@ mod tests {
         assert_eq!(sig(f64::INFINITY), "inf");
         assert_eq!(super::sig_n(209.1622, 2), "209");
         assert_eq!(super::sig_n(0.6712165, 2), "0.67");
+    }
+
+    #[test]
+    fn exact_numbers_read_back_to_the_same_double() {
+        for v in [
+            0.1,
+            1.0 / 3.0,
+            1e300,
+            5e-324,
+            -2.5e-7,
+            f64::MAX,
+            1157.4056009483932,
+        ] {
+            let text = super::exact(v);
+            assert_eq!(
+                text.parse::<f64>().unwrap().to_bits(),
+                v.to_bits(),
+                "{text}"
+            );
+        }
+        assert_eq!(super::exact(-0.0), "0e0");
+        assert_eq!(super::exact(0.1), "1e-1");
     }
 }

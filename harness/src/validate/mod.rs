@@ -37,6 +37,7 @@ use serde::Serialize;
 use crate::input::scene::Scene;
 use crate::util::atomic;
 use crate::util::csv_table::CsvTable;
+use crate::util::number::exact;
 
 /// One compared quantity.
 #[derive(Debug, Clone, Serialize)]
@@ -215,13 +216,13 @@ pub fn csv(rep: &Report) -> String {
         "note",
     ]);
     for r in &rep.rows {
-        let o = |v: Option<f64>| v.map_or_else(String::new, |x| format!("{x:.8e}"));
+        let o = |v: Option<f64>| v.map_or_else(String::new, exact);
         t.row([
             r.case.clone(),
             r.parameter.clone(),
             r.quantity.clone(),
             o(r.frequency_domain),
-            format!("{:.8e}", r.time_domain),
+            exact(r.time_domain),
             o(r.error),
             o(r.time_domain_half_range),
             o(r.error_half_range),
