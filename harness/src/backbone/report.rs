@@ -25,16 +25,21 @@ pub fn frequency(omega: f64, units: &Units) -> f64 {
     frequency_unit(units).show(omega / (2.0 * std::f64::consts::PI))
 }
 
-/// backbone.csv: `modal_amplitude` (length·mass^½), `frequency_<unit>`, `damping_ratio`,
-/// `<output>_amp_<length>`, `<element>_energy_<force>_<length>` (per cycle).
+/// backbone.csv: `modal_amplitude_<length>_sqrt_<mass>` (q of u = φ q with φᵀMφ = 1),
+/// `frequency_<unit>`, `damping_ratio`, `<output>_amp_<length>`,
+/// `energy_per_cycle_<force>_<length>` (all joints), `<element>_energy_<force>_<length>`
+/// (per cycle).
 pub fn csv(units: &Units, outputs: &[String], elements: &[String], rows: &[Row]) -> String {
     let mut s = format!(
-        "modal_amplitude,{},damping_ratio",
+        "modal_amplitude_{}_sqrt_{},{},damping_ratio",
+        units.length,
+        units.mass,
         frequency_unit(units).column
     );
     for o in outputs {
         let _ = write!(s, ",{o}_amp_{}", units.length);
     }
+    let _ = write!(s, ",energy_per_cycle_{}_{}", units.force, units.length);
     for e in elements {
         let _ = write!(s, ",{e}_energy_{}_{}", units.force, units.length);
     }
@@ -51,6 +56,8 @@ pub fn csv(units: &Units, outputs: &[String], elements: &[String], rows: &[Row])
         for a in &r.outputs {
             let _ = write!(s, ",{}", exact(*a));
         }
+        let total: f64 = p.energy_per_cycle.iter().sum();
+        let _ = write!(s, ",{}", exact(total));
         for e in &p.energy_per_cycle {
             let _ = write!(s, ",{}", exact(*e));
         }
