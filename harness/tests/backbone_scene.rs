@@ -121,3 +121,33 @@ fn a_reduced_fe_backbone_accepts_consistency_at_the_round_off_floor() {
     assert!(rows.windows(2).all(|w| w[1][2] > w[0][2]), "{rows:?}");
     let _ = std::fs::remove_dir_all(&out);
 }
+
+#[test]
+fn a_first_order_backbone_that_stops_keeps_the_amplitudes_before() {
+    // The block on the plane slides as a whole near q = 1.9e-4 mm·t^½ (its sliding
+    // frequency is 0: no mode to be consistent with): the amplitude there fails, the one
+    // below it is written with its run.json, the failure is printed and the exit code
+    // is 1 (the command once wrote nothing).
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+    let out = std::env::temp_dir().join(format!("jointlin-backbone-stop-{}", std::process::id()));
+    let run = std::process::Command::new(env!("CARGO_BIN_EXE_jointlin"))
+        .arg("backbone")
+        .arg(root.join("scenes/block-on-plane.toml"))
+        .args(["--amplitudes", "1.5e-4,2.5e-4,3", "--out"])
+        .arg(&out)
+        .output()
+        .unwrap();
+    let log = String::from_utf8_lossy(&run.stderr);
+    assert_eq!(run.status.code(), Some(1), "{log}");
+    assert!(
+        log.contains("not consistent at modal amplitude 1.936492e-4")
+            && log.contains("the amplitude below it is written"),
+        "{log}"
+    );
+    let csv = std::fs::read_to_string(out.join("backbone.csv")).unwrap();
+    let rows: Vec<&str> = csv.lines().skip(1).collect();
+    assert_eq!(rows.len(), 1, "{csv}");
+    assert!(rows[0].starts_with("1.5000000000000004e-4,"), "{csv}");
+    assert!(out.join("run.json").exists());
+    let _ = std::fs::remove_dir_all(&out);
+}

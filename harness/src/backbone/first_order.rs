@@ -297,69 +297,110 @@ pub fn slip_range(sys: &System, mode: usize) -> Result<(f64, f64), BackboneError
 }
 
 /// The first-order backbone of mode `mode` (1-based) at the modal amplitudes `q`
-/// (ascending or not; each starts from its predecessor).
+/// (ascending or not; each starts from its predecessor); an amplitude that fails fails
+/// the whole backbone ([`trace`] keeps the points before it).
 pub fn backbone(sys: &System, mode: usize, q: &[f64]) -> Result<Vec<BackbonePoint>, BackboneError> {
+    let traced = trace(sys, mode, q)?;
+    match traced.stopped {
+        Some(e) => Err(e),
+        None => Ok(traced.points),
+    }
+}
+
+/// A backbone traced up to the first amplitude that failed.
+pub struct Traced {
+    /// The points of the amplitudes before the failure, in the order given.
+    pub points: Vec<BackbonePoint>,
+    /// Why the trace stopped early (None: every amplitude was solved).
+    pub stopped: Option<BackboneError>,
+}
+
+/// [`backbone`], keeping the points solved before an amplitude that fails (as the EPMC
+/// trace keeps its converged points): the stuck mode not found is an error, a later
+/// failure stops the trace.
+pub fn trace(sys: &System, mode: usize, q: &[f64]) -> Result<Traced, BackboneError> {
     let mut current = stuck_mode(sys, mode)?;
-    let ne = sys.elements.len();
-    let mut out = Vec::with_capacity(q.len());
+    let mut points = Vec::with_capacity(q.len());
     for &qa in q {
-        if !(qa.is_finite() && qa > 0.0) {
-            return Err(BackboneError::Amplitude(qa));
-        }
-        // Unknowns (A_1 … A_ne, ω); g gives them back from the traced mode, which each
-        // evaluation refines from the last one.
-        let mut last = current.clone();
-        let g = |z: &[f64]| -> Result<Vec<f64>, BackboneError> {
-            let w = z[ne].max(f64::MIN_POSITIVE);
-            let md = traced_mode(sys, &z[..ne], w, &last, qa)?;
-            let mut next: Vec<f64> = relative(sys, &md.shape).iter().map(|r| qa * r).collect();
-            next.push(md.omega());
-            if sys.n() > ALL_MODES_MAX {
-                last = md;
+        match point_at(sys, &current, qa) {
+            Ok((point, mode)) => {
+                points.push(point);
+                current = mode;
             }
-            Ok(next)
-        };
-        let mut z0: Vec<f64> = relative(sys, &current.shape)
-            .iter()
-            .map(|r| qa * r)
-            .collect();
-        z0.push(current.omega());
-        let solved = if ne > NEWTON_MAX {
-            anderson_consistency(&z0, g, TOL)?
-        } else {
-            consistency::solve(&z0, g, TOL, MAX_ITER)?
-        };
-        let z = match solved {
-            Ok(c) => c.x,
-            Err(st) => {
-                return Err(BackboneError::NotConsistent {
-                    modal_amplitude: qa,
-                    mismatch: st.mismatch,
-                    iterations: st.iterations,
-                    method: if ne > NEWTON_MAX {
-                        ANDERSON_METHOD
-                    } else {
-                        consistency::METHOD
-                    },
+            Err(e) => {
+                return Ok(Traced {
+                    points,
+                    stopped: Some(e),
                 })
             }
-        };
-        let w = z[ne];
-        let md = traced_mode(sys, &z[..ne], w, &current, qa)?;
-        let lin = linearized(sys, &z[..ne], md.omega())?;
-        let shape = normalize(&sys.m, &md.shape);
-        current = Mode {
-            lambda: md.lambda,
-            shape: shape.clone(),
-        };
-        out.push(BackbonePoint {
-            modal_amplitude: qa,
-            omega: md.omega(),
-            damping_ratio: md.damping_ratio(),
-            shape: shape.iter().map(|v| v * qa).collect(),
-            element_amplitudes: relative(sys, &shape).iter().map(|r| qa * r).collect(),
-            energy_per_cycle: lin.iter().map(|l| l.2).collect(),
-        });
+        }
     }
-    Ok(out)
+    Ok(Traced {
+        points,
+        stopped: None,
+    })
+}
+
+/// The consistent point at modal amplitude `qa`, started from the mode `current` of
+/// the previous amplitude; with its mass-normalized mode, the start of the next one.
+fn point_at(sys: &System, current: &Mode, qa: f64) -> Result<(BackbonePoint, Mode), BackboneError> {
+    let ne = sys.elements.len();
+    if !(qa.is_finite() && qa > 0.0) {
+        return Err(BackboneError::Amplitude(qa));
+    }
+    // Unknowns (A_1 … A_ne, ω); g gives them back from the traced mode, which each
+    // evaluation refines from the last one.
+    let mut last = current.clone();
+    let g = |z: &[f64]| -> Result<Vec<f64>, BackboneError> {
+        let w = z[ne].max(f64::MIN_POSITIVE);
+        let md = traced_mode(sys, &z[..ne], w, &last, qa)?;
+        let mut next: Vec<f64> = relative(sys, &md.shape).iter().map(|r| qa * r).collect();
+        next.push(md.omega());
+        if sys.n() > ALL_MODES_MAX {
+            last = md;
+        }
+        Ok(next)
+    };
+    let mut z0: Vec<f64> = relative(sys, &current.shape)
+        .iter()
+        .map(|r| qa * r)
+        .collect();
+    z0.push(current.omega());
+    let solved = if ne > NEWTON_MAX {
+        anderson_consistency(&z0, g, TOL)?
+    } else {
+        consistency::solve(&z0, g, TOL, MAX_ITER)?
+    };
+    let z = match solved {
+        Ok(c) => c.x,
+        Err(st) => {
+            return Err(BackboneError::NotConsistent {
+                modal_amplitude: qa,
+                mismatch: st.mismatch,
+                iterations: st.iterations,
+                method: if ne > NEWTON_MAX {
+                    ANDERSON_METHOD
+                } else {
+                    consistency::METHOD
+                },
+            })
+        }
+    };
+    let w = z[ne];
+    let md = traced_mode(sys, &z[..ne], w, current, qa)?;
+    let lin = linearized(sys, &z[..ne], md.omega())?;
+    let shape = normalize(&sys.m, &md.shape);
+    let next = Mode {
+        lambda: md.lambda,
+        shape: shape.clone(),
+    };
+    let point = BackbonePoint {
+        modal_amplitude: qa,
+        omega: md.omega(),
+        damping_ratio: md.damping_ratio(),
+        shape: shape.iter().map(|v| v * qa).collect(),
+        element_amplitudes: relative(sys, &shape).iter().map(|r| qa * r).collect(),
+        energy_per_cycle: lin.iter().map(|l| l.2).collect(),
+    };
+    Ok((point, next))
 }

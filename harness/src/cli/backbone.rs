@@ -133,13 +133,14 @@ pub fn main(a: Args) -> ExitCode {
         eprintln!("error: {}: {e}", a.out.display());
         return ExitCode::from(1);
     }
-    // EPMC keeps the points converged before a failure: they are written, the failure
-    // is printed and the exit code is 1.
+    // Both traces keep the points converged before a failure: they are written, the
+    // failure is printed and the exit code is 1.
     let started = Instant::now();
     let (method, result) = match a.harmonics {
         None => (
             "first order (jointlin_linearize)".to_string(),
-            first_order::backbone(&l.system, a.mode, &q).map(|p| (p, Path::default(), None)),
+            first_order::trace(&l.system, a.mode, &q)
+                .map(|t| (t.points, Path::default(), t.stopped)),
         ),
         Some(h) => (
             format!("EPMC, H = {h}"),
@@ -237,10 +238,11 @@ pub fn main(a: Args) -> ExitCode {
     ));
     match stopped {
         Some(e) => {
-            eprintln!(
-                "error: {e}; the {} amplitudes below it are written",
-                rows.len()
-            );
+            let kept = match rows.len() {
+                1 => "the amplitude below it is written".to_string(),
+                n => format!("the {n} amplitudes below it are written"),
+            };
+            eprintln!("error: {e}; {kept}");
             ExitCode::from(1)
         }
         None => code,
