@@ -20,6 +20,8 @@
 mod circles;
 #[path = "layering/modules.rs"]
 mod modules;
+#[path = "layering/orphans.rs"]
+mod orphans;
 #[path = "layering/rooms.rs"]
 mod rooms;
 #[path = "layering/sizes.rs"]
@@ -82,6 +84,40 @@ fn no_file_level_circle_in_either_crate() {
             c.join("\n")
         );
     }
+}
+
+#[test]
+fn every_source_file_is_a_module_of_its_crate() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+    for src in [harness_src(), root.join("src"), root.join("python/rust")] {
+        let tree = crate_files(&src);
+        assert!(tree.len() > 4, "{}: read nothing", src.display());
+        let o = orphans::orphans(&tree);
+        assert!(
+            o.is_empty(),
+            "{}: files no module declares (never compiled):\n{}",
+            src.display(),
+            o.join("\n")
+        );
+    }
+}
+
+#[test]
+fn a_planted_orphan_file_fails() {
+    let tree = files(&[
+        ("lib.rs", "mod a;\npub mod b;\n"),
+        (
+            "a.rs",
+            "#[cfg(test)]\n#[path = \"a_tests.rs\"]\nmod tests;\n",
+        ),
+        ("a_tests.rs", "#[test]\nfn t() {}\n"),
+        ("b/mod.rs", "mod c;\n"),
+        ("b/c.rs", ""),
+        ("b/d.rs", ""),
+        ("e_tests.rs", "#[test]\nfn t() {}\n"),
+        ("f/g.rs", ""),
+    ]);
+    assert_eq!(orphans::orphans(&tree), ["b/d.rs", "e_tests.rs", "f/g.rs"]);
 }
 
 #[test]

@@ -9,7 +9,9 @@ use std::time::Instant;
 use serde_json::json;
 
 use jointlin_harness::backbone::report::{self, Row};
-use jointlin_harness::backbone::{epmc, fe, first_order, log_space, BackbonePoint, C64};
+use jointlin_harness::backbone::{
+    epmc, fe, first_order, log_space, BackboneError, BackbonePoint, C64,
+};
 use jointlin_harness::capi;
 use jointlin_harness::input::scene::schema::BodyKind;
 use jointlin_harness::input::scene::Scene;
@@ -237,16 +239,19 @@ pub fn main(a: Args) -> ExitCode {
         &path,
     ));
     match stopped {
-        Some(e) => {
-            let kept = match rows.len() {
-                1 => "the amplitude below it is written".to_string(),
-                n => format!("the {n} amplitudes below it are written"),
-            };
-            eprintln!("error: {e}; {kept}");
-            ExitCode::from(1)
-        }
+        Some(e) => stopped_early(&e, rows.len()),
         None => code,
     }
+}
+
+/// A trace that stopped after `kept` amplitudes: the failure, exit code 1.
+fn stopped_early(e: &BackboneError, kept: usize) -> ExitCode {
+    let kept = match kept {
+        1 => "the amplitude below it is written".to_string(),
+        n => format!("the {n} amplitudes below it are written"),
+    };
+    eprintln!("error: {e}; {kept}");
+    ExitCode::from(1)
 }
 
 fn write(

@@ -8,20 +8,24 @@
 //!   same with r the unit rigid rotation about axis d through the mass centre; over all
 //!   modes the m_d add up to the free mass (the participation of base excitation);
 //! - **kind shares**: the body's axis a is the direction of the model's largest extent;
-//!   the nodes fall into cross-sections (planes across a, one per axial node coordinate:
-//!   box meshes). Per section a rigid motion is fitted to the nodal displacements
-//!   (weights: lumped masses by diagonal scaling, HRZ: w ∝ M_ii, positive for every
-//!   element — row sums are not: a C3D10's corner rows sum to less than zero) and the
-//!   lumped kinetic energy
-//!   Σ wᵢ |uᵢ|² splits exactly (the parts are orthogonal in the weighted norm, with
-//!   coordinates s taken from the section's mass centre) into
-//!   longitudinal (the mean axial displacement), bending (the mean transverse
-//!   displacement and the section's tilt, u_a linear in s), torsion (the section's
-//!   rotation about a) and section (what is left: the section deforms — plate,
-//!   breathing modes). The largest share names the kind; a bending mode's plane holds
-//!   the axis and the transverse direction with the larger mean-displacement energy.
+//!   the nodes fall into cross-sections across a: one per axial node coordinate where
+//!   the mesh has such planes (box meshes: on average 3 or more nodes per plane), else
+//!   slabs of equal width holding about N^(2/3) of the N nodes each (graded, perturbed,
+//!   tetrahedral and Gmsh meshes). Per section a rigid motion u ≈ t + θ × s (s from the
+//!   section's mass centre) is fitted to the nodal displacements by weighted least
+//!   squares (weights: lumped masses by diagonal scaling, HRZ: w ∝ M_ii, positive for
+//!   every element — row sums are not: a C3D10's corner rows sum to less than zero). The
+//!   lumped kinetic energy Σ wᵢ |uᵢ|² then splits into the fit's W|t|² + θᵀJθ (J the
+//!   section's inertia tensor; the fit is an orthogonal projection in the weighted norm)
+//!   and the rest: longitudinal (W t_a²), bending (W(t₁² + t₂²) and the rotation about
+//!   the transverse axes, θ_t·(Jθ)_t: the section's tilt), torsion (the rotation about
+//!   a, θ_a (Jθ)_a) and section (the rest: the section deforms — plate, breathing
+//!   modes). On a plane section J couples no axis with a transverse one and the split is
+//!   exact; on a slab the small coupling is clipped at 0. The largest share names the
+//!   kind; a bending mode's plane holds the axis and the transverse direction with the
+//!   larger mean-displacement energy.
 
-use nalgebra::{Matrix2, Vector2, Vector3};
+use nalgebra::{Matrix3, Vector3};
 
 use crate::fe::csc::Csc;
 use crate::fe::dofs::DofMap;
@@ -93,7 +97,7 @@ pub struct ModeGeometry {
     dof_pos: Vec<[f64; 3]>,
     /// Lumped mass per node: the mean of its free DOFs' row sums of M.
     node_mass: Vec<f64>,
-    /// Sections: node indices (into `nodes`) per axial plane, and the axis.
+    /// Sections: node indices (into `nodes`) per axial plane or slab, and the axis.
     sections: Vec<Vec<usize>>,
     axis: usize,
     /// Mass centre (length).
@@ -173,19 +177,7 @@ impl ModeGeometry {
         };
         let ext = [extent(0), extent(1), extent(2)];
         let axis = (0..3).fold(0, |b, c| if ext[c] > ext[b] { c } else { b });
-        let mut order: Vec<usize> = (0..nodes.len()).collect();
-        order.sort_by(|&i, &j| nodes[i].0[axis].total_cmp(&nodes[j].0[axis]));
-        let tol = 1e-9 * ext[axis].max(f64::MIN_POSITIVE);
-        let mut sections: Vec<Vec<usize>> = Vec::new();
-        let mut last = f64::NEG_INFINITY;
-        for i in order {
-            let s = nodes[i].0[axis];
-            match sections.last_mut() {
-                Some(sec) if s - last <= tol => sec.push(i),
-                _ => sections.push(vec![i]),
-            }
-            last = s;
-        }
+        let sections = sections_along(&nodes, axis, ext[axis]);
         let mut geo = ModeGeometry {
             nodes,
             dof_comp,
@@ -279,7 +271,11 @@ impl ModeGeometry {
     fn kind_shares(&self, phi: &[f64]) -> ([f64; 4], usize) {
         let a = self.axis;
         let (t1, t2) = ((a + 1) % 3, (a + 2) % 3);
-        let u = |i: usize, c: usize| self.nodes[i].1[c].map_or(0.0, |f| phi[f]);
+        let u = |i: usize| {
+            Vector3::from(std::array::from_fn(|c| {
+                self.nodes[i].1[c].map_or(0.0, |f| phi[f])
+            }))
+        };
         let (mut long, mut bend, mut tors, mut total) = (0.0, 0.0, 0.0, 0.0);
         let mut across = [0.0; 3];
         for sec in &self.sections {
@@ -287,38 +283,33 @@ impl ModeGeometry {
             if w <= 0.0 {
                 continue;
             }
-            let mean = |g: &dyn Fn(usize) -> f64| {
-                sec.iter().map(|&i| self.node_mass[i] * g(i)).sum::<f64>() / w
+            let weighted = |g: &dyn Fn(usize) -> Vector3<f64>| {
+                sec.iter()
+                    .map(|&i| self.node_mass[i] * g(i))
+                    .sum::<Vector3<f64>>()
+                    / w
             };
-            let c1 = mean(&|i| self.nodes[i].0[t1]);
-            let c2 = mean(&|i| self.nodes[i].0[t2]);
-            let s = |i: usize| Vector2::new(self.nodes[i].0[t1] - c1, self.nodes[i].0[t2] - c2);
-            let (ua, u1, u2) = (mean(&|i| u(i, a)), mean(&|i| u(i, t1)), mean(&|i| u(i, t2)));
-            long += w * ua * ua;
-            across[t1] += w * u1 * u1;
-            across[t2] += w * u2 * u2;
-            // Tilt: u_a − mean = β·s, weighted least squares G β = Σ w s u_a.
-            total += sec
-                .iter()
-                .map(|&i| self.node_mass[i] * (0..3).map(|c| u(i, c).powi(2)).sum::<f64>())
-                .sum::<f64>();
-            let mut g = Matrix2::zeros();
-            let mut rhs = Vector2::zeros();
-            let (mut j, mut twist) = (0.0, 0.0);
+            let centre = weighted(&|i| Vector3::from(self.nodes[i].0));
+            let s = |i: usize| Vector3::from(self.nodes[i].0) - centre;
+            // Rigid fit: t the weighted mean, θ = J⁺ Σ w s × u.
+            let t = weighted(&u);
+            let (mut j, mut moment) = (Matrix3::zeros(), Vector3::zeros());
             for &i in sec {
                 let (wi, si) = (self.node_mass[i], s(i));
-                g += wi * si * si.transpose();
-                rhs += wi * si * u(i, a);
-                j += wi * si.norm_squared();
-                twist += wi * (si.x * u(i, t2) - si.y * u(i, t1));
+                j += wi * (si.norm_squared() * Matrix3::identity() - si * si.transpose());
+                moment += wi * si.cross(&u(i));
+                total += wi * u(i).norm_squared();
             }
-            let tilt = g
-                .pseudo_inverse(1e-12 * g.norm().max(f64::MIN_POSITIVE))
-                .map_or(0.0, |gi| rhs.dot(&(gi * rhs)));
-            bend += w * (u1 * u1 + u2 * u2) + tilt;
-            if j > 0.0 {
-                tors += twist * twist / j;
-            }
+            let theta = j
+                .pseudo_inverse(1e-12 * j.norm().max(f64::MIN_POSITIVE))
+                .map_or(Vector3::zeros(), |ji| ji * moment);
+            let h = j * theta;
+            long += w * t[a] * t[a];
+            across[t1] += w * t[t1] * t[t1];
+            across[t2] += w * t[t2] * t[t2];
+            bend += w * (t[t1] * t[t1] + t[t2] * t[t2])
+                + (theta[t1] * h[t1] + theta[t2] * h[t2]).max(0.0);
+            tors += (theta[a] * h[a]).max(0.0);
         }
         let total = total.max(f64::MIN_POSITIVE);
         let (long, bend, tors) = (long / total, bend / total, tors / total);
@@ -326,6 +317,46 @@ impl ModeGeometry {
         let across = if across[t1] >= across[t2] { t1 } else { t2 };
         ([long, bend, tors, section], across)
     }
+}
+
+/// Mean nodes per axial plane from which the planes are the sections (box meshes).
+const PLANE_NODES_MIN: f64 = 3.0;
+
+/// The cross-sections of `nodes` across `axis` (extent `length`): the planes of equal
+/// axial coordinate (to 1e-9 of the length) where they hold [`PLANE_NODES_MIN`] nodes
+/// or more on average, else slabs of equal width holding about N^(2/3) nodes each.
+fn sections_along(
+    nodes: &[([f64; 3], [Option<usize>; 3])],
+    axis: usize,
+    length: f64,
+) -> Vec<Vec<usize>> {
+    let mut order: Vec<usize> = (0..nodes.len()).collect();
+    order.sort_by(|&i, &j| nodes[i].0[axis].total_cmp(&nodes[j].0[axis]));
+    let tol = 1e-9 * length.max(f64::MIN_POSITIVE);
+    let mut planes: Vec<Vec<usize>> = Vec::new();
+    let mut last = f64::NEG_INFINITY;
+    for &i in &order {
+        let s = nodes[i].0[axis];
+        match planes.last_mut() {
+            Some(sec) if s - last <= tol => sec.push(i),
+            _ => planes.push(vec![i]),
+        }
+        last = s;
+    }
+    if planes.is_empty() || nodes.len() as f64 >= PLANE_NODES_MIN * planes.len() as f64 {
+        return planes;
+    }
+    let n = nodes.len() as f64;
+    let count = (n / n.powf(2.0 / 3.0)).round().max(2.0) as usize;
+    let start = nodes[order[0]].0[axis];
+    let width = length.max(f64::MIN_POSITIVE) / count as f64;
+    let mut slabs = vec![Vec::new(); count];
+    for i in order {
+        let k = ((nodes[i].0[axis] - start) / width).floor() as usize;
+        slabs[k.min(count - 1)].push(i);
+    }
+    slabs.retain(|s| !s.is_empty());
+    slabs
 }
 
 #[cfg(test)]
