@@ -21,7 +21,12 @@
 #   $(PREFIX)/share/jointlin/fortran-shim/        shim sources and Makefile, to rebuild
 #                                                 with another compiler (its
 #                                                 JOINTLIN_LIBDIR defaults to $(PREFIX)/lib)
-#   $(PREFIX)/share/jointlin/examples/            C, Fortran and Abaqus examples
+#   $(PREFIX)/share/jointlin/examples/            C, Fortran and Abaqus examples (the
+#                                                 Abaqus env file names $(PREFIX))
+#   $(PREFIX)/share/jointlin/scenes/              the scenes (`jointlin validate` finds
+#                                                 them there from any directory)
+#   $(PREFIX)/share/man/man1/jointlin*.1          man pages of the program and its
+#                                                 commands (`jointlin man`, from the help)
 #
 # The workspace's release profile keeps line-level debug info (profiling); the installed
 # library and program are stripped copies (objcopy --strip-unneeded).
@@ -88,7 +93,8 @@ install: lib bin shim
 		$(DEST)/share/jointlin/fortran-shim $(DEST)/share/jointlin/examples/c \
 		$(DEST)/share/jointlin/examples/fortran $(DEST)/share/jointlin/examples/abaqus \
 		$(DEST)/share/jointlin/examples/abaqus/block-on-plane \
-		$(DEST)/share/jointlin/examples/abaqus/three-beams
+		$(DEST)/share/jointlin/examples/abaqus/three-beams \
+		$(DEST)/share/jointlin/scenes $(DEST)/share/man/man1
 	$(call stripped,$(BIN),$(DEST)/bin/jointlin,$(DEST)/bin/.debug)
 	$(call stripped,$(LIBDIR)/libjointlin.so,$(DEST)/lib/$(REALNAME),$(DEST)/lib/.debug)
 	ln -sfn $(REALNAME) $(DEST)/lib/$(SONAME)
@@ -107,14 +113,17 @@ install: lib bin shim
 		> $(DEST)/share/jointlin/fortran-shim/Makefile
 	install -m 644 examples/c/hello.c $(DEST)/share/jointlin/examples/c/
 	install -m 644 examples/fortran/hello.f90 $(DEST)/share/jointlin/examples/fortran/
-	install -m 644 examples/abaqus/abaqus_v6.env examples/abaqus/user.f \
-		$(DEST)/share/jointlin/examples/abaqus/
+	sed 's|/opt/jointlin|$(PREFIX)|g' examples/abaqus/abaqus_v6.env \
+		> $(DEST)/share/jointlin/examples/abaqus/abaqus_v6.env
+	install -m 644 examples/abaqus/user.f $(DEST)/share/jointlin/examples/abaqus/
 	install -m 644 examples/abaqus/block-on-plane/* \
 		$(DEST)/share/jointlin/examples/abaqus/block-on-plane/
 	install -m 644 examples/abaqus/three-beams/* \
 		$(DEST)/share/jointlin/examples/abaqus/three-beams/
 	sed -e 's|@PREFIX@|$(PREFIX)|' -e 's|@VERSION@|$(VERSION)|' jointlin.pc.in \
 		> $(DEST)/lib/pkgconfig/jointlin.pc
+	cp -R scenes/. $(DEST)/share/jointlin/scenes/
+	$(DEST)/bin/jointlin man --out $(DEST)/share/man/man1 > /dev/null
 
 uninstall:
 	rm -f $(DEST)/bin/jointlin $(DEST)/bin/.debug/jointlin.debug \
@@ -123,5 +132,6 @@ uninstall:
 		$(DEST)/lib/pkgconfig/jointlin.pc $(DEST)/include/jointlin.h \
 		$(DEST)/include/jointlin.mod $(DEST)/include/jointlin_abaqus.mod
 	rm -rf $(DEST)/share/jointlin
+	rm -f $(DEST)/share/man/man1/jointlin.1 $(DEST)/share/man/man1/jointlin-*.1
 
 .PHONY: lib bin shim install uninstall

@@ -137,6 +137,47 @@ fn install_places_program_library_header_modules_and_pkg_config_file() {
 }
 
 #[test]
+fn installed_tree_validates_from_another_directory_with_its_man_pages() {
+    // The installed scenes are found beside the program: `jointlin validate` from a
+    // directory without scenes/ runs the block case of the thesis.
+    let p = prefix();
+    let elsewhere = scratch("validate-elsewhere");
+    let out = run_ok(
+        Command::new(p.join("bin/jointlin"))
+            .args(["validate", "--cases", "block-stick", "--out", "v"])
+            .current_dir(&elsewhere),
+    );
+    assert!(text(&out).contains("block"), "{}", text(&out));
+    assert!(elsewhere.join("v/validation.csv").is_file());
+    for scene in [
+        "block-stick.toml",
+        "three-beams.toml",
+        "hard",
+        "beam-cb.toml",
+    ] {
+        assert!(
+            p.join("share/jointlin/scenes").join(scene).exists(),
+            "{scene}"
+        );
+    }
+    // A man page per command, rendered by man(1) where it is installed.
+    let man1 = p.join("share/man/man1");
+    for page in [
+        "jointlin.1",
+        "jointlin-run.1",
+        "jointlin-validate.1",
+        "jointlin-matrices-import-ccx.1",
+    ] {
+        let text = std::fs::read_to_string(man1.join(page)).unwrap();
+        assert!(
+            text.contains(".TH") && text.contains(".SH SYNOPSIS"),
+            "{page}"
+        );
+    }
+    assert!(!man1.join("jointlin-help.1").exists());
+}
+
+#[test]
 fn installed_program_runs() {
     let out = run_ok(Command::new(prefix().join("bin/jointlin")).arg("--version"));
     assert_eq!(
@@ -401,11 +442,16 @@ fn fortran_example_builds_with_pkg_config_against_the_install() {
     check_hello(&run_ok(&mut Command::new(&exe)).stdout, "Fortran example");
 }
 
-/// link_sl of examples/abaqus/abaqus_v6.env evaluated as Abaqus would (Python, on top of
-/// an empty list), with the install prefix in place of /opt/jointlin.
+/// link_sl of the installed examples/abaqus/abaqus_v6.env evaluated as Abaqus would
+/// (Python, on top of an empty list): `make install` wrote the prefix into it.
 fn link_sl(prefix: &Path) -> Vec<String> {
-    let env = std::fs::read_to_string(root().join("examples/abaqus/abaqus_v6.env")).unwrap();
-    let env = env.replace("/opt/jointlin", &prefix.display().to_string());
+    let installed = prefix.join("share/jointlin/examples/abaqus/abaqus_v6.env");
+    let env = std::fs::read_to_string(installed).unwrap();
+    assert!(
+        !env.contains("/opt/jointlin")
+            && env.contains(&format!("jointlin = '{}'", prefix.display())),
+        "{env}"
+    );
     let script = format!("link_sl = []\n{env}\nprint('\\n'.join(link_sl))\n");
     let out = run_ok(Command::new("python3").arg("-c").arg(script));
     text(&out).lines().map(str::to_string).collect()

@@ -8,6 +8,7 @@ mod check;
 mod effects;
 mod export;
 mod loss;
+mod man;
 mod matrices;
 mod mhb;
 mod modes;
@@ -194,6 +195,10 @@ pub enum Command {
     /// codes' matrix output.
     #[command(subcommand)]
     Matrices(matrices::Args),
+    /// Write the man pages of the program and of every command (jointlin.1,
+    /// jointlin-run.1, …) into DIR, generated from this help; `make install` puts them
+    /// in PREFIX/share/man/man1.
+    Man(man::Args),
 }
 
 /// Runs `jointlin` with the command line `args` (the program's name first), as the
@@ -233,6 +238,7 @@ pub fn dispatch(command: Command) -> ExitCode {
         Command::Mhb(a) => mhb::main(a),
         Command::Backbone(a) => backbone::main(a),
         Command::Matrices(a) => matrices::main(a),
+        Command::Man(a) => man::main(a),
     }
 }
 

@@ -14,15 +14,47 @@ pub struct Args {
     /// Output directory.
     #[arg(long, default_value = "out/validation")]
     out: PathBuf,
-    /// Directory with block-stick.toml, block-slip.toml, three-beams.toml.
-    #[arg(long, default_value = "scenes")]
-    scenes: PathBuf,
+    /// Directory with block-stick.toml, block-slip.toml, three-beams.toml (default:
+    /// ./scenes where it holds them, else the installed PREFIX/share/jointlin/scenes).
+    #[arg(long)]
+    scenes: Option<PathBuf>,
     /// Cases (default all): block-stick, block-slip, duffing, softening-friction, three-beams.
     #[arg(long, value_delimiter = ',')]
     cases: Vec<String>,
 }
 
+/// The scenes directory: the one given, else ./scenes where it holds the validation
+/// scenes, else the installed tree's share/jointlin/scenes beside the program's bin/.
+fn scenes_dir(given: Option<PathBuf>) -> Result<PathBuf, String> {
+    if let Some(d) = given {
+        return Ok(d);
+    }
+    let local = PathBuf::from("scenes");
+    if local.join("block-stick.toml").is_file() {
+        return Ok(local);
+    }
+    let installed = std::env::current_exe().ok().and_then(|exe| {
+        exe.parent()?
+            .parent()
+            .map(|p| p.join("share/jointlin/scenes"))
+    });
+    match installed {
+        Some(d) if d.join("block-stick.toml").is_file() => Ok(d),
+        other => Err(format!(
+            "no validation scenes in ./scenes{}: give --scenes DIR",
+            other.map_or(String::new(), |d| format!(" or {}", d.display()))
+        )),
+    }
+}
+
 pub fn main(a: Args) -> ExitCode {
+    let scenes_dir = match scenes_dir(a.scenes.clone()) {
+        Ok(d) => d,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return ExitCode::from(2);
+        }
+    };
     let cases = match Cases::parse(&a.cases) {
         Ok(c) => c,
         Err(e) => {
@@ -35,7 +67,7 @@ pub fn main(a: Args) -> ExitCode {
         if !wanted {
             return Ok(None);
         }
-        let path = a.scenes.join(file);
+        let path = scenes_dir.join(file);
         jointlin_harness::input::load(&path)
             .map(|i| Some(i.into_scene()))
             .map_err(|e| e.to_string())
