@@ -7,7 +7,7 @@ use plotters::prelude::*;
 use crate::model::Problem;
 use crate::settings::units::frequency_unit;
 use crate::solve::sweep::SweepResult;
-use crate::util::ticks::{at_least_a_decade, log_tick};
+use crate::util::ticks::{labelled_log_range, log_tick};
 
 use drawing_error as err;
 
@@ -82,8 +82,8 @@ pub fn frf_curves(
         ymin = 1e-12;
         ymax = 1.0;
     }
-    // At least a decade, so the log axis has labelled ticks.
-    let (ymin, ymax) = at_least_a_decade(ymin * 0.8, ymax * 1.25);
+    // At least a decade, ending on labelled ticks.
+    let (ymin, ymax) = labelled_log_range(ymin * 0.8, ymax * 1.25);
     let (x0, x1) = if f1 > f0 {
         (f0, f1)
     } else {
@@ -98,6 +98,11 @@ pub fn frf_curves(
         .map_err(err)?;
     chart
         .configure_mesh()
+        // Fine lines along a log axis bunch into grey bands: the labelled ticks only;
+        // over up to three decades ticks at 1, 2 and 5, else at the decades.
+        .y_max_light_lines(0)
+        .x_max_light_lines(1)
+        .y_labels(if ymax <= 1e3 * ymin { 30 } else { 10 })
         .x_desc(freq_label(units))
         .y_desc(format!("amplitude [{}]", units.length))
         .y_label_formatter(&|v: &f64| log_tick(*v))
@@ -106,8 +111,9 @@ pub fn frf_curves(
         .map_err(err)?;
     for (k, name) in names.iter().enumerate() {
         for (c, curve) in curves.iter().enumerate() {
-            // One colour per output and curve; the first curve drawn thicker.
-            let color = Palette99::pick(k + 4 * c).to_rgba();
+            // One colour per output; its first curve solid and thick, the others
+            // (without contact damping, the sweep down) dashed in the same colour.
+            let color = OUTPUT_COLORS[k % OUTPUT_COLORS.len()];
             let width = if c == 0 { 2 } else { 1 };
             let pts: Vec<(f64, f64)> = curve
                 .points
@@ -136,12 +142,38 @@ pub fn frf_curves(
                 chart.draw_series(LineSeries::new(pts, style))
             } else {
                 chart.draw_series(DashedLineSeries::new(pts, 6, 4, style))
-            };
-            drawn
-                .map_err(err)?
-                .label(format!("{name} {}", curve.label).trim_end().to_string())
-                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], style));
+            }
+            .map_err(err)?;
+            // The legend names the first LEGEND_OUTPUTS outputs; a sample drawn as the
+            // curve is (solid or dashed).
+            if k < LEGEND_OUTPUTS {
+                let dashed = c > 0;
+                drawn
+                    .label(format!("{name} {}", curve.label).trim_end().to_string())
+                    .legend(move |(x, y)| {
+                        let piece = |a: i32, b: i32| PathElement::new(vec![(a, 0), (b, 0)], style);
+                        let ends = if dashed {
+                            [(0, 6), (10, 16), (20, 24)]
+                        } else {
+                            [(0, 8), (8, 16), (16, 24)]
+                        };
+                        EmptyElement::at((x, y))
+                            + piece(ends[0].0, ends[0].1)
+                            + piece(ends[1].0, ends[1].1)
+                            + piece(ends[2].0, ends[2].1)
+                    });
+            }
         }
+    }
+    if names.len() > LEGEND_OUTPUTS {
+        chart
+            .draw_series(std::iter::once(EmptyElement::at((x0, ymin))))
+            .map_err(err)?
+            .label(format!(
+                "(+{} more outputs, not in the legend)",
+                names.len() - LEGEND_OUTPUTS
+            ))
+            .legend(|(x, y)| EmptyElement::at((x, y)));
     }
     chart
         .configure_series_labels()
@@ -152,6 +184,20 @@ pub fn frf_curves(
         .map_err(err)?;
     root.present().map_err(err)
 }
+
+/// Colours of the outputs (Okabe and Ito's colour-blind-safe set, no yellow on white).
+const OUTPUT_COLORS: [RGBColor; 7] = [
+    RGBColor(0, 114, 178),
+    RGBColor(213, 94, 0),
+    RGBColor(0, 158, 115),
+    RGBColor(204, 121, 167),
+    RGBColor(86, 180, 233),
+    RGBColor(230, 159, 0),
+    RGBColor(0, 0, 0),
+];
+
+/// Outputs named in the legend; more are drawn and counted in one line.
+const LEGEND_OUTPUTS: usize = 8;
 
 /// Curves of at most this many frequencies are drawn as markers, not lines.
 const MARKED_POINTS: usize = 3;
@@ -364,4 +410,61 @@ fn ratio_legend<DB: DrawingBackend>(area: &DrawingArea<DB, plotters::coord::Shif
     area.draw(&Text::new("sliding", (x + width + 8, y), font))
         .map_err(err)?;
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn many_outputs_keep_the_legend_short_and_both_axis_ends_labelled() {
+        // 20 outputs (a node set) with and without contact damping: 8 named in the
+        // legend, the rest counted; the y axis ends on labelled ticks (0.001 … 0.01).
+        let units = crate::settings::Units {
+            length: "mm".into(),
+            force: "N".into(),
+            time: "s".into(),
+            mass: "t".into(),
+            frequency: None,
+        };
+        let names: Vec<String> = (0..20).map(|i| format!("node_{i}")).collect();
+        let curve = |label: &str, scale: f64| FrfCurve {
+            label: label.into(),
+            points: (0..50)
+                .map(|i| {
+                    let f = 100.0 + i as f64;
+                    (
+                        f,
+                        (0..20)
+                            .map(|k| scale * 1.3e-3 * (1.0 + 0.2 * k as f64 / 20.0))
+                            .collect(),
+                    )
+                })
+                .collect(),
+        };
+        let dir = std::env::temp_dir().join(format!("jointlin-svg-legend-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("frf.svg");
+        frf_curves(
+            &path,
+            "legend",
+            &units,
+            &names,
+            &[
+                curve("with contact damping", 1.0),
+                curve("without contact damping", 4.0),
+            ],
+        )
+        .unwrap();
+        let svg = std::fs::read_to_string(&path).unwrap();
+        let _ = std::fs::remove_dir_all(&dir);
+        // plotters writes each text on a line of its own.
+        let has = |text: &str| svg.lines().any(|l| l.trim() == text);
+        let named = (0..20)
+            .filter(|i| has(&format!("node_{i} with contact damping")))
+            .count();
+        assert_eq!(named, LEGEND_OUTPUTS);
+        assert!(has("(+12 more outputs, not in the legend)"));
+        assert!(has("0.001") && has("0.01"), "{svg}");
+    }
 }

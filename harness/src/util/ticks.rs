@@ -6,8 +6,27 @@ pub fn at_least_a_decade(lo: f64, hi: f64) -> (f64, f64) {
     if hi >= 10.0 * lo {
         return (lo, hi);
     }
-    let mid = (lo * hi).sqrt();
+    // √lo·√hi: lo·hi underflows for amplitudes near 1e-300.
+    let mid = lo.sqrt() * hi.sqrt();
     (mid / 10f64.sqrt(), mid * 10f64.sqrt())
+}
+
+/// `[lo, hi]` (> 0) widened to a decade at least ([`at_least_a_decade`]) and then out to
+/// the nearest 1, 2 or 5 times a power of ten at both ends, so the axis's first and last
+/// ticks carry labels ([`log_tick`]).
+pub fn labelled_log_range(lo: f64, hi: f64) -> (f64, f64) {
+    let (lo, hi) = at_least_a_decade(lo, hi);
+    let steps = |e: f64| [1.0, 2.0, 5.0, 10.0].map(|m| m * 10f64.powf(e));
+    let down = steps(lo.log10().floor())
+        .into_iter()
+        .rev()
+        .find(|&v| v <= lo * (1.0 + 1e-12))
+        .unwrap_or(lo);
+    let up = steps(hi.log10().floor())
+        .into_iter()
+        .find(|&v| v >= hi * (1.0 - 1e-12))
+        .unwrap_or(hi);
+    (down, up)
 }
 
 /// Label of a log-axis tick at `v`: only 1, 2 and 5 times a power of ten are labelled
@@ -58,10 +77,35 @@ mod tests {
     }
 
     #[test]
+    fn log_ranges_end_on_labelled_ticks() {
+        assert_eq!(labelled_log_range(1.3e-7, 6.8e-3), (1e-7, 1e-2));
+        let (lo, hi) = labelled_log_range(0.064, 2.6);
+        assert!(
+            (lo - 0.05).abs() < 1e-15 && (hi - 5.0).abs() < 1e-12,
+            "{lo} {hi}"
+        );
+        let (lo, hi) = labelled_log_range(1e-3, 1.0);
+        assert!((lo - 1e-3).abs() < 1e-18 && (hi - 1.0).abs() < 1e-15);
+        for (lo, hi) in [(3e-300, 4e-300), (0.7, 0.9), (123.0, 9e7)] {
+            let (a, b) = labelled_log_range(lo, hi);
+            assert!(
+                a <= lo && b >= hi && b >= 10.0 * a * (1.0 - 1e-12),
+                "{lo} {hi}: {a} {b}"
+            );
+            assert!(
+                !log_tick(a).is_empty() && !log_tick(b).is_empty(),
+                "{a} {b}"
+            );
+        }
+    }
+
+    #[test]
     fn a_narrow_range_is_widened_to_a_decade() {
         let (lo, hi) = at_least_a_decade(4.0, 5.0);
         assert!((hi / lo - 10.0).abs() < 1e-12);
         assert!((lo * hi - 20.0).abs() < 1e-12);
+        let (lo, hi) = at_least_a_decade(3e-300, 4e-300);
+        assert!(lo > 0.0 && (hi / lo - 10.0).abs() < 1e-9, "{lo:e} {hi:e}");
         assert_eq!(at_least_a_decade(1.0, 100.0), (1.0, 100.0));
     }
 }
