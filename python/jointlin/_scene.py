@@ -113,9 +113,14 @@ def _command(args: list[str]) -> str:
     return "".join(stdout)
 
 
+# pandas 3 parses floats correctly rounded by default (and deprecates the option);
+# earlier versions need the round-trip parser for the last bit.
+_EXACT = {} if int(pd.__version__.split(".")[0]) >= 3 else {"float_precision": "round_trip"}
+
+
 def _read_csv(path: Path) -> pd.DataFrame:
     """A CSV of the commands, every number to the bit (they write round-trip digits)."""
-    return pd.read_csv(path, float_precision="round_trip")
+    return pd.read_csv(path, **_EXACT)
 
 
 def _csv(path: Path) -> pd.DataFrame | None:
