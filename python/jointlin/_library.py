@@ -75,8 +75,25 @@ def _shaped(values: np.ndarray, shape: tuple[int, ...]):
     return out[()] if shape == () else out
 
 
+class _Statuses:
+    """Per-element statuses: ``ok`` and ``check()``."""
+
+    status: np.ndarray
+    first_failure: tuple | None = None
+
+    @property
+    def ok(self) -> bool:
+        """True when every element succeeded."""
+        return bool(np.all(self.status == 0))
+
+    def check(self):
+        """Raises the named error of the first failed element; returns self otherwise."""
+        check(self.status, self.first_failure)
+        return self
+
+
 @dataclasses.dataclass(frozen=True)
-class Linearization:
+class Linearization(_Statuses):
     """k*, d* and the loop of a contact point per element (the inputs' broadcast shape).
     Elements whose call failed hold NaN and ``regime`` -1; ``status`` says why."""
 
@@ -100,16 +117,6 @@ class Linearization:
     """``Status`` codes, 0 where the call succeeded."""
     first_failure: tuple | None = None
     """(flat index, status, the library's detail) of the first failed element."""
-
-    @property
-    def ok(self) -> bool:
-        """True when every element succeeded."""
-        return bool(np.all(self.status == 0))
-
-    def check(self) -> "Linearization":
-        """Raises the named error of the first failed element; returns self otherwise."""
-        check(self.status, self.first_failure)
-        return self
 
     def to_frame(self) -> pd.DataFrame:
         """One row per element, a column per field (flattened in C order)."""
@@ -157,7 +164,7 @@ def linearize(
 
 
 @dataclasses.dataclass(frozen=True)
-class Linearization3d:
+class Linearization3d(_Statuses):
     """Describing function of a three-direction point on an elliptic path per element;
     the last axis of ``k_star`` and ``d_star`` is the tangential direction (1, 2)."""
 
@@ -170,14 +177,6 @@ class Linearization3d:
     regime: np.ndarray
     status: np.ndarray
     first_failure: tuple | None = None
-
-    @property
-    def ok(self) -> bool:
-        return bool(np.all(self.status == 0))
-
-    def check(self) -> "Linearization3d":
-        check(self.status, self.first_failure)
-        return self
 
 
 def linearize3d(

@@ -44,6 +44,55 @@ fn note_failure(first: &mut FirstFailure, i: usize, status: i32) {
     }
 }
 
+/// The results of a loop over elements: K value columns (NaN where the call failed), the
+/// regime (-1 where it failed), the status and the first failure.
+struct Columns<const K: usize> {
+    values: [Vec<f64>; K],
+    regime: Vec<i32>,
+    status: Vec<i32>,
+    first: FirstFailure,
+}
+
+impl<const K: usize> Columns<K> {
+    /// `call(i)` for each of `n` elements: its values and regime, or its status.
+    fn collect(n: usize, call: impl Fn(usize) -> Result<([f64; K], i32), i32>) -> Self {
+        let mut c = Columns {
+            values: std::array::from_fn(|_| vec![f64::NAN; n]),
+            regime: vec![-1; n],
+            status: vec![JOINTLIN_OK; n],
+            first: None,
+        };
+        for i in 0..n {
+            match call(i) {
+                Ok((values, regime)) => {
+                    for (col, v) in c.values.iter_mut().zip(values) {
+                        col[i] = v;
+                    }
+                    c.regime[i] = regime;
+                }
+                Err(s) => {
+                    c.status[i] = s;
+                    note_failure(&mut c.first, i, s);
+                }
+            }
+        }
+        c
+    }
+
+    /// The columns as a dict: `names` for the values, then regime, status and
+    /// first_failure.
+    fn into_dict<'py>(self, py: Python<'py>, names: [&str; K]) -> PyResult<Bound<'py, PyDict>> {
+        let d = PyDict::new(py);
+        for (name, col) in names.into_iter().zip(self.values) {
+            d.set_item(name, col.into_pyarray(py))?;
+        }
+        d.set_item("regime", self.regime.into_pyarray(py))?;
+        d.set_item("status", self.status.into_pyarray(py))?;
+        d.set_item("first_failure", self.first)?;
+        Ok(d)
+    }
+}
+
 /// `jointlin_linearize` per element: law and rule codes, μ, F_N (force), k_T0
 /// (force/length), A (length), ω (rad/time), the quadrature (kind, points; 0 = default).
 /// Returns a dict of arrays k_star, d_star, eta, energy_per_cycle, peak_force,
@@ -69,12 +118,8 @@ pub fn linearize<'py>(
         kind: method,
         points,
     };
-    let (cols, regime, status, first) = py.detach(|| {
-        let mut cols = vec![vec![f64::NAN; n]; 7];
-        let mut regime = vec![-1i32; n];
-        let mut status = vec![JOINTLIN_OK; n];
-        let mut first: FirstFailure = None;
-        for i in 0..n {
+    let columns = py.detach(|| {
+        Columns::collect(n, |i| {
             let c = jointlin_contact {
                 law,
                 rule,
@@ -84,45 +129,35 @@ pub fn linearize<'py>(
             };
             let mut l = jointlin_linearization::default();
             // SAFETY: all pointers are to live locals.
-            let s = unsafe { jointlin_linearize(&c, amp[i], om[i], &method, &mut l) };
-            status[i] = s;
-            if s != JOINTLIN_OK {
-                note_failure(&mut first, i, s);
-                continue;
+            match unsafe { jointlin_linearize(&c, amp[i], om[i], &method, &mut l) } {
+                JOINTLIN_OK => Ok((
+                    [
+                        l.k_star,
+                        l.d_star,
+                        l.eta,
+                        l.energy_per_cycle,
+                        l.peak_force,
+                        l.slip_limit,
+                        l.amplitude_ratio,
+                    ],
+                    l.regime,
+                )),
+                s => Err(s),
             }
-            let values = [
-                l.k_star,
-                l.d_star,
-                l.eta,
-                l.energy_per_cycle,
-                l.peak_force,
-                l.slip_limit,
-                l.amplitude_ratio,
-            ];
-            for (col, v) in cols.iter_mut().zip(values) {
-                col[i] = v;
-            }
-            regime[i] = l.regime;
-        }
-        (cols, regime, status, first)
+        })
     });
-    let d = PyDict::new(py);
-    let names = [
-        "k_star",
-        "d_star",
-        "eta",
-        "energy_per_cycle",
-        "peak_force",
-        "slip_limit",
-        "amplitude_ratio",
-    ];
-    for (name, col) in names.into_iter().zip(cols) {
-        d.set_item(name, col.into_pyarray(py))?;
-    }
-    d.set_item("regime", regime.into_pyarray(py))?;
-    d.set_item("status", status.into_pyarray(py))?;
-    d.set_item("first_failure", first)?;
-    Ok(d)
+    columns.into_dict(
+        py,
+        [
+            "k_star",
+            "d_star",
+            "eta",
+            "energy_per_cycle",
+            "peak_force",
+            "slip_limit",
+            "amplitude_ratio",
+        ],
+    )
 }
 
 /// `jointlin_linearize3d` per element for one contact (law code, cells, μ, k_T0): F_N
@@ -154,54 +189,40 @@ pub fn linearize3d<'py>(
         normal_stiffness: 1.0,
         r_star: 1.0,
     };
-    let (cols, regime, status, first) = py.detach(|| {
-        let mut cols = vec![vec![f64::NAN; n]; 5];
-        let mut regime = vec![-1i32; n];
-        let mut status = vec![JOINTLIN_OK; n];
-        let mut first: FirstFailure = None;
-        for i in 0..n {
+    let columns = py.detach(|| {
+        Columns::collect(n, |i| {
             let mut l = jointlin_linearization3d::default();
             // SAFETY: all pointers are to live locals.
-            let s = unsafe { jointlin_linearize3d(&c, fnorm[i], a1[i], a2[i], om[i], &mut l) };
-            status[i] = s;
-            if s != JOINTLIN_OK {
-                note_failure(&mut first, i, s);
-                continue;
+            match unsafe { jointlin_linearize3d(&c, fnorm[i], a1[i], a2[i], om[i], &mut l) } {
+                JOINTLIN_OK => Ok((
+                    [
+                        l.k_star[0],
+                        l.k_star[1],
+                        l.d_star[0],
+                        l.d_star[1],
+                        l.energy_per_cycle,
+                    ],
+                    l.regime,
+                )),
+                s => Err(s),
             }
-            let values = [
-                l.k_star[0],
-                l.k_star[1],
-                l.d_star[0],
-                l.d_star[1],
-                l.energy_per_cycle,
-            ];
-            for (col, v) in cols.iter_mut().zip(values) {
-                col[i] = v;
-            }
-            regime[i] = l.regime;
-        }
-        (cols, regime, status, first)
+        })
     });
-    let d = PyDict::new(py);
-    let names = [
-        "k_star_1",
-        "k_star_2",
-        "d_star_1",
-        "d_star_2",
-        "energy_per_cycle",
-    ];
-    for (name, col) in names.into_iter().zip(cols) {
-        d.set_item(name, col.into_pyarray(py))?;
-    }
-    d.set_item("regime", regime.into_pyarray(py))?;
-    d.set_item("status", status.into_pyarray(py))?;
-    d.set_item("first_failure", first)?;
-    Ok(d)
+    columns.into_dict(
+        py,
+        [
+            "k_star_1",
+            "k_star_2",
+            "d_star_1",
+            "d_star_2",
+            "energy_per_cycle",
+        ],
+    )
 }
 
 /// `jointlin_screw_preload` per element: torque (force·length), pitch, flank diameter
 /// d2, head diameter d_km (length), thread and head friction. Returns a dict of arrays
-/// preload (force), status and `first_failure`.
+/// preload (force), regime (0: none applies), status and `first_failure`.
 #[pyfunction]
 pub fn screw_preload<'py>(
     py: Python<'py>,
@@ -214,23 +235,13 @@ pub fn screw_preload<'py>(
 ) -> PyResult<Bound<'py, PyDict>> {
     let [t, p, d2, mt, mh, dk] = slices([&torque, &pitch, &d2, &mu_thread, &mu_head, &d_km])?;
     let n = t.len();
-    let mut preload = vec![f64::NAN; n];
-    let mut status = vec![JOINTLIN_OK; n];
-    let mut first: FirstFailure = None;
-    for i in 0..n {
+    let columns = Columns::collect(n, |i| {
         let mut f = 0.0;
         // SAFETY: `f` is a live local.
-        let s = unsafe { jointlin_screw_preload(t[i], p[i], d2[i], mt[i], mh[i], dk[i], &mut f) };
-        status[i] = s;
-        if s == JOINTLIN_OK {
-            preload[i] = f;
-        } else {
-            note_failure(&mut first, i, s);
+        match unsafe { jointlin_screw_preload(t[i], p[i], d2[i], mt[i], mh[i], dk[i], &mut f) } {
+            JOINTLIN_OK => Ok(([f], 0)),
+            s => Err(s),
         }
-    }
-    let d = PyDict::new(py);
-    d.set_item("preload", preload.into_pyarray(py))?;
-    d.set_item("status", status.into_pyarray(py))?;
-    d.set_item("first_failure", first)?;
-    Ok(d)
+    });
+    columns.into_dict(py, ["preload"])
 }
