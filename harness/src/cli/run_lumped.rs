@@ -237,9 +237,11 @@ fn sweep_pass(
     rows.sort_by(|a, b| a.0.total_cmp(&b.0));
     let mut csv = CsvTable::new(&header);
     let mut harmonics = harmonic.map(|_| CsvTable::new(&hheader));
+    // Only converged frequencies carry amplitudes (a failed one leaves its fields empty).
     let mut curve = FrfCurve {
         label: label.to_string(),
         points: Vec::new(),
+        not_converged: Vec::new(),
     };
     for (f, row, hrow, amps) in rows {
         csv.row(&row);

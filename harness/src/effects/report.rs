@@ -135,6 +135,7 @@ pub fn write(dir: &Path, t: &EffectsStudy) -> Result<Vec<PathBuf>, String> {
                 .filter(|&i| v.sweep.converged[i] && v.sweep.failure(i).is_none())
                 .map(|i| (v.sweep.freqs[i], vec![v.sweep.outputs[i][0].norm()]))
                 .collect(),
+            not_converged: Vec::new(),
         })
         .collect();
     let title = format!("{}: point models of the contact", t.scene);

@@ -33,13 +33,21 @@ pub fn frf(
     let names: Vec<String> = p.outputs.iter().map(|o| o.name.clone()).collect();
     let curves: Vec<FrfCurve> = curves
         .iter()
-        .map(|(r, label)| FrfCurve {
-            label: label.to_string(),
+        .map(|(r, label)| {
             // Singular and failed frequencies have no response: left out of the curve.
-            points: (0..r.freqs.len())
+            let solved: Vec<usize> = (0..r.freqs.len())
                 .filter(|&i| !r.is_singular(i) && r.failure(i).is_none())
-                .map(|i| (r.freqs[i], r.outputs[i].iter().map(|v| v.norm()).collect()))
-                .collect(),
+                .collect();
+            FrfCurve {
+                label: label.to_string(),
+                points: solved
+                    .iter()
+                    .map(|&i| (r.freqs[i], r.outputs[i].iter().map(|v| v.norm()).collect()))
+                    .collect(),
+                not_converged: (0..solved.len())
+                    .filter(|&k| !r.converged[solved[k]])
+                    .collect(),
+            }
         })
         .collect();
     frf_curves(path, title, units, &names, &curves)
@@ -50,6 +58,8 @@ pub fn frf(
 pub struct FrfCurve {
     pub label: String,
     pub points: Vec<(f64, Vec<f64>)>,
+    /// Indices into `points` of frequencies whose iteration did not converge: marked ×.
+    pub not_converged: Vec<usize>,
 }
 
 /// [`frf`] from plain data: `names` of the outputs, the curves' amplitudes.
@@ -84,10 +94,14 @@ pub fn frf_curves(
     }
     // At least a decade, ending on labelled ticks.
     let (ymin, ymax) = labelled_log_range(ymin * 0.8, ymax * 1.25);
-    let (x0, x1) = if f1 > f0 {
-        (f0, f1)
-    } else {
+    // Markers (a few frequencies) get room at both ends for themselves and their values.
+    let (x0, x1) = if f1 <= f0 {
         (f0 * 0.9, f0 * 1.1)
+    } else if main.points.len() <= MARKED_POINTS {
+        let pad = 0.15 * (f1 - f0);
+        (f0 - pad, f1 + pad)
+    } else {
+        (f0, f1)
     };
     let mut chart = ChartBuilder::on(&root)
         .caption(title, ("sans-serif", 20))
@@ -131,7 +145,8 @@ pub fn frf_curves(
                             EmptyElement::at((f, a))
                                 + Text::new(
                                     format!("{a:.4e} {}", units.length),
-                                    (10, -18),
+                                    // Left of a marker in the right half, so it stays inside.
+                                    (if f > 0.5 * (x0 + x1) { -110 } else { 10 }, -18),
                                     font.clone(),
                                 )
                         }))
@@ -164,6 +179,31 @@ pub fn frf_curves(
                     });
             }
         }
+    }
+    // Frequencies that did not converge, marked on the main curve (a line through them
+    // would pass them off as results).
+    if !main.not_converged.is_empty() {
+        let marks: Vec<(f64, f64)> = main
+            .not_converged
+            .iter()
+            .flat_map(|&i| {
+                let (f, a) = &main.points[i];
+                let f = fu.show(*f);
+                a.iter().map(move |&a| (f, a.max(ymin)))
+            })
+            .collect();
+        chart
+            .draw_series(
+                marks
+                    .into_iter()
+                    .map(|q| Cross::new(q, 5, RED.stroke_width(2))),
+            )
+            .map_err(err)?
+            .label(format!(
+                "not converged ({} frequencies; status in results.csv)",
+                main.not_converged.len()
+            ))
+            .legend(|(x, y)| Cross::new((x + 12, y), 5, RED.stroke_width(2)));
     }
     if names.len() > LEGEND_OUTPUTS {
         chart
@@ -430,6 +470,7 @@ mod tests {
         let names: Vec<String> = (0..20).map(|i| format!("node_{i}")).collect();
         let curve = |label: &str, scale: f64| FrfCurve {
             label: label.into(),
+            not_converged: if scale == 1.0 { vec![3, 7] } else { Vec::new() },
             points: (0..50)
                 .map(|i| {
                     let f = 100.0 + i as f64;
@@ -466,5 +507,6 @@ mod tests {
         assert_eq!(named, LEGEND_OUTPUTS);
         assert!(has("(+12 more outputs, not in the legend)"));
         assert!(has("0.001") && has("0.01"), "{svg}");
+        assert!(has("not converged (2 frequencies; status in results.csv)"));
     }
 }
