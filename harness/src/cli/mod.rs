@@ -93,7 +93,8 @@ pub enum Command {
     ///                 line, time, SHA-256 of every input file; docs/outputs.md), scene
     ///                 echo, effects with costs, passes, iterations, timings, C-API calls
     ///   frf.svg       FRF of the outputs with and without contact damping (and the
-    ///                 sweep down for "up_down")
+    ///                 sweep down for "up_down"); frequencies that did not converge
+    ///                 marked with a red cross
     ///   passes.svg    frequencies per pass (thesis mode: Fig. 4.33; not for one pass)
     ///
     /// Progress on stderr: a bar on a terminal; in a batch job (stderr a file or pipe)
