@@ -19,7 +19,7 @@ use jointlin_harness::mhb::default_samples;
 use jointlin_harness::mhb::lumped_sweep::{Solved, Sweep};
 use jointlin_harness::model::lumped;
 use jointlin_harness::report::csv::{harmonic_columns, harmonic_values};
-use jointlin_harness::report::svg::{frf_curves, FrfCurve};
+use jointlin_harness::report::frf_plot::{frf_curves, FrfCurve};
 use jointlin_harness::settings::units::{frequency_unit, ColumnUnits};
 use jointlin_harness::settings::{Direction, Mode, Units};
 use jointlin_harness::util::csv_table::CsvTable;

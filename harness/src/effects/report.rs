@@ -5,7 +5,7 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 use super::EffectsStudy;
-use crate::report::svg::{frf_curves, FrfCurve};
+use crate::report::frf_plot::{frf_curves, FrfCurve};
 use crate::settings::units::{frequency_unit, ColumnUnits};
 use crate::settings::Mode;
 use crate::util::atomic;

@@ -3,6 +3,7 @@
 pub mod contact_map;
 pub mod csv;
 pub mod field;
+pub mod frf_plot;
 pub mod modes;
 pub mod svg;
 pub mod vtu;
@@ -299,7 +300,7 @@ pub fn write_all(
         curves.extend(r.reference.as_ref().map(|d| (d, "without contact damping")));
         let p = dir.join("frf.svg");
         atomic::with_temp(&p, |t| {
-            svg::frf(t, title, &scene.spec.units, &r.problem, &curves)
+            frf_plot::frf(t, title, &scene.spec.units, &r.problem, &curves)
         })?;
         out.push(p);
         // Frequencies per pass: a picture only where there are passes (thesis mode's
