@@ -117,7 +117,12 @@ pub fn stick_slip(
     chart
         .configure_mesh()
         .disable_mesh()
-        .x_desc(freq_label(units))
+        // One column per swept frequency: the axis counts the sweep's points (refine
+        // bands get as many columns as the rest), its labels name their frequencies.
+        .x_desc(format!(
+            "{} — one column per swept frequency, not to scale",
+            freq_label(units)
+        ))
         .y_desc("contact point (by interface, x)")
         .y_label_formatter(&|v: &f64| {
             if v.fract() == 0.0 {
