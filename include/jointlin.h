@@ -26,7 +26,7 @@
 /**
  * Minor version of the C ABI: additions that keep existing callers working.
  */
-#define JOINTLIN_ABI_VERSION_MINOR 6
+#define JOINTLIN_ABI_VERSION_MINOR 7
 
 /**
  * Success.
@@ -204,6 +204,11 @@
  * (microseconds per point; each cell's force harmonics within 2e-3 of its limit force).
  */
 #define JOINTLIN_DESCRIBE_TABULATED 1
+
+/**
+ * Largest number of derivative columns one call takes.
+ */
+#define JOINTLIN_POINT_DERIVATIVE_COLUMNS_MAX 4096
 
 /**
  * Smallest NPROPS accepted by jointlin_uinter. The UINTER property layout:
@@ -944,6 +949,43 @@ int32_t jointlin_linearize3d_phasors(const struct jointlin_contact3d *contact,
                                      double omega,
                                      int32_t method,
                                      struct jointlin_linearization3d_matrix *out);
+
+/**
+ * `jointlin_point_step` that also carries derivatives with respect to `columns`
+ * parameters: `d_state` holds the derivatives of the state's slots (slot-major: slot i's
+ * derivative with respect to parameter c at `d_state[i * columns + c]`,
+ * JOINTLIN_POINT_STATE_LEN × columns doubles; zeros for a virgin point), `d_slip` those
+ * of `slip` (`columns` doubles). Writes the new state and its derivatives (`state_out`,
+ * `d_state_out`, same layouts) and the step (`out`) with the derivatives of its force
+ * (`d_force`, `columns` doubles).
+ *
+ * The derivatives are those of the branch the step takes (elastic line, virgin curve,
+ * Masing branch, with its anchors — reversal points, the zero-force point, the
+ * sliding point — moving with the slips they came from), exact except where a step
+ * ends exactly on a branch change. Chained over a path they give the derivative of every
+ * force on it with respect to the slips. The same states as `jointlin_point_step`;
+ * `state_out` may equal `state` and `d_state_out` may equal `d_state`.
+ *
+ * `columns` may be 0 (then the derivative pointers are not read and may be NULL).
+ * Errors: those of `jointlin_point_step`, JOINTLIN_ERR_NON_FINITE for NaN/Inf in
+ * `d_state` or `d_slip`, JOINTLIN_ERR_OUT_OF_RANGE for `columns` above
+ * JOINTLIN_POINT_DERIVATIVE_COLUMNS_MAX, JOINTLIN_ERR_OVERFLOW where a derivative is not
+ * representable. Outputs are written only on JOINTLIN_OK.
+ *
+ * # Safety
+ * As `jointlin_point_step`; with `columns` > 0, `d_state` and `d_state_out` point to
+ * JOINTLIN_POINT_STATE_LEN × `columns` doubles, `d_slip` and `d_force` to `columns`.
+ */
+int32_t jointlin_point_step_derivatives(const struct jointlin_contact *contact,
+                                        const double *state,
+                                        const double *d_state,
+                                        double slip,
+                                        const double *d_slip,
+                                        size_t columns,
+                                        double *state_out,
+                                        double *d_state_out,
+                                        struct jointlin_step *out,
+                                        double *d_force);
 
 /**
  * Checks a UINTER property table as jointlin_uinter reads it, before a job runs: NPROPS

@@ -37,6 +37,7 @@ pub mod effects;
 pub mod export;
 pub mod fe;
 pub mod input;
+pub mod linalg;
 pub mod loss;
 pub mod mhb;
 pub mod model;

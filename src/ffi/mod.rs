@@ -32,6 +32,7 @@ pub mod error;
 pub mod linearize;
 pub mod point;
 pub mod point3d;
+pub mod point_tangents;
 pub mod props;
 pub mod screw;
 pub mod store;
@@ -47,7 +48,7 @@ use error::{
 /// Major version of the C ABI: changes break existing callers.
 pub const JOINTLIN_ABI_VERSION_MAJOR: u32 = 0;
 /// Minor version of the C ABI: additions that keep existing callers working.
-pub const JOINTLIN_ABI_VERSION_MINOR: u32 = 6;
+pub const JOINTLIN_ABI_VERSION_MINOR: u32 = 7;
 
 /// The ABI version of the loaded library, (major << 16) | minor. A caller compiled against
 /// this header should check that the major part equals JOINTLIN_ABI_VERSION_MAJOR.

@@ -7,7 +7,7 @@
 //! the branch from r_{n−2} continues. A branch that reaches Coulomb sliding has erased all
 //! memory, so the stack collapses to a virgin curve shifted to the sliding point.
 
-use super::{sign, StepResult};
+use super::{sign, StepResult, Tangents, FORCE_SLOT as FORCE, SLIP_SLOT as SLIP};
 use crate::error::Error;
 use crate::law::Backbone;
 
@@ -15,6 +15,16 @@ use crate::law::Backbone;
 /// than this many unclosed reversals without sliding) forgets the innermost pending loop,
 /// i.e. treats it as closed; continuity of the force is kept.
 pub const MAX_REVERSALS: usize = 6;
+
+/// Slots of the stored state (tag at 0, [`MasingState::write`] from 1): the origin and
+/// reversal i's slip and force.
+const ORIGIN: usize = 3;
+const fn rev_slip(i: usize) -> usize {
+    5 + 3 * i
+}
+const fn rev_force(i: usize) -> usize {
+    6 + 3 * i
+}
 
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct MasingState {
@@ -89,20 +99,56 @@ impl MasingState {
         }
     }
 
+    /// Derivative of [`Self::branch_force`] on branch `depth` at slip δ (stored in slot
+    /// `at`), clipped at ±μF_N like the force (then zero): g'(s)(dδ − dδ₀) on the virgin
+    /// curve, dF_n + g'(Δ/2)(dδ − dδ_n) on the branch from reversal n.
+    fn branch_terms(&self, b: &Backbone, depth: usize, slip: f64, at: usize) -> [(usize, f64); 3] {
+        let limit = b.friction_limit();
+        if self.branch_force(b, depth, slip).abs() > limit {
+            return [(at, 0.0); 3];
+        }
+        match depth {
+            0 => {
+                let k = b.tangent((slip - self.origin).abs());
+                [(at, k), (ORIGIN, -k), (ORIGIN, 0.0)]
+            }
+            n => {
+                let (ds, _, d) = self.reversals[n - 1];
+                let k = b.tangent((d * (slip - ds)).max(0.0) / 2.0);
+                [(rev_force(n - 1), 1.0), (at, k), (rev_slip(n - 1), -k)]
+            }
+        }
+    }
+
+    /// The force on the active branch at the current slip, clipped, with its derivative.
+    fn set_force(&mut self, b: &Backbone, t: &mut impl Tangents) {
+        let limit = b.friction_limit();
+        self.force = self.on_branch(b, self.slip).clamp(-limit, limit);
+        t.set(
+            FORCE,
+            &self.branch_terms(b, self.depth, self.slip, SLIP),
+            0.0,
+        );
+    }
+
     /// Re-derives every stored force from the slips with the current backbone: each reversal
     /// lies on the branch before it. With a constant friction limit this reproduces the
     /// stored values; when the normal load changed since the last step it makes the force a
     /// continuous function of the load at fixed slip history (no jump between continuing
     /// and reversing at a zero increment).
-    fn sync(&mut self, b: &Backbone) {
+    fn sync(&mut self, b: &Backbone, t: &mut impl Tangents) {
         let limit = b.friction_limit();
         for i in 0..self.depth {
-            let f = self
-                .branch_force(b, i, self.reversals[i].0)
-                .clamp(-limit, limit);
+            let slip = self.reversals[i].0;
+            let f = self.branch_force(b, i, slip).clamp(-limit, limit);
+            t.set(
+                rev_force(i),
+                &self.branch_terms(b, i, slip, rev_slip(i)),
+                0.0,
+            );
             self.reversals[i].1 = f;
         }
-        self.force = self.on_branch(b, self.slip).clamp(-limit, limit);
+        self.set_force(b, t);
     }
 
     /// Iwan dissipation accumulated along the active branch up to slip δ (see
@@ -117,28 +163,37 @@ impl MasingState {
         }
     }
 
-    /// Slip at which the active branch closes (rejoins its parent), if any.
-    fn closure(&self) -> Option<f64> {
+    /// Slip at which the active branch closes (rejoins its parent), if any, and its
+    /// derivative.
+    fn closure(&self) -> Option<(f64, [(usize, f64); 2])> {
         match self.depth {
             0 => None,
-            1 => Some(2.0 * self.origin - self.reversals[0].0),
-            n => Some(self.reversals[n - 2].0),
+            1 => Some((
+                2.0 * self.origin - self.reversals[0].0,
+                [(ORIGIN, 2.0), (rev_slip(0), -1.0)],
+            )),
+            n => Some((
+                self.reversals[n - 2].0,
+                [(rev_slip(n - 2), 1.0), (SLIP, 0.0)],
+            )),
         }
     }
 
-    fn push_reversal(&mut self, dir: f64) {
+    fn push_reversal(&mut self, dir: f64, t: &mut impl Tangents) {
         if self.depth == MAX_REVERSALS {
             // Forget the innermost pending loop (r_{n-1}, r_n): the new branch then heads
             // for r_{n-2}, as if the small loop had closed. Force stays continuous.
             self.depth -= 2;
         }
         self.reversals[self.depth] = (self.slip, self.force, dir);
+        t.set(rev_slip(self.depth), &[(SLIP, 1.0)], 0.0);
+        t.set(rev_force(self.depth), &[(FORCE, 1.0)], 0.0);
         self.depth += 1;
     }
 
     /// Collapses the memory once the active branch is in Coulomb sliding: every slider
     /// has slipped, so the point behaves as a virgin curve centred δ* behind it.
-    fn collapse_if_sliding(&mut self, b: &Backbone) {
+    fn collapse_if_sliding(&mut self, b: &Backbone, t: &mut impl Tangents) {
         let d = self.branch_dir();
         let delta_star = b.slip_limit();
         let sliding = match self.depth {
@@ -148,6 +203,7 @@ impl MasingState {
         if sliding && d != 0.0 {
             self.depth = 0;
             self.origin = self.slip - d * delta_star;
+            t.set(ORIGIN, &[(SLIP, 1.0)], 0.0);
             // Rounding may leave |δ − δ₀| a few ulps below δ*, where a Jenkins backbone would
             // report the stick tangent k_T0 although the point slides: step δ₀ back by ulps.
             for _ in 0..8 {
@@ -159,8 +215,13 @@ impl MasingState {
         }
     }
 
-    pub(super) fn advance(&mut self, b: &Backbone, target: f64) -> StepResult {
-        self.sync(b);
+    pub(super) fn advance(
+        &mut self,
+        b: &Backbone,
+        target: f64,
+        t: &mut impl Tangents,
+    ) -> StepResult {
+        self.sync(b, t);
         let motion = sign(target - self.slip);
         if motion == 0.0 {
             return StepResult {
@@ -175,28 +236,27 @@ impl MasingState {
             if at_branch_start {
                 self.depth -= 1; // reversing exactly at a reversal point: back on its parent
             } else {
-                self.push_reversal(motion);
+                self.push_reversal(motion, t);
             }
         }
         let mut dissipated = 0.0;
         loop {
-            let stop = match self.closure() {
-                Some(c) if motion * (target - c) >= 0.0 => c,
-                _ => target,
+            let (stop, terms, d_target) = match self.closure() {
+                Some((c, terms)) if motion * (target - c) >= 0.0 => (c, terms, 0.0),
+                _ => (target, [(SLIP, 0.0); 2], 1.0),
             };
             dissipated +=
                 (self.branch_dissipation(b, stop) - self.branch_dissipation(b, self.slip)).max(0.0);
             self.slip = stop;
-            self.force = self
-                .on_branch(b, stop)
-                .clamp(-b.friction_limit(), b.friction_limit());
+            t.set(SLIP, &terms, d_target);
+            self.set_force(b, t);
             if stop == target {
                 break;
             }
             // The branch reached its parent: drop the closed loop.
             self.depth = if self.depth == 1 { 0 } else { self.depth - 2 };
         }
-        self.collapse_if_sliding(b);
+        self.collapse_if_sliding(b, t);
         StepResult {
             force: self.force,
             tangent: self.tangent(b),

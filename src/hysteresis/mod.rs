@@ -11,6 +11,12 @@
 //! The two tangential directions of an FE point are independent points (Fig. 4.26).
 //! A state is plain data and [`Point::step`] is pure, so hosts can evaluate trial states
 //! (Newton iterations, Runge–Kutta stages) and commit only accepted ones.
+//!
+//! [`Point::step_with_tangents`] also carries derivatives of the state's continuous slots
+//! with respect to any parameters the slips depend on (the tangent-linear step): every
+//! assignment of a continuous slot in the rules is mirrored by a [`Tangents::set`] with
+//! its exact derivative on the branch taken, so a host differentiates a whole marched
+//! path (e.g. a harmonic-balance Jacobian) without finite differences.
 
 mod masing;
 mod thesis;
@@ -55,8 +61,29 @@ pub struct StepResult {
     pub dissipated: f64,
 }
 
+/// Slots of the stored state every rule shares: the slip and the force.
+pub const SLIP_SLOT: usize = 1;
+pub const FORCE_SLOT: usize = 2;
+
 /// Number of f64 slots a [`PointState`] occupies when stored (e.g. in Abaqus STATEV).
 pub const STATE_LEN: usize = 5 + 3 * MAX_REVERSALS;
+
+/// Derivatives of a stored state's slots (the layout of [`PointState::write`]) with
+/// respect to some parameters, updated along with the state by a step.
+pub trait Tangents {
+    /// d(slot `dst`) = Σ coefficient · d(slot) over `terms` (values before this
+    /// assignment) + `target` · d(new slip). Slots never assigned keep their derivatives;
+    /// discrete slots (tags, directions, counts) are never assigned.
+    fn set(&mut self, dst: usize, terms: &[(usize, f64)], target: f64);
+}
+
+/// No derivatives: the plain step.
+pub struct NoTangents;
+
+impl Tangents for NoTangents {
+    #[inline(always)]
+    fn set(&mut self, _dst: usize, _terms: &[(usize, f64)], _target: f64) {}
+}
 
 impl PointState {
     /// A point that has never slipped, at slip `origin` with zero force.
@@ -131,16 +158,27 @@ impl Point {
         state: &PointState,
         slip_new: f64,
     ) -> Result<(PointState, StepResult), Error> {
+        self.step_with_tangents(state, slip_new, &mut NoTangents)
+    }
+
+    /// [`Point::step`] that also moves the derivatives `tangents` of the state's slots
+    /// along (the derivative of the new force is that of slot [`FORCE_SLOT`]).
+    pub fn step_with_tangents(
+        &self,
+        state: &PointState,
+        slip_new: f64,
+        tangents: &mut impl Tangents,
+    ) -> Result<(PointState, StepResult), Error> {
         finite(slip_new, "slip")?;
         match (state, self.rule) {
             (PointState::Thesis(s), Rule::Thesis) => {
                 let mut next = *s;
-                let r = next.advance(&self.backbone, slip_new);
+                let r = next.advance(&self.backbone, slip_new, tangents);
                 Ok((PointState::Thesis(next), r))
             }
             (PointState::Masing(s), Rule::Masing) => {
                 let mut next = *s;
-                let r = next.advance(&self.backbone, slip_new);
+                let r = next.advance(&self.backbone, slip_new, tangents);
                 Ok((PointState::Masing(next), r))
             }
             _ => Err(Error::OutOfRange("state belongs to another unloading rule")),

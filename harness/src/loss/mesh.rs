@@ -7,12 +7,11 @@
 //! optionally, at the nodes (the thesis's way).
 
 use std::fmt::Write as _;
-use std::sync::atomic::{AtomicUsize, Ordering};
-use std::sync::Mutex;
 
 use super::{powers_at, LossError};
 use crate::input::scene::Scene;
 use crate::util::number::exact;
+use crate::util::parallel::{in_parallel, threads};
 
 /// Samples per quarter face and direction of the area-sampled variant.
 pub const STUDY_AREA_SAMPLES: usize = 4;
@@ -250,31 +249,9 @@ pub fn study(
         Ok(row)
     };
     let jobs = plan(factors, refinements.len());
-    let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
-    in_parallel(&jobs, threads, mesh_row).into_iter().collect()
-}
-
-/// `work` applied to every job on up to `threads` threads; results in the jobs' order.
-fn in_parallel<J: Sync, T: Send>(
-    jobs: &[J],
-    threads: usize,
-    work: impl Fn(&J) -> T + Sync,
-) -> Vec<T> {
-    let next = AtomicUsize::new(0);
-    let done = Mutex::new(Vec::with_capacity(jobs.len()));
-    std::thread::scope(|s| {
-        for _ in 0..threads.clamp(1, jobs.len().max(1)) {
-            s.spawn(|| loop {
-                let i = next.fetch_add(1, Ordering::Relaxed);
-                let Some(job) = jobs.get(i) else { break };
-                let out = work(job);
-                done.lock().expect("a worker panicked").push((i, out));
-            });
-        }
-    });
-    let mut done = done.into_inner().expect("a worker panicked");
-    done.sort_by_key(|(i, _)| *i);
-    done.into_iter().map(|(_, t)| t).collect()
+    in_parallel(&jobs, threads(), mesh_row)
+        .into_iter()
+        .collect()
 }
 
 /// Change of `now` against `before`, percent.
@@ -393,25 +370,6 @@ pub fn csv(rows: &[MeshRow]) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    /// Every job once, results in the jobs' order, for more, fewer and as many threads
-    /// as jobs (and none).
-    #[test]
-    fn in_parallel_keeps_the_jobs_order() {
-        let jobs: Vec<u64> = (0..37).collect();
-        for threads in [0, 1, 2, 5, 37, 64] {
-            let out = in_parallel(&jobs, threads, |&j| {
-                std::thread::sleep(std::time::Duration::from_micros(37 - j));
-                j * j
-            });
-            assert_eq!(
-                out,
-                jobs.iter().map(|j| j * j).collect::<Vec<_>>(),
-                "{threads}"
-            );
-        }
-        assert!(in_parallel(&[] as &[u64], 2, |&j| j).is_empty());
-    }
 
     #[test]
     fn refinement_specs_parse_and_bad_ones_are_named() {

@@ -128,10 +128,26 @@ pub struct Period {
     pub dissipated: f64,
     /// Periods marched until the loop closed.
     pub periods: usize,
+    /// A point's state at the end of the closed period (= at its start); zeros for
+    /// elastic elements.
+    pub end_state: [f64; POINT_STATE_LEN],
 }
 
-/// Forces of `law` over the periodic samples `delta` (closed loop for points).
+/// Forces of `law` over the periodic samples `delta` (closed loop for points), marched
+/// from a virgin point.
 pub fn march(law: &Law, delta: &[f64]) -> Result<Period, AftError> {
+    march_from(law, delta, &[0.0; POINT_STATE_LEN])
+}
+
+/// [`march`] from a point's `start` state, e.g. the closed loop of a nearby δ: a
+/// perturbed loop then closes in two or three periods where a virgin start takes up to
+/// eleven. The closed loop is the same (the loop an element settles on does not depend
+/// on where it started; the closure test is unchanged).
+pub fn march_from(
+    law: &Law,
+    delta: &[f64],
+    start: &[f64; POINT_STATE_LEN],
+) -> Result<Period, AftError> {
     let n = delta.len();
     match law {
         Law::Cubic(k3) => {
@@ -147,7 +163,7 @@ pub fn march(law: &Law, delta: &[f64]) -> Result<Period, AftError> {
             Ok(cur)
         }
         Law::Point(t) => {
-            let mut state = [0.0; POINT_STATE_LEN];
+            let mut state = *start;
             let mut next = [0.0; POINT_STATE_LEN];
             let mut prev: Vec<f64> = vec![0.0; n];
             let mut cur = Period {
@@ -181,6 +197,7 @@ pub fn march(law: &Law, delta: &[f64]) -> Result<Period, AftError> {
                     continue;
                 }
                 if diff <= CLOSE_TOL * scale {
+                    cur.end_state = state;
                     return Ok(cur);
                 }
                 if let Some(x) = aitken.after(&state, diff) {
@@ -235,7 +252,7 @@ pub fn evaluate(tr: &mut Transforms, law: &Law, dc: &[f64]) -> Result<ElementEva
     let mut jac = vec![0.0; m * m];
     if let Law::Point(t) = law {
         if t.law != LawName::Jenkins {
-            fd_jacobian(tr, law, t, dc, &force, &mut jac)?;
+            fd_jacobian(tr, law, t, dc, (&force, &period.end_state), &mut jac)?;
             return Ok(ElementEval { force, jac, period });
         }
     }
@@ -269,7 +286,8 @@ pub fn evaluate(tr: &mut Transforms, law: &Law, dc: &[f64]) -> Result<ElementEva
     Ok(ElementEval { force, jac, period })
 }
 
-/// Forward differences of the whole AFT map (one march per column), step 1e-7 of the
+/// Forward differences of the whole AFT map (one march per column, from the closed
+/// loop's state `base.1` whose force coefficients are `base.0`), step 1e-7 of the
 /// larger of max|δ̂| and the slip limit δ* = 1.5 μF_N/k_T0 (2.46): truncation ~1e-7 on the
 /// smooth Mindlin branches, round-off ~1e-9 (the march is deterministic).
 fn fd_jacobian(
@@ -277,7 +295,7 @@ fn fd_jacobian(
     law: &Law,
     t: &Tangential,
     dc: &[f64],
-    force: &[f64],
+    base: (&[f64], &[f64; POINT_STATE_LEN]),
     jac: &mut [f64],
 ) -> Result<(), AftError> {
     let (n, m) = (tr.n, tr.ncoef());
@@ -289,10 +307,10 @@ fn fd_jacobian(
     for j in 0..m {
         p[j] = dc[j] + eps;
         tr.synthesize(&p, &mut delta);
-        let per = march(law, &delta)?;
+        let per = march_from(law, &delta, base.1)?;
         tr.analyse(&per.force, &mut col);
         for i in 0..m {
-            jac[i * m + j] = (col[i] - force[i]) / eps;
+            jac[i * m + j] = (col[i] - base.0[i]) / eps;
         }
         p[j] = dc[j];
     }

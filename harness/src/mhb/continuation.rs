@@ -19,6 +19,7 @@
 use nalgebra::{DMatrix, DVector};
 
 use super::{Hb, MhbError, Solution};
+use crate::linalg::{self, Lu};
 
 /// Settings of a continuation run.
 #[derive(Debug, Clone, Copy)]
@@ -95,12 +96,9 @@ pub fn trace(hb: &mut Hb, u0: &[f64], opt: Options) -> Result<Branch, MhbError> 
     let ev0 = hb.eval(&pts[0].sol.u, pts[0].sol.omega)?;
     let mut rhs = DVector::zeros(dim + 1);
     rhs[dim] = 1.0;
-    let mut t = augmented(&ev0, &t_prev)
-        .lu()
-        .solve(&rhs)
-        .ok_or(MhbError::Singular {
-            omega: opt.omega_start,
-        })?;
+    let mut t = linalg::solve(&augmented(&ev0, &t_prev), &rhs).ok_or(MhbError::Singular {
+        omega: opt.omega_start,
+    })?;
     t /= t.norm();
     let mut s_total = 0.0;
     while pts.len() < opt.max_points {
@@ -120,7 +118,7 @@ pub fn trace(hb: &mut Hb, u0: &[f64], opt: Options) -> Result<Branch, MhbError> 
                 ok = Some((it, ev, res));
                 break;
             }
-            let Some(dy) = augmented(&ev, &t).lu().solve(&g) else {
+            let Some(dy) = linalg::solve(&augmented(&ev, &t), &g) else {
                 break;
             };
             yc -= dy;
@@ -140,13 +138,13 @@ pub fn trace(hb: &mut Hb, u0: &[f64], opt: Options) -> Result<Branch, MhbError> 
             continue;
         };
         // New tangent at the corrected point.
-        let Some(mut tn) = augmented(&ev, &t).lu().solve(&rhs) else {
+        let Some(mut tn) = linalg::solve(&augmented(&ev, &t), &rhs) else {
             return Err(MhbError::Singular {
                 omega: yc[dim] * ws,
             });
         };
         tn /= tn.norm();
-        let det = ev.j.clone().lu().determinant().signum();
+        let det = Lu::factor(ev.j.clone()).map_or(0.0, |lu| lu.determinant_sign());
         let last_det = pts[pts.len() - 1].sol.det_sign;
         // A step too long for the curvature jumps to another part of the branch: the
         // corrected point lies behind the predictor's direction, or ω turns back where

@@ -35,6 +35,9 @@ mod tests;
 
 use nalgebra::{DMatrix, DVector};
 
+use crate::linalg::{self, Lu};
+use crate::util::parallel::{in_parallel_with, threads};
+
 pub use crate::model::lumped_system::{Element, Law, System};
 pub use aft::{AftError, Transforms};
 
@@ -149,7 +152,15 @@ pub struct Hb<'a> {
     pub tr: Transforms,
     /// AFT evaluations (element marches) made.
     pub evaluations: u64,
+    /// Threads the element marches run on: one until an evaluation's marches take
+    /// longer than [`PARALLEL_ABOVE`], then the machine's (the elements are independent,
+    /// so the numbers do not depend on it).
+    threads: usize,
 }
+
+/// Marching all elements once taking longer than this (seconds) moves the marches onto
+/// threads: below it, starting threads would cost more than it saves.
+const PARALLEL_ABOVE: f64 = 2e-3;
 
 /// Residual, its Jacobian in u and its derivative in ω at one point.
 pub struct Eval {
@@ -179,6 +190,7 @@ impl<'a> Hb<'a> {
             sys,
             tr: Transforms::new(n, h),
             evaluations: 0,
+            threads: 1,
         }
     }
 
@@ -235,13 +247,7 @@ impl<'a> Hb<'a> {
         let uv = DVector::from_column_slice(u);
         let mut r = &j * &uv - self.load();
         let mut dissipated = Vec::with_capacity(s.elements.len());
-        let mut dc = vec![0.0; m];
-        for e in &s.elements {
-            for c in 0..m {
-                dc[c] = u[e.i * m + c] - e.j.map_or(0.0, |jj| u[jj * m + c]);
-            }
-            let ev = aft::evaluate(&mut self.tr, &e.law, &dc)?;
-            self.evaluations += 1;
+        for (e, ev) in s.elements.iter().zip(self.march_elements(u)?) {
             dissipated.push(ev.period.dissipated);
             // Pᵀ F̂ and Pᵀ J P with P = [I, −I] on (i, j).
             let ends: [(usize, f64); 2] = [(e.i, 1.0), (e.j.unwrap_or(usize::MAX), -1.0)];
@@ -272,6 +278,38 @@ impl<'a> Hb<'a> {
         })
     }
 
+    /// Every element's AFT at the coefficients `u`, on [`Hb::threads`] threads.
+    fn march_elements(&mut self, u: &[f64]) -> Result<Vec<aft::ElementEval>, MhbError> {
+        let m = self.tr.ncoef();
+        let relative = |e: &Element| -> Vec<f64> {
+            (0..m)
+                .map(|c| u[e.i * m + c] - e.j.map_or(0.0, |jj| u[jj * m + c]))
+                .collect()
+        };
+        let started = std::time::Instant::now();
+        let elements = &self.sys.elements;
+        let evals: Vec<_> = if self.threads == 1 {
+            let tr = &mut self.tr;
+            elements
+                .iter()
+                .map(|e| aft::evaluate(tr, &e.law, &relative(e)))
+                .collect()
+        } else {
+            let (n, h) = (self.tr.n, self.tr.h);
+            in_parallel_with(
+                elements,
+                self.threads,
+                || Transforms::new(n, h),
+                |tr, e| aft::evaluate(tr, &e.law, &relative(e)),
+            )
+        };
+        self.evaluations += elements.len() as u64;
+        if started.elapsed().as_secs_f64() > PARALLEL_ABOVE {
+            self.threads = threads();
+        }
+        Ok(evals.into_iter().collect::<Result<_, _>>()?)
+    }
+
     /// Newton from `u0` at fixed ω, with step halving when the residual grows.
     pub fn solve(
         &mut self,
@@ -284,8 +322,7 @@ impl<'a> Hb<'a> {
         let mut ev = self.eval(u.as_slice(), omega)?;
         let mut res = ev.r.norm() / scale;
         for it in 1..=opt.max_iter {
-            let lu = ev.j.clone().lu();
-            let du = lu.solve(&ev.r).ok_or(MhbError::Singular { omega })?;
+            let du = linalg::solve(&ev.j, &ev.r).ok_or(MhbError::Singular { omega })?;
             let mut lambda = 1.0;
             let mut accepted = None;
             for _ in 0..10 {
@@ -303,13 +340,13 @@ impl<'a> Hb<'a> {
             ev = e2;
             res = r2;
             if res <= opt.rtol {
-                let det = ev.j.clone().lu().determinant();
+                let det_sign = Lu::factor(ev.j.clone()).map_or(0.0, |lu| lu.determinant_sign());
                 return Ok(Solution {
                     omega,
                     u: u.as_slice().to_vec(),
                     iterations: it,
                     residual: res,
-                    det_sign: det.signum(),
+                    det_sign,
                     dissipated: ev.dissipated,
                 });
             }

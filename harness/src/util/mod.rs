@@ -7,6 +7,7 @@ pub mod atomic;
 pub mod csv_table;
 pub mod memory;
 pub mod number;
+pub mod parallel;
 pub mod progress;
 pub mod provenance;
 pub mod rusage;

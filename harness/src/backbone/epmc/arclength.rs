@@ -25,6 +25,7 @@ use nalgebra::{DMatrix, DVector};
 
 use super::super::BackboneError;
 use super::equations::{damped_step, Epmc, Evaluated, State, FLOOR_RTOL, RTOL, STAGNATION};
+use crate::linalg;
 
 /// Arclength steps (in y).
 const STEP_START: f64 = 0.02;
@@ -135,7 +136,7 @@ impl Path<'_, '_> {
     fn tangent(&self, ev: &Evaluated, b: &DVector<f64>) -> Option<DVector<f64>> {
         let mut e = DVector::zeros(self.dim + 3);
         e[self.dim + 2] = 1.0;
-        let t = self.bordered(ev, b).lu().solve(&e)?;
+        let t = linalg::solve(&self.bordered(ev, b), &e)?;
         let n = t.norm();
         (n.is_finite() && n > 0.0).then(|| t / n)
     }
@@ -157,7 +158,7 @@ impl Path<'_, '_> {
             let mut g = DVector::zeros(self.dim + 3);
             g.rows_mut(0, self.dim + 2).copy_from(&ev.f);
             g[self.dim + 2] = t.dot(&(&y - yp));
-            let dy = self.bordered(&ev, t).lu().solve(&g)?;
+            let dy = linalg::solve(&self.bordered(&ev, t), &g)?;
             if res <= FLOOR_RTOL && dy.norm() <= STAGNATION * y.norm() {
                 let dissipated = ev.dissipated.clone();
                 return Some((Node { y, dissipated }, ev, it));

@@ -14,6 +14,7 @@
 use nalgebra::{DMatrix, DVector};
 
 use super::super::BackboneError;
+use crate::linalg;
 use crate::mhb::Hb;
 
 /// Newton tolerance on the scaled residual.
@@ -139,7 +140,7 @@ impl Epmc<'_> {
             if res <= RTOL {
                 return Ok((st, ev.dissipated));
             }
-            let Some(dy) = ev.jac.clone().lu().solve(&ev.f) else {
+            let Some(dy) = linalg::solve(&ev.jac, &ev.f) else {
                 return Err(res);
             };
             let size = st.psi.iter().map(|v| v * v).sum::<f64>().sqrt() + st.omega.abs();

@@ -19,6 +19,7 @@ use nalgebra::{DMatrix, DVector};
 
 use super::aft::{AftError, Transforms};
 use super::{linear_coefficients, Hb, MhbError, NewtonOptions};
+use crate::linalg;
 use crate::model::lumped_system::SIGN;
 
 mod march;
@@ -216,11 +217,7 @@ impl<'a> Hb3<'a> {
             if it == opt.max_iter {
                 break;
             }
-            let du =
-                ev.j.clone()
-                    .lu()
-                    .solve(&ev.r)
-                    .ok_or(MhbError::Singular { omega })?;
+            let du = linalg::solve(&ev.j, &ev.r).ok_or(MhbError::Singular { omega })?;
             let mut lambda = 1.0;
             loop {
                 let trial = &u - lambda * &du;
