@@ -25,14 +25,21 @@ fn contact(law: i32, rule: i32) -> jointlin_contact {
 /// Slip limit δ* = 1.5 μF_N / k_T0 (2.46).
 const DELTA_STAR: f64 = 1.5 * 0.3 * 2.0 / 1000.0;
 
-/// A path with a drifting mean, two harmonics and a decaying inner loop, in units of δ*.
+/// A path with a drifting mean, two harmonics and a decaying inner loop, in units of δ*;
+/// from step 200 on it repeats with period 25 (a sampled periodic slip with a mean, as a
+/// harmonic balance marches: loops close exactly at earlier samples).
 fn path(k: usize, amplitude: f64) -> f64 {
+    if k >= 200 {
+        let t = std::f64::consts::TAU * ((k - 200) % 25) as f64 / 25.0;
+        return DELTA_STAR * amplitude * (0.1 + t.cos() + 0.3 * t.sin() + 0.2 * (2.0 * t).cos());
+    }
     let t = k as f64 * 0.07;
     DELTA_STAR * (amplitude * (t.sin() + 0.35 * (3.1 * t + 0.4).cos()) + 0.05 * t.sin().powi(2))
 }
 
 /// The direction the parameters move the path in (column c).
 fn direction(k: usize, c: usize) -> f64 {
+    let k = if k >= 200 { 200 + (k - 200) % 25 } else { k };
     DELTA_STAR * ((0.13 * (k as f64) * (c + 1) as f64 + c as f64).cos())
 }
 

@@ -241,20 +241,31 @@ impl MasingState {
         }
         let mut dissipated = 0.0;
         loop {
-            let (stop, terms, d_target) = match self.closure() {
-                Some((c, terms)) if motion * (target - c) >= 0.0 => (c, terms, 0.0),
+            let closes = match self.closure() {
+                Some((c, terms)) if motion * (target - c) >= 0.0 => Some((c, terms)),
+                _ => None,
+            };
+            // The slip ends at the target whether or not a loop closes exactly there, so
+            // its derivative is the target's; an intermediate closure point moves with
+            // the slips it came from.
+            let (stop, terms, d_target) = match closes {
+                Some((c, terms)) if c != target => (c, terms, 0.0),
                 _ => (target, [(SLIP, 0.0); 2], 1.0),
             };
             dissipated +=
                 (self.branch_dissipation(b, stop) - self.branch_dissipation(b, self.slip)).max(0.0);
             self.slip = stop;
             t.set(SLIP, &terms, d_target);
+            if closes.is_some() {
+                // The branch reached its parent (at the target too: a loop closed exactly
+                // there is closed, so a periodic path keeps a periodic memory): drop the
+                // closed loop; the force is the parent's, equal there by continuity.
+                self.depth = if self.depth == 1 { 0 } else { self.depth - 2 };
+            }
             self.set_force(b, t);
             if stop == target {
                 break;
             }
-            // The branch reached its parent: drop the closed loop.
-            self.depth = if self.depth == 1 { 0 } else { self.depth - 2 };
         }
         self.collapse_if_sliding(b, t);
         StepResult {

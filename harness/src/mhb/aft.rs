@@ -24,10 +24,21 @@
 //! pass round the closed loop; Jenkins is piecewise linear (k_T0 or sliding), so this is
 //! the exact derivative of the marched map (test: central differences to 1e-7). For
 //! Mindlin's curved microslip branch that rule omits how the branch origin moves with
-//! δ̂ (measured 10–50 % off, Newton stalled near resonance), so Mindlin points get a
-//! forward-difference Jacobian of the whole AFT map (2H + 1 extra marches).
+//! δ̂ (measured 10–50 % off, Newton stalled near resonance), so Mindlin points carry
+//! the exact derivatives through the library's tangent-linear step
+//! (`jointlin_point_step_derivatives`) over one period from the closed loop's state, with
+//! 2H + 1 columns for δ̂ and one per state slot for the start state; the closed loop's
+//! start derivative D₀ then follows from periodicity, D₀ = Φ D₀ + G (Φ the period's
+//! derivative in its start state, G in δ̂). A slot the period never assigns (an anchor
+//! the loop keeps, e.g. the reversal point of a point that stays on its elastic line)
+//! keeps its start value: its derivative is taken as zero, the loop's memory fixed, as a
+//! forward difference marched from the closed state gives. One period of steps replaces
+//! the 2H + 1 marches of forward differences (kept as the fallback where I − Φ is
+//! singular).
 
 use std::sync::Arc;
+
+use nalgebra::DMatrix;
 
 use realfft::num_complex::Complex;
 use realfft::{ComplexToReal, RealFftPlanner, RealToComplex};
@@ -252,7 +263,9 @@ pub fn evaluate(tr: &mut Transforms, law: &Law, dc: &[f64]) -> Result<ElementEva
     let mut jac = vec![0.0; m * m];
     if let Law::Point(t) = law {
         if t.law != LawName::Jenkins {
-            fd_jacobian(tr, law, t, dc, (&force, &period.end_state), &mut jac)?;
+            if !closed_loop_jacobian(tr, t, dc, &period.end_state, &mut jac)? {
+                fd_jacobian(tr, law, t, dc, (&force, &period.end_state), &mut jac)?;
+            }
             return Ok(ElementEval { force, jac, period });
         }
     }
@@ -284,6 +297,90 @@ pub fn evaluate(tr: &mut Transforms, law: &Law, dc: &[f64]) -> Result<ElementEva
         }
     }
     Ok(ElementEval { force, jac, period })
+}
+
+/// The exact Jacobian ∂F̂/∂δ̂ at coefficients `dc` of the closed loop from `start` (its
+/// state) by the tangent-linear step (module docs) into `jac`; false where I − Φ is
+/// singular.
+fn closed_loop_jacobian(
+    tr: &mut Transforms,
+    t: &Tangential,
+    dc: &[f64],
+    start: &[f64; POINT_STATE_LEN],
+    jac: &mut [f64],
+) -> Result<bool, AftError> {
+    const L: usize = POINT_STATE_LEN;
+    let (n, m) = (tr.n, tr.ncoef());
+    let cols = m + L;
+    // ∂δ_k/∂ĉ_j: the basis functions' samples, sample-major.
+    let mut basis = vec![0.0; n * m];
+    let (mut unit, mut samples) = (vec![0.0; m], vec![0.0; n]);
+    for j in 0..m {
+        unit.iter_mut().for_each(|x| *x = 0.0);
+        unit[j] = 1.0;
+        tr.synthesize(&unit, &mut samples);
+        for k in 0..n {
+            basis[k * m + j] = samples[k];
+        }
+    }
+    let mut delta = vec![0.0; n];
+    tr.synthesize(dc, &mut delta);
+    // Start: D₀ = [0 | I].
+    let (mut state, mut next) = (*start, [0.0; L]);
+    let (mut d, mut d_next) = (vec![0.0; L * cols], vec![0.0; L * cols]);
+    for i in 0..L {
+        d[i * cols + m + i] = 1.0;
+    }
+    let mut d_slip = vec![0.0; cols];
+    let mut d_force = vec![0.0; n * cols];
+    for k in 0..n {
+        d_slip[..m].copy_from_slice(&basis[k * m..(k + 1) * m]);
+        capi::point_step_derivatives(
+            t,
+            (&state, &d),
+            (delta[k], &d_slip),
+            (&mut next, &mut d_next),
+            &mut d_force[k * cols..(k + 1) * cols],
+        )?;
+        state = next;
+        std::mem::swap(&mut d, &mut d_next);
+    }
+    // Periodicity: (I − Φ) D₀ = G; a never-assigned slot keeps D₀ = 0.
+    let mut a = DMatrix::<f64>::identity(L, L);
+    let mut g = DMatrix::<f64>::zeros(L, m);
+    for i in 0..L {
+        let phi = &d[i * cols + m..(i + 1) * cols];
+        let kept = (0..L).all(|r| phi[r] == f64::from(u8::from(r == i)))
+            && d[i * cols..i * cols + m].iter().all(|v| *v == 0.0);
+        if kept {
+            continue;
+        }
+        for r in 0..L {
+            a[(i, r)] -= phi[r];
+        }
+        for j in 0..m {
+            g[(i, j)] = d[i * cols + j];
+        }
+    }
+    let Some(d0) = a.lu().solve(&g) else {
+        return Ok(false);
+    };
+    if !d0.iter().all(|v| v.is_finite()) {
+        return Ok(false);
+    }
+    // ∂F_k/∂ĉ_j = dF_k[j] + Σ_i dF_k[m + i] D₀[i, j], transformed per column.
+    let (mut column, mut col) = (vec![0.0; n], vec![0.0; m]);
+    for j in 0..m {
+        for k in 0..n {
+            let row = &d_force[k * cols..(k + 1) * cols];
+            column[k] = row[j] + (0..L).map(|i| row[m + i] * d0[(i, j)]).sum::<f64>();
+        }
+        tr.analyse(&column, &mut col);
+        for i in 0..m {
+            jac[i * m + j] = col[i];
+        }
+    }
+    Ok(true)
 }
 
 /// Forward differences of the whole AFT map (one march per column, from the closed

@@ -111,6 +111,55 @@ fn jenkins_jacobian_is_exact() {
     }
 }
 
+#[test]
+fn mindlin_jacobian_is_the_closed_loops_derivative() {
+    // Mindlin points: the tangent-linear step over one period from the closed loop and
+    // periodicity (aft module docs) against central differences of the whole AFT map
+    // (each side marched from a virgin point to its closed loop; step 1e-6 A: truncation
+    // ~1e-12, round-off and closure ~1e-11/1e-6 of the force scale; measured 6e-11…8e-8,
+    // the largest for the thesis rule's slow drift at A/δ* = 0.05). Microslip to gross
+    // sliding, both unloading rules, H = 1 and 7 with higher harmonics and a mean slip.
+    for rule in [RuleName::Thesis, RuleName::Masing] {
+        let law = point(LawName::Mindlin, rule, 1.0, 0.1, 2.0);
+        let dstar = 1.5 * 0.1 / 2.0;
+        for &r in &[0.05, 0.3, 0.9, 3.0] {
+            let a = r * dstar;
+            for &h in &[1usize, 7] {
+                let m = 2 * h + 1;
+                let mut tr = Transforms::new(default_samples(h), h);
+                let mut dc = vec![0.0; m];
+                dc[0] = 0.1 * a;
+                dc[1] = a;
+                dc[2] = 0.3 * a;
+                if h > 1 {
+                    dc[3] = 0.2 * a;
+                    dc[6] = -0.1 * a;
+                }
+                let ev = aft::evaluate(&mut tr, &law, &dc).unwrap();
+                let (mut worst, mut big) = (0.0f64, 0.0f64);
+                for j in 0..m {
+                    let eps = 1e-6 * a;
+                    let (mut p, mut q) = (dc.clone(), dc.clone());
+                    p[j] += eps;
+                    q[j] -= eps;
+                    let fp = aft::forces(&mut tr, &law, &p).unwrap().0;
+                    let fq = aft::forces(&mut tr, &law, &q).unwrap().0;
+                    for i in 0..m {
+                        let fd = (fp[i] - fq[i]) / (2.0 * eps);
+                        worst = worst.max((fd - ev.jac[i * m + j]).abs());
+                        big = big.max(fd.abs());
+                    }
+                }
+                assert!(
+                    worst <= 1e-6 * big,
+                    "{rule:?}, A/δ* {r}, H {h}: {:e}",
+                    worst / big
+                );
+            }
+        }
+    }
+}
+
 /// The stuck stiffness adds k_T0 only where the point carries a tangential force: a
 /// closed point with friction; an open point (F_N ≤ 0), a frictionless one and a cubic
 /// spring add nothing, as the start of a sweep and the stuck frequencies both take it.
