@@ -30,7 +30,7 @@ module jointlin
 
   ! ---- constants (#define in jointlin.h) ----
   integer(c_int32_t), parameter :: JOINTLIN_ABI_VERSION_MAJOR = 0
-  integer(c_int32_t), parameter :: JOINTLIN_ABI_VERSION_MINOR = 6
+  integer(c_int32_t), parameter :: JOINTLIN_ABI_VERSION_MINOR = 7
   integer(c_int32_t), parameter :: JOINTLIN_OK = 0
   integer(c_int32_t), parameter :: JOINTLIN_ERR_NULL = 1
   integer(c_int32_t), parameter :: JOINTLIN_ERR_NON_FINITE = 2
@@ -63,6 +63,7 @@ module jointlin
   integer(c_int32_t), parameter :: JOINTLIN_POINT3D_MAX_CELLS = 128
   integer(c_int32_t), parameter :: JOINTLIN_POINT3D_DEFAULT_CELLS = 32
   integer(c_int32_t), parameter :: JOINTLIN_POINT3D_STATE_LEN = 261
+  integer(c_int32_t), parameter :: JOINTLIN_POINT_DERIVATIVE_COLUMNS_MAX = 4096
   integer(c_int32_t), parameter :: JOINTLIN_DESCRIBE_INTEGRATED = 0
   integer(c_int32_t), parameter :: JOINTLIN_DESCRIBE_TABULATED = 1
   integer(c_int32_t), parameter :: JOINTLIN_UINTER_MIN_NPROPS = 7
@@ -259,6 +260,23 @@ module jointlin
        type(jointlin_step), intent(out) :: out
        integer(c_int32_t) :: jointlin_point_step
      end function jointlin_point_step
+
+     function jointlin_point_step_derivatives(contact, state, d_state, slip, d_slip, &
+          columns, state_out, d_state_out, out, d_force) &
+          bind(C, name='jointlin_point_step_derivatives')
+       import :: c_int32_t, c_size_t, c_double, jointlin_contact, jointlin_step
+       type(jointlin_contact), intent(in) :: contact
+       real(c_double), intent(in) :: state(*)
+       real(c_double), intent(in) :: d_state(*)
+       real(c_double), value :: slip
+       real(c_double), intent(in) :: d_slip(*)
+       integer(c_size_t), value :: columns
+       real(c_double), intent(inout) :: state_out(*)
+       real(c_double), intent(inout) :: d_state_out(*)
+       type(jointlin_step), intent(out) :: out
+       real(c_double), intent(inout) :: d_force(*)
+       integer(c_int32_t) :: jointlin_point_step_derivatives
+     end function jointlin_point_step_derivatives
 
      function jointlin_point3d_step(contact, state, disp, state_out, out) &
           bind(C, name='jointlin_point3d_step')

@@ -6,7 +6,7 @@
 use super::error::{boundary, FfiError, JOINTLIN_ERR_OUT_OF_RANGE, JOINTLIN_ERR_OVERFLOW};
 use super::linearize::jointlin_contact;
 use super::point::jointlin_step;
-use super::{check_ptr, finite, finite_all, load, load_finite, put, put_all};
+use super::{all_finite, check_ptr, finite, finite_all, load, load_finite, put, put_all};
 use crate::hysteresis::{PointState, Tangents, FORCE_SLOT, STATE_LEN};
 
 /// Largest number of derivative columns one call takes.
@@ -83,22 +83,24 @@ pub unsafe extern "C" fn jointlin_point_step_derivatives(
                 format!("columns = {columns} above {JOINTLIN_POINT_DERIVATIVE_COLUMNS_MAX}"),
             ));
         }
-        let mut d = vec![0.0; STATE_LEN * columns];
-        let mut ds = vec![0.0; columns];
-        if columns > 0 {
+        let (mut d, ds) = if columns == 0 {
+            (Vec::new(), Vec::new())
+        } else {
             for (p, what) in [(d_state, "d_state"), (d_slip, "d_slip")] {
                 check_ptr(p, what)?;
             }
             check_ptr(d_state_out, "d_state_out")?;
             check_ptr(d_force, "d_force")?;
-            // SAFETY: non-NULL, aligned (checked); sizes by contract; `d`, `ds` are locals.
+            // SAFETY: non-NULL, aligned (checked); sizes by contract; copied at once.
             unsafe {
-                std::ptr::copy_nonoverlapping(d_state, d.as_mut_ptr(), d.len());
-                std::ptr::copy_nonoverlapping(d_slip, ds.as_mut_ptr(), columns);
+                (
+                    std::slice::from_raw_parts(d_state, STATE_LEN * columns).to_vec(),
+                    std::slice::from_raw_parts(d_slip, columns).to_vec(),
+                )
             }
-            finite_all(&d, "d_state")?;
-            finite_all(&ds, "d_slip")?;
-        }
+        };
+        finite_all(&d, "d_state")?;
+        finite_all(&ds, "d_slip")?;
         let (new_state, step) = match c.point()? {
             None => {
                 d.fill(0.0);
@@ -119,7 +121,7 @@ pub unsafe extern "C" fn jointlin_point_step_derivatives(
                     dissipated: r.dissipated,
                 };
                 let values = [step.force, step.tangent, step.dissipated];
-                if buf.iter().chain(&values).chain(&d).any(|v| !v.is_finite()) {
+                if !(all_finite(&buf) && all_finite(&values) && all_finite(&d)) {
                     return Err(FfiError::new(
                         JOINTLIN_ERR_OVERFLOW,
                         "slip or its derivatives too large: the state is not representable",
