@@ -2,6 +2,7 @@
 //! an FE scene reduced onto its contact points (`backbone::fe`), against its amplitude,
 //! first order or EPMC; backbone.csv, backbone.svg, run.json.
 
+use std::cell::Cell;
 use std::path::PathBuf;
 use std::process::ExitCode;
 use std::time::Instant;
@@ -18,6 +19,7 @@ use jointlin_harness::input::scene::Scene;
 use jointlin_harness::mhb::default_samples;
 use jointlin_harness::model::lumped::{self, Lumped};
 use jointlin_harness::settings::units::frequency_unit;
+use jointlin_harness::util::progress::progress_bar;
 use jointlin_harness::util::{atomic, provenance};
 
 use super::{load_scene_with, report_written, SceneOverrides};
@@ -43,6 +45,9 @@ pub struct Args {
     /// contact's slip onset to 30 times the last one's, 60 points.
     #[arg(long, value_delimiter = ',')]
     amplitudes: Vec<f64>,
+    /// No progress (the EPMC's modal amplitude reached, on stderr).
+    #[arg(long)]
+    quiet: bool,
 }
 
 /// The lumped system of a scene: its own (mass bodies, [[matrices]]) or an FE scene's
@@ -146,7 +151,7 @@ pub fn main(a: Args) -> ExitCode {
         ),
         Some(h) => (
             format!("EPMC, H = {h}"),
-            epmc::trace(&l.system, a.mode, h, default_samples(h.max(1)), &q).map(|t| {
+            epmc_with_progress(&l, (&scene, a.quiet), a.mode, h, &q).map(|t| {
                 (
                     t.points
                         .into_iter()
@@ -242,6 +247,30 @@ pub fn main(a: Args) -> ExitCode {
         Some(e) => stopped_early(&e, rows.len()),
         None => code,
     }
+}
+
+/// The EPMC trace with its progress on stderr (a bar on a terminal, timed lines in a
+/// batch log): the modal amplitude reached and how many requested ones lie below it.
+fn epmc_with_progress(
+    l: &Lumped,
+    (scene, quiet): (&Scene, bool),
+    mode: usize,
+    h: usize,
+    q: &[f64],
+) -> Result<epmc::Traced, BackboneError> {
+    let units = &scene.spec.units;
+    let unit = format!("{}·{}^½", units.length, units.mass);
+    let progress = progress_bar(quiet);
+    progress.set_length(q.len() as u64);
+    let farthest = Cell::new(0.0f64);
+    let on_point = |reached: f64| {
+        farthest.set(farthest.get().max(reached));
+        progress.set_position(q.iter().filter(|v| **v <= farthest.get()).count() as u64);
+        progress.set_message(&format!(
+            "EPMC, H = {h}: modal amplitude {reached:.3e} [{unit}]"
+        ));
+    };
+    epmc::trace_observed(&l.system, mode, h, default_samples(h.max(1)), q, &on_point)
 }
 
 /// A trace that stopped after `kept` amplitudes: the failure, exit code 1.

@@ -15,7 +15,7 @@ pub struct Lu(PartialPivLu<f64>);
 impl Lu {
     /// Factors `a`; `None` if it is not square, is empty, has a non-finite entry or an
     /// exactly zero pivot (singular), as nalgebra's `lu().solve` would answer `None`.
-    pub fn factor(a: DMatrix<f64>) -> Option<Lu> {
+    pub fn factor(a: &DMatrix<f64>) -> Option<Lu> {
         let n = a.nrows();
         if a.ncols() != n || n == 0 || !a.iter().all(|v| v.is_finite()) {
             return None;
@@ -65,9 +65,9 @@ impl Lu {
     }
 }
 
-/// x with A x = b, factoring a copy of A: `None` when singular (see [`Lu::factor`]).
+/// x with A x = b (the factorization copies A): `None` when singular (see [`Lu::factor`]).
 pub fn solve(a: &DMatrix<f64>, b: &DVector<f64>) -> Option<DVector<f64>> {
-    Lu::factor(a.clone())?.solve(b)
+    Lu::factor(a)?.solve(b)
 }
 
 #[cfg(test)]
@@ -81,7 +81,7 @@ mod tests {
         for n in [1, 2, 5, 40, 130] {
             let a = DMatrix::from_fn(n, n, |_, _| rng.uniform(-0.5, 0.5));
             let b = DVector::from_fn(n, |_, _| rng.uniform(-0.5, 0.5));
-            let lu = Lu::factor(a.clone()).expect("random matrix is regular");
+            let lu = Lu::factor(&a).expect("random matrix is regular");
             let x = lu.solve(&b).unwrap();
             let reference = a.clone().lu().solve(&b).unwrap();
             let err = (&x - &reference).norm() / reference.norm();
@@ -95,10 +95,10 @@ mod tests {
     #[test]
     fn refuses_singular_and_non_finite() {
         let singular = DMatrix::from_row_slice(2, 2, &[1.0, 2.0, 2.0, 4.0]);
-        assert!(Lu::factor(singular).is_none());
+        assert!(Lu::factor(&singular).is_none());
         let nan = DMatrix::from_row_slice(2, 2, &[1.0, f64::NAN, 0.0, 1.0]);
-        assert!(Lu::factor(nan).is_none());
+        assert!(Lu::factor(&nan).is_none());
         let empty = DMatrix::<f64>::zeros(0, 0);
-        assert!(Lu::factor(empty).is_none());
+        assert!(Lu::factor(&empty).is_none());
     }
 }

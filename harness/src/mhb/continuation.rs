@@ -144,7 +144,7 @@ pub fn trace(hb: &mut Hb, u0: &[f64], opt: Options) -> Result<Branch, MhbError> 
             });
         };
         tn /= tn.norm();
-        let det = Lu::factor(ev.j.clone()).map_or(0.0, |lu| lu.determinant_sign());
+        let det = Lu::factor(&ev.j).map_or(0.0, |lu| lu.determinant_sign());
         let last_det = pts[pts.len() - 1].sol.det_sign;
         // A step too long for the curvature jumps to another part of the branch: the
         // corrected point lies behind the predictor's direction, or ω turns back where

@@ -340,7 +340,7 @@ impl<'a> Hb<'a> {
             ev = e2;
             res = r2;
             if res <= opt.rtol {
-                let det_sign = Lu::factor(ev.j.clone()).map_or(0.0, |lu| lu.determinant_sign());
+                let det_sign = Lu::factor(&ev.j).map_or(0.0, |lu| lu.determinant_sign());
                 return Ok(Solution {
                     omega,
                     u: u.as_slice().to_vec(),

@@ -277,6 +277,7 @@ pub fn follow(
             let q = if t[dim + 2] > 0.0 { a.max(b) } else { a.min(b) };
             out.turning_points.push(q.exp());
         }
+        p.ep.passed(p.lnq(&adv.node.y).exp());
         out.crossings.extend(adv.crossings);
         if adv.jumped {
             let (a, b) = (p.lnq(&node.y).exp(), p.lnq(&adv.node.y).exp());

@@ -53,9 +53,18 @@ pub struct Epmc<'a> {
     pub m_ref: Vec<f64>,
     /// Residual scale ω₀² (ψ is mass-normalized).
     pub scale: f64,
+    /// Told every modal amplitude a solution is found at (progress of long backbones).
+    pub on_point: Option<&'a dyn Fn(f64)>,
 }
 
 impl Epmc<'_> {
+    /// Tells [`Epmc::on_point`] that a solution at modal amplitude `q` was found.
+    pub fn passed(&self, q: f64) {
+        if let Some(f) = self.on_point {
+            f(q);
+        }
+    }
+
     /// F and its derivatives at (ψ, ω, ξ) and modal amplitude q.
     pub fn eval(&mut self, st: &State, q: f64) -> Result<Evaluated, BackboneError> {
         let s = self.hb.sys;

@@ -109,11 +109,24 @@ pub fn trace(
     samples: usize,
     q: &[f64],
 ) -> Result<Traced, BackboneError> {
+    trace_observed(sys, mode, h, samples, q, &|_| {})
+}
+
+/// [`trace`] telling `on_point` every modal amplitude it finds a solution at.
+pub fn trace_observed(
+    sys: &System,
+    mode: usize,
+    h: usize,
+    samples: usize,
+    q: &[f64],
+    on_point: &dyn Fn(f64),
+) -> Result<Traced, BackboneError> {
     if let Some(&bad) = q.iter().find(|v| !(v.is_finite() && **v > 0.0)) {
         return Err(BackboneError::Amplitude(bad));
     }
     let free = unforced(sys);
     let (mut ep, guess, w0, lq_stuck) = setup(&free, sys, mode, h, samples)?;
+    ep.on_point = Some(on_point);
     let mut targets: Vec<f64> = q.iter().map(|v| v.ln()).collect();
     targets.sort_by(f64::total_cmp);
     targets.dedup();
@@ -218,6 +231,7 @@ fn setup<'a>(
         hb: Hb::new(free, h, samples),
         m_ref,
         scale: (w0 * w0).max(f64::MIN_POSITIVE),
+        on_point: None,
     };
     let guess = State {
         psi,

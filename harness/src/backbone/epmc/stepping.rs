@@ -36,6 +36,7 @@ pub fn toward(ep: &mut Epmc, start: Crossing, targets: &[f64]) -> Stepped {
             let lq = (last.0 + step).min(target);
             match ep.solve(predict(&recent, lq), lq.exp()) {
                 Ok((st, diss)) => {
+                    ep.passed(lq.exp());
                     recent.push((lq, st.clone()));
                     if recent.len() > 2 {
                         recent.remove(0);

@@ -119,6 +119,8 @@ fn mindlin_jacobian_is_the_closed_loops_derivative() {
     // ~1e-12, round-off and closure ~1e-11/1e-6 of the force scale; measured 6e-11…8e-8,
     // the largest for the thesis rule's slow drift at A/δ* = 0.05). Microslip to gross
     // sliding, both unloading rules, H = 1 and 7 with higher harmonics and a mean slip.
+    // (Below A/δ* ≈ 0.01 the differences themselves lose their digits under the thesis
+    // rule: the closure tolerance is amplified by the drift's 1/(1 − q) ≈ δ*/A.)
     for rule in [RuleName::Thesis, RuleName::Masing] {
         let law = point(LawName::Mindlin, rule, 1.0, 0.1, 2.0);
         let dstar = 1.5 * 0.1 / 2.0;
