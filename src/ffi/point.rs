@@ -1,10 +1,11 @@
 //! `jointlin_point_step`: the stateful time-domain hysteresis point (thesis §2.3.3,
 //! Fig. 2.16/2.17) for hosts that integrate in time themselves (not Abaqus).
 
-use super::error::{boundary, FfiError, JOINTLIN_ERR_OVERFLOW};
+use super::error::{boundary, FfiError, FfiResult, JOINTLIN_ERR_OVERFLOW};
 use super::linearize::jointlin_contact;
-use super::{check_ptr, finite, load, load_finite, put, put_all};
-use crate::hysteresis::{PointState, STATE_LEN};
+use super::{all_finite, check_ptr, finite, load, load_finite, put, put_all};
+use crate::hysteresis::{NoTangents, PointState, Tangents, STATE_LEN};
+use crate::linearize::Contact;
 
 /// Number of doubles in the state of one tangential direction of a point.
 pub const JOINTLIN_POINT_STATE_LEN: usize = 23;
@@ -21,6 +22,36 @@ pub struct jointlin_step {
     pub tangent: f64,
     /// Energy dissipated during the increment (>= 0, force x length).
     pub dissipated: f64,
+}
+
+/// One step of `c`'s point from the stored state `slots` to `slip`, moving `tangents`
+/// along: the new state and the step, checked representable; `None` for a contact that
+/// carries no tangential force (open or frictionless: the caller writes zeros).
+pub(super) fn step_checked(
+    c: &Contact,
+    slots: &[f64; STATE_LEN],
+    slip: f64,
+    tangents: &mut impl Tangents,
+) -> FfiResult<Option<([f64; STATE_LEN], jointlin_step)>> {
+    let Some(point) = c.point()? else {
+        return Ok(None);
+    };
+    let st = PointState::read(slots, point.rule, 0.0)?;
+    let (next, r) = point.step_with_tangents(&st, slip, tangents)?;
+    let mut buf = [0.0; STATE_LEN];
+    next.write(&mut buf);
+    let step = jointlin_step {
+        force: r.force,
+        tangent: r.tangent,
+        dissipated: r.dissipated,
+    };
+    if !(all_finite(&buf) && all_finite(&[step.force, step.tangent, step.dissipated])) {
+        return Err(FfiError::new(
+            JOINTLIN_ERR_OVERFLOW,
+            "slip too large: the state is not representable",
+        ));
+    }
+    Ok(Some((buf, step)))
 }
 
 /// Moves one tangential direction of a contact point from the state `state` to the slip
@@ -56,31 +87,8 @@ pub unsafe extern "C" fn jointlin_point_step(
         check_ptr(state_out, "state_out")?;
         check_ptr(out, "out")?;
         finite(slip, "slip")?;
-        let (new_state, step) = match c.point()? {
-            None => ([0.0; STATE_LEN], jointlin_step::default()),
-            Some(point) => {
-                let st = PointState::read(&slots, point.rule, 0.0)?;
-                let (next, r) = point.step(&st, slip)?;
-                let mut buf = [0.0; STATE_LEN];
-                next.write(&mut buf);
-                let step = jointlin_step {
-                    force: r.force,
-                    tangent: r.tangent,
-                    dissipated: r.dissipated,
-                };
-                if buf
-                    .iter()
-                    .chain(&[step.force, step.tangent, step.dissipated])
-                    .any(|v| !v.is_finite())
-                {
-                    return Err(FfiError::new(
-                        JOINTLIN_ERR_OVERFLOW,
-                        "slip too large: the state is not representable",
-                    ));
-                }
-                (buf, step)
-            }
-        };
+        let (new_state, step) =
+            step_checked(&c, &slots, slip, &mut NoTangents)?.unwrap_or_default();
         // SAFETY: both checked non-NULL and aligned; sizes by contract.
         unsafe {
             put_all(state_out, &new_state);

@@ -5,9 +5,9 @@
 
 use super::error::{boundary, FfiError, JOINTLIN_ERR_OUT_OF_RANGE, JOINTLIN_ERR_OVERFLOW};
 use super::linearize::jointlin_contact;
-use super::point::jointlin_step;
+use super::point::{jointlin_step, step_checked};
 use super::{all_finite, check_ptr, finite, finite_all, load, load_finite, put, put_all};
-use crate::hysteresis::{PointState, Tangents, FORCE_SLOT, STATE_LEN};
+use crate::hysteresis::{Tangents, FORCE_SLOT, STATE_LEN};
 
 /// Largest number of derivative columns one call takes.
 pub const JOINTLIN_POINT_DERIVATIVE_COLUMNS_MAX: usize = 4096;
@@ -101,35 +101,19 @@ pub unsafe extern "C" fn jointlin_point_step_derivatives(
         };
         finite_all(&d, "d_state")?;
         finite_all(&ds, "d_slip")?;
-        let (new_state, step) = match c.point()? {
-            None => {
-                d.fill(0.0);
-                ([0.0; STATE_LEN], jointlin_step::default())
-            }
-            Some(point) => {
-                let st = PointState::read(&slots, point.rule, 0.0)?;
-                let mut rows = Rows {
-                    d: &mut d,
-                    d_slip: &ds,
-                };
-                let (next, r) = point.step_with_tangents(&st, slip, &mut rows)?;
-                let mut buf = [0.0; STATE_LEN];
-                next.write(&mut buf);
-                let step = jointlin_step {
-                    force: r.force,
-                    tangent: r.tangent,
-                    dissipated: r.dissipated,
-                };
-                let values = [step.force, step.tangent, step.dissipated];
-                if !(all_finite(&buf) && all_finite(&values) && all_finite(&d)) {
-                    return Err(FfiError::new(
-                        JOINTLIN_ERR_OVERFLOW,
-                        "slip or its derivatives too large: the state is not representable",
-                    ));
-                }
-                (buf, step)
-            }
+        let mut rows = Rows {
+            d: &mut d,
+            d_slip: &ds,
         };
+        let Some((new_state, step)) = step_checked(&c, &slots, slip, &mut rows)? else {
+            return Ok(write_open(state_out, out, columns, d_state_out, d_force));
+        };
+        if !all_finite(&d) {
+            return Err(FfiError::new(
+                JOINTLIN_ERR_OVERFLOW,
+                "the derivatives are not representable",
+            ));
+        }
         // SAFETY: all checked non-NULL and aligned; sizes by contract.
         unsafe {
             put_all(state_out, &new_state);
@@ -144,4 +128,24 @@ pub unsafe extern "C" fn jointlin_point_step_derivatives(
         }
         Ok(())
     })
+}
+
+/// The outputs of a contact that carries no tangential force: all zeros (history and
+/// derivatives reset).
+fn write_open(
+    state_out: *mut f64,
+    out: *mut jointlin_step,
+    columns: usize,
+    d_state_out: *mut f64,
+    d_force: *mut f64,
+) {
+    // SAFETY: the caller checked every pointer non-NULL and aligned; sizes by contract.
+    unsafe {
+        put_all(state_out, &[0.0; STATE_LEN]);
+        put(out, jointlin_step::default());
+        if columns > 0 {
+            put_all(d_state_out, &vec![0.0; STATE_LEN * columns]);
+            put_all(d_force, &vec![0.0; columns]);
+        }
+    }
 }

@@ -201,12 +201,8 @@ pub fn follow(
     targets: &[f64],
 ) -> Followed {
     let dim = start.psi.len();
-    let psi_scale = start
-        .psi
-        .iter()
-        .map(|v| v * v)
-        .sum::<f64>()
-        .sqrt()
+    let psi_scale = DVector::from_column_slice(&start.psi)
+        .norm()
         .max(f64::MIN_POSITIVE);
     let mut p = Path {
         ep,
