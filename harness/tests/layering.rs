@@ -134,7 +134,6 @@ fn only_capi_names_the_library() {
 /// split. A listed item that grows, a new one, or one that no longer needs listing fails.
 const OVERSIZED: &[(&str, usize)] = &[
     ("backbone/epmc/arclength.rs", 535),
-    ("backbone/epmc/arclength.rs::follow", 123),
     ("backbone/fe.rs::reduce", 212),
     ("cli/backbone.rs::main", 181),
     ("cli/run.rs::main", 182),

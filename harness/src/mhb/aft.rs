@@ -258,12 +258,35 @@ pub fn forces(tr: &mut Transforms, law: &Law, dc: &[f64]) -> Result<(Vec<f64>, P
 
 /// AFT of one element at relative-displacement coefficients `dc`.
 pub fn evaluate(tr: &mut Transforms, law: &Law, dc: &[f64]) -> Result<ElementEval, AftError> {
+    evaluate_with(tr, law, dc, Jacobian::Exact)
+}
+
+/// How the Jacobian of a Mindlin point is formed.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Jacobian {
+    /// The closed loop's derivative by the tangent-linear step (module docs).
+    Exact,
+    /// Forward differences of the whole AFT map: perturbations of 1e-7 δ* straddle the
+    /// kinks of sampled loops, which can let Newton settle where the exact derivative of
+    /// a piecewise smooth balance makes it cycle (the backbones' fixed-q fallback).
+    Differences,
+}
+
+/// [`evaluate`] with the Jacobian of Mindlin points formed as `jacobian` says.
+pub fn evaluate_with(
+    tr: &mut Transforms,
+    law: &Law,
+    dc: &[f64],
+    jacobian: Jacobian,
+) -> Result<ElementEval, AftError> {
     let (n, m) = (tr.n, tr.ncoef());
     let (force, period) = forces(tr, law, dc)?;
     let mut jac = vec![0.0; m * m];
     if let Law::Point(t) = law {
         if t.law != LawName::Jenkins {
-            if !closed_loop_jacobian(tr, t, dc, &period.end_state, &mut jac)? {
+            if jacobian == Jacobian::Differences
+                || !closed_loop_jacobian(tr, t, dc, &period.end_state, &mut jac)?
+            {
                 fd_jacobian(tr, law, t, dc, (&force, &period.end_state), &mut jac)?;
             }
             return Ok(ElementEval { force, jac, period });

@@ -156,6 +156,8 @@ pub struct Hb<'a> {
     /// longer than [`PARALLEL_ABOVE`], then the machine's (the elements are independent,
     /// so the numbers do not depend on it).
     threads: usize,
+    /// How Mindlin points' Jacobians are formed (exact unless a caller falls back).
+    pub jacobian: aft::Jacobian,
 }
 
 /// Marching all elements once taking longer than this (seconds) moves the marches onto
@@ -191,6 +193,7 @@ impl<'a> Hb<'a> {
             tr: Transforms::new(n, h),
             evaluations: 0,
             threads: 1,
+            jacobian: aft::Jacobian::Exact,
         }
     }
 
@@ -288,11 +291,12 @@ impl<'a> Hb<'a> {
         };
         let started = std::time::Instant::now();
         let elements = &self.sys.elements;
+        let jacobian = self.jacobian;
         let evals: Vec<_> = if self.threads == 1 {
             let tr = &mut self.tr;
             elements
                 .iter()
-                .map(|e| aft::evaluate(tr, &e.law, &relative(e)))
+                .map(|e| aft::evaluate_with(tr, &e.law, &relative(e), jacobian))
                 .collect()
         } else {
             let (n, h) = (self.tr.n, self.tr.h);
@@ -300,7 +304,7 @@ impl<'a> Hb<'a> {
                 elements,
                 self.threads,
                 || Transforms::new(n, h),
-                |tr, e| aft::evaluate(tr, &e.law, &relative(e)),
+                |tr, e| aft::evaluate_with(tr, &e.law, &relative(e), jacobian),
             )
         };
         self.evaluations += elements.len() as u64;

@@ -24,6 +24,7 @@ mod stepping;
 
 use super::first_order::{stick_limit, stuck_mode};
 use super::{BackboneError, BackbonePoint, C64};
+use crate::mhb::aft::Jacobian;
 use crate::mhb::{default_samples, Hb, System};
 use equations::{Epmc, State};
 
@@ -166,10 +167,14 @@ pub fn trace_observed(
         if let Some(c) = crossings.iter().max_by(|a, b| a.0.total_cmp(&b.0)) {
             starts.push(c.clone());
         }
+        // Where the path stopped the balance is rough (sampled loops' kinks): Newton at
+        // fixed q with difference Jacobians, which straddle the kinks.
+        ep.hb.jacobian = Jacobian::Differences;
         let stepped = starts
             .into_iter()
             .map(|s| (s.0, stepping::toward(&mut ep, s, &rest)))
             .find(|(from, s)| s.last.0 > path.farthest.max(*from));
+        ep.hb.jacobian = Jacobian::Exact;
         let Some((from, stepped)) = stepped else {
             out.stopped = Some(why);
             break;
