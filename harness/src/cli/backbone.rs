@@ -250,7 +250,8 @@ pub fn main(a: Args) -> ExitCode {
 }
 
 /// The EPMC trace with its progress on stderr (a bar on a terminal, timed lines in a
-/// batch log): the modal amplitude reached and how many requested ones lie below it.
+/// batch log): the farthest modal amplitude reached and how many requested ones lie
+/// below it.
 fn epmc_with_progress(
     l: &Lumped,
     (scene, quiet): (&Scene, bool),
@@ -263,11 +264,14 @@ fn epmc_with_progress(
     let progress = progress_bar(quiet);
     progress.set_length(q.len() as u64);
     let farthest = Cell::new(0.0f64);
+    // The farthest amplitude to two digits: a batch log gets a line when it changes
+    // (at most one a second), not one per continuation step.
     let on_point = |reached: f64| {
         farthest.set(farthest.get().max(reached));
         progress.set_position(q.iter().filter(|v| **v <= farthest.get()).count() as u64);
         progress.set_message(&format!(
-            "EPMC, H = {h}: modal amplitude {reached:.3e} [{unit}]"
+            "EPMC, H = {h}: modal amplitude {:.1e} reached [{unit}]",
+            farthest.get()
         ));
     };
     epmc::trace_observed(&l.system, mode, h, default_samples(h.max(1)), q, &on_point)
