@@ -106,7 +106,8 @@ pub unsafe extern "C" fn jointlin_point_step_derivatives(
             d_slip: &ds,
         };
         let Some((new_state, step)) = step_checked(&c, &slots, slip, &mut rows)? else {
-            return Ok(write_open(state_out, out, columns, d_state_out, d_force));
+            write_open(state_out, out, columns, d_state_out, d_force);
+            return Ok(());
         };
         if !all_finite(&d) {
             return Err(FfiError::new(

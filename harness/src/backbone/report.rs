@@ -11,6 +11,7 @@ use crate::report::svg::drawing_error as err;
 use crate::settings::units::frequency_unit;
 use crate::settings::Units;
 use crate::util::number::exact;
+use crate::util::ticks::{labelled_log_range, log_tick};
 
 /// One row of the report: the point and its outputs' first-harmonic amplitudes.
 #[derive(Debug, Clone)]
@@ -114,18 +115,25 @@ pub fn svg(
         (fl, fh, format!("frequency [{unit}]"), 1usize),
         (zl, zh, "damping ratio [1]".to_string(), 2usize),
     ];
+    // The amplitude axis out to labelled ticks at both ends, as the FRF plots.
+    let (xl, xh) = labelled_log_range(x0 * 0.9, x1 * 1.1);
     for (area, (lo, hi, label, col)) in panels.iter().zip(series) {
         let mut chart = ChartBuilder::on(area)
             .margin(12)
             .x_label_area_size(40)
             .y_label_area_size(80)
-            .build_cartesian_2d((x0 * 0.9..x1 * 1.1).log_scale(), lo..hi)
+            .build_cartesian_2d((xl..xh).log_scale(), lo..hi)
             .map_err(err)?;
         chart
             .configure_mesh()
+            // Fine lines along a log axis bunch into grey bands: the labelled ticks only;
+            // over up to three decades ticks at 1, 2 and 5, else at the decades.
+            .x_max_light_lines(1)
+            .y_max_light_lines(1)
+            .x_labels(if xh <= 1e3 * xl { 30 } else { 10 })
             .x_desc(x_label)
             .y_desc(label)
-            .x_label_formatter(&|v: &f64| crate::util::ticks::log_tick(*v))
+            .x_label_formatter(&|v: &f64| log_tick(*v))
             .draw()
             .map_err(err)?;
         let line: Vec<(f64, f64)> = pts
