@@ -11,7 +11,7 @@ use crate::report::svg::drawing_error as err;
 use crate::settings::units::frequency_unit;
 use crate::settings::Units;
 use crate::util::number::exact;
-use crate::util::ticks::{labelled_log_range, log_tick};
+use crate::util::ticks::{log_tick, plotted_log_range};
 
 /// One row of the report: the point and its outputs' first-harmonic amplitudes.
 #[derive(Debug, Clone)]
@@ -116,13 +116,14 @@ pub fn svg(
         (zl, zh, "damping ratio [1]".to_string(), 2usize),
     ];
     // The amplitude axis out to labelled ticks at both ends, as the FRF plots.
-    let (xl, xh) = labelled_log_range(x0 * 0.9, x1 * 1.1);
+    let x = plotted_log_range(x0 * 0.9, x1 * 1.1);
+    let (xl, xh) = (x.start, x.end);
     for (area, (lo, hi, label, col)) in panels.iter().zip(series) {
         let mut chart = ChartBuilder::on(area)
             .margin(12)
             .x_label_area_size(40)
             .y_label_area_size(80)
-            .build_cartesian_2d((xl..xh).log_scale(), lo..hi)
+            .build_cartesian_2d(x.clone().log_scale(), lo..hi)
             .map_err(err)?;
         chart
             .configure_mesh()

@@ -11,7 +11,7 @@ use super::svg::{drawing_error as err, freq_label};
 use crate::model::Problem;
 use crate::settings::units::{frequency_unit, FrequencyUnit};
 use crate::solve::sweep::SweepResult;
-use crate::util::ticks::{labelled_log_range, log_tick};
+use crate::util::ticks::{log_tick, plotted_log_range};
 
 type Res = Result<(), String>;
 
@@ -158,7 +158,8 @@ fn ranges(curves: &[FrfCurve], fu: &FrequencyUnit) -> Result<(Range, Range), Str
     } else {
         (f0, f1)
     };
-    Ok((x, labelled_log_range(lo * 0.8, hi * 1.25)))
+    let y = plotted_log_range(lo * 0.8, hi * 1.25);
+    Ok((x, (y.start, y.end)))
 }
 
 /// Curve `c` of output `k`: one colour per output; its first curve solid and thick, the

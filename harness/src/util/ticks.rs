@@ -29,6 +29,15 @@ pub fn labelled_log_range(lo: f64, hi: f64) -> (f64, f64) {
     (down, up)
 }
 
+/// The axis range to give plotters for [`labelled_log_range`]: its ends nudged outward by
+/// 1e-9 relative, because plotters' log key points start at 10^⌈ln lo / ln 10⌉ (for
+/// lo = 1e-3 that quotient is −2.9999999999999996: the first decade lost its ticks) and
+/// stop where repeated ×10 passes hi (0.001·10·10 > 0.1: the top tick lost).
+pub fn plotted_log_range(lo: f64, hi: f64) -> std::ops::Range<f64> {
+    let (lo, hi) = labelled_log_range(lo, hi);
+    lo * (1.0 - 1e-9)..hi * (1.0 + 1e-9)
+}
+
 /// Label of a log-axis tick at `v`: only 1, 2 and 5 times a power of ten are labelled
 /// (plain digits from 0.001 to 9999, else `2e-5`); the other ticks get no label, so no
 /// label is printed twice and none crowds its neighbour.
@@ -74,6 +83,22 @@ mod tests {
         let labels: Vec<String> = (1..=9).map(|m| log_tick(m as f64 * 1e-1)).collect();
         let shown: Vec<&String> = labels.iter().filter(|l| !l.is_empty()).collect();
         assert_eq!(shown, ["0.1", "0.2", "0.5"]);
+    }
+
+    /// plotters' key points of the plotted range include both ends where they are powers
+    /// of ten (for 1e-3…0.1 they had neither the first decade nor the top tick).
+    #[test]
+    fn plotted_log_ranges_carry_ticks_at_both_ends() {
+        use plotters::coord::combinators::{IntoLogRange, LogCoord};
+        use plotters::coord::ranged1d::Ranged;
+        // Ranges ending on powers of ten, where the rounding of ln(lo)/ln 10 bit.
+        for (lo, hi) in [(1.2e-3, 0.09), (1e-3, 1.0), (1.5e-7, 8e-3), (1.5e-12, 8e-9)] {
+            let (a, b) = labelled_log_range(lo, hi);
+            let coord = LogCoord::from(plotted_log_range(lo, hi).log_scale());
+            let keys: Vec<f64> = coord.key_points(30);
+            let near = |x: f64| keys.iter().any(|k| (k / x - 1.0).abs() < 1e-6);
+            assert!(near(a) && near(b), "{lo} {hi}: ends {a} {b}, keys {keys:?}");
+        }
     }
 
     #[test]
