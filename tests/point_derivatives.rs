@@ -218,3 +218,59 @@ fn bad_derivative_inputs_are_named_errors() {
     };
     assert_eq!((step, next), (plain, plain_next));
 }
+
+/// Slips from 1e-300 to 1e300 of the slip limit, and an open contact: finite outputs or
+/// JOINTLIN_ERR_OVERFLOW, never a NaN; the open contact writes zeros everywhere.
+#[test]
+fn extreme_slips_and_open_contacts() {
+    use jointlin::ffi::error::JOINTLIN_ERR_OVERFLOW;
+    let step = |c: &jointlin_contact, slip: f64| {
+        let (state, d_state, d_slip) = ([0.0; N], [0.5; N], [1.0]);
+        let (mut next, mut d_next, mut out, mut d_force) =
+            ([7.0; N], [7.0; N], jointlin_step::default(), [7.0]);
+        let code = unsafe {
+            jointlin_point_step_derivatives(
+                c,
+                state.as_ptr(),
+                d_state.as_ptr(),
+                slip,
+                d_slip.as_ptr(),
+                1,
+                next.as_mut_ptr(),
+                d_next.as_mut_ptr(),
+                &mut out,
+                d_force.as_mut_ptr(),
+            )
+        };
+        (code, next, d_next, out, d_force)
+    };
+    for (law, rule) in [
+        (JOINTLIN_LAW_MINDLIN, JOINTLIN_RULE_THESIS),
+        (JOINTLIN_LAW_JENKINS, JOINTLIN_RULE_MASING),
+    ] {
+        let c = contact(law, rule);
+        for e in [-300, -100, -1, 0, 1, 100, 300] {
+            for sign in [1.0, -1.0] {
+                let slip = sign * DELTA_STAR * 10f64.powi(e);
+                let (code, next, d_next, out, d_force) = step(&c, slip);
+                match code {
+                    JOINTLIN_OK => {
+                        let all = next.iter().chain(&d_next).chain(&d_force);
+                        assert!(all.clone().all(|v| v.is_finite()), "{slip:e}");
+                        assert!(out.force.is_finite() && out.force.abs() <= 0.3 * 2.0);
+                    }
+                    JOINTLIN_ERR_OVERFLOW => assert_eq!(d_force, [7.0], "nothing written"),
+                    other => panic!("{slip:e}: status {other}"),
+                }
+            }
+        }
+        let open = jointlin_contact {
+            normal_force: 0.0,
+            ..c
+        };
+        let (code, next, d_next, out, d_force) = step(&open, 1e-3);
+        assert_eq!(code, JOINTLIN_OK);
+        assert_eq!((next, d_next, d_force), ([0.0; N], [0.0; N], [0.0]));
+        assert_eq!(out, jointlin_step::default());
+    }
+}
