@@ -42,6 +42,7 @@ pub mod loss;
 pub mod mhb;
 pub mod model;
 pub mod names;
+pub mod reduce;
 pub mod report;
 pub mod run;
 pub mod settings;

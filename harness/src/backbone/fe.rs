@@ -24,17 +24,16 @@
 
 use nalgebra::{Complex, DMatrix};
 
-use crate::capi::Tangential;
-use crate::fe::csc::Csc;
 use crate::mhb::{Element, Law, System};
 use crate::model::lumped::{undamped_frequencies as frequencies, Lumped};
 use crate::model::Problem;
 use crate::settings::Effects;
-use crate::solve::contact::tangential;
 use crate::solve::modal::{lowest_modes, ModalOptions};
+use crate::solve::reduction::{
+    basis, constraint_modes, interior_modes, project, stuck_contacts, StuckContacts,
+};
 use crate::solve::static_step;
 use crate::solve::sweep::Setup;
-use crate::solve::umfpack::Symbolic;
 
 /// Convergence of the reduction: the sliding frequencies up to the traced mode change by
 /// less than this fraction of its stuck frequency when the interior modes double.
@@ -48,9 +47,6 @@ pub const MAX_JOINTS: usize = 400;
 const MIN_MODES: usize = 8;
 /// Most interior modes (the dense systems downstream grow as their cube).
 const MAX_MODES: usize = 256;
-/// Interior Ritz vectors whose M-norm falls below this fraction of the largest are
-/// dependent on the constraint modes and left out.
-const DEPENDENT: f64 = 1e-12;
 
 /// A reduced FE scene and how it was reduced.
 #[derive(Debug, Clone)]
@@ -76,16 +72,6 @@ pub struct Reduced {
     pub converged: bool,
 }
 
-/// Columns of `x` times the sparse `a`.
-fn mul_cols(a: &Csc<f64>, x: &DMatrix<f64>) -> DMatrix<f64> {
-    let mut y = DMatrix::zeros(x.nrows(), x.ncols());
-    for c in 0..x.ncols() {
-        let col = a.mul_vec(x.column(c).as_slice());
-        y.column_mut(c).copy_from_slice(&col);
-    }
-    y
-}
-
 /// Reduces the FE problem `p` for a backbone of mode `mode` (1-based). `effects`:
 /// `normal_contact_nonlinearity` for the static step, `material_damping` for D.
 pub fn reduce(p: &Problem, effects: &Effects, mode: usize) -> Result<Reduced, String> {
@@ -100,38 +86,24 @@ pub fn reduce(p: &Problem, effects: &Effects, mode: usize) -> Result<Reduced, St
     eff.tangential_microslip = true;
     let setup = Setup::new(p, &stat, &eff).map_err(|e| e.to_string())?;
     let n = p.sys.dofs.n_free();
-    let pattern = p.sys.pattern.clone();
-    let k0 = Csc {
-        pattern: pattern.clone(),
-        values: setup.base.clone(),
-    };
+    let StuckContacts {
+        k0,
+        ks,
+        rows: stuck,
+    } = stuck_contacts(p, &setup);
     // Rows of B, the joints' laws (force form) and k_T0·A per row; then cubic springs.
     let mut rows: Vec<&[(usize, f64)]> = Vec::new();
     let mut laws = Vec::new();
     let mut kt = Vec::new();
     let mut names = Vec::new();
-    let mut ks = k0.clone();
-    for (j, &i) in setup.active.iter().enumerate() {
-        let c = &p.contacts[i];
-        let itf = &p.interfaces[c.interface];
-        let t = tangential(itf, setup.pressure[i]);
-        let force = Tangential {
-            normal: t.normal * c.area,
-            k_t0: t.k_t0 * c.area,
-            ..t
-        };
-        for d in 1..=2 {
-            rows.push(&c.rows[d]);
-            laws.push(Law::Point(force));
-            kt.push(force.k_t0);
-            names.push(format!("{}.{i}.t{d}", itf.name));
-        }
-        let [b1, b2] = &setup.unit_blocks[j];
-        p.sys.pairs.add(
-            &mut ks.values,
-            c.pair,
-            &((b1 + b2) * itf.contact.k_t0_per_area),
-        );
+    for &(i, d, row, force) in &stuck {
+        rows.push(row);
+        laws.push(Law::Point(force));
+        kt.push(force.k_t0);
+        names.push(format!(
+            "{}.{i}.t{d}",
+            p.interfaces[p.contacts[i].interface].name
+        ));
     }
     for sp in &p.cubic_springs {
         rows.push(&sp.row);
@@ -149,29 +121,7 @@ pub fn reduce(p: &Problem, effects: &Effects, mode: usize) -> Result<Reduced, St
     if nb == 0 {
         return Err("no contact point is closed after the preload: nothing to trace".into());
     }
-    // X = K_s⁻¹ Bᵀ (one factorization, nb solves), G = B X.
-    let symbolic = Symbolic::<f64>::symmetric(pattern.clone()).map_err(|e| e.to_string())?;
-    let num = symbolic.factor(&ks).map_err(|e| e.to_string())?;
-    let mut rhs = vec![0.0; n * nb];
-    for (j, row) in rows.iter().enumerate() {
-        for &(i, w) in row.iter() {
-            rhs[j * n + i] += w;
-        }
-    }
-    let xs = num.solve_many(&rhs).map_err(|e| e.to_string())?;
-    let x = DMatrix::from_fn(n, nb, |i, j| xs[j * n + i]);
-    let apply_b = |v: &DMatrix<f64>| {
-        DMatrix::from_fn(nb, v.ncols(), |r, c| {
-            rows[r].iter().map(|&(i, w)| w * v[(i, c)]).sum::<f64>()
-        })
-    };
-    let g = apply_b(&x);
-    let g = (&g + g.transpose()) * 0.5;
-    let chol = g
-        .cholesky()
-        .ok_or("B K_s⁻¹ Bᵀ is not positive definite: two contact directions coincide")?;
-    // Ψ = X G⁻¹ (G symmetric): Ψᵀ = G⁻¹ Xᵀ.
-    let psi = chol.solve(&x.transpose()).transpose();
+    let psi = constraint_modes(&ks, &rows)?;
     if effects.material_damping && p.structural.is_some() {
         return Err("the model has structural damping (*DAMPING, STRUCTURAL=): backbones take viscous damping only".into());
     }
@@ -195,35 +145,11 @@ pub fn reduce(p: &Problem, effects: &Effects, mode: usize) -> Result<Reduced, St
         )
         .map_err(|e| e.to_string())?;
         let phi = DMatrix::from_fn(n, count, |i, c| modes.shapes[c][i]);
-        let theta = &phi - &psi * apply_b(&phi);
-        // Interior block as Ritz modes: M-orthonormal, ascending.
-        let mt = theta.transpose() * mul_cols(m, &theta);
-        let kt_ = theta.transpose() * mul_cols(&k0, &theta);
-        let mt = (&mt + mt.transpose()) * 0.5;
-        let eig = mt.clone().symmetric_eigen();
-        let big = eig.eigenvalues.iter().copied().fold(0.0f64, f64::max);
-        let keep: Vec<usize> = (0..count)
-            .filter(|&c| eig.eigenvalues[c] > DEPENDENT * big)
-            .collect();
-        // Whitened basis W (count × kept): Wᵀ M_θ W = I.
-        let w = DMatrix::from_fn(count, keep.len(), |r, c| {
-            eig.eigenvectors[(r, keep[c])] / eig.eigenvalues[keep[c]].sqrt()
-        });
-        let kw = w.transpose() * &kt_ * &w;
-        let e2 = ((&kw + kw.transpose()) * 0.5).symmetric_eigen();
-        let mut order: Vec<usize> = (0..keep.len()).collect();
-        order.sort_by(|&a, &b| e2.eigenvalues[a].total_cmp(&e2.eigenvalues[b]));
-        let ritz = DMatrix::from_fn(keep.len(), keep.len(), |r, c| {
-            e2.eigenvectors[(r, order[c])]
-        });
-        let interior = &theta * (w * ritz);
+        let interior = interior_modes(&psi, &rows, &phi, (&k0, m));
         let ni = interior.ncols();
-        let mut t = DMatrix::zeros(n, nb + ni);
-        t.view_mut((0, 0), (n, nb)).copy_from(&psi);
-        t.view_mut((0, nb), (n, ni)).copy_from(&interior);
-        let sym = |a: DMatrix<f64>| (&a + a.transpose()) * 0.5;
-        let mr = sym(t.transpose() * mul_cols(m, &t));
-        let kr = sym(t.transpose() * mul_cols(&k0, &t));
+        let t = basis(&psi, &interior);
+        let mr = project(m, &t);
+        let kr = project(&k0, &t);
         let sliding: Vec<f64> = frequencies(&kr, &mr)?.into_iter().take(mode).collect();
         let mut kstuck = kr.clone();
         for (j, v) in kt.iter().enumerate() {
@@ -241,7 +167,7 @@ pub fn reduce(p: &Problem, effects: &Effects, mode: usize) -> Result<Reduced, St
         let last = count >= interior_max;
         if converged || last {
             let dr = match damping {
-                Some(d) => sym(t.transpose() * mul_cols(d, &t)),
+                Some(d) => project(d, &t),
                 None => DMatrix::zeros(nb + ni, nb + ni),
             };
             let f1 = (0..nb + ni)

@@ -12,6 +12,7 @@ mod man;
 mod matrices;
 mod mhb;
 mod modes;
+mod reduce;
 mod run;
 mod run_lumped;
 mod tradeoff;
@@ -192,6 +193,16 @@ pub enum Command {
     /// concept (AFT through jointlin_point_step). Writes backbone.csv, backbone.svg and
     /// run.json.
     Backbone(backbone::Args),
+    /// Reduce an FE scene or deck (Craig–Bampton, docs/reduce.md): after the static
+    /// preload, onto the closed contact points' two tangential relative displacements,
+    /// the outputs and the load, plus the interior modes of the structure with every
+    /// joint stuck. Writes DIR/K.mtx, M.mtx (D.mtx with material damping), dofs.csv and
+    /// scene.toml: a `[[matrices]]` model with one `[[joints]]` entry per contact
+    /// direction (the point's law, its normal force from the preload, k_T0 times its
+    /// area), the load and the outputs, and the full scene's units, sweep, iteration and
+    /// effects, which `run`, `backbone`, `tradeoff` and `modes` take as any lumped scene;
+    /// run.json compares its stuck frequencies with the full model's.
+    Reduce(reduce::Args),
     /// Models given by their matrices (`[[matrices]]` of a scene): converters of FE
     /// codes' matrix output.
     #[command(subcommand)]
@@ -238,6 +249,7 @@ pub fn dispatch(command: Command) -> ExitCode {
         Command::Bench(a) => bench::main(a),
         Command::Mhb(a) => mhb::main(a),
         Command::Backbone(a) => backbone::main(a),
+        Command::Reduce(a) => reduce::main(a),
         Command::Matrices(a) => matrices::main(a),
         Command::Man(a) => man::main(a),
     }

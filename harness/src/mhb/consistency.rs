@@ -1,7 +1,7 @@
 //! Consistency of the first-order method's element amplitudes: the amplitudes a that
 //! the linearized response reproduces, a = g(a) (thesis §4.2.3: the linearization at
-//! A must give back A). Solved by Newton on r(a) = a − g(a) with a forward-difference
-//! Jacobian (the elements are few, so n + 1 evaluations of g per iteration), safeguarded
+//! A must give back A). Solved by Newton on r(a) = a − g(a) with the caller's ∂g/∂a or a
+//! forward-difference Jacobian (n + 1 evaluations of g per iteration), safeguarded
 //! by backtracking on the weighted residual and, where the Newton direction does not
 //! lower it, a relaxed fixed-point step (the thesis's relaxation). Amplitudes stay ≥ 0.
 //!
@@ -11,8 +11,17 @@
 
 use nalgebra::{DMatrix, DVector};
 
+/// The floor of the mismatch's scale, relative to the largest amplitude: below it an
+/// element's amplitude counts absolutely (tolerance × 1e-4: about the round-off of the
+/// largest).
+pub const FLOOR: f64 = 1e-4;
+
+/// A mismatch below this that no Newton step lowers, or lowers by less than half, is
+/// g's round-off: converged (Newton gains far more per step where g is exact).
+pub const ROUND_OFF: f64 = 1e-9;
+
 /// The method, as named in messages.
-pub const METHOD: &str = "Newton iteration (forward-difference Jacobian, backtracking)";
+pub const METHOD: &str = "Newton iteration (backtracking)";
 
 /// A converged fixed point.
 #[derive(Debug, Clone)]
@@ -29,11 +38,13 @@ pub struct Stalled {
     pub iterations: usize,
 }
 
-/// Componentwise scale of the mismatch: the larger of |a| and |g(a)|, floored at 1e-12 of
-/// the largest amplitude (an element that hardly moves must not dominate).
+/// Componentwise scale of the mismatch: the larger of |a| and |g(a)|, floored at
+/// [`FLOOR`] of the largest amplitude: an element that hardly moves must not dominate,
+/// and its g carries round-off of order 1e-16 of the largest (a symmetric structure's
+/// elements that do not move at all), which the tolerance must be able to pass.
 fn weights(x: &[f64], g: &[f64]) -> Vec<f64> {
     let big = x.iter().chain(g).fold(0.0f64, |m, v| m.max(v.abs()));
-    let floor = (1e-12 * big).max(f64::MIN_POSITIVE);
+    let floor = (FLOOR * big).max(f64::MIN_POSITIVE);
     x.iter()
         .zip(g)
         .map(|(a, b)| 1.0 / a.abs().max(b.abs()).max(floor))
@@ -47,11 +58,25 @@ fn merit(x: &[f64], g: &[f64], w: &[f64]) -> f64 {
         .fold(0.0f64, |m, ((a, b), w)| m.max(((a - b) * w).abs()))
 }
 
-/// Solves a = g(a) from `x0` to the relative mismatch `tol`. `Err` passes g's errors on;
-/// `Ok(Err(_))` is an honest "not converged".
+/// ∂g/∂a at a (n × n), when the caller has it.
+pub type Derivative<'a, E> = &'a mut dyn FnMut(&[f64]) -> Result<DMatrix<f64>, E>;
+
+/// Solves a = g(a) from `x0` to the relative mismatch `tol` with a forward-difference
+/// Jacobian. `Err` passes g's errors on; `Ok(Err(_))` is an honest "not converged".
 pub fn solve<E>(
     x0: &[f64],
+    g: impl FnMut(&[f64]) -> Result<Vec<f64>, E>,
+    tol: f64,
+    max_iter: usize,
+) -> Result<Result<Converged, Stalled>, E> {
+    solve_with(x0, g, None, tol, max_iter)
+}
+
+/// As [`solve`], with ∂g/∂a from `derivative` when given.
+pub fn solve_with<E>(
+    x0: &[f64],
     mut g: impl FnMut(&[f64]) -> Result<Vec<f64>, E>,
+    mut derivative: Option<Derivative<'_, E>>,
     tol: f64,
     max_iter: usize,
 ) -> Result<Result<Converged, Stalled>, E> {
@@ -64,17 +89,23 @@ pub fn solve<E>(
         if m <= tol {
             return Ok(Ok(Converged { x, iterations: it }));
         }
-        // J = I − ∂g/∂a by forward differences.
-        let mut jac = DMatrix::<f64>::identity(n, n);
-        for j in 0..n {
-            let h = 1e-7 * x[j].abs().max(1.0 / w[j]);
-            let mut xp = x.clone();
-            xp[j] += h;
-            let gp = g(&xp)?;
-            for i in 0..n {
-                jac[(i, j)] -= (gp[i] - gx[i]) / h;
+        // J = I − ∂g/∂a, the caller's or by forward differences.
+        let jac = match derivative.as_mut() {
+            Some(d) => DMatrix::<f64>::identity(n, n) - d(&x)?,
+            None => {
+                let mut jac = DMatrix::<f64>::identity(n, n);
+                for j in 0..n {
+                    let h = 1e-7 * x[j].abs().max(1.0 / w[j]);
+                    let mut xp = x.clone();
+                    xp[j] += h;
+                    let gp = g(&xp)?;
+                    for i in 0..n {
+                        jac[(i, j)] -= (gp[i] - gx[i]) / h;
+                    }
+                }
+                jac
             }
-        }
+        };
         let r = DVector::from_iterator(n, x.iter().zip(&gx).map(|(a, b)| a - b));
         let step = jac.lu().solve(&r);
         let mut accepted = false;
@@ -97,6 +128,12 @@ pub fn solve<E>(
                 lambda *= 0.5;
             }
         }
+        if !accepted && m <= ROUND_OFF {
+            // No Newton step lowers a mismatch this small: g's own round-off (the
+            // linear solve's, near a resonance) is reached; the fixed point is as exact
+            // as g can be evaluated.
+            return Ok(Ok(Converged { x, iterations: it }));
+        }
         if !accepted {
             // Fixed-point steps a + c(g − a), c = 1, ½, ¼: the first that lowers the
             // mismatch, else c = ¼ regardless (the thesis's relaxation).
@@ -111,7 +148,15 @@ pub fn solve<E>(
             }
         }
         w = weights(&x, &gx);
+        let before = m;
         m = merit(&x, &gx, &w);
+        if m <= ROUND_OFF && m > 0.5 * before {
+            // Newton no longer gains: round-off as above.
+            return Ok(Ok(Converged {
+                x,
+                iterations: it + 1,
+            }));
+        }
     }
     if m <= tol {
         return Ok(Ok(Converged {

@@ -11,6 +11,8 @@ use super::{consistency, Law, MhbError, System};
 use crate::capi;
 
 type C64 = Complex<f64>;
+/// A factorization of the complex dynamic stiffness.
+type Factored = nalgebra::LU<C64, nalgebra::Dyn, nalgebra::Dyn>;
 
 /// Consistency reached: relative change of every element amplitude below this.
 pub const TOL: f64 = 1e-12;
@@ -19,11 +21,12 @@ pub const TOL: f64 = 1e-12;
 /// amplitudes `a0` (start estimate).
 pub fn solve(sys: &System, omega: f64, a0: &[f64]) -> Result<Vec<C64>, MhbError> {
     let g = |amp: &[f64]| -> Result<Vec<f64>, MhbError> {
-        let x = response(sys, omega, amp)?;
+        let x = response(sys, omega, amp)?.0;
         Ok(element_amplitudes(sys, &x))
     };
-    match consistency::solve(a0, g, TOL, MAX_ITER)? {
-        Ok(c) => response(sys, omega, &c.x),
+    let mut derivative = |amp: &[f64]| amplitude_derivative(sys, omega, amp);
+    match consistency::solve_with(a0, g, Some(&mut derivative), TOL, MAX_ITER)? {
+        Ok(c) => Ok(response(sys, omega, &c.x)?.0),
         Err(st) => Err(MhbError::Consistency {
             omega,
             mismatch: st.mismatch,
@@ -37,14 +40,69 @@ const MAX_ITER: usize = 100;
 
 /// Relative-displacement amplitudes |P x̂| of the elements.
 pub fn element_amplitudes(sys: &System, x: &[C64]) -> Vec<f64> {
-    sys.elements
+    element_amplitudes_complex(sys, x)
         .iter()
-        .map(|e| (x[e.i] - e.j.map_or(C64::new(0.0, 0.0), |j| x[j])).norm())
+        .map(|u| u.norm())
         .collect()
 }
 
-/// The linearized response for element amplitudes `amp`.
-fn response(sys: &System, omega: f64, amp: &[f64]) -> Result<Vec<C64>, MhbError> {
+/// The element's linearized impedance z = k* + iωd* at amplitude `a`.
+fn impedance(law: Law, omega: f64, a: f64) -> Result<C64, MhbError> {
+    Ok(match law {
+        Law::Cubic(k3) => C64::new(
+            capi::linearize_cubic(0.0, k3, a).map_err(super::AftError::from)?,
+            0.0,
+        ),
+        Law::Point(t) => {
+            let l = capi::linearize(&t, a, omega).map_err(super::AftError::from)?;
+            C64::new(l.k_star, omega * l.d_star)
+        }
+    })
+}
+
+/// ∂g/∂a of the map g(a) = |P x̂(a)|: with u = P x̂, H = P S⁻¹ Pᵀ and z'_k = dz/dA at
+/// a_k (central difference of the library's k*, d*, relative step 1e-6),
+/// ∂u_e/∂a_k = −H_ek z'_k u_k (from S x̂ = f̂) and ∂g_e/∂a_k = Re(ū_e ∂u_e/∂a_k)/|u_e|
+/// (0 where u_e = 0).
+fn amplitude_derivative(sys: &System, omega: f64, amp: &[f64]) -> Result<DMatrix<f64>, MhbError> {
+    let (x, lu) = response(sys, omega, amp)?;
+    let (n, ne) = (sys.n(), sys.elements.len());
+    let mut pt = DMatrix::<C64>::zeros(n, ne);
+    for (k, e) in sys.elements.iter().enumerate() {
+        pt[(e.i, k)] += C64::new(1.0, 0.0);
+        if let Some(j) = e.j {
+            pt[(j, k)] -= C64::new(1.0, 0.0);
+        }
+    }
+    let y = lu.solve(&pt).ok_or(MhbError::Singular { omega })?;
+    let u: Vec<C64> = element_amplitudes_complex(sys, &x);
+    let mut out = DMatrix::zeros(ne, ne);
+    for (k, e) in sys.elements.iter().enumerate() {
+        let a = amp[k];
+        let h = 1e-6 * a.abs().max(f64::MIN_POSITIVE);
+        let lo = (a - h).max(0.0);
+        let dz = (impedance(e.law, omega, a + h)? - impedance(e.law, omega, lo)?) / (a + h - lo);
+        for (r, f) in sys.elements.iter().enumerate() {
+            let h_rk = y[(f.i, k)] - f.j.map_or(C64::new(0.0, 0.0), |j| y[(j, k)]);
+            let du = -h_rk * dz * u[k];
+            if u[r].norm() > 0.0 {
+                out[(r, k)] = (u[r].conj() * du).re / u[r].norm();
+            }
+        }
+    }
+    Ok(out)
+}
+
+/// Complex relative displacements P x̂ of the elements.
+fn element_amplitudes_complex(sys: &System, x: &[C64]) -> Vec<C64> {
+    sys.elements
+        .iter()
+        .map(|e| x[e.i] - e.j.map_or(C64::new(0.0, 0.0), |j| x[j]))
+        .collect()
+}
+
+/// The linearized response for element amplitudes `amp`, and the factorization of S.
+fn response(sys: &System, omega: f64, amp: &[f64]) -> Result<(Vec<C64>, Factored), MhbError> {
     let n = sys.n();
     let mut s = DMatrix::<C64>::zeros(n, n);
     for a in 0..n {
@@ -56,16 +114,7 @@ fn response(sys: &System, omega: f64, amp: &[f64]) -> Result<Vec<C64>, MhbError>
         }
     }
     for (e, &a) in sys.elements.iter().zip(amp) {
-        let z = match e.law {
-            Law::Cubic(k3) => {
-                let k_star = capi::linearize_cubic(0.0, k3, a).map_err(super::AftError::from)?;
-                C64::new(k_star, 0.0)
-            }
-            Law::Point(t) => {
-                let l = capi::linearize(&t, a, omega).map_err(super::AftError::from)?;
-                C64::new(l.k_star, omega * l.d_star)
-            }
-        };
+        let z = impedance(e.law, omega, a)?;
         s[(e.i, e.i)] += z;
         if let Some(j) = e.j {
             s[(j, j)] += z;
@@ -74,6 +123,7 @@ fn response(sys: &System, omega: f64, amp: &[f64]) -> Result<Vec<C64>, MhbError>
         }
     }
     let f = DVector::from_iterator(n, sys.f1.iter().copied());
-    let x = s.lu().solve(&f).ok_or(MhbError::Singular { omega })?;
-    Ok(x.iter().copied().collect())
+    let lu = s.lu();
+    let x = lu.solve(&f).ok_or(MhbError::Singular { omega })?;
+    Ok((x.iter().copied().collect(), lu))
 }

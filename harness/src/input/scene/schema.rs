@@ -36,33 +36,33 @@ pub struct SceneFile {
     pub model: Option<String>,
     pub units: Units,
     /// Materials by name.
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
     pub materials: BTreeMap<String, MaterialSpec>,
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub bodies: Vec<BodySpec>,
     /// Models given by their matrices (M, K, D from any FE code, a DOF list naming the
     /// rows by point and direction); their points are named `<name>.<point>`.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub matrices: Vec<MatricesSpec>,
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub interfaces: Vec<InterfaceSpec>,
     /// Boxes that move as one where they touch (coincident nodes merged).
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub ties: Vec<TieSpec>,
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub preload: Vec<PreloadSpec>,
     /// Screws replaced by two opposite forces from their tightening torque (at nodes,
     /// over a bearing ring or over the engaged thread).
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub screws: Vec<ScrewSpec>,
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub clamp: Vec<ClampSpec>,
     /// Grounded springs and dashpots on lumped (`mass`) bodies.
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub springs: Vec<SpringSpec>,
     /// Discrete contact elements between mass bodies or to the ground (lumped models;
     /// read by `jointlin backbone`).
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub joints: Vec<JointSpec>,
     #[serde(default)]
     pub excitation: Vec<ExcitationSpec>,

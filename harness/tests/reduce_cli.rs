@@ -1,0 +1,230 @@
+//! `jointlin reduce`: an FE scene or deck written as a `[[matrices]]` model with its
+//! scene. The reduced scene runs as any lumped scene, and its numbers are the full
+//! model's: stuck frequencies to round-off (every kept mode lies in the basis), the
+//! first-order sweep of scenes/three-beams-coarse.toml against the FE fast sweep of the
+//! same scene to the truncation of the interior modes (falling with their number), the
+//! H = 1 EPMC backbone against the FE scene's own backbone.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+fn repo(p: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("..").join(p)
+}
+
+fn tmp(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("jointlin-reduce-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    d
+}
+
+/// Runs `jointlin ARGS`; its stderr, and stdout; panics with stderr unless it exits 0.
+fn jointlin_both(args: &[&str]) -> (String, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_jointlin"))
+        .args(args)
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&out.stderr).to_string();
+    assert!(out.status.success(), "jointlin {args:?}: {err}");
+    (err, String::from_utf8_lossy(&out.stdout).to_string())
+}
+
+/// Runs `jointlin ARGS`; its stderr.
+fn jointlin(args: &[&str]) -> String {
+    jointlin_both(args).0
+}
+
+fn reduce(model: &str, name: &str, extra: &[&str]) -> PathBuf {
+    let dir = tmp(name);
+    let m = repo(model);
+    let mut args = vec![
+        "reduce",
+        m.to_str().unwrap(),
+        "--out",
+        dir.to_str().unwrap(),
+    ];
+    args.extend_from_slice(extra);
+    jointlin(&args);
+    dir
+}
+
+/// Rows of a CSV as maps.
+fn rows(path: &Path) -> Vec<std::collections::BTreeMap<String, String>> {
+    let text = std::fs::read_to_string(path).unwrap();
+    let mut lines = text.lines();
+    let head: Vec<String> = lines.next().unwrap().split(',').map(String::from).collect();
+    lines
+        .map(|l| {
+            head.iter()
+                .cloned()
+                .zip(l.split(',').map(String::from))
+                .collect()
+        })
+        .collect()
+}
+
+fn num(r: &std::collections::BTreeMap<String, String>, k: &str) -> f64 {
+    r[k].parse().unwrap_or_else(|_| panic!("{k}: `{}`", r[k]))
+}
+
+fn run_json(dir: &Path) -> serde_json::Value {
+    serde_json::from_str(&std::fs::read_to_string(dir.join("run.json")).unwrap()).unwrap()
+}
+
+/// Largest relative difference of the two outputs' amplitudes over all frequencies of
+/// two results.csv (the same frequencies); every row of `b` converged.
+fn largest_difference(a: &Path, b: &Path) -> f64 {
+    let (ra, rb) = (rows(a), rows(b));
+    assert_eq!(ra.len(), rb.len());
+    let mut worst = 0.0f64;
+    for (x, y) in ra.iter().zip(&rb) {
+        assert_eq!(y["status"], "converged", "{y:?}");
+        let f = num(x, "frequency_Hz");
+        assert!((num(y, "frequency_Hz") / f - 1.0).abs() < 1e-12);
+        for k in ["middle_tip_amp_mm", "top_tip_amp_mm"] {
+            worst = worst.max((num(y, k) / num(x, k) - 1.0).abs());
+        }
+    }
+    worst
+}
+
+#[test]
+fn three_beams_reduced_sweeps_as_the_full_model() {
+    // The FE fast sweep, consistent to 1e-10 (the scene's 1e-3 would dominate).
+    let fe = tmp("fe");
+    let scene = repo("scenes/three-beams-coarse.toml");
+    jointlin(&[
+        "run",
+        scene.to_str().unwrap(),
+        "--out",
+        fe.to_str().unwrap(),
+        "--no-plots",
+        "--set",
+        "iteration.tolerance=1e-10",
+    ]);
+    let mut errors = Vec::new();
+    for modes in ["4", "16"] {
+        let dir = reduce("scenes/three-beams-coarse.toml", modes, &["--modes", modes]);
+        let r = run_json(&dir);
+        assert_eq!(r["closed_points"], 36);
+        assert_eq!(r["joints"], 72);
+        // 72 contact directions and the two outputs; the load acts on top_tip's z, the
+        // same coordinate.
+        assert_eq!(r["retained_coordinates"], 74);
+        let text = std::fs::read_to_string(dir.join("scene.toml")).unwrap();
+        assert!(
+            text.contains("[[excitation]]\nkind = \"point\"\nbody = \"reduced.top_tip\""),
+            "{text}"
+        );
+        assert!(
+            r["largest_relative_difference"].as_f64().unwrap() < 1e-9,
+            "{r}"
+        );
+        let dofs = std::fs::read_to_string(dir.join("dofs.csv")).unwrap();
+        assert!(dofs.contains("\nlower_0,x\nlower_0,y\n"), "{dofs}");
+        assert!(dofs.contains("\nmiddle_tip,z\n") && dofs.contains("\ntop_tip,z\n"));
+        let out = dir.join("run");
+        let log = jointlin(&[
+            "run",
+            dir.join("scene.toml").to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+            "--no-plots",
+        ]);
+        assert!(log.contains("100 of 100 frequencies converged"), "{log}");
+        errors.push(largest_difference(
+            &fe.join("results.csv"),
+            &out.join("results.csv"),
+        ));
+    }
+    // Measured: 4.6e-4 with 4 interior modes, 1.7e-8 with 16.
+    assert!(errors[1] < 1e-7, "{errors:?}");
+    assert!(errors[0] > 100.0 * errors[1], "{errors:?}");
+}
+
+#[test]
+fn reduced_backbone_is_the_fe_backbone() {
+    let dir = reduce(
+        "scenes/three-beams-coarse.toml",
+        "backbone",
+        &["--modes", "16"],
+    );
+    let (a, b) = (tmp("bb-fe"), tmp("bb-reduced"));
+    let scene = repo("scenes/three-beams-coarse.toml");
+    for (input, out) in [(scene, &a), (dir.join("scene.toml"), &b)] {
+        jointlin(&[
+            "backbone",
+            input.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+            "--harmonics",
+            "1",
+            "--amplitudes",
+            "1e-5,1e-2,12",
+            "--quiet",
+        ]);
+    }
+    let (ra, rb) = (rows(&a.join("backbone.csv")), rows(&b.join("backbone.csv")));
+    assert_eq!(ra.len(), 12);
+    assert_eq!(rb.len(), 12);
+    for (x, y) in ra.iter().zip(&rb) {
+        // Measured: ≤ 6.3e-9 (frequency), ≤ 2.4e-8 (damping ratio) from 1174 Hz stuck to
+        // 437 Hz sliding; the two reductions differ by the retained outputs and load.
+        for (k, tol) in [("frequency_Hz", 1e-7), ("damping_ratio", 1e-6)] {
+            let d = (num(y, k) / num(x, k) - 1.0).abs();
+            assert!(d < tol, "{k}: {x:?} {y:?}");
+        }
+    }
+}
+
+#[test]
+fn a_deck_reduces_and_its_load_pattern_is_one_coordinate() {
+    let dir = reduce("examples/abaqus/block-on-plane/block.inp", "deck", &[]);
+    let r = run_json(&dir);
+    assert_eq!(r["closed_points"], 9);
+    assert!(
+        r["largest_relative_difference"].as_f64().unwrap() < 1e-8,
+        "{r}"
+    );
+    let dofs = std::fs::read_to_string(dir.join("dofs.csv")).unwrap();
+    assert!(
+        dofs.contains("# load: x along the load's pattern"),
+        "{dofs}"
+    );
+    // The reduced scene reads as a lumped scene: `jointlin modes` of it (its joints
+    // stuck) gives the full model's stuck frequencies, as printed (7 digits).
+    let (_, table) = jointlin_both(&["modes", dir.join("scene.toml").to_str().unwrap()]);
+    let printed: Vec<f64> = table
+        .lines()
+        .filter_map(|l| {
+            l.strip_prefix("| ")?
+                .split(" | ")
+                .nth(1)?
+                .trim_end_matches(" |")
+                .parse()
+                .ok()
+        })
+        .collect();
+    let full = r["stuck_frequencies_full_model"].as_array().unwrap();
+    assert!(printed.len() >= 6, "{table}");
+    for (p, f) in printed.iter().zip(full) {
+        let f = f.as_f64().unwrap();
+        assert!((p / f - 1.0).abs() < 1e-6, "{p} against {f}\n{table}");
+    }
+}
+
+#[test]
+fn lumped_scenes_are_refused() {
+    let out = Command::new(env!("CARGO_BIN_EXE_jointlin"))
+        .args([
+            "reduce",
+            repo("scenes/jenkins-chain.toml").to_str().unwrap(),
+            "--out",
+        ])
+        .arg(tmp("refused"))
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("reduced already"), "{err}");
+}
