@@ -8,7 +8,7 @@ losses directly (Tianyi Yu, KIT 2012; the method: docs/model.md of the repositor
 The library (one C-API call per element, statuses per element):
 ``linearize``, ``linearize3d``, ``screw_preload``, ``Point``, ``Point3d``, ``Status``,
 ``Regime``, ``check``. The harness: ``Scene`` (scenes and Abaqus-format decks),
-``Result``, ``backbone``. Errors: ``JointlinError`` and its subclasses.
+``Result``, ``backbone``, ``reduce``. Errors: ``JointlinError`` and its subclasses.
 """
 
 from ._errors import (
@@ -38,7 +38,7 @@ from ._library import (
     screw_preload,
 )
 from ._native import abi_version
-from ._scene import Result, Scene, backbone
+from ._scene import Result, Scene, backbone, reduce
 
 __version__ = "0.1.0"
 
@@ -68,5 +68,6 @@ __all__ = [
     "check",
     "linearize",
     "linearize3d",
+    "reduce",
     "screw_preload",
 ]

@@ -309,3 +309,23 @@ def backbone(
         table = _read_csv(d / "backbone.csv")
         table.attrs["meta"] = json.loads((d / "run.json").read_text())
         return table
+
+
+def reduce(
+    scene: Scene | str | os.PathLike,
+    out: str | os.PathLike,
+    modes: int | None = None,
+) -> Scene:
+    """``jointlin reduce``: an FE scene or deck reduced onto its contact directions,
+    outputs and load plus interior modes (Craig–Bampton), written into ``out`` as a
+    ``[[matrices]]`` model with its scene; returns that scene, its run.json in
+    ``.meta``. ``modes``: the interior modes (default: the command's band)."""
+    if not isinstance(scene, Scene):
+        scene = Scene.load(scene)
+    args = scene._args("reduce") + ["--out", str(out)]
+    if modes is not None:
+        args += ["--modes", str(int(modes))]
+    _command(args)
+    reduced = Scene.load(Path(out) / "scene.toml")
+    reduced.meta = json.loads((Path(out) / "run.json").read_text())
+    return reduced

@@ -59,6 +59,18 @@ def test_backbone_equals_the_program(repo, program, tmp_path):
     assert len(h3) == 6
 
 
+def test_reduce_writes_a_scene_that_runs_as_the_fe_model(repo, tmp_path):
+    full = jointlin.Scene.load(repo / "scenes" / "three-beams-coarse.toml")
+    reduced = jointlin.reduce(full, tmp_path / "reduced", modes=16)
+    assert reduced.meta["joints"] == 72 and reduced.meta["interior_modes"] == 16
+    assert reduced.meta["largest_relative_difference"] < 1e-9
+    a = full.set("iteration.tolerance", 1e-10).run().frf
+    b = reduced.run().frf
+    assert (b["status"] == "converged").all()
+    for col in ("middle_tip_amp_mm", "top_tip_amp_mm"):
+        assert ((b[col] / a[col] - 1).abs() < 1e-7).all(), col
+
+
 def test_errors_carry_the_programs_message(repo, program, tmp_path):
     text = (repo / "scenes" / "block-stick.toml").read_text()
     bad = tmp_path / "bad.toml"

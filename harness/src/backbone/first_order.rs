@@ -369,7 +369,9 @@ fn point_at(sys: &System, current: &Mode, qa: f64) -> Result<(BackbonePoint, Mod
     let solved = if ne > NEWTON_MAX {
         anderson_consistency(&z0, g, TOL)?
     } else {
-        consistency::solve(&z0, g, TOL, MAX_ITER)?
+        // The amplitudes are one group of the mismatch's scale, ω another.
+        let groups: Vec<usize> = (0..=ne).map(|i| usize::from(i == ne)).collect();
+        consistency::solve_with(&z0, g, None, &groups, TOL, MAX_ITER)?
     };
     let z = match solved {
         Ok(c) => c.x,

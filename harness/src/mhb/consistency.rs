@@ -39,15 +39,26 @@ pub struct Stalled {
 }
 
 /// Componentwise scale of the mismatch: the larger of |a| and |g(a)|, floored at
-/// [`FLOOR`] of the largest amplitude: an element that hardly moves must not dominate,
-/// and its g carries round-off of order 1e-16 of the largest (a symmetric structure's
-/// elements that do not move at all), which the tolerance must be able to pass.
-fn weights(x: &[f64], g: &[f64]) -> Vec<f64> {
-    let big = x.iter().chain(g).fold(0.0f64, |m, v| m.max(v.abs()));
-    let floor = (FLOOR * big).max(f64::MIN_POSITIVE);
+/// [`FLOOR`] of the largest amplitude of the same group (`groups[i]`; the entries of one
+/// kind, e.g. amplitudes apart from a frequency): an element that hardly moves must not
+/// dominate, and its g carries round-off of order 1e-16 of the largest (a symmetric
+/// structure's elements that do not move at all), which the tolerance must be able to
+/// pass.
+fn weights(x: &[f64], g: &[f64], groups: &[usize]) -> Vec<f64> {
+    let big = |k: usize| {
+        x.iter()
+            .zip(g)
+            .zip(groups)
+            .filter(|(_, &gr)| gr == k)
+            .fold(0.0f64, |m, ((a, b), _)| m.max(a.abs()).max(b.abs()))
+    };
     x.iter()
         .zip(g)
-        .map(|(a, b)| 1.0 / a.abs().max(b.abs()).max(floor))
+        .zip(groups)
+        .map(|((a, b), &k)| {
+            let floor = (FLOOR * big(k)).max(f64::MIN_POSITIVE);
+            1.0 / a.abs().max(b.abs()).max(floor)
+        })
         .collect()
 }
 
@@ -69,21 +80,23 @@ pub fn solve<E>(
     tol: f64,
     max_iter: usize,
 ) -> Result<Result<Converged, Stalled>, E> {
-    solve_with(x0, g, None, tol, max_iter)
+    solve_with(x0, g, None, &vec![0; x0.len()], tol, max_iter)
 }
 
-/// As [`solve`], with ∂g/∂a from `derivative` when given.
+/// As [`solve`], with ∂g/∂a from `derivative` when given, and the entries' groups for
+/// the mismatch's scale (`weights`; one group: all zeros).
 pub fn solve_with<E>(
     x0: &[f64],
     mut g: impl FnMut(&[f64]) -> Result<Vec<f64>, E>,
     mut derivative: Option<Derivative<'_, E>>,
+    groups: &[usize],
     tol: f64,
     max_iter: usize,
 ) -> Result<Result<Converged, Stalled>, E> {
     let n = x0.len();
     let mut x: Vec<f64> = x0.iter().map(|v| v.abs()).collect();
     let mut gx = g(&x)?;
-    let mut w = weights(&x, &gx);
+    let mut w = weights(&x, &gx, groups);
     let mut m = merit(&x, &gx, &w);
     for it in 0..max_iter {
         if m <= tol {
@@ -119,7 +132,7 @@ pub fn solve_with<E>(
                     .map(|(a, d)| (a - lambda * d).max(0.1 * a))
                     .collect();
                 let gt = g(&trial)?;
-                if merit(&trial, &gt, &weights(&trial, &gt)) < (1.0 - 1e-4 * lambda) * m {
+                if merit(&trial, &gt, &weights(&trial, &gt, groups)) < (1.0 - 1e-4 * lambda) * m {
                     x = trial;
                     gx = gt;
                     accepted = true;
@@ -140,14 +153,14 @@ pub fn solve_with<E>(
             for c in [1.0, 0.5, 0.25] {
                 let trial: Vec<f64> = x.iter().zip(&gx).map(|(a, b)| a + c * (b - a)).collect();
                 let gt = g(&trial)?;
-                if c == 0.25 || merit(&trial, &gt, &weights(&trial, &gt)) < m {
+                if c == 0.25 || merit(&trial, &gt, &weights(&trial, &gt, groups)) < m {
                     x = trial;
                     gx = gt;
                     break;
                 }
             }
         }
-        w = weights(&x, &gx);
+        w = weights(&x, &gx, groups);
         let before = m;
         m = merit(&x, &gx, &w);
         if m <= ROUND_OFF && m > 0.5 * before {

@@ -3,7 +3,10 @@
 //! A (points: `jointlin_linearize`, k* by (3.8) on the Ersatzfunktion (4.3), d* by
 //! (3.14); cubic spring: C* = ¾ k₃ A², (3.8) for f = k₃x³), the complex linear system
 //! (K − ω²M + iωD + Σ Pᵀ(k* + iωd*)P) x̂ = f̂ solved, A ← |P x̂|, made consistent
-//! (A = |P x̂(A)|, thesis §4.2.3) by [`super::consistency`].
+//! (A = |P x̂(A)|, thesis §4.2.3) by [`super::consistency`]'s Newton iteration with the
+//! map's exact derivative (`amplitude_derivative`: one more solve with the same
+//! factorization per iteration, where forward differences took one factorization per
+//! element).
 
 use nalgebra::{Complex, DMatrix, DVector};
 
@@ -25,7 +28,14 @@ pub fn solve(sys: &System, omega: f64, a0: &[f64]) -> Result<Vec<C64>, MhbError>
         Ok(element_amplitudes(sys, &x))
     };
     let mut derivative = |amp: &[f64]| amplitude_derivative(sys, omega, amp);
-    match consistency::solve_with(a0, g, Some(&mut derivative), TOL, MAX_ITER)? {
+    match consistency::solve_with(
+        a0,
+        g,
+        Some(&mut derivative),
+        &vec![0; a0.len()],
+        TOL,
+        MAX_ITER,
+    )? {
         Ok(c) => Ok(response(sys, omega, &c.x)?.0),
         Err(st) => Err(MhbError::Consistency {
             omega,
@@ -64,7 +74,11 @@ fn impedance(law: Law, omega: f64, a: f64) -> Result<C64, MhbError> {
 /// a_k (central difference of the library's k*, d*, relative step 1e-6),
 /// ∂u_e/∂a_k = −H_ek z'_k u_k (from S x̂ = f̂) and ∂g_e/∂a_k = Re(ū_e ∂u_e/∂a_k)/|u_e|
 /// (0 where u_e = 0).
-fn amplitude_derivative(sys: &System, omega: f64, amp: &[f64]) -> Result<DMatrix<f64>, MhbError> {
+pub(super) fn amplitude_derivative(
+    sys: &System,
+    omega: f64,
+    amp: &[f64],
+) -> Result<DMatrix<f64>, MhbError> {
     let (x, lu) = response(sys, omega, amp)?;
     let (n, ne) = (sys.n(), sys.elements.len());
     let mut pt = DMatrix::<C64>::zeros(n, ne);
@@ -91,6 +105,12 @@ fn amplitude_derivative(sys: &System, omega: f64, amp: &[f64]) -> Result<DMatrix
         }
     }
     Ok(out)
+}
+
+/// The linearized response x̂ for element amplitudes `amp` (no consistency).
+#[cfg(test)]
+pub(super) fn solve_linear(sys: &System, omega: f64, amp: &[f64]) -> Result<Vec<C64>, MhbError> {
+    Ok(response(sys, omega, amp)?.0)
 }
 
 /// Complex relative displacements P x̂ of the elements.
