@@ -200,7 +200,7 @@ pub enum Command {
     /// scene.toml: a `[[matrices]]` model with one `[[joints]]` entry per contact
     /// direction (the point's law, its normal force from the preload, k_T0 times its
     /// area), the load and the outputs, and the full scene's units, sweep, iteration and
-    /// effects, which `run`, `backbone`, `tradeoff` and `modes` take as any lumped scene;
+    /// effects, which `run`, `backbone` and `modes` take as any lumped scene;
     /// run.json compares its stuck frequencies with the full model's.
     Reduce(reduce::Args),
     /// Models given by their matrices (`[[matrices]]` of a scene): converters of FE

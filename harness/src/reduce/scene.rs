@@ -170,7 +170,7 @@ pub fn write(
     let scene = toml::to_string(&scene_file(r, spec)).map_err(|e| e.to_string())?;
     files.push((
         "scene.toml",
-        format!("# {origin}\n# Run it: jointlin run scene.toml --out DIR (or backbone, tradeoff, modes).\n{scene}"),
+        format!("# {origin}\n# Run it: jointlin run scene.toml --out DIR (or backbone, modes).\n{scene}"),
     ));
     let mut written = Vec::new();
     for (name, text) in files {
