@@ -94,6 +94,7 @@ pub fn main(a: Args) -> ExitCode {
                 "closed_points": r.closed,
                 "open_points": r.open,
                 "joints": r.set.joints.len(),
+                "held_contact_directions": r.set.held,
                 "retained_coordinates": r.set.rows.len(),
                 "interior_modes": r.interior,
                 "frequency_unit": unit.text,
@@ -132,6 +133,12 @@ fn log(r: &Reduction, interior: Interior, unit: &jointlin_harness::settings::uni
         r.set.rows.len(),
         r.interior
     );
+    if r.set.held > 0 {
+        eprintln!(
+            "{} contact directions are held at zero relative displacement by clamps: no joint",
+            r.set.held
+        );
+    }
     eprintln!(
         "stuck frequencies, full → reduced model ({fu}): {}; largest relative difference {:.1e}",
         r.stuck_full

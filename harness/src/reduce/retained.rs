@@ -58,6 +58,9 @@ pub struct RetainedSet {
     pub joints: Vec<Joint>,
     pub outputs: Vec<OutputRow>,
     pub load: Option<Load>,
+    /// Contact directions whose relative displacement is held at zero by clamps (no row,
+    /// no joint).
+    pub held: usize,
 }
 
 const AXES: [char; 3] = ['x', 'y', 'z'];
@@ -144,6 +147,12 @@ pub fn retained(p: &Problem, stuck: &StuckContacts) -> Result<RetainedSet, Strin
             }
         };
         for (d, &(_, _, row, _)) in pair.iter().enumerate() {
+            // Both nodes held in this direction (a symmetry plane's clamp): it never
+            // moves, its joint never acts.
+            if row.iter().all(|&(_, w)| w == 0.0) {
+                set.held += 1;
+                continue;
+            }
             let k = set.add(&point, named[d].0, scaled(row, named[d].1));
             set.joints.push(Joint {
                 name: format!("{itf}.{i}.t{}", d + 1),
