@@ -267,7 +267,8 @@ fn load_scene(path: &Path) -> Result<Scene, ExitCode> {
 pub struct SceneOverrides {
     /// Change a value of the scene before it is read: KEY a dotted path
     /// (`iteration.mode`, `interfaces.*.rule` for every interface, `interfaces.0.mu`),
-    /// VALUE a TOML value or a bare word; `KEY=` removes the key. Repeatable.
+    /// VALUE a TOML value or a bare word; `KEY=` removes the key; a table the scene
+    /// leaves out (a deck's scene without [iteration]) is created. Repeatable.
     #[arg(long = "set", value_name = "KEY=VALUE")]
     pub set: Vec<Override>,
 }

@@ -3,8 +3,10 @@
 //! without a copy. KEY is a dotted path of the scene's TOML: table keys, an index into an
 //! array of tables (`interfaces.0.mu`) or `*` for every element (`interfaces.*.rule`).
 //! VALUE is a TOML value (`0.3`, `[1, 2]`, `"masing"`); a bare word that is not one is
-//! taken as a string (`masing`); nothing after `=` removes the key. The changed text is
-//! the scene's text (comments kept), so what a run reports is what it ran.
+//! taken as a string (`masing`); nothing after `=` removes the key. A value under a table
+//! the scene leaves out creates the table (the schema refuses a name it does not know).
+//! The changed text is the scene's text (comments kept), so what a run reports is what
+//! it ran.
 
 use std::str::FromStr;
 
@@ -121,9 +123,17 @@ fn set(
         }
         return Ok(());
     }
+    let is_table = item.is_table();
     let table = item
         .as_table_like_mut()
         .ok_or_else(|| format!("--set {key}: {first:?} is under a value, not a table"))?;
+    // A value set under a table the scene leaves out (a scene over a deck without
+    // [iteration]) creates it; the schema then refuses a name it does not know.
+    if is_table && !rest.is_empty() && value.is_some() && table.get(first).is_none() {
+        let mut t = toml_edit::Table::new();
+        t.set_implicit(true);
+        table.insert(first, Item::Table(t));
+    }
     if rest.is_empty() {
         match value {
             Some(v) => {
@@ -172,6 +182,18 @@ mod tests {
         assert_eq!(o.text(), "sweep=");
     }
 
+    #[test]
+    fn a_value_under_a_missing_table_creates_it() {
+        let text = "title = \"t\"\n[sweep]\ncount = 3\n";
+        let out = set_all(text, &["iteration.tolerance=1e-10"]).unwrap();
+        let doc: DocumentMut = out.parse().unwrap();
+        assert_eq!(doc["iteration"]["tolerance"].as_float(), Some(1e-10));
+        assert_eq!(doc["sweep"]["count"].as_integer(), Some(3));
+        // Removing under a missing table is still an error.
+        let e = set_all(text, &["iteration.tolerance="]).unwrap_err();
+        assert!(e.contains("has no table"), "{e}");
+    }
+
     fn set_all(text: &str, overrides: &[&str]) -> Result<String, String> {
         let o: Vec<Override> = overrides
             .iter()
@@ -212,7 +234,7 @@ mod tests {
     fn a_key_that_does_not_fit_the_scene_is_named() {
         for (o, says) in [
             ("interfaces.2.rule=masing", "not an index below 2"),
-            ("sweep.count=3", "no table \"sweep\""),
+            ("sweep.count=", "no table \"sweep\""),
             ("iteration.mode.x=1", "under a value"),
             ("iteration.missing=", "no \"missing\" to remove"),
             ("iteration..mode=1", "empty key"),
