@@ -45,18 +45,16 @@ pub struct Stalled {
 /// structure's elements that do not move at all), which the tolerance must be able to
 /// pass.
 fn weights(x: &[f64], g: &[f64], groups: &[usize]) -> Vec<f64> {
-    let big = |k: usize| {
-        x.iter()
-            .zip(g)
-            .zip(groups)
-            .filter(|(_, &gr)| gr == k)
-            .fold(0.0f64, |m, ((a, b), _)| m.max(a.abs()).max(b.abs()))
-    };
+    // The largest |a|, |g(a)| per group, in one pass.
+    let mut big = vec![0.0f64; groups.iter().max().map_or(0, |&k| k + 1)];
+    for ((a, b), &k) in x.iter().zip(g).zip(groups) {
+        big[k] = big[k].max(a.abs()).max(b.abs());
+    }
     x.iter()
         .zip(g)
         .zip(groups)
         .map(|((a, b), &k)| {
-            let floor = (FLOOR * big(k)).max(f64::MIN_POSITIVE);
+            let floor = (FLOOR * big[k]).max(f64::MIN_POSITIVE);
             1.0 / a.abs().max(b.abs()).max(floor)
         })
         .collect()
