@@ -275,7 +275,13 @@ impl MasingState {
         }
     }
 
+    /// dF/dδ on the active branch: zero where the branch force is clipped at ±μF_N (a
+    /// reversal stored under a larger normal load can put it there before Δ = 2δ*), as in
+    /// [`Self::branch_terms`].
     fn tangent(&self, b: &Backbone) -> f64 {
+        if self.on_branch(b, self.slip).abs() > b.friction_limit() {
+            return 0.0;
+        }
         match self.depth {
             0 => b.tangent((self.slip - self.origin).abs()),
             n => {

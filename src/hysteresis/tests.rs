@@ -241,3 +241,51 @@ fn a_sliding_jenkins_point_reports_zero_tangent_on_every_sample() {
         st = next;
     }
 }
+
+#[test]
+fn the_tangent_is_zero_where_a_deep_memory_branch_is_clipped() {
+    // A Jenkins/Masing state with a full reversal stack (depth 6), taken from a point of the
+    // FE time domain of an obliquely driven beam stack whose pressure varies during the
+    // cycle: under the current load (μp = 0.2 × 0.636) the branch from the last reversal
+    // passes +μp before Δ = 2δ*, so the force is clipped and its derivative zero. The
+    // tangent used to be reported as k_T0 there, and the Newton iteration on the contact
+    // unknowns converged only linearly (×0.8 per iteration) and then stalled.
+    let slots: [f64; STATE_LEN] = [
+        2.0,
+        2.963656033010983e-7,
+        -0.1336735965542156,
+        6.980045431011881e-6,
+        6.0,
+        -3.838838367298352e-6,
+        -0.21637767596620464,
+        1.0,
+        1.566974755916854e-5,
+        0.17379404256313327,
+        -1.0,
+        -3.420584211643547e-6,
+        -0.2080125928531085,
+        1.0,
+        1.4155631623508175e-5,
+        0.14351172384992592,
+        -1.0,
+        -5.6616543352958967e-8,
+        -0.14073323948729674,
+        1.0,
+        1.2167864228266794e-5,
+        0.10375637594509834,
+        -1.0,
+    ];
+    let st = PointState::read(&slots, Rule::Masing, 2.963656033010983e-7).unwrap();
+    let limit = 0.2 * 6.358304673409214e-1;
+    let p = Point::new(
+        Backbone::new(TangentialLaw::Jenkins, limit, 2.0e4).unwrap(),
+        Rule::Masing,
+    );
+    let target = 1.2782279072026089e-5;
+    let (_, r) = p.step(&st, target).unwrap();
+    let h = 1e-12;
+    let (_, r1) = p.step(&st, target + h).unwrap();
+    assert_relative_eq!(r.force, limit, max_relative = 1e-12);
+    assert_eq!((r1.force - r.force) / h, 0.0);
+    assert_eq!(r.tangent, 0.0);
+}
