@@ -194,6 +194,22 @@ fn time_domain_steps_per_cycle_out_of_range_are_found_by_check() {
 }
 
 #[test]
+fn time_domain_alpha_out_of_range_is_found_by_check() {
+    for (n, v) in [("alpha_pos", "0.05"), ("alpha_low", "-0.5")] {
+        let with = format!("[time_domain]\nalpha = {v}\n\n[sweep]");
+        let p = scene(n, &[("[sweep]", &with)]);
+        let line = line_of(&p, "alpha =");
+        found(
+            &p,
+            line,
+            "time_domain.alpha",
+            "HHT-α must be in [-1/3, 0]",
+            &["--time-domain"],
+        );
+    }
+}
+
+#[test]
 fn time_domain_max_cycles_below_min_cycles_is_found_by_check() {
     let with = "[time_domain]\nmin_cycles = 10\nmax_cycles = 5\n\n[sweep]";
     let p = scene("cycles", &[("[sweep]", with)]);

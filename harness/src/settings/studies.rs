@@ -133,6 +133,8 @@ pub struct TimeDomainSpec {
     pub tolerance: Option<f64>,
     pub min_cycles: Option<usize>,
     pub max_cycles: Option<usize>,
+    /// HHT-α of the implicit integrator, in [−1/3, 0].
+    pub alpha: Option<f64>,
 }
 
 /// The `[field_output]` table: displacement fields (`field_<frequency>.vtu`) that

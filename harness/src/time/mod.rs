@@ -6,7 +6,7 @@
 //! - [`rk4`]: classical Runge–Kutta (thesis Appendix D, (D.2)) for small systems (lumped
 //!   bodies, ODEs such as the Duffing oscillator); explicit, so the step is kept below the
 //!   stability limit of the stiffest mode.
-//! - [`newmark`]: implicit Newmark, average acceleration (β = 1/4, γ = 1/2), Newton
+//! - [`newmark`]: implicit Newmark in HHT-α form (α = −0.05 by default), Newton
 //!   iterations on the contact unknowns with tangents from UINTER; trial states are
 //!   evaluated from the committed state and the state is committed once per accepted step.
 //!   One UMFPACK factorization per run (symbolic analysis reused), the contact points

@@ -1,11 +1,16 @@
-//! Implicit Newmark, average acceleration (β = 1/4, γ = 1/2: second order, unconditionally
-//! stable, no numerical damping), with Newton iterations on the contact unknowns.
+//! Implicit Newmark in Hilber–Hughes–Taylor form (HHT-α, α ∈ [−1/3, 0], β = (1 − α)²/4,
+//! γ = 1/2 − α: second order, unconditionally stable; α = 0 is the average-acceleration
+//! rule without numerical damping, α < 0 damps the highest frequencies of the mesh and the
+//! contact penalties, per step by a spectral radius ≈ (1 + α)/(1 − α), while the damping
+//! it adds at the forcing frequency is O((ωh)³): as Abaqus/Standard's *DYNAMIC, ALPHA),
+//! with Newton iterations on the contact unknowns.
 //!
-//! With a = a₀(u₊ − u) − a₂v − a₃a (a₀ = 1/(βh²), a₂ = 1/(βh), a₃ = 1/(2β) − 1) and
-//! v₊ = v + h((1 − γ)a + γa₊), the equation of motion at t + h is
+//! With a₊ = a₀(u₊ − u) − a₂v − a₃a (a₀ = 1/(βh²), a₂ = 1/(βh), a₃ = 1/(2β) − 1) and
+//! v₊ = v + h((1 − γ)a + γa₊), the HHT equation of motion
+//! M a₊ + (1 + α)(D v₊ + K u₊ + Bᵀq₊ − f₊) − α(D v + K u + Bᵀq − f) = 0, divided by 1 + α, is
 //!
-//!   K̂ u₊ + Bᵀ q(Bu₊) = f̂,   K̂ = K + a₀M + a₁D (a₁ = γ/(βh)),
-//!   f̂ = f(t + h) + M(a₀u + a₂v + a₃a) + D(a₁u + a₄v + a₅a),
+//!   K̂ u₊ + Bᵀ q(Bu₊) = f̂,   K̂ = K + c a₀M + a₁D (a₁ = γ/(βh), c = 1/(1 + α)),
+//!   f̂ = f(t + h) + c M(a₀u + a₂v + a₃a) + D(a₁u + a₄v + a₅a) − cα (f(t) − D v − K u − Bᵀq),
 //!
 //! (a₄ = γ/β − 1, a₅ = h(γ/β − 2)/2). Write q(r) = K_c0 r + g(r) with K_c0 the stuck
 //! contact stiffness (k_N, k_T0, k_T0 per closed point) and K̂₀ = K̂ + Bᵀ K_c0 B, factored
@@ -30,9 +35,29 @@ use crate::model::Problem;
 use crate::solve::static_step::StaticState;
 use crate::solve::umfpack::Numeric;
 
-/// β, γ of the average-acceleration rule.
-pub const BETA: f64 = 0.25;
-pub const GAMMA: f64 = 0.5;
+/// Newmark's β, γ and the mass factor c = 1/(1 + α) of HHT-α.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Hht {
+    pub alpha: f64,
+    pub beta: f64,
+    pub gamma: f64,
+}
+
+impl Hht {
+    /// The scheme for α ∈ [−1/3, 0] (checked by the settings).
+    pub fn new(alpha: f64) -> Self {
+        Hht {
+            alpha,
+            beta: 0.25 * (1.0 - alpha) * (1.0 - alpha),
+            gamma: 0.5 - alpha,
+        }
+    }
+
+    /// c = 1/(1 + α), the weight of M against K, D and the contacts.
+    fn mass_weight(&self) -> f64 {
+        1.0 / (1.0 + self.alpha)
+    }
+}
 /// Most Newton iterations per step.
 pub const MAX_NEWTON: usize = 40;
 /// Secant (chord) iterations after a stalled Newton.
@@ -72,10 +97,15 @@ pub fn add_blocks(p: &Problem, values: &mut [f64], blocks: &[Matrix3<f64>]) {
     }
 }
 
-/// K̂ = K + a₀M + a₁D for step h.
-pub fn effective_stiffness(p: &Problem, damping: Option<&Csc<f64>>, h: f64) -> Csc<f64> {
-    let a0 = 1.0 / (BETA * h * h);
-    let a1 = GAMMA / (BETA * h);
+/// K̂ = K + c a₀M + a₁D for step h.
+pub fn effective_stiffness(
+    p: &Problem,
+    damping: Option<&Csc<f64>>,
+    h: f64,
+    scheme: Hht,
+) -> Csc<f64> {
+    let a0 = scheme.mass_weight() / (scheme.beta * h * h);
+    let a1 = scheme.gamma / (scheme.beta * h);
     let mut v: Vec<f64> = p
         .sys
         .k
@@ -102,6 +132,7 @@ pub struct Newmark<'a, 'n> {
     damping: Option<&'a Csc<f64>>,
     forcing: Forcing<'a>,
     h: f64,
+    scheme: Hht,
     /// Stuck blocks K_c0 per point.
     kc0: Vec<Matrix3<f64>>,
     /// H = K̂₀⁻¹ Bᵀ, n × m column-major.
@@ -114,14 +145,16 @@ pub struct Newmark<'a, 'n> {
 }
 
 impl<'a, 'n> Newmark<'a, 'n> {
-    /// Precomputes H and G with the factors `k0` of K̂₀ (m solves).
+    /// Precomputes H and G with the factors `k0` of K̂₀ (m solves); `h`, `scheme` and
+    /// `tol` as [`effective_stiffness`] had them.
+    #[allow(clippy::too_many_arguments)]
     pub fn new(
         p: &'a Problem,
         k0: &'n Numeric<'n, f64>,
         kc0: Vec<Matrix3<f64>>,
         damping: Option<&'a Csc<f64>>,
         forcing: Forcing<'a>,
-        h: f64,
+        (h, scheme): (f64, Hht),
         tol: f64,
     ) -> Result<Self, TimeError> {
         let n = p.sys.dofs.n_free();
@@ -156,12 +189,39 @@ impl<'a, 'n> Newmark<'a, 'n> {
             damping,
             forcing,
             h,
+            scheme,
             kc0,
             hmat,
             g,
             tol,
             loose_steps: 0,
         })
+    }
+
+    /// rhs −= cα (f(t) − D v − K u − Bᵀq) at the committed state (HHT's weight of the
+    /// old step; nothing for α = 0).
+    fn add_old_state_forces(&self, st: &State, contacts: &Contacts, rhs: &mut [f64]) {
+        let alpha = self.scheme.alpha;
+        if alpha == 0.0 {
+            return;
+        }
+        let n = st.u.len();
+        let mut old = vec![0.0; n];
+        self.forcing.at(st.t, &mut old);
+        for (o, x) in old.iter_mut().zip(self.p.sys.k.mul_vec(&st.u)) {
+            *o -= x;
+        }
+        if let Some(d) = self.damping {
+            for (o, x) in old.iter_mut().zip(d.mul_vec(&st.v)) {
+                *o -= x;
+            }
+        }
+        let mut internal = vec![0.0; n];
+        contacts.add_internal(&contacts.force, &mut internal);
+        let w = alpha * self.scheme.mass_weight();
+        for ((r, o), q) in rhs.iter_mut().zip(&old).zip(&internal) {
+            *r -= w * (o - q);
+        }
     }
 
     /// g(r) = q(r) − K_c0 r from the last trial.
@@ -198,19 +258,22 @@ impl Stepper for Newmark<'_, '_> {
 
     fn step(&mut self, st: &mut State, contacts: &mut Contacts) -> Result<usize, TimeError> {
         let h = self.h;
+        let Hht { beta, gamma, .. } = self.scheme;
+        let c = self.scheme.mass_weight();
         let (a0, a1, a2, a3) = (
-            1.0 / (BETA * h * h),
-            GAMMA / (BETA * h),
-            1.0 / (BETA * h),
-            0.5 / BETA - 1.0,
+            1.0 / (beta * h * h),
+            gamma / (beta * h),
+            1.0 / (beta * h),
+            0.5 / beta - 1.0,
         );
-        let (a4, a5) = (GAMMA / BETA - 1.0, 0.5 * h * (GAMMA / BETA - 2.0));
+        let (a4, a5) = (gamma / beta - 1.0, 0.5 * h * (gamma / beta - 2.0));
         let n = st.u.len();
         let t1 = st.t + h;
         let mut rhs = vec![0.0; n];
         self.forcing.at(t1, &mut rhs);
+        self.add_old_state_forces(st, contacts, &mut rhs);
         let mv: Vec<f64> = (0..n)
-            .map(|i| a0 * st.u[i] + a2 * st.v[i] + a3 * st.a[i])
+            .map(|i| c * (a0 * st.u[i] + a2 * st.v[i] + a3 * st.a[i]))
             .collect();
         for (r, x) in rhs.iter_mut().zip(self.p.sys.m.mul_vec(&mv)) {
             *r += x;
@@ -261,19 +324,26 @@ impl Stepper for Newmark<'_, '_> {
         let (mut gr, mut phi) = eval(&r, contacts, &mut tangents)?;
         let scale = r0.amax().max(r.amax()).max(f64::MIN_POSITIVE);
         let mut iterations = 0;
+        // The best iterate so far: the secant phase may wander off a Newton iterate that
+        // was already within the loose tolerance.
+        let mut best = (f64::INFINITY, r.clone());
         loop {
             let res = phi.amax() / scale;
             if res <= self.tol {
                 break;
             }
+            if res < best.0 {
+                best = (res, r.clone());
+            }
             if iterations == MAX_NEWTON + MAX_FIXED_POINT {
-                if res <= LOOSE_TOLERANCE.max(self.tol) {
+                if best.0 <= LOOSE_TOLERANCE.max(self.tol) {
+                    gr = eval(&best.1, contacts, &mut tangents)?.0;
                     self.loose_steps += 1;
                     break;
                 }
                 return Err(TimeError::Newton {
                     t: t1,
-                    residual: res,
+                    residual: best.0,
                     iterations,
                 });
             }
@@ -350,7 +420,7 @@ impl Stepper for Newmark<'_, '_> {
         contacts.commit();
         for i in 0..n {
             let acc = a0 * (u1[i] - st.u[i]) - a2 * st.v[i] - a3 * st.a[i];
-            st.v[i] += h * ((1.0 - GAMMA) * st.a[i] + GAMMA * acc);
+            st.v[i] += h * ((1.0 - gamma) * st.a[i] + gamma * acc);
             st.a[i] = acc;
             st.u[i] = u1[i];
         }

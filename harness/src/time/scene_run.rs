@@ -11,7 +11,7 @@ use std::time::Instant;
 use serde::Serialize;
 
 use super::contact::Contacts;
-use super::newmark::{add_blocks, effective_stiffness, stuck_blocks, Newmark};
+use super::newmark::{add_blocks, effective_stiffness, stuck_blocks, Hht, Newmark};
 use super::periodic::{change, Cycle, CycleStats, SteadyTest};
 use super::rk4::{max_frequency, stable_steps_per_cycle, SceneRk4};
 use super::settings::AUTO_RK4_MAX_DOFS;
@@ -169,7 +169,8 @@ pub fn simulate(
     st.a = rk.acceleration(0.0, &st.u.clone(), &st.v.clone(), contacts)?;
     // Newmark: K̂₀ = K + a₀M + a₁D + Bᵀ K_c0 B, one factorization.
     let kc0 = stuck_blocks(p, stat);
-    let mut khat = effective_stiffness(p, d, h);
+    let scheme = Hht::new(settings.alpha);
+    let mut khat = effective_stiffness(p, d, h, scheme);
     add_blocks(p, &mut khat.values, &kc0);
     let knum;
     let mut rk_holder;
@@ -177,7 +178,15 @@ pub fn simulate(
     let stepper: &mut dyn Stepper = match kind {
         Integrator::Newmark => {
             knum = sym.factor(&khat)?;
-            nm_holder = Newmark::new(p, &knum, kc0, d, forcing, h, settings.newton_tolerance)?;
+            nm_holder = Newmark::new(
+                p,
+                &knum,
+                kc0,
+                d,
+                forcing,
+                (h, scheme),
+                settings.newton_tolerance,
+            )?;
             &mut nm_holder
         }
         _ => {

@@ -2,7 +2,7 @@
 //! machinery, and the block's time-domain loop against the library's own loop.
 
 use super::contact::Contacts;
-use super::newmark::{add_blocks, effective_stiffness, stuck_blocks, Newmark};
+use super::newmark::{add_blocks, effective_stiffness, stuck_blocks, Hht, Newmark};
 use super::rk4::{rk4_step, SceneRk4};
 use super::scene_run::{initial_state, simulate};
 use super::*;
@@ -103,9 +103,9 @@ body = "m"
 direction = [1.0, 0.0, 0.0]
 "#;
 
-/// Integrates the SDOF scene from rest over `t_end` with `steps` steps of `kind`, returns
-/// the error of x(t_end) against the closed form.
-fn sdof_scene_error(kind: Integrator, steps: usize, t_end: f64) -> f64 {
+/// Integrates the SDOF scene from rest over `t_end` with `steps` steps of `kind` (Newmark
+/// with HHT-`alpha`), returns the error of x(t_end) against the closed form.
+fn sdof_scene_error(kind: Integrator, alpha: f64, steps: usize, t_end: f64) -> f64 {
     let scene = Scene::parse("sdof", SDOF).unwrap();
     let p = build(&scene).unwrap();
     let stat = static_step::solve(&p, true).unwrap();
@@ -132,10 +132,19 @@ fn sdof_scene_error(kind: Integrator, steps: usize, t_end: f64) -> f64 {
         .acceleration(0.0, &st.u.clone(), &st.v.clone(), &mut contacts)
         .unwrap();
     let kc0 = stuck_blocks(&p, &stat);
-    let mut khat = effective_stiffness(&p, p.damping.as_ref(), h);
+    let mut khat = effective_stiffness(&p, p.damping.as_ref(), h, Hht::new(alpha));
     add_blocks(&p, &mut khat.values, &kc0);
     let knum = sym.factor(&khat).unwrap();
-    let mut nm = Newmark::new(&p, &knum, kc0, p.damping.as_ref(), forcing, h, 1e-12).unwrap();
+    let mut nm = Newmark::new(
+        &p,
+        &knum,
+        kc0,
+        p.damping.as_ref(),
+        forcing,
+        (h, Hht::new(alpha)),
+        1e-12,
+    )
+    .unwrap();
     let mut rk = rk;
     let stepper: &mut dyn Stepper = match kind {
         Integrator::Newmark => &mut nm,
@@ -159,20 +168,27 @@ fn scene_integrators_reach_their_order_on_a_linear_scene() {
     // RK4 through the scene path (M factored, K u, D v): order 4.
     let e: Vec<f64> = [100, 200, 400]
         .iter()
-        .map(|&n| sdof_scene_error(Integrator::Rk4, n, t_end))
+        .map(|&n| sdof_scene_error(Integrator::Rk4, 0.0, n, t_end))
         .collect();
     for w in e.windows(2) {
         let o = order(w[0], w[1]);
         assert!((o - 4.0).abs() < 0.15, "RK4 order {o}: {e:?}");
     }
-    // Newmark average acceleration: order 2 (phase error (ωh)²/12 dominates).
-    let e: Vec<f64> = [200, 400, 800]
-        .iter()
-        .map(|&n| sdof_scene_error(Integrator::Newmark, n, t_end))
-        .collect();
-    for w in e.windows(2) {
-        let o = order(w[0], w[1]);
-        assert!((o - 2.0).abs() < 0.1, "Newmark order {o}: {e:?}");
+    // Newmark average acceleration (α = 0) and HHT-α (the default −0.05 and the most
+    // dissipative −1/3, whose old-step terms f(t) − D v − K u enter the right-hand side):
+    // order 2 (phase error (ωh)²/12 dominates).
+    for alpha in [0.0, -0.05, -1.0 / 3.0] {
+        let e: Vec<f64> = [200, 400, 800]
+            .iter()
+            .map(|&n| sdof_scene_error(Integrator::Newmark, alpha, n, t_end))
+            .collect();
+        for w in e.windows(2) {
+            let o = order(w[0], w[1]);
+            assert!(
+                (o - 2.0).abs() < 0.1,
+                "Newmark α = {alpha}: order {o}: {e:?}"
+            );
+        }
     }
 }
 

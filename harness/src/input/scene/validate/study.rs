@@ -281,6 +281,14 @@ pub(super) fn time_domain(c: &mut Checker, s: &SceneFile) {
             c.fail(p.key("tolerance"), format!("must be in [0, 1), got {v}"));
         }
     }
+    if let Some(a) = t.alpha {
+        if !(-1.0 / 3.0..=0.0).contains(&a) {
+            c.fail(
+                p.key("alpha"),
+                format!("HHT-α must be in [-1/3, 0], got {a}"),
+            );
+        }
+    }
     let min = t.min_cycles.unwrap_or(DEFAULT_MIN_CYCLES);
     let max = t.max_cycles.unwrap_or(DEFAULT_MAX_CYCLES);
     if max < 2 {
