@@ -250,7 +250,7 @@ fn print_warnings(s: &Scene, r: &RunResult, unconverged: usize) {
 
 /// `jointlin run --time-domain`.
 fn time_domain_run(s: &Scene, out: &Path, quiet: bool) -> ExitCode {
-    use jointlin_harness::time::{scene_run, TimeSettings};
+    use jointlin_harness::time::{scene_run, tables, TimeSettings};
     let settings = match TimeSettings::from_spec(s.spec.time_domain.as_ref()) {
         Ok(t) => t,
         Err(e) => {
@@ -292,5 +292,5 @@ fn time_domain_run(s: &Scene, out: &Path, quiet: bool) -> ExitCode {
             x.seconds
         );
     }
-    report_written(scene_run::write(out, s, &r))
+    report_written(tables::write(out, s, &r))
 }

@@ -9,11 +9,15 @@
 //! - [`newmark`]: implicit Newmark in HHT-α form (α = −0.05 by default), Newton
 //!   iterations on the contact unknowns with tangents from UINTER; trial states are
 //!   evaluated from the committed state and the state is committed once per accepted step.
-//!   One UMFPACK factorization per run (symbolic analysis reused), the contact points
-//!   condensed (receptance G = B K̂₀⁻¹ Bᵀ), so a Newton iteration is an m × m dense solve.
+//!   One UMFPACK factorization per step size (symbolic analysis reused), the contact
+//!   points condensed (receptance G = B K̂₀⁻¹ Bᵀ), so a Newton iteration is an m × m
+//!   dense solve.
+//! - [`step_control`]: a step whose Newton iteration fails is cut into two half steps
+//!   (down to 1/64), counted; the next step is tried at the full size again.
 //! - [`periodic`]: cycle statistics (first harmonic, peaks, energy) and the steady-state
 //!   test (cycle-to-cycle change, extrapolated to the distance from the periodic state).
-//! - [`scene_run`]: a scene's sweep in the time domain (`jointlin run --time-domain`).
+//! - [`scene_run`]: a scene's sweep in the time domain (`jointlin run --time-domain`);
+//!   [`tables`] writes its files.
 //!
 //! Excitation: f(t) = f_pre + s(t)·Re(f̂ e^{iωt}), s a smooth ramp (C², over
 //! `ramp_cycles`) when starting from rest; u(t) = Re(û e^{iωt}) + … defines the phase of
@@ -29,6 +33,8 @@ pub mod periodic;
 pub mod rk4;
 pub mod scene_run;
 pub mod settings;
+pub mod step_control;
+pub mod tables;
 
 pub use settings::{Integrator, Start, TimeDomainSpec, TimeSettings};
 
@@ -127,6 +133,10 @@ pub trait Stepper {
     ) -> Result<usize, TimeError>;
     /// Steps accepted with a loosened Newton tolerance (implicit integrators).
     fn loose_steps(&self) -> usize {
+        0
+    }
+    /// Steps replaced by two half steps after a failed iteration (implicit integrators).
+    fn cut_steps(&self) -> usize {
         0
     }
 }

@@ -53,6 +53,19 @@ impl Hht {
         }
     }
 
+    /// [a₀, a₁, a₂, a₃, a₄, a₅] of step h (module docs).
+    pub fn coefficients(&self, h: f64) -> [f64; 6] {
+        let (beta, gamma) = (self.beta, self.gamma);
+        [
+            1.0 / (beta * h * h),
+            gamma / (beta * h),
+            1.0 / (beta * h),
+            0.5 / beta - 1.0,
+            gamma / beta - 1.0,
+            0.5 * h * (gamma / beta - 2.0),
+        ]
+    }
+
     /// c = 1/(1 + α), the weight of M against K, D and the contacts.
     fn mass_weight(&self) -> f64 {
         1.0 / (1.0 + self.alpha)
@@ -104,8 +117,8 @@ pub fn effective_stiffness(
     h: f64,
     scheme: Hht,
 ) -> Csc<f64> {
-    let a0 = scheme.mass_weight() / (scheme.beta * h * h);
-    let a1 = scheme.gamma / (scheme.beta * h);
+    let [a0, a1, ..] = scheme.coefficients(h);
+    let a0 = scheme.mass_weight() * a0;
     let mut v: Vec<f64> = p
         .sys
         .k
@@ -198,6 +211,31 @@ impl<'a, 'n> Newmark<'a, 'n> {
         })
     }
 
+    /// f̂ of the step from `st` (module docs).
+    fn effective_load(&self, st: &State, contacts: &Contacts) -> Vec<f64> {
+        let [a0, a1, a2, a3, a4, a5] = self.scheme.coefficients(self.h);
+        let c = self.scheme.mass_weight();
+        let n = st.u.len();
+        let mut rhs = vec![0.0; n];
+        self.forcing.at(st.t + self.h, &mut rhs);
+        self.add_old_state_forces(st, contacts, &mut rhs);
+        let mv: Vec<f64> = (0..n)
+            .map(|i| c * (a0 * st.u[i] + a2 * st.v[i] + a3 * st.a[i]))
+            .collect();
+        for (r, x) in rhs.iter_mut().zip(self.p.sys.m.mul_vec(&mv)) {
+            *r += x;
+        }
+        if let Some(d) = self.damping {
+            let dv: Vec<f64> = (0..n)
+                .map(|i| a1 * st.u[i] + a4 * st.v[i] + a5 * st.a[i])
+                .collect();
+            for (r, x) in rhs.iter_mut().zip(d.mul_vec(&dv)) {
+                *r += x;
+            }
+        }
+        rhs
+    }
+
     /// rhs −= cα (f(t) − D v − K u − Bᵀq) at the committed state (HHT's weight of the
     /// old step; nothing for α = 0).
     fn add_old_state_forces(&self, st: &State, contacts: &Contacts, rhs: &mut [f64]) {
@@ -257,36 +295,11 @@ impl Stepper for Newmark<'_, '_> {
     }
 
     fn step(&mut self, st: &mut State, contacts: &mut Contacts) -> Result<usize, TimeError> {
-        let h = self.h;
-        let Hht { beta, gamma, .. } = self.scheme;
-        let c = self.scheme.mass_weight();
-        let (a0, a1, a2, a3) = (
-            1.0 / (beta * h * h),
-            gamma / (beta * h),
-            1.0 / (beta * h),
-            0.5 / beta - 1.0,
-        );
-        let (a4, a5) = (gamma / beta - 1.0, 0.5 * h * (gamma / beta - 2.0));
+        let (h, gamma) = (self.h, self.scheme.gamma);
+        let [a0, _, a2, a3, _, _] = self.scheme.coefficients(h);
         let n = st.u.len();
         let t1 = st.t + h;
-        let mut rhs = vec![0.0; n];
-        self.forcing.at(t1, &mut rhs);
-        self.add_old_state_forces(st, contacts, &mut rhs);
-        let mv: Vec<f64> = (0..n)
-            .map(|i| c * (a0 * st.u[i] + a2 * st.v[i] + a3 * st.a[i]))
-            .collect();
-        for (r, x) in rhs.iter_mut().zip(self.p.sys.m.mul_vec(&mv)) {
-            *r += x;
-        }
-        if let Some(d) = self.damping {
-            let dv: Vec<f64> = (0..n)
-                .map(|i| a1 * st.u[i] + a4 * st.v[i] + a5 * st.a[i])
-                .collect();
-            for (r, x) in rhs.iter_mut().zip(d.mul_vec(&dv)) {
-                *r += x;
-            }
-        }
-        let u0 = self.k0.solve(&rhs)?;
+        let u0 = self.k0.solve(&self.effective_load(st, contacts))?;
         let m = 3 * contacts.len();
         let r0 = DVector::from_iterator(
             m,

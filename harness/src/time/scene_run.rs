@@ -5,29 +5,23 @@
 //! previous end state (a slow sweep, which follows a branch as a physical sweep would);
 //! with `start = "linear"` every frequency starts from the stuck linear steady state.
 
-use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use serde::Serialize;
 
 use super::contact::Contacts;
-use super::newmark::{add_blocks, effective_stiffness, stuck_blocks, Hht, Newmark};
+use super::newmark::{add_blocks, stuck_blocks, Hht};
 use super::periodic::{change, Cycle, CycleStats, SteadyTest};
 use super::rk4::{max_frequency, stable_steps_per_cycle, SceneRk4};
 use super::settings::AUTO_RK4_MAX_DOFS;
+use super::step_control::{per_level, ControlledNewmark};
 use super::{Forcing, Integrator, Start, State, Stepper, TimeError, TimeSettings, C64};
-use crate::capi;
 use crate::fe::csc::Csc;
 use crate::input::scene::Scene;
 use crate::model::{build, Problem};
-use crate::settings::units::{frequency_unit, ColumnUnits};
-use crate::settings::Units;
 use crate::solve::static_step::{self, StaticState};
 use crate::solve::sweep::harmonic_fe_point3d::{check_laws, PointModel};
-use crate::solve::umfpack::{to_complex, Symbolic};
-use crate::util::csv_table::CsvTable;
-use crate::util::number::exact;
-use crate::util::provenance;
+use crate::solve::umfpack::{to_complex, Numeric, Symbolic};
 
 /// The time-domain result at one frequency.
 #[derive(Debug, Clone, Serialize)]
@@ -49,6 +43,9 @@ pub struct FreqResult {
     pub newton_iterations: usize,
     /// Newton stops accepted at the loose tolerance (newmark::LOOSE_TOLERANCE).
     pub loose_steps: usize,
+    /// Steps replaced by two half steps after a failed Newton iteration
+    /// (`step_control`, at any depth).
+    pub cut_steps: usize,
     pub uinter_calls: u64,
     pub seconds: f64,
 }
@@ -108,6 +105,23 @@ pub fn initial_state(
     Ok(st)
 }
 
+/// `wanted` steps per period of ω, raised to RK4's stability limit on the stiffest mode of
+/// the stuck system (K + Bᵀ K_c0 B against M, factored as `m`).
+fn rk4_steps_per_cycle(
+    p: &Problem,
+    stat: &StaticState,
+    m: &Numeric<'_, f64>,
+    omega: f64,
+    wanted: usize,
+) -> Result<usize, TimeError> {
+    let mut k0 = Csc {
+        pattern: p.sys.pattern.clone(),
+        values: p.sys.k.values.clone(),
+    };
+    add_blocks(p, &mut k0.values, &stuck_blocks(p, stat));
+    Ok(wanted.max(stable_steps_per_cycle(omega, max_frequency(m, &k0)?)))
+}
+
 /// Integrates at `freq` from `st` (whose contact state is `contacts`' committed one, at
 /// st.u) until periodic; `ramp` in periods (0 = full excitation at once). Leaves `st` and
 /// `contacts` at the end state.
@@ -147,17 +161,10 @@ pub fn simulate(
     let sym = Symbolic::<f64>::new(p.sys.pattern.clone())?;
     let mnum = sym.factor(&p.sys.m)?;
     let kind = integrator_for(settings, n);
-    let mut steps_per_cycle = settings.steps_per_cycle;
-    let mut k0vals = p.sys.k.values.clone();
-    add_blocks(p, &mut k0vals, &stuck_blocks(p, stat));
-    let k0 = Csc {
-        pattern: p.sys.pattern.clone(),
-        values: k0vals,
+    let steps_per_cycle = match kind {
+        Integrator::Rk4 => rk4_steps_per_cycle(p, stat, &mnum, omega, settings.steps_per_cycle)?,
+        _ => settings.steps_per_cycle,
     };
-    if kind == Integrator::Rk4 {
-        let wmax = max_frequency(&mnum, &k0)?;
-        steps_per_cycle = steps_per_cycle.max(stable_steps_per_cycle(omega, wmax));
-    }
     let h = period / steps_per_cycle as f64;
     let rk = SceneRk4 {
         p,
@@ -167,24 +174,22 @@ pub fn simulate(
         h,
     };
     st.a = rk.acceleration(0.0, &st.u.clone(), &st.v.clone(), contacts)?;
-    // Newmark: K̂₀ = K + a₀M + a₁D + Bᵀ K_c0 B, one factorization.
-    let kc0 = stuck_blocks(p, stat);
-    let scheme = Hht::new(settings.alpha);
-    let mut khat = effective_stiffness(p, d, h, scheme);
-    add_blocks(p, &mut khat.values, &kc0);
-    let knum;
+    // Newmark: K̂₀ = K + c a₀M + a₁D + Bᵀ K_c0 B, one factorization per step size (the
+    // full one, and a half-size one where a step first had to be cut).
+    let matrices = per_level();
+    let factors = per_level();
     let mut rk_holder;
     let mut nm_holder;
     let stepper: &mut dyn Stepper = match kind {
         Integrator::Newmark => {
-            knum = sym.factor(&khat)?;
-            nm_holder = Newmark::new(
+            nm_holder = ControlledNewmark::new(
                 p,
-                &knum,
-                kc0,
+                &sym,
+                (&matrices, &factors),
+                stuck_blocks(p, stat),
                 d,
                 forcing,
-                (h, scheme),
+                (h, Hht::new(settings.alpha)),
                 settings.newton_tolerance,
             )?;
             &mut nm_holder
@@ -234,7 +239,6 @@ pub fn simulate(
             break;
         }
     }
-    let loose_steps = stepper.loose_steps();
     Ok(FreqResult {
         freq,
         integrator: if kind == Integrator::Newmark {
@@ -249,7 +253,8 @@ pub fn simulate(
         last: prev.expect("max_cycles ≥ 2"),
         steps,
         newton_iterations: newton,
-        loose_steps,
+        loose_steps: stepper.loose_steps(),
+        cut_steps: stepper.cut_steps(),
         uinter_calls: contacts.calls - calls0,
         seconds: clock.elapsed().as_secs_f64(),
     })
@@ -342,156 +347,4 @@ pub fn sweep(
     }
     progress(freqs.len(), freqs.len());
     Ok(results)
-}
-
-/// results_time.csv (units as in results.csv, e.g. N, mm, s): frequency_Hz; per output
-/// <name>_amp_mm, <name>_phase_deg (first harmonic, u ≈ x̄ + Re(û e^{iωt})),
-/// <name>_half_range_mm ((max − min)/2), <name>_max_mm, <name>_min_mm;
-/// dissipated_power_N_mm_per_s (Σ energy per cycle × f); energy_per_cycle_N_mm;
-/// energy_trapezoid_N_mm (check); integrator, steps_per_cycle, cycles, steady, distance
-/// (relative), wall_time_s (wall clock).
-pub fn results_csv(p: &Problem, r: &[FreqResult], units: &Units) -> String {
-    let u = ColumnUnits::new(units);
-    let l = &u.length;
-    let fu = frequency_unit(units);
-    let mut header = vec![fu.column.clone()];
-    for o in &p.outputs {
-        let n = &o.name;
-        header.extend([
-            format!("{n}_amp_{l}"),
-            format!("{n}_phase_deg"),
-            format!("{n}_half_range_{l}"),
-            format!("{n}_max_{l}"),
-            format!("{n}_min_{l}"),
-        ]);
-    }
-    header.extend([
-        format!("dissipated_power_{}", u.power),
-        format!("energy_per_cycle_{}", u.energy),
-        format!("energy_trapezoid_{}", u.energy),
-    ]);
-    header.extend(
-        [
-            "integrator",
-            "steps_per_cycle",
-            "cycles",
-            "steady",
-            "distance",
-            "wall_time_s",
-        ]
-        .map(String::from),
-    );
-    let mut t = CsvTable::new(&header);
-    for x in r {
-        let mut row = vec![exact(fu.show(x.freq))];
-        for o in &x.last.outputs {
-            row.extend([
-                exact(o.amplitude),
-                exact(o.phase_deg),
-                exact(o.half_range()),
-                exact(o.max),
-                exact(o.min),
-            ]);
-        }
-        row.extend([
-            exact(x.last.energy * x.freq),
-            exact(x.last.energy),
-            exact(x.last.energy_trapezoid),
-            x.integrator.to_string(),
-            x.steps_per_cycle.to_string(),
-            x.cycles.to_string(),
-            x.steady.to_string(),
-            exact(x.distance),
-            exact(x.seconds),
-        ]);
-        t.row(&row);
-    }
-    t.finish()
-}
-
-/// points_time.csv (e.g. N, mm, s): frequency_Hz, point, interface, x_mm, y_mm, z_mm,
-/// energy_per_cycle_N_mm, then as points.csv the point's node (`node_ids` of its
-/// upper/slave node) and its frame n_x … t2_z in global components.
-pub fn points_csv(p: &Problem, r: &[FreqResult], units: &Units, node_ids: &[u64]) -> String {
-    let u = ColumnUnits::new(units);
-    let l = &u.length;
-    let fu = frequency_unit(units);
-    let mut header = vec![
-        fu.column.clone(),
-        "point".into(),
-        "interface".into(),
-        format!("x_{l}"),
-        format!("y_{l}"),
-        format!("z_{l}"),
-        format!("energy_per_cycle_{}", u.energy),
-        "node".into(),
-    ];
-    for axis in ["n", "t1", "t2"] {
-        header.extend(["x", "y", "z"].map(|c| format!("{axis}_{c}")));
-    }
-    let mut t = CsvTable::new(&header);
-    for x in r {
-        for (i, (c, e)) in p.contacts.iter().zip(&x.last.point_energy).enumerate() {
-            let mut row = vec![
-                exact(fu.show(x.freq)),
-                i.to_string(),
-                p.interfaces[c.interface].name.clone(),
-                c.position[0].to_string(),
-                c.position[1].to_string(),
-                c.position[2].to_string(),
-                exact(*e),
-                node_ids
-                    .get(c.nodes[1])
-                    .map_or(String::new(), u64::to_string),
-            ];
-            row.extend(c.frame.iter().map(|v| exact(v + 0.0)));
-            t.row(&row);
-        }
-    }
-    t.finish()
-}
-
-/// Writes results_time.csv, points_time.csv and, last, run.json into `dir`.
-pub fn write(dir: &Path, scene: &Scene, run: &TimeRun) -> std::io::Result<Vec<PathBuf>> {
-    std::fs::create_dir_all(dir)?;
-    let mut files = Vec::new();
-    let mut put = |name: &str, text: String| -> std::io::Result<()> {
-        let f = dir.join(name);
-        crate::util::atomic::write_text(&f, &text).map_err(std::io::Error::other)?;
-        files.push(f);
-        Ok(())
-    };
-    let units = &scene.spec.units;
-    put(
-        "results_time.csv",
-        results_csv(&run.problem, &run.results, units),
-    )?;
-    put(
-        "points_time.csv",
-        points_csv(
-            &run.problem,
-            &run.results,
-            units,
-            &crate::model::node_ids(scene, &run.problem),
-        ),
-    )?;
-    let head = provenance::head("run --time-domain", &capi::abi_version(), &scene.sources);
-    let json = provenance::with_head(
-        head,
-        serde_json::json!({
-            "scene": scene.file,
-            "title": scene.spec.title,
-            // The frequencies below are cycles per time unit.
-            "frequency_unit": format!("1/{}", units.time),
-            "settings": run.settings,
-            "free_dofs": run.problem.sys.dofs.n_free(),
-            "contact_points": run.problem.contacts.len(),
-            "seconds": run.seconds,
-            "frequencies": run.results,
-        }),
-    );
-    let text = serde_json::to_string_pretty(&json).map_err(std::io::Error::other)?;
-    // Last: its presence marks a complete directory, as for a frequency-domain run.
-    files.push(crate::util::atomic::write_marker(dir, &text).map_err(std::io::Error::other)?);
-    Ok(files)
 }

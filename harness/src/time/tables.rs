@@ -1,0 +1,171 @@
+//! The files of a time-domain run: results_time.csv, points_time.csv and run.json (the
+//! scene's units in every column name).
+
+use std::path::{Path, PathBuf};
+
+use super::scene_run::{FreqResult, TimeRun};
+use crate::capi;
+use crate::input::scene::Scene;
+use crate::model::Problem;
+use crate::settings::units::{frequency_unit, ColumnUnits};
+use crate::settings::Units;
+use crate::util::csv_table::CsvTable;
+use crate::util::number::exact;
+use crate::util::provenance;
+
+/// results_time.csv (units as in results.csv, e.g. N, mm, s): frequency_Hz; per output
+/// <name>_amp_mm, <name>_phase_deg (first harmonic, u ≈ x̄ + Re(û e^{iωt})),
+/// <name>_half_range_mm ((max − min)/2), <name>_max_mm, <name>_min_mm;
+/// dissipated_power_N_mm_per_s (Σ energy per cycle × f); energy_per_cycle_N_mm;
+/// energy_trapezoid_N_mm (check); integrator, steps_per_cycle, cycles, steady, distance
+/// (relative), loose_steps, cut_steps (Newton acceptances at the loose tolerance, steps
+/// cut in two), wall_time_s (wall clock).
+pub fn results_csv(p: &Problem, r: &[FreqResult], units: &Units) -> String {
+    let u = ColumnUnits::new(units);
+    let l = &u.length;
+    let fu = frequency_unit(units);
+    let mut header = vec![fu.column.clone()];
+    for o in &p.outputs {
+        let n = &o.name;
+        header.extend([
+            format!("{n}_amp_{l}"),
+            format!("{n}_phase_deg"),
+            format!("{n}_half_range_{l}"),
+            format!("{n}_max_{l}"),
+            format!("{n}_min_{l}"),
+        ]);
+    }
+    header.extend([
+        format!("dissipated_power_{}", u.power),
+        format!("energy_per_cycle_{}", u.energy),
+        format!("energy_trapezoid_{}", u.energy),
+    ]);
+    header.extend(
+        [
+            "integrator",
+            "steps_per_cycle",
+            "cycles",
+            "steady",
+            "distance",
+            "loose_steps",
+            "cut_steps",
+            "wall_time_s",
+        ]
+        .map(String::from),
+    );
+    let mut t = CsvTable::new(&header);
+    for x in r {
+        let mut row = vec![exact(fu.show(x.freq))];
+        for o in &x.last.outputs {
+            row.extend([
+                exact(o.amplitude),
+                exact(o.phase_deg),
+                exact(o.half_range()),
+                exact(o.max),
+                exact(o.min),
+            ]);
+        }
+        row.extend([
+            exact(x.last.energy * x.freq),
+            exact(x.last.energy),
+            exact(x.last.energy_trapezoid),
+            x.integrator.to_string(),
+            x.steps_per_cycle.to_string(),
+            x.cycles.to_string(),
+            x.steady.to_string(),
+            exact(x.distance),
+            x.loose_steps.to_string(),
+            x.cut_steps.to_string(),
+            exact(x.seconds),
+        ]);
+        t.row(&row);
+    }
+    t.finish()
+}
+
+/// points_time.csv (e.g. N, mm, s): frequency_Hz, point, interface, x_mm, y_mm, z_mm,
+/// energy_per_cycle_N_mm, then as points.csv the point's node (`node_ids` of its
+/// upper/slave node) and its frame n_x … t2_z in global components.
+pub fn points_csv(p: &Problem, r: &[FreqResult], units: &Units, node_ids: &[u64]) -> String {
+    let u = ColumnUnits::new(units);
+    let l = &u.length;
+    let fu = frequency_unit(units);
+    let mut header = vec![
+        fu.column.clone(),
+        "point".into(),
+        "interface".into(),
+        format!("x_{l}"),
+        format!("y_{l}"),
+        format!("z_{l}"),
+        format!("energy_per_cycle_{}", u.energy),
+        "node".into(),
+    ];
+    for axis in ["n", "t1", "t2"] {
+        header.extend(["x", "y", "z"].map(|c| format!("{axis}_{c}")));
+    }
+    let mut t = CsvTable::new(&header);
+    for x in r {
+        for (i, (c, e)) in p.contacts.iter().zip(&x.last.point_energy).enumerate() {
+            let mut row = vec![
+                exact(fu.show(x.freq)),
+                i.to_string(),
+                p.interfaces[c.interface].name.clone(),
+                c.position[0].to_string(),
+                c.position[1].to_string(),
+                c.position[2].to_string(),
+                exact(*e),
+                node_ids
+                    .get(c.nodes[1])
+                    .map_or(String::new(), u64::to_string),
+            ];
+            row.extend(c.frame.iter().map(|v| exact(v + 0.0)));
+            t.row(&row);
+        }
+    }
+    t.finish()
+}
+
+/// Writes results_time.csv, points_time.csv and, last, run.json into `dir`.
+pub fn write(dir: &Path, scene: &Scene, run: &TimeRun) -> std::io::Result<Vec<PathBuf>> {
+    std::fs::create_dir_all(dir)?;
+    let mut files = Vec::new();
+    let mut put = |name: &str, text: String| -> std::io::Result<()> {
+        let f = dir.join(name);
+        crate::util::atomic::write_text(&f, &text).map_err(std::io::Error::other)?;
+        files.push(f);
+        Ok(())
+    };
+    let units = &scene.spec.units;
+    put(
+        "results_time.csv",
+        results_csv(&run.problem, &run.results, units),
+    )?;
+    put(
+        "points_time.csv",
+        points_csv(
+            &run.problem,
+            &run.results,
+            units,
+            &crate::model::node_ids(scene, &run.problem),
+        ),
+    )?;
+    let head = provenance::head("run --time-domain", &capi::abi_version(), &scene.sources);
+    let json = provenance::with_head(
+        head,
+        serde_json::json!({
+            "scene": scene.file,
+            "title": scene.spec.title,
+            // The frequencies below are cycles per time unit.
+            "frequency_unit": format!("1/{}", units.time),
+            "settings": run.settings,
+            "free_dofs": run.problem.sys.dofs.n_free(),
+            "contact_points": run.problem.contacts.len(),
+            "seconds": run.seconds,
+            "frequencies": run.results,
+        }),
+    );
+    let text = serde_json::to_string_pretty(&json).map_err(std::io::Error::other)?;
+    // Last: its presence marks a complete directory, as for a frequency-domain run.
+    files.push(crate::util::atomic::write_marker(dir, &text).map_err(std::io::Error::other)?);
+    Ok(files)
+}
