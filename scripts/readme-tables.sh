@@ -18,6 +18,10 @@ declare -A commands=(
   [knife_mesh]="cargo run --release -q -p jointlin-harness --bin jointlin -- loss scenes/knife-coarse.toml --mesh-study 1,2,3 --out harness/assets/knife-mesh --quiet"
   [tradeoff_beams]="cargo run --release -q -p jointlin-harness --bin jointlin -- tradeoff scenes/three-beams-coarse.toml --out out/tradeoff-beams"
   [tradeoff_block]="cargo run --release -q -p jointlin-harness --bin jointlin -- tradeoff scenes/block-stick.toml --out out/tradeoff-block"
+  [tradeoff_oblique]="cargo run --release -q -p jointlin-harness --bin jointlin -- tradeoff scenes/three-beams-oblique.toml --out out/tradeoff-oblique"
+  [tradeoff_oblique_coupled]="cargo run --release -q -p jointlin-harness --bin jointlin -- tradeoff scenes/three-beams-oblique.toml --set effects.coupled_slip=true --out out/tradeoff-oblique-coupled"
+  [tradeoff_oblique_normal]="cargo run --release -q -p jointlin-harness --bin jointlin -- tradeoff scenes/three-beams-oblique.toml --set effects.normal_load_variation=true --out out/tradeoff-oblique-normal"
+  [tradeoff_oblique_both]="cargo run --release -q -p jointlin-harness --bin jointlin -- tradeoff scenes/three-beams-oblique.toml --set effects.coupled_slip=true --set effects.normal_load_variation=true --out out/tradeoff-oblique-both"
   [backbone_plot]="cargo run --release -q -p jointlin-harness --bin jointlin -- backbone scenes/jenkins-chain.toml --out harness/assets/backbone-chain 2>&1"
   [backbone_chain_h7]="cargo run --release -q -p jointlin-harness --bin jointlin -- backbone scenes/jenkins-chain.toml --harmonics 7 --amplitudes 0.02,20,300 --out harness/assets/backbone-chain-h7 --quiet 2>&1"
   [backbone_cost]="cargo run --release -q -p jointlin-harness --bin jointlin -- mhb --backbones --scene scenes/three-beams-coarse.toml,scenes/three-beams.toml"
@@ -44,6 +48,8 @@ declare -A commands=(
 declare -A plots=(
   [tradeoff_beams]="out/tradeoff-beams/tradeoff.svg docs/accuracy-three-beams.svg"
   [tradeoff_block]="out/tradeoff-block/tradeoff.svg docs/accuracy-block.svg"
+  [tradeoff_oblique]="out/tradeoff-oblique/tradeoff.svg docs/accuracy-oblique.svg"
+  [tradeoff_oblique_both]="out/tradeoff-oblique-both/tradeoff.svg docs/accuracy-oblique-both.svg"
   [three_beams_frf]="out/three-beams/frf.svg harness/assets/three-beams-frf.svg"
   [duffing_frf]="out/duffing/frf.svg harness/assets/duffing-frf.svg"
   [python_study]="out/python-study/study.svg docs/python-study.svg"
@@ -53,7 +59,7 @@ declare -A plots=(
 # written): the block shows the message and the exit status instead of ending the script.
 may_stop=" backbone_fe_h7 "
 # Blocks whose command prints Markdown (the others are shown as terminal output).
-markdown=" python_cost contact_effects accuracy_table knife knife_graded_mesh knife_effects knife_graded_effects knife_mesh tradeoff_beams tradeoff_block backbone_cost deck_stack deck_bench modes_bench sweep_bench modal_deck_bench reduce_bench deck_keywords "
+markdown=" python_cost contact_effects accuracy_table knife knife_graded_mesh knife_effects knife_graded_effects knife_mesh tradeoff_beams tradeoff_block tradeoff_oblique tradeoff_oblique_coupled tradeoff_oblique_normal tradeoff_oblique_both backbone_cost deck_stack deck_bench modes_bench sweep_bench modal_deck_bench reduce_bench deck_keywords "
 files=(README.md docs/accuracy.md docs/python.md)
 # Copies each "from to" pair of a plots entry; a glob must match exactly one file.
 copy_plots() {
