@@ -23,6 +23,14 @@ pub struct CellStep {
     pub dissipated: f64,
     /// Whether the slider moved (slip during the segment or a radial return).
     pub slipped: bool,
+    /// Whether the step ends slipping (on the circle, the last part of the segment in
+    /// slip, or a radial return at zero increment): the end state's tangent is then the
+    /// slip tangent k(I − t̂t̂ᵀ), else k I. A radial return followed by elastic motion back
+    /// inside has slipped but ends sticking.
+    pub sliding: bool,
+    /// Whether the step began with a radial return (the limit fell below |t|): the end
+    /// force then depends on the limit through the returned force, ∂t/∂f = t̂ at the start.
+    pub returned: bool,
 }
 
 fn dot(a: [f64; 2], b: [f64; 2]) -> f64 {
@@ -45,13 +53,16 @@ pub fn advance(force: [f64; 2], k: f64, limit: f64, du: [f64; 2]) -> CellStep {
             force: [0.0, 0.0],
             dissipated: t2 / (2.0 * k),
             slipped: t2 > 0.0,
+            sliding: false,
+            returned: false,
         };
     }
     let mut t = force;
     let mut dissipated = 0.0;
     let mut slipped = false;
     let mag = norm(t);
-    if mag > limit {
+    let returned = mag > limit;
+    if returned {
         // Radial return to the smaller circle at fixed displacement.
         dissipated += (mag - limit) * (mag + limit) / (2.0 * k);
         t = [t[0] / mag * limit, t[1] / mag * limit];
@@ -63,6 +74,8 @@ pub fn advance(force: [f64; 2], k: f64, limit: f64, du: [f64; 2]) -> CellStep {
             force: t,
             dissipated,
             slipped,
+            sliding: slipped,
+            returned,
         };
     }
     let d = [du[0] / len, du[1] / len];
@@ -82,6 +95,8 @@ pub fn advance(force: [f64; 2], k: f64, limit: f64, du: [f64; 2]) -> CellStep {
             force: end,
             dissipated,
             slipped,
+            sliding: false,
+            returned,
         };
     }
     // Slip from the entry point T₁ (|T₁| = f) over the remaining length r.
@@ -116,6 +131,8 @@ pub fn advance(force: [f64; 2], k: f64, limit: f64, du: [f64; 2]) -> CellStep {
         force: end,
         dissipated,
         slipped: true,
+        sliding: true,
+        returned,
     }
 }
 

@@ -186,8 +186,10 @@ impl Contact3d {
             force[0] += r.force[0];
             force[1] += r.force[1];
             let mag = r.force[0].hypot(r.force[1]);
-            if r.slipped && mag > 0.0 {
+            if r.slipped {
                 slipping += 1;
+            }
+            if r.sliding && mag > 0.0 {
                 let n = [r.force[0] / mag, r.force[1] / mag];
                 for a in 0..2 {
                     for b in 0..2 {
@@ -199,6 +201,14 @@ impl Contact3d {
             } else if limit > 0.0 {
                 stiffness[0][0] += k;
                 stiffness[1][1] += k;
+                if r.returned {
+                    // Returned to the circle μN share, then elastic: the end force moves
+                    // with the limit along the start force's direction.
+                    let mag = t[0].hypot(t[1]);
+                    for a in 0..2 {
+                        stiffness[a][2] += self.mu * normal.stiffness * share * t[a] / mag;
+                    }
+                }
             }
         }
         next.dissipated = state.dissipated + dissipated;

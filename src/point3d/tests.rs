@@ -482,3 +482,36 @@ fn describing_function_is_fast_and_finite_for_a_vanishing_normal_load_and_contin
     assert!((along1.d_star[0] - along2.d_star[1]).abs() < 1e-12 * K_T);
     assert_eq!(along1.energy_per_cycle, along2.energy_per_cycle);
 }
+
+#[test]
+fn the_stiffness_is_the_steps_derivative_after_the_normal_load_dropped() {
+    // Slide along t₁ at N = 10 (|t| = μN = 5), then in one step the load drops to N = 8
+    // (radial return to 4) while the displacement moves back by 2e-3 (elastic: 4 − 2 = 2,
+    // inside the circle). The step's force is then k_T0 · Δu from the returned force, so
+    // its derivative is k_T0 I; it used to be reported as the slip tangent k(I − t̂t̂ᵀ) with
+    // the μ k_N coupling, because the cell had slipped (returned) during the step. A
+    // Newton iteration in the time domain converged only linearly on such points.
+    let c = contact(Tangential3d::Jenkins);
+    let (st, _, _) = run(&c, &[[0.01, 0.0, h_for(10.0)], [0.02, 0.0, h_for(10.0)]]);
+    let to = [0.018, 0.0005, h_for(8.0)];
+    let (_, r) = c.step(&st, to).unwrap();
+    assert!(
+        r.force[0].hypot(r.force[1]) < MU * 8.0 * 0.9,
+        "{:?}",
+        r.force
+    );
+    let eps = 1e-9;
+    for b in 0..3 {
+        let mut d = to;
+        d[b] += eps;
+        let (_, r1) = c.step(&st, d).unwrap();
+        for a in 0..3 {
+            let fd = (r1.force[a] - r.force[a]) / eps;
+            assert!(
+                (fd - r.stiffness[a][b]).abs() <= 1e-5 * K_N,
+                "∂F{a}/∂d{b}: reported {} vs {fd}",
+                r.stiffness[a][b]
+            );
+        }
+    }
+}
