@@ -138,6 +138,21 @@ pub fn effective_stiffness(
     }
 }
 
+/// What an implicit integrator of a scene's model is built from.
+#[derive(Clone)]
+pub struct Setup<'a> {
+    pub p: &'a Problem,
+    /// Stuck blocks K_c0 per point ([`stuck_blocks`]).
+    pub kc0: Vec<Matrix3<f64>>,
+    pub damping: Option<&'a Csc<f64>>,
+    pub forcing: Forcing<'a>,
+    /// Step (time).
+    pub h: f64,
+    pub scheme: Hht,
+    /// Newton: ‖Φ‖∞ ≤ this × max|r|.
+    pub tol: f64,
+}
+
 /// Newmark on a scene's model.
 pub struct Newmark<'a, 'n> {
     p: &'a Problem,
@@ -158,18 +173,18 @@ pub struct Newmark<'a, 'n> {
 }
 
 impl<'a, 'n> Newmark<'a, 'n> {
-    /// Precomputes H and G with the factors `k0` of K̂₀ (m solves); `h`, `scheme` and
-    /// `tol` as [`effective_stiffness`] had them.
-    #[allow(clippy::too_many_arguments)]
-    pub fn new(
-        p: &'a Problem,
-        k0: &'n Numeric<'n, f64>,
-        kc0: Vec<Matrix3<f64>>,
-        damping: Option<&'a Csc<f64>>,
-        forcing: Forcing<'a>,
-        (h, scheme): (f64, Hht),
-        tol: f64,
-    ) -> Result<Self, TimeError> {
+    /// Precomputes H and G with the factors `k0` of K̂₀ (m solves), K̂₀ built with the
+    /// setup's step and scheme ([`effective_stiffness`] and its K_c0).
+    pub fn new(setup: Setup<'a>, k0: &'n Numeric<'n, f64>) -> Result<Self, TimeError> {
+        let Setup {
+            p,
+            kc0,
+            damping,
+            forcing,
+            h,
+            scheme,
+            tol,
+        } = setup;
         let n = p.sys.dofs.n_free();
         let np = p.contacts.len();
         let m = 3 * np;

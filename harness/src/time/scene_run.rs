@@ -10,7 +10,7 @@ use std::time::Instant;
 use serde::Serialize;
 
 use super::contact::Contacts;
-use super::newmark::{add_blocks, stuck_blocks, Hht};
+use super::newmark::{add_blocks, stuck_blocks, Hht, Setup};
 use super::periodic::{change, Cycle, CycleStats, SteadyTest};
 use super::rk4::{max_frequency, stable_steps_per_cycle, SceneRk4};
 use super::settings::AUTO_RK4_MAX_DOFS;
@@ -182,16 +182,16 @@ pub fn simulate(
     let mut nm_holder;
     let stepper: &mut dyn Stepper = match kind {
         Integrator::Newmark => {
-            nm_holder = ControlledNewmark::new(
+            let setup = Setup {
                 p,
-                &sym,
-                (&matrices, &factors),
-                stuck_blocks(p, stat),
-                d,
+                kc0: stuck_blocks(p, stat),
+                damping: d,
                 forcing,
-                (h, Hht::new(settings.alpha)),
-                settings.newton_tolerance,
-            )?;
+                h,
+                scheme: Hht::new(settings.alpha),
+                tol: settings.newton_tolerance,
+            };
+            nm_holder = ControlledNewmark::new(setup, &sym, (&matrices, &factors))?;
             &mut nm_holder
         }
         _ => {

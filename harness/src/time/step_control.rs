@@ -9,13 +9,10 @@
 
 use std::cell::OnceCell;
 
-use nalgebra::Matrix3;
-
 use super::contact::Contacts;
-use super::newmark::{add_blocks, effective_stiffness, Hht, Newmark};
-use super::{Forcing, State, Stepper, TimeError};
+use super::newmark::{add_blocks, effective_stiffness, Newmark, Setup};
+use super::{State, Stepper, TimeError};
 use crate::fe::csc::Csc;
-use crate::model::Problem;
 use crate::solve::umfpack::{Numeric, Symbolic};
 
 /// Halvings of a failing step: down to 1/64 of the step.
@@ -33,46 +30,29 @@ pub fn per_level<T>() -> PerLevel<T> {
 
 /// Newmark (HHT-α) with step cutting.
 pub struct ControlledNewmark<'a, 'n, 'f> {
-    p: &'a Problem,
+    /// The full-size step's setup.
+    setup: Setup<'a>,
     sym: &'n Symbolic<f64>,
     matrices: &'n PerLevel<Csc<f64>>,
     factors: &'f PerLevel<Numeric<'n, f64>>,
     steppers: Vec<Option<Newmark<'a, 'f>>>,
-    kc0: Vec<Matrix3<f64>>,
-    damping: Option<&'a Csc<f64>>,
-    forcing: Forcing<'a>,
-    h: f64,
-    scheme: Hht,
-    tol: f64,
     /// Steps replaced by two half steps (at any level).
     pub cut_steps: usize,
 }
 
 impl<'a, 'n: 'f, 'f> ControlledNewmark<'a, 'n, 'f> {
-    /// The integrator at step `h`, with the full-size level factored now.
-    #[allow(clippy::too_many_arguments)]
+    /// The integrator of `setup`, with the full-size level factored now.
     pub fn new(
-        p: &'a Problem,
+        setup: Setup<'a>,
         sym: &'n Symbolic<f64>,
         (matrices, factors): (&'n PerLevel<Csc<f64>>, &'f PerLevel<Numeric<'n, f64>>),
-        kc0: Vec<Matrix3<f64>>,
-        damping: Option<&'a Csc<f64>>,
-        forcing: Forcing<'a>,
-        (h, scheme): (f64, Hht),
-        tol: f64,
     ) -> Result<Self, TimeError> {
         let mut c = ControlledNewmark {
-            p,
+            setup,
             sym,
             matrices,
             factors,
             steppers: (0..=MAX_CUTS).map(|_| None).collect(),
-            kc0,
-            damping,
-            forcing,
-            h,
-            scheme,
-            tol,
             cut_steps: 0,
         };
         c.level(0)?;
@@ -82,11 +62,14 @@ impl<'a, 'n: 'f, 'f> ControlledNewmark<'a, 'n, 'f> {
     /// The integrator of level `k` (step h/2^k), built on first use.
     fn level(&mut self, k: usize) -> Result<&mut Newmark<'a, 'f>, TimeError> {
         if self.steppers[k].is_none() {
-            let h = self.h / (1u64 << k) as f64;
+            let s = Setup {
+                h: self.setup.h / (1u64 << k) as f64,
+                ..self.setup.clone()
+            };
             let (matrices, factors) = (self.matrices, self.factors);
             if matrices[k].get().is_none() {
-                let mut khat = effective_stiffness(self.p, self.damping, h, self.scheme);
-                add_blocks(self.p, &mut khat.values, &self.kc0);
+                let mut khat = effective_stiffness(s.p, s.damping, s.h, s.scheme);
+                add_blocks(s.p, &mut khat.values, &s.kc0);
                 let _ = matrices[k].set(khat);
             }
             let matrix = matrices[k].get().expect("set above");
@@ -94,15 +77,7 @@ impl<'a, 'n: 'f, 'f> ControlledNewmark<'a, 'n, 'f> {
                 let _ = factors[k].set(self.sym.factor(matrix)?);
             }
             let factor = factors[k].get().expect("set above");
-            self.steppers[k] = Some(Newmark::new(
-                self.p,
-                factor,
-                self.kc0.clone(),
-                self.damping,
-                self.forcing,
-                (h, self.scheme),
-                self.tol,
-            )?);
+            self.steppers[k] = Some(Newmark::new(s, factor)?);
         }
         Ok(self.steppers[k].as_mut().expect("built above"))
     }
@@ -138,7 +113,7 @@ fn retried(e: &TimeError) -> bool {
 
 impl Stepper for ControlledNewmark<'_, '_, '_> {
     fn h(&self) -> f64 {
-        self.h
+        self.setup.h
     }
 
     fn loose_steps(&self) -> usize {

@@ -2,7 +2,7 @@
 //! machinery, and the block's time-domain loop against the library's own loop.
 
 use super::contact::Contacts;
-use super::newmark::{add_blocks, effective_stiffness, stuck_blocks, Hht, Newmark};
+use super::newmark::{add_blocks, effective_stiffness, stuck_blocks, Hht, Newmark, Setup};
 use super::rk4::{rk4_step, SceneRk4};
 use super::scene_run::{initial_state, simulate};
 use super::*;
@@ -135,16 +135,16 @@ fn sdof_scene_error(kind: Integrator, alpha: f64, steps: usize, t_end: f64) -> f
     let mut khat = effective_stiffness(&p, p.damping.as_ref(), h, Hht::new(alpha));
     add_blocks(&p, &mut khat.values, &kc0);
     let knum = sym.factor(&khat).unwrap();
-    let mut nm = Newmark::new(
-        &p,
-        &knum,
+    let setup = Setup {
+        p: &p,
         kc0,
-        p.damping.as_ref(),
+        damping: p.damping.as_ref(),
         forcing,
-        (h, Hht::new(alpha)),
-        1e-12,
-    )
-    .unwrap();
+        h,
+        scheme: Hht::new(alpha),
+        tol: 1e-12,
+    };
+    let mut nm = Newmark::new(setup, &knum).unwrap();
     let mut rk = rk;
     let stepper: &mut dyn Stepper = match kind {
         Integrator::Newmark => &mut nm,
