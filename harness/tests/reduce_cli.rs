@@ -34,6 +34,21 @@ fn jointlin(args: &[&str]) -> String {
     jointlin_both(args).0
 }
 
+/// `jointlin run SCENE --out OUT --no-plots [--set S]…`; the log.
+fn run_scene(scene: &Path, out: &Path, set: &[&str]) -> String {
+    let mut args = vec![
+        "run",
+        scene.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--no-plots",
+    ];
+    for s in set {
+        args.extend(["--set", s]);
+    }
+    jointlin(&args)
+}
+
 fn reduce(model: &str, name: &str, extra: &[&str]) -> PathBuf {
     let dir = tmp(name);
     let m = repo(model);
@@ -93,15 +108,7 @@ fn three_beams_reduced_sweeps_as_the_full_model() {
     // The FE fast sweep, consistent to 1e-10 (the scene's 1e-3 would dominate).
     let fe = tmp("fe");
     let scene = repo("scenes/three-beams-coarse.toml");
-    jointlin(&[
-        "run",
-        scene.to_str().unwrap(),
-        "--out",
-        fe.to_str().unwrap(),
-        "--no-plots",
-        "--set",
-        "iteration.tolerance=1e-10",
-    ]);
+    run_scene(&scene, &fe, &["iteration.tolerance=1e-10"]);
     let mut errors = Vec::new();
     for modes in ["4", "16"] {
         let dir = reduce("scenes/three-beams-coarse.toml", modes, &["--modes", modes]);
@@ -124,13 +131,7 @@ fn three_beams_reduced_sweeps_as_the_full_model() {
         assert!(dofs.contains("\nlower_0,x\nlower_0,y\n"), "{dofs}");
         assert!(dofs.contains("\nmiddle_tip,z\n") && dofs.contains("\ntop_tip,z\n"));
         let out = dir.join("run");
-        let log = jointlin(&[
-            "run",
-            dir.join("scene.toml").to_str().unwrap(),
-            "--out",
-            out.to_str().unwrap(),
-            "--no-plots",
-        ]);
+        let log = run_scene(&dir.join("scene.toml"), &out, &[]);
         assert!(log.contains("100 of 100 frequencies converged"), "{log}");
         errors.push(largest_difference(
             &fe.join("results.csv"),
@@ -244,22 +245,8 @@ fn held_contact_directions_carry_no_joint() {
     );
     let (fe, red) = (tmp("knife-fe"), dir.join("run"));
     let scene = repo("scenes/knife-coarse.toml");
-    jointlin(&[
-        "run",
-        scene.to_str().unwrap(),
-        "--out",
-        fe.to_str().unwrap(),
-        "--no-plots",
-        "--set",
-        "iteration.tolerance=1e-10",
-    ]);
-    jointlin(&[
-        "run",
-        dir.join("scene.toml").to_str().unwrap(),
-        "--out",
-        red.to_str().unwrap(),
-        "--no-plots",
-    ]);
+    run_scene(&scene, &fe, &["iteration.tolerance=1e-10"]);
+    run_scene(&dir.join("scene.toml"), &red, &[]);
     let (a, b) = (
         rows(&fe.join("results.csv")),
         rows(&red.join("results.csv")),
