@@ -16,7 +16,7 @@ use jointlin_harness::mhb::contact3d::{solve_ramped, Element3, Hb3, System3};
 use jointlin_harness::mhb::{default_samples, state_at_zero, NewtonOptions, System};
 use jointlin_harness::names::LawName;
 use jointlin_harness::run::{run, Extras, RunResult};
-use jointlin_harness::time::contact3d_reference::steady3;
+use jointlin_harness::time::mhb_reference::steady3;
 
 type C64 = Complex<f64>;
 
@@ -149,7 +149,7 @@ fn compare(name: &str, f: [(f64, f64); 3]) -> (f64, f64) {
     let hb = Hb3::new(&sys, H, ns);
     let sol = solve_ramped(&sys, H, ns, OMEGA, 10, NewtonOptions::default()).unwrap();
     let (x0, v0) = state_at_zero(&sol.u, H, OMEGA);
-    let td = steady3::<6>(&sys, OMEGA, &x0, &v0, 4000, 1e-8, 600).unwrap();
+    let td = steady3(&sys, OMEGA, &x0, &v0, 4000, 1e-8, 600).unwrap();
     let floor = 1e-6 * amp.iter().fold(0.0f64, |m, v| m.max(*v));
     let rel = |a: f64, b: f64, fl: f64| (a - b).abs() / b.abs().max(fl);
     let (mut to_hb, mut to_td) = (0.0f64, 0.0f64);

@@ -1,5 +1,5 @@
 //! The three-direction contact point in the harmonic balance (`mhb::contact3d`) against
-//! the time domain through the same C API (`time::contact3d_reference`): a 1 kg point
+//! the time domain through the same C API (`time::mhb_reference`): a 1 kg point
 //! mass on a rigid plane (springs 100 N/m in x, y and 2500 N/m in z, dashpots 2 N·s/m,
 //! to ground), pressed by 10 N (8 N of it on the contact, k_N = 1e4 N/m), driven at
 //! ω = 20 rad/s by an oblique harmonic force. (With 100 N/m in z the open point's
@@ -19,7 +19,7 @@ use jointlin_harness::capi::{linearize3d, Contact3};
 use jointlin_harness::mhb::contact3d::{solve_ramped, Element3, Hb3, System3};
 use jointlin_harness::mhb::{default_samples, state_at_zero, NewtonOptions, System};
 use jointlin_harness::names::LawName;
-use jointlin_harness::time::contact3d_reference::steady3;
+use jointlin_harness::time::mhb_reference::steady3;
 
 type C64 = Complex<f64>;
 
@@ -127,7 +127,7 @@ fn compare(name: &str, law: LawName, f1: [C64; 3], constant_normal: bool) -> Com
     // x(0) and v(0) of the harmonic-balance solution: the time domain starts there
     // (with a virgin point) and settles by itself.
     let (x0, v0) = state_at_zero(&sol.u, H, OMEGA);
-    let td = steady3::<6>(&sys, OMEGA, &x0, &v0, 4000, 1e-8, 600)
+    let td = steady3(&sys, OMEGA, &x0, &v0, 4000, 1e-8, 600)
         .unwrap_or_else(|e| panic!("{name}: time domain: {e}"));
     let rel = |a: f64, b: f64| (a - b).abs() / b.abs().max(1e-300);
     // A direction not excited (its amplitude below 1e-6 of the largest, round-off in

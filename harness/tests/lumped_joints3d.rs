@@ -1,5 +1,5 @@
 //! Three-direction joints in lumped scenes (`[[joints]]` with `normal`, docs/contact3d.md)
-//! against the time domain through the same C API (`time::contact3d_reference`, RK4):
+//! against the time domain through the same C API (`time::mhb_reference`, RK4):
 //! `scenes/mass-on-plane.toml`, a 1 kg point mass on a plane (springs 1, 1, 2 N/m,
 //! dashpots 0.05 N·s/m, 1 N pressing it down, k_N = 100 N/m, Jenkins k_T0 = 10 N/m,
 //! μ = 0.3), driven along x and z.
@@ -21,7 +21,7 @@ use jointlin_harness::input::scene::Scene;
 use jointlin_harness::mhb::lumped_sweep::{Solved, Sweep};
 use jointlin_harness::mhb::{default_samples, state_at_zero};
 use jointlin_harness::model::lumped;
-use jointlin_harness::time::contact3d_reference::steady3;
+use jointlin_harness::time::mhb_reference::steady3;
 
 const H: usize = 7;
 
@@ -71,7 +71,7 @@ fn normal_load_variation_matches_the_time_domain_where_the_thesis_model_does_not
         // The time domain starts at the balance's x(0), v(0) with a virgin point (the
         // slowest mode decays by e in 40 s only).
         let (x0, v0) = state_at_zero(u, H, omega);
-        let td = steady3::<6>(&l.system3(), omega, &x0, &v0, 2000, 1e-8, 3000)
+        let td = steady3(&l.system3(), omega, &x0, &v0, 2000, 1e-8, 3000)
             .unwrap_or_else(|e| panic!("{case}: time domain: {e}"));
         let thesis = scene(&[
             &x,

@@ -1,13 +1,13 @@
 //! Free decay (ring-down) of a lumped system, integrated in time by the harness's RK4
-//! ([`crate::time::rk4::rk4_step`], thesis (D.2)) with every contact force from the
+//! ([`crate::time::rk4::rk4_step_slice`], thesis (D.2)) with every contact force from the
 //! library's stateful point (`jointlin_point_step`, trial forces from the committed
-//! state, committed once per step, as [`crate::time::mhb_reference`] does), and its cycle by
-//! cycle frequency and damping ratio: the reference a backbone is checked against.
+//! state, committed once per step: [`crate::time::lumped`]), and its cycle by cycle
+//! frequency and damping ratio: the reference a backbone is checked against.
 
-use crate::capi::{self, POINT_STATE_LEN};
-use crate::mhb::{AftError, Law, MhbError, System};
-use crate::time::mhb_reference::{element_forces, element_slip};
-use crate::time::rk4::rk4_step;
+use crate::mhb::contact3d::System3;
+use crate::mhb::{MhbError, System};
+use crate::time::lumped::{derivative, inverse_mass, Elements};
+use crate::time::rk4::rk4_step_slice;
 
 /// Samples of one DOF of a free decay.
 #[derive(Debug, Clone)]
@@ -16,9 +16,9 @@ pub struct Decay {
     pub x: Vec<f64>,
 }
 
-/// Integrates M ẍ + D ẋ + K x + Σ Pᵀ F(P x) = 0 from (x0, v0) for `steps` steps of
-/// length `dt` (S = 2n), recording DOF `dof`.
-pub fn free_decay<const S: usize>(
+/// Integrates M ẍ + D ẋ + K x + Σ Pᵀ F(P x) = 0 from (x0, v0) (virgin elements) for
+/// `steps` steps of length `dt`, recording DOF `dof`.
+pub fn free_decay(
     sys: &System,
     x0: &[f64],
     v0: &[f64],
@@ -26,62 +26,32 @@ pub fn free_decay<const S: usize>(
     steps: usize,
     dof: usize,
 ) -> Result<Decay, MhbError> {
-    let n = sys.n();
-    assert_eq!(S, 2 * n, "state size");
-    let minv = sys
-        .m
-        .clone()
-        .try_inverse()
-        .ok_or(MhbError::Singular { omega: 0.0 })?;
-    let mut states = vec![[0.0; POINT_STATE_LEN]; sys.elements.len()];
-    let mut y = [0.0; S];
-    y[..n].copy_from_slice(x0);
-    y[n..].copy_from_slice(v0);
-    // Element forces from the committed states (the trial does not change them).
-    let forces = |y: &[f64; S], states: &[[f64; POINT_STATE_LEN]]| element_forces(sys, y, states);
+    let sys = System3 {
+        linear: sys.clone(),
+        elements: Vec::new(),
+    };
+    let n = sys.linear.n();
+    let minv = inverse_mass(&sys.linear, 0.0)?;
+    let mut elements = Elements::virgin(&sys);
+    let mut y: Vec<f64> = x0.iter().chain(v0).copied().collect();
+    let unloaded = vec![0.0; n];
     let mut out = Decay {
         t: vec![0.0],
         x: vec![y[dof]],
     };
     for step in 1..=steps {
-        let rhs = |_t: f64, y: &[f64; S]| -> [f64; S] {
-            let Ok(fe) = forces(y, &states) else {
-                return [f64::NAN; S];
-            };
-            let mut r = vec![0.0; n];
-            for a in 0..n {
-                for b in 0..n {
-                    r[a] -= sys.k[(a, b)] * y[b] + sys.d[(a, b)] * y[n + b];
-                }
-            }
-            for (e, f) in sys.elements.iter().zip(&fe) {
-                r[e.i] -= f;
-                if let Some(j) = e.j {
-                    r[j] += f;
-                }
-            }
-            let mut dy = [0.0; S];
-            for a in 0..n {
-                dy[a] = y[n + a];
-                dy[n + a] = (0..n).map(|b| minv[(a, b)] * r[b]).sum();
-            }
-            dy
+        let rhs = |_t: f64, y: &[f64]| {
+            derivative(&sys, &minv, &elements, y, &unloaded)
+                .unwrap_or_else(|_| vec![f64::NAN; 2 * n])
         };
-        y = rk4_step(&rhs, 0.0, &y, dt);
+        y = rk4_step_slice(&rhs, 0.0, &y, dt);
         if y.iter().any(|v| !v.is_finite()) {
-            forces(&y, &states)?;
+            derivative(&sys, &minv, &elements, &y, &unloaded)?;
             return Err(MhbError::Continuation(format!(
                 "free decay not finite after {step} steps"
             )));
         }
-        for (e, st) in sys.elements.iter().zip(states.iter_mut()) {
-            if let Law::Point(tg) = e.law {
-                let mut next = [0.0; POINT_STATE_LEN];
-                capi::point_step(&tg, st, element_slip(&y, e.i, e.j), &mut next)
-                    .map_err(AftError::from)?;
-                *st = next;
-            }
-        }
+        elements.commit(&sys, &y[..n])?;
         out.t.push(step as f64 * dt);
         out.x.push(y[dof]);
     }

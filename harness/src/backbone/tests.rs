@@ -189,7 +189,7 @@ fn ring_down_follows_the_backbone() {
     let v0: Vec<f64> = start.shape.iter().map(|v| (lambda * v).re).collect();
     let period = 2.0 * std::f64::consts::PI / stuck_mode(&sys, 1).unwrap().omega();
     let dt = period / 512.0;
-    let dec = free_decay::<6>(&sys, &x0, &v0, dt, 512 * 40, 2).unwrap();
+    let dec = free_decay(&sys, &x0, &v0, dt, 512 * 40, 2).unwrap();
     let cyc = cycles(&dec);
     // Where the decay is slow (backbone ζ < 0.045, amplitude falling < 25 % per cycle)
     // and the contacts slip, each cycle is compared; once stuck the decay is linear and

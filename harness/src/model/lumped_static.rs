@@ -13,11 +13,13 @@ use super::lumped_system::{Element3, System3};
 const MAX_ROUNDS: usize = 100;
 
 /// The static state: per point its normal force N₀ (force, ≥ 0) and
-/// the magnitude of its stuck tangential force (force).
+/// the magnitude of its stuck tangential force (force); the displacements.
 #[derive(Debug, Clone)]
 pub struct Static {
     pub normal: Vec<f64>,
     pub tangential: Vec<f64>,
+    /// The static displacement per DOF (length).
+    pub x: Vec<f64>,
 }
 
 /// Solves the static step of `sys` (its 1D elements stuck, points stuck tangentially
@@ -65,6 +67,7 @@ pub fn solve(sys: &System3, names: &[String]) -> Result<Static, String> {
                         e.contact.k_t0 * d[0].hypot(d[1])
                     })
                     .collect(),
+                x: x.as_slice().to_vec(),
             });
         }
         closed = next;

@@ -13,7 +13,7 @@ pub mod deck;
 mod locate;
 pub mod lumped;
 pub mod lumped_joints;
-mod lumped_static;
+pub mod lumped_static;
 pub mod lumped_system;
 pub mod screw_load;
 pub mod subgrid;

@@ -16,6 +16,9 @@
 //!   (down to 1/64), counted; the next step is tried at the full size again.
 //! - [`periodic`]: cycle statistics (first harmonic, peaks, energy) and the steady-state
 //!   test (cycle-to-cycle change, extrapolated to the distance from the periodic state).
+//! - [`lumped`]: a lumped system (one- and three-direction joints, cubic springs) by RK4;
+//!   [`lumped_sweep`] a lumped scene's sweep, [`mhb_reference`] from a given state (the
+//!   reference of the lumped harmonic balance's tests).
 //! - [`scene_run`]: a scene's sweep in the time domain (`jointlin run --time-domain`);
 //!   [`tables`] writes its files.
 //!
@@ -25,8 +28,9 @@
 //! convention as the frequency-domain sweep.
 
 pub mod contact;
-pub mod contact3d_reference;
 pub mod contact_points3d;
+pub mod lumped;
+pub mod lumped_sweep;
 pub mod mhb_reference;
 pub mod newmark;
 pub mod periodic;
@@ -42,6 +46,7 @@ use nalgebra::Complex;
 use thiserror::Error;
 
 use crate::capi::CapiError;
+use crate::mhb::MhbError;
 use crate::model::BuildError;
 use crate::solve::static_step::StaticError;
 use crate::solve::umfpack::UmfpackError;
@@ -69,6 +74,10 @@ pub enum TimeError {
     Singular { t: f64 },
     #[error("the solution is not finite at t = {t:.6e} (unstable step?)")]
     NonFinite { t: f64 },
+    #[error("the lumped system: {0}")]
+    Lumped(String),
+    #[error(transparent)]
+    Mhb(#[from] MhbError),
     #[error("time-domain settings: {0}")]
     Settings(String),
     #[error("the time-domain reference does not integrate cubic springs (the C API has no time-domain cubic spring); `jointlin validate` has the Duffing oscillator's own RK4 reference")]

@@ -16,21 +16,27 @@ use crate::fe::csc::Csc;
 use crate::model::Problem;
 use crate::solve::umfpack::Numeric;
 
-/// One classical RK4 step (D.2) of x' = f(t, x).
+/// One classical RK4 step (D.2) of x' = f(t, x), x of fixed size (small ODEs).
 pub fn rk4_step<const N: usize>(
     f: &impl Fn(f64, &[f64; N]) -> [f64; N],
     t: f64,
     x: &[f64; N],
     h: f64,
 ) -> [f64; N] {
-    let add = |a: &[f64; N], b: &[f64; N], s: f64| -> [f64; N] {
-        std::array::from_fn(|i| a[i] + s * b[i])
-    };
+    let g = |t: f64, y: &[f64]| f(t, y.try_into().expect("N values")).to_vec();
+    rk4_step_slice(&g, t, x, h).try_into().expect("N values")
+}
+
+/// One classical RK4 step (D.2) of x' = f(t, x), x of any size (lumped systems).
+pub fn rk4_step_slice(f: &impl Fn(f64, &[f64]) -> Vec<f64>, t: f64, x: &[f64], h: f64) -> Vec<f64> {
+    let add = |b: &[f64], s: f64| -> Vec<f64> { x.iter().zip(b).map(|(a, b)| a + s * b).collect() };
     let k1 = f(t, x);
-    let k2 = f(t + 0.5 * h, &add(x, &k1, 0.5 * h));
-    let k3 = f(t + 0.5 * h, &add(x, &k2, 0.5 * h));
-    let k4 = f(t + h, &add(x, &k3, h));
-    std::array::from_fn(|i| x[i] + h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]))
+    let k2 = f(t + 0.5 * h, &add(&k1, 0.5 * h));
+    let k3 = f(t + 0.5 * h, &add(&k2, 0.5 * h));
+    let k4 = f(t + h, &add(&k3, h));
+    (0..x.len())
+        .map(|i| x[i] + h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]))
+        .collect()
 }
 
 /// RK4's stability limit on the imaginary axis, h ω < 2√2 ≈ 2.83.

@@ -188,7 +188,7 @@ pub fn initial_state(hb: &Hb, u: &[f64], omega: f64) -> ([f64; 1], [f64; 1]) {
 /// harmonic-balance solution.
 pub fn time_domain(sys: &System, hb: &Hb, u: &[f64], omega: f64) -> Result<f64, MhbError> {
     let (x0, v0) = initial_state(hb, u, omega);
-    Ok(reference::steady::<2>(sys, omega, &x0, &v0, 1024, 1e-9, 5000)?.amplitude[0])
+    Ok(reference::steady(sys, omega, &x0, &v0, 1024, 1e-9, 5000)?.amplitude[0])
 }
 
 /// `jointlin validate --case softening-friction`: folds of the scan and of continuation

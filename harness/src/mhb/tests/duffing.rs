@@ -106,7 +106,7 @@ fn duffing_superharmonic_resonance() {
         h15.push(hb.half_range(&s.u, 0));
         let (x0, v0) = initial(&hb, &s.u, w);
         td.push(
-            reference::steady::<2>(&sys, w, &x0, &v0, 1024, 1e-8, 3000)
+            reference::steady(&sys, w, &x0, &v0, 1024, 1e-8, 3000)
                 .unwrap()
                 .half_range[0],
         );
@@ -222,7 +222,7 @@ fn duffing_stability_marks_agree_with_the_time_domain() {
         let a = hb.amplitude(&s.u, 0);
         let (x0, v0) = initial(&hb, &s.u, 10.0);
         let x0: Vec<f64> = x0.iter().map(|x| 1.01 * x).collect();
-        let td = reference::steady::<2>(&sys, 10.0, &x0, &v0, 1024, 1e-8, 5000).unwrap();
+        let td = reference::steady(&sys, 10.0, &x0, &v0, 1024, 1e-8, 5000).unwrap();
         let e = (td.amplitude[0] / a - 1.0).abs();
         if k == 1 {
             assert!(e > 0.05, "unstable branch kept: {e:e}");
