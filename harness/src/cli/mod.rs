@@ -15,6 +15,7 @@ mod modes;
 mod reduce;
 mod run;
 mod run_lumped;
+mod run_lumped_time;
 mod tradeoff;
 mod validate;
 

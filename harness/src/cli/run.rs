@@ -54,7 +54,10 @@ pub struct Args {
     /// hysteresis, or with [effects] coupled_slip / normal_load_variation the library's
     /// three-direction point, the balance's model; RK4 or Newmark, the scene's
     /// [time_domain] table): per frequency until periodic; writes results_time.csv,
-    /// points_time.csv, run.json.
+    /// points_time.csv, run.json. A lumped scene (mass bodies, [[matrices]], joints) is
+    /// integrated by RK4 from its static state and writes results_time.csv,
+    /// loops_time.csv (every joint's loop over the last period), loops_time.svg and
+    /// run.json.
     #[arg(long)]
     time_domain: bool,
 }
@@ -96,7 +99,7 @@ pub fn main(a: Args) -> ExitCode {
         return ExitCode::from(1);
     }
     if a.time_domain {
-        return time_domain_run(&s, &a.out, a.quiet);
+        return time_domain_run(&s, &a.out, !a.no_plots, a.quiet);
     }
     if s.spec.is_lumped() {
         if s.spec.iteration.mode == Mode::Thesis {
@@ -249,7 +252,7 @@ fn print_warnings(s: &Scene, r: &RunResult, unconverged: usize) {
 }
 
 /// `jointlin run --time-domain`.
-fn time_domain_run(s: &Scene, out: &Path, quiet: bool) -> ExitCode {
+fn time_domain_run(s: &Scene, out: &Path, plots: bool, quiet: bool) -> ExitCode {
     use jointlin_harness::time::{scene_run, tables, TimeSettings};
     let settings = match TimeSettings::from_spec(s.spec.time_domain.as_ref()) {
         Ok(t) => t,
@@ -258,6 +261,9 @@ fn time_domain_run(s: &Scene, out: &Path, quiet: bool) -> ExitCode {
             return ExitCode::from(2);
         }
     };
+    if s.spec.is_lumped() {
+        return super::run_lumped_time::main(s, &settings, out, plots, quiet);
+    }
     let mut pb = progress_bar(quiet);
     let r = scene_run::run_scene(s, &settings, &|done, total| {
         pb.set_message("time domain");

@@ -4,6 +4,7 @@ pub mod contact_map;
 pub mod csv;
 pub mod field;
 pub mod frf_plot;
+pub mod loop_plot;
 pub mod modes;
 pub mod svg;
 pub mod vtu;

@@ -31,6 +31,7 @@ pub mod contact;
 pub mod contact_points3d;
 pub mod lumped;
 pub mod lumped_sweep;
+pub mod lumped_tables;
 pub mod mhb_reference;
 pub mod newmark;
 pub mod periodic;

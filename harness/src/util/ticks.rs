@@ -134,3 +134,47 @@ mod tests {
         assert_eq!(at_least_a_decade(1.0, 100.0), (1.0, 100.0));
     }
 }
+
+/// Label of a linear-axis tick at `v`: at most four significant digits, plain from 0.001
+/// to 9999 (trailing zeros dropped), else as `2.5e-5`.
+pub fn linear_tick(v: f64) -> String {
+    if v == 0.0 || !v.is_finite() {
+        return format!("{}", if v.is_finite() { 0.0 } else { v });
+    }
+    let trim = |s: String| -> String {
+        if s.contains('.') {
+            s.trim_end_matches('0').trim_end_matches('.').to_string()
+        } else {
+            s
+        }
+    };
+    if (1e-3..1e4).contains(&v.abs()) {
+        let decimals = (3 - v.abs().log10().floor() as i32).max(0) as usize;
+        trim(format!("{v:.decimals$}"))
+    } else {
+        let s = format!("{v:.3e}");
+        let (m, e) = s.split_once('e').expect("exponent");
+        format!("{}e{e}", trim(m.to_string()))
+    }
+}
+
+#[cfg(test)]
+mod linear_tick_tests {
+    use super::linear_tick;
+
+    #[test]
+    fn ticks_carry_four_significant_digits_at_most() {
+        let cases = [
+            (0.0, "0"),
+            (0.2, "0.2"),
+            (-0.05, "-0.05"),
+            (1234.5678, "1235"),
+            (0.123456, "0.1235"),
+            (2.5e-5, "2.5e-5"),
+            (-3.0e7, "-3e7"),
+        ];
+        for (v, want) in cases {
+            assert_eq!(linear_tick(v), want, "{v}");
+        }
+    }
+}
