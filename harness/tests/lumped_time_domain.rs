@@ -1,0 +1,229 @@
+//! `jointlin run --time-domain` of lumped scenes (RK4 through the library's points, from
+//! the static state) against `jointlin run` of the same scene by harmonic balance at
+//! H = 7, on the program's own files: results_time.csv, loops_time.csv, loops_time.svg and
+//! run.json.
+//!
+//! - `scenes/mass-on-plane.toml` (a three-direction joint whose normal force varies by
+//!   about ±50 %, sliding at resonance): x amplitude, the joint's energy per cycle and its
+//!   normal force range within 1e-2 of the balance; the loop in loops_time.csv encloses
+//!   the energy results_time.csv reports (∮F·dδ against the library's dissipation).
+//! - `scenes/jenkins-chain.toml` (two one-direction Jenkins joints at a fixed normal
+//!   force): the same within 5e-3, from rest and from the stuck linear start.
+//! - A lumped scene asking for Newmark is refused with the reason.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+fn scene(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../scenes")
+        .join(name)
+}
+
+fn scratch(tag: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("jointlin-lumped-td-{}-{tag}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    d
+}
+
+/// `jointlin run SCENE --out DIR --set …` plus `extra` arguments; its output.
+fn run(scene: &Path, out: &Path, set: &[&str], extra: &[&str]) -> std::process::Output {
+    let mut c = Command::new(env!("CARGO_BIN_EXE_jointlin"));
+    c.args(["run", "--quiet", "--out"]).arg(out).arg(scene);
+    for s in set {
+        c.args(["--set", s]);
+    }
+    c.args(extra).output().unwrap()
+}
+
+/// Runs and expects success.
+fn ok(scene: &Path, out: &Path, set: &[&str], extra: &[&str]) {
+    let o = run(scene, out, set, extra);
+    assert!(
+        o.status.success(),
+        "{}: {}",
+        scene.display(),
+        String::from_utf8_lossy(&o.stderr)
+    );
+}
+
+/// The rows of a CSV file as column → value.
+fn rows(path: &Path) -> Vec<std::collections::HashMap<String, String>> {
+    let mut r = csv::Reader::from_path(path).unwrap();
+    let header: Vec<String> = r.headers().unwrap().iter().map(String::from).collect();
+    r.records()
+        .map(|rec| {
+            header
+                .iter()
+                .cloned()
+                .zip(rec.unwrap().iter().map(String::from))
+                .collect()
+        })
+        .collect()
+}
+
+fn num(row: &std::collections::HashMap<String, String>, col: &str) -> f64 {
+    row.get(col)
+        .unwrap_or_else(|| panic!("no column {col}"))
+        .parse()
+        .unwrap_or_else(|e| panic!("{col}: {e}"))
+}
+
+fn rel(a: f64, b: f64) -> f64 {
+    (a - b).abs() / b.abs()
+}
+
+/// The energy enclosed by `joint`'s loop at frequency `f` in loops_time.csv: the closed
+/// trapezoid sum of F₁ du₁ + F₂ du₂ (force·length) and the loop's normal force range.
+fn loop_energy(path: &Path, f: &str, joint: &str, len: &str, force: &str) -> (f64, f64, f64) {
+    let samples: Vec<[f64; 5]> = rows(path)
+        .iter()
+        .filter(|r| r["frequency_Hz"] == f && r["joint"] == joint)
+        .map(|r| {
+            [
+                num(r, &format!("u1_{len}")),
+                num(r, &format!("u2_{len}")),
+                num(r, &format!("f1_{force}")),
+                num(r, &format!("f2_{force}")),
+                num(r, &format!("normal_force_{force}")),
+            ]
+        })
+        .collect();
+    assert!(
+        samples.len() >= 64,
+        "{joint} at {f}: {} samples",
+        samples.len()
+    );
+    let mut e = 0.0;
+    for k in 0..samples.len() {
+        let (a, b) = (samples[k], samples[(k + 1) % samples.len()]);
+        e += 0.5 * (a[2] + b[2]) * (b[0] - a[0]) + 0.5 * (a[3] + b[3]) * (b[1] - a[1]);
+    }
+    let lo = samples.iter().map(|s| s[4]).fold(f64::INFINITY, f64::min);
+    let hi = samples
+        .iter()
+        .map(|s| s[4])
+        .fold(f64::NEG_INFINITY, f64::max);
+    (e, lo, hi)
+}
+
+#[test]
+fn the_point_mass_on_a_plane_in_time_matches_its_harmonic_balance() {
+    let s = scene("mass-on-plane.toml");
+    let band = ["sweep.f_min=0.28", "sweep.f_max=0.4", "sweep.count=3"];
+    let (td, hb) = (scratch("plane-td"), scratch("plane-hb"));
+    ok(&s, &td, &band, &["--time-domain"]);
+    ok(&s, &hb, &band, &[]);
+    for f in [
+        "results_time.csv",
+        "loops_time.csv",
+        "loops_time.svg",
+        "run.json",
+    ] {
+        assert!(td.join(f).is_file(), "{f} missing");
+    }
+    let (t, h) = (
+        rows(&td.join("results_time.csv")),
+        rows(&hb.join("results.csv")),
+    );
+    assert_eq!(t.len(), 3);
+    for (t, h) in t.iter().zip(&h) {
+        let f = &t["frequency_Hz"];
+        assert_eq!(&t["status"], "converged", "{f}");
+        let e = num(t, "plane_energy_N_m");
+        let d = [
+            rel(num(t, "x_amp_m"), num(h, "x_amp_m")),
+            rel(e, num(h, "plane_energy_N_m")),
+            rel(
+                num(t, "plane_normal_force_min_N"),
+                num(h, "plane_normal_force_min_N"),
+            ),
+            rel(
+                num(t, "plane_normal_force_max_N"),
+                num(h, "plane_normal_force_max_N"),
+            ),
+        ];
+        println!(
+            "{f} Hz: x {:.6e} m, energy {e:.6e} N·m, N in [{}, {}] N; against H = 7: {:.1e}",
+            num(t, "x_amp_m"),
+            t["plane_normal_force_min_N"],
+            t["plane_normal_force_max_N"],
+            d.iter().fold(0.0f64, |m, &v| m.max(v))
+        );
+        assert!(d.iter().all(|&d| d < 1e-2), "{f} Hz: {d:?}");
+        // The normal force varies by about ±50 % and the joint slides.
+        assert!(
+            num(t, "plane_normal_force_max_N") > 1.4 && e > 1e-2,
+            "{f} Hz"
+        );
+        let (looped, lo, hi) = loop_energy(&td.join("loops_time.csv"), f, "plane", "m", "N");
+        assert!(rel(looped, e) < 1e-2, "{f} Hz: loop {looped} against {e}");
+        assert!(rel(num(t, "energy_trapezoid_N_m"), e) < 1e-2, "{f} Hz");
+        assert_eq!(
+            (lo, hi),
+            (
+                num(t, "plane_normal_force_min_N"),
+                num(t, "plane_normal_force_max_N")
+            )
+        );
+    }
+    let svg = std::fs::read_to_string(td.join("loops_time.svg")).unwrap();
+    assert!(svg.contains("tangential force [N]") && svg.contains("plane"));
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(td.join("run.json")).unwrap()).unwrap();
+    assert_eq!(json["frequencies"].as_array().unwrap().len(), 3);
+}
+
+#[test]
+fn the_jenkins_chain_in_time_matches_its_harmonic_balance_from_rest_and_from_the_linear_start() {
+    let s = scene("jenkins-chain.toml");
+    let band = ["sweep.f_min=0.08", "sweep.f_max=0.1", "sweep.count=3"];
+    let (rest, linear, hb) = (
+        scratch("chain-rest"),
+        scratch("chain-linear"),
+        scratch("chain-hb"),
+    );
+    ok(&s, &rest, &band, &["--time-domain"]);
+    let mut lin = band.to_vec();
+    lin.push("time_domain.start=linear");
+    ok(&s, &linear, &lin, &["--time-domain"]);
+    let mut h7 = band.to_vec();
+    h7.extend(["iteration.mode=harmonic_balance", "iteration.harmonics=7"]);
+    ok(&s, &hb, &h7, &[]);
+    let h = rows(&hb.join("results.csv"));
+    for dir in [&rest, &linear] {
+        for (t, h) in rows(&dir.join("results_time.csv")).iter().zip(&h) {
+            let f = &t["frequency_Hz"];
+            assert_eq!(&t["status"], "converged", "{f}");
+            let d = [
+                rel(num(t, "m3_x_amp_mm"), num(h, "m3_x_amp_mm")),
+                rel(num(t, "j1_energy_N_mm"), num(h, "j1_energy_N_mm")),
+            ];
+            println!(
+                "{}: {f} Hz against H = 7: amplitude {:.1e}, energy {:.1e}",
+                dir.display(),
+                d[0],
+                d[1]
+            );
+            assert!(d.iter().all(|&d| d < 5e-3), "{f} Hz: {d:?}");
+            assert!(num(t, "j1_energy_N_mm") > 1e-2, "{f} Hz: j1 slides");
+        }
+    }
+}
+
+#[test]
+fn a_lumped_scene_is_not_integrated_by_newmark() {
+    let out = scratch("newmark");
+    let o = run(
+        &scene("jenkins-chain.toml"),
+        &out,
+        &["time_domain.integrator=newmark"],
+        &["--time-domain"],
+    );
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        !o.status.success() && err.contains("integrated by RK4"),
+        "{err}"
+    );
+    assert!(!out.join("run.json").exists());
+}
