@@ -31,6 +31,7 @@
 //! Wall time: the whole computation at that frequency (model build, static step, solve);
 //! frequency-domain rungs are repeated until 0.2 s have passed and averaged.
 
+mod lumped;
 mod plot;
 mod report;
 
@@ -155,6 +156,9 @@ fn td(scene: &Scene, s: &TimeSettings) -> Result<(FreqResult, f64), String> {
 
 /// Runs the ladder. `freq`: the frequency (default: the scene's only one, else its peak).
 pub fn study(scene: &Scene, freq: Option<f64>, log: &dyn Fn(&str)) -> Result<Tradeoff, String> {
+    if scene.spec.is_lumped() {
+        return lumped::study(scene, freq, log);
+    }
     let f = match freq {
         Some(f) => f,
         None if scene.frequencies().len() == 1 => scene.frequencies()[0],
