@@ -21,6 +21,7 @@ declare -A commands=(
   [tradeoff_oblique]="cargo run --release -q -p jointlin-harness --bin jointlin -- tradeoff scenes/three-beams-oblique.toml --out out/tradeoff-oblique"
   [tradeoff_oblique_coupled]="cargo run --release -q -p jointlin-harness --bin jointlin -- tradeoff scenes/three-beams-oblique.toml --set effects.coupled_slip=true --out out/tradeoff-oblique-coupled"
   [tradeoff_oblique_normal]="cargo run --release -q -p jointlin-harness --bin jointlin -- tradeoff scenes/three-beams-oblique.toml --set effects.normal_load_variation=true --out out/tradeoff-oblique-normal"
+  [tradeoff_mass_on_plane]="cargo run --release -q -p jointlin-harness --bin jointlin -- tradeoff scenes/mass-on-plane.toml --out out/tradeoff-mass-on-plane"
   [tradeoff_oblique_both]="cargo run --release -q -p jointlin-harness --bin jointlin -- tradeoff scenes/three-beams-oblique.toml --set effects.coupled_slip=true --set effects.normal_load_variation=true --out out/tradeoff-oblique-both"
   [backbone_plot]="cargo run --release -q -p jointlin-harness --bin jointlin -- backbone scenes/jenkins-chain.toml --out harness/assets/backbone-chain 2>&1"
   [backbone_chain_h7]="cargo run --release -q -p jointlin-harness --bin jointlin -- backbone scenes/jenkins-chain.toml --harmonics 7 --amplitudes 0.02,20,300 --out harness/assets/backbone-chain-h7 --quiet 2>&1"
@@ -59,7 +60,7 @@ declare -A plots=(
 # written): the block shows the message and the exit status instead of ending the script.
 may_stop=" backbone_fe_h7 "
 # Blocks whose command prints Markdown (the others are shown as terminal output).
-markdown=" python_cost contact_effects accuracy_table knife knife_graded_mesh knife_effects knife_graded_effects knife_mesh tradeoff_beams tradeoff_block tradeoff_oblique tradeoff_oblique_coupled tradeoff_oblique_normal tradeoff_oblique_both backbone_cost deck_stack deck_bench modes_bench sweep_bench modal_deck_bench reduce_bench deck_keywords "
+markdown=" python_cost contact_effects accuracy_table knife knife_graded_mesh knife_effects knife_graded_effects knife_mesh tradeoff_beams tradeoff_block tradeoff_oblique tradeoff_oblique_coupled tradeoff_oblique_normal tradeoff_oblique_both tradeoff_mass_on_plane backbone_cost deck_stack deck_bench modes_bench sweep_bench modal_deck_bench reduce_bench deck_keywords "
 files=(README.md docs/accuracy.md docs/python.md)
 # Copies each "from to" pair of a plots entry; a glob must match exactly one file.
 copy_plots() {

@@ -102,7 +102,7 @@ pub fn build(scene: &Scene) -> Result<Problem, BuildError> {
     let s = &scene.spec;
     if s.is_lumped() {
         return Err(BuildError::Other(
-            "a lumped system ([[matrices]], [[joints]], springs `between` two bodies) is read by `jointlin run` (first order or harmonic balance, no --time-domain), `modes` and `backbone` only"
+            "a lumped system ([[matrices]], [[joints]], springs `between` two bodies) has no FE model: `jointlin run` (first order, harmonic balance or --time-domain), `tradeoff`, `modes` and `backbone` take it"
                 .into(),
         ));
     }
