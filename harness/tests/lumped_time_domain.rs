@@ -6,7 +6,8 @@
 //! - `scenes/mass-on-plane.toml` (a three-direction joint whose normal force varies by
 //!   about ±50 %, sliding at resonance): x amplitude, the joint's energy per cycle and its
 //!   normal force range within 1e-2 of the balance; the loop in loops_time.csv encloses
-//!   the energy results_time.csv reports (∮F·dδ against the library's dissipation).
+//!   the energy results_time.csv reports (∮F·dδ against the library's dissipation), and
+//!   the balance's loop (loops.csv, rebuilt from its harmonics) encloses the same.
 //! - `scenes/jenkins-chain.toml` (two one-direction Jenkins joints at a fixed normal
 //!   force): the same within 5e-3, from rest and from the stuck linear start.
 //! - A lumped scene asking for Newmark is refused with the reason.
@@ -122,6 +123,9 @@ fn the_point_mass_on_a_plane_in_time_matches_its_harmonic_balance() {
     ] {
         assert!(td.join(f).is_file(), "{f} missing");
     }
+    for f in ["loops.csv", "loops.svg"] {
+        assert!(hb.join(f).is_file(), "{f} missing");
+    }
     let (t, h) = (
         rows(&td.join("results_time.csv")),
         rows(&hb.join("results.csv")),
@@ -158,6 +162,18 @@ fn the_point_mass_on_a_plane_in_time_matches_its_harmonic_balance() {
         );
         let (looped, lo, hi) = loop_energy(&td.join("loops_time.csv"), f, "plane", "m", "N");
         assert!(rel(looped, e) < 1e-2, "{f} Hz: loop {looped} against {e}");
+        // The balance's loop (rebuilt from its harmonics, marched through the same point)
+        // encloses its own energy and the time domain's loop.
+        let (balance, blo, bhi) = loop_energy(&hb.join("loops.csv"), f, "plane", "m", "N");
+        assert!(
+            rel(balance, num(h, "plane_energy_N_m")) < 1e-2,
+            "{f} Hz: {balance}"
+        );
+        assert!(
+            rel(balance, looped) < 1e-2,
+            "{f} Hz: {balance} against {looped}"
+        );
+        assert!(rel(blo, lo) < 1e-2 && rel(bhi, hi) < 1e-2, "{f} Hz");
         assert!(rel(num(t, "energy_trapezoid_N_m"), e) < 1e-2, "{f} Hz");
         assert_eq!(
             (lo, hi),

@@ -16,21 +16,27 @@ use serde_json::json;
 use jointlin_harness::capi;
 use jointlin_harness::input::scene::Scene;
 use jointlin_harness::mhb::default_samples;
+use jointlin_harness::mhb::loops::{balance_loops, LoopSample};
 use jointlin_harness::mhb::lumped_sweep::{Solved, Sweep};
 use jointlin_harness::model::lumped;
 use jointlin_harness::report::csv::{harmonic_columns, harmonic_values};
 use jointlin_harness::report::frf_plot::{frf_curves, FrfCurve};
 use jointlin_harness::settings::units::{frequency_unit, ColumnUnits};
 use jointlin_harness::settings::{Direction, Mode, Units};
+use jointlin_harness::time::lumped_tables::loops_csv;
 use jointlin_harness::util::csv_table::CsvTable;
 use jointlin_harness::util::number::exact;
 use jointlin_harness::util::{atomic, provenance};
+
+use super::run_lumped_time::plot_joint_loops;
 
 /// One sweep pass: its results.csv and (harmonic balance) harmonics.csv tables, the
 /// FRF curve of the outputs and the frequencies that failed.
 struct Pass {
     csv: CsvTable,
     harmonics: Option<CsvTable>,
+    /// Harmonic balance: per converged frequency (ascending) every element's loop.
+    loops: Vec<(f64, Vec<Vec<LoopSample>>)>,
     curve: FrfCurve,
     failed: Vec<f64>,
 }
@@ -75,6 +81,24 @@ pub fn main(s: &Scene, out: &Path, plots: bool) -> ExitCode {
         let mut files = vec![(format!("results{suffix}.csv"), pass.csv.finish())];
         if let Some(t) = pass.harmonics {
             files.push((format!("harmonics{suffix}.csv"), t.finish()));
+        }
+        if !pass.loops.is_empty() && !l.joints.is_empty() {
+            let loops: Vec<(f64, &[Vec<LoopSample>])> =
+                pass.loops.iter().map(|(f, x)| (*f, x.as_slice())).collect();
+            files.push((format!("loops{suffix}.csv"), loops_csv(&l, &loops, units)));
+            if let (true, true, Some(peak)) =
+                (plots, suffix.is_empty(), peak(&pass.loops, &pass.curve))
+            {
+                let file = out.join("loops.svg");
+                let what = format!("harmonic balance, H = {}", harmonic.map_or(1, |h| h.0));
+                match plot_joint_loops(s, &l, peak, &file, &what) {
+                    Ok(p) => written.extend(p),
+                    Err(e) => {
+                        eprintln!("error: {e}");
+                        return ExitCode::from(1);
+                    }
+                }
+            }
         }
         for (name, text) in files {
             let p = out.join(name);
@@ -185,6 +209,7 @@ fn sweep_pass(
     }
     let sys3 = l.system3();
     let mut sweep = Sweep::new(l, &sys3, harmonic);
+    let mut loops = Vec::new();
     // (frequency, results row, harmonics row, output amplitudes if converged)
     let mut rows = Vec::with_capacity(order.len());
     let mut failed = Vec::new();
@@ -195,7 +220,11 @@ fn sweep_pass(
         let mut amps = None;
         match sweep.solve(omega) {
             Ok(solved) => {
-                if let (Some((h, _)), Some(u)) = (harmonic, &solved.coefficients) {
+                if let (Some((h, n)), Some(u)) = (harmonic, &solved.coefficients) {
+                    match balance_loops(&sys3, u, h, n) {
+                        Ok(x) => loops.push((f, x)),
+                        Err(e) => eprintln!("warning: {f:e}: the loops: {e}"),
+                    }
                     let m = 2 * h + 1;
                     for (_, w) in &l.outputs {
                         let c = |k: usize| -> f64 {
@@ -252,9 +281,11 @@ fn sweep_pass(
             curve.points.push((f, a));
         }
     }
+    loops.sort_by(|a, b| a.0.total_cmp(&b.0));
     Pass {
         csv,
         harmonics,
+        loops,
         curve,
         failed,
     }
@@ -295,4 +326,23 @@ fn joint_values(l: &lumped::Lumped, s: &Solved) -> Vec<f64> {
         }
     }
     v
+}
+
+/// The loops of the frequency with the largest first output amplitude on `curve`.
+fn peak<'p>(
+    loops: &'p [(f64, Vec<Vec<LoopSample>>)],
+    curve: &FrfCurve,
+) -> Option<(f64, &'p [Vec<LoopSample>])> {
+    let amplitude = |f: f64| {
+        curve
+            .points
+            .iter()
+            .find(|p| p.0 == f)
+            .and_then(|p| p.1.first().copied())
+            .unwrap_or(0.0)
+    };
+    loops
+        .iter()
+        .max_by(|a, b| amplitude(a.0).total_cmp(&amplitude(b.0)))
+        .map(|(f, x)| (*f, x.as_slice()))
 }

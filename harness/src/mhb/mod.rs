@@ -28,6 +28,7 @@ pub mod consistency;
 pub mod contact3d;
 pub mod continuation;
 pub mod first_order;
+pub mod loops;
 pub mod lumped_sweep;
 
 #[cfg(test)]

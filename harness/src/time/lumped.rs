@@ -20,6 +20,7 @@ use super::ramp;
 use super::rk4::rk4_step_slice;
 use crate::capi::{self, POINT_STATE_LEN};
 use crate::mhb::contact3d::{step as point3_step, States, System3, VIRGIN};
+pub use crate::mhb::loops::{element_slip, LoopSample};
 use crate::mhb::{AftError, Law, MhbError, System};
 
 /// Committed element states with what they did so far.
@@ -34,14 +35,6 @@ pub struct Elements {
     pub dissipated: Vec<f64>,
     /// The committed sample per element (one-direction elements, then points).
     pub sample: Vec<LoopSample>,
-}
-
-/// An element at one instant: its displacement (one-direction: (δ, 0, 0); point: (u₁,
-/// u₂, h), h the overclosure) and force (one-direction: (F, 0, 0); point: (F₁, F₂, N)).
-#[derive(Debug, Clone, Copy, Default, PartialEq, serde::Serialize)]
-pub struct LoopSample {
-    pub displacement: [f64; 3],
-    pub force: [f64; 3],
 }
 
 impl Elements {
@@ -75,7 +68,10 @@ impl Elements {
         {
             let d = element_slip(y, e.i, e.j);
             let (force, dissipated) = match e.law {
-                Law::Cubic(k3) => (k3 * d * d * d, 0.0),
+                Law::Cubic(k3) => (
+                    capi::cubic_force(0.0, k3, d).map_err(AftError::from)?.0,
+                    0.0,
+                ),
                 Law::Point(tg) => {
                     let s = capi::point_step(&tg, from, d, to).map_err(AftError::from)?;
                     (s.force, s.dissipated)
@@ -352,9 +348,4 @@ fn tangential(samples: &[LoopSample], force: bool) -> Vec<[f64; 3]> {
             [0.0, v[0], v[1]]
         })
         .collect()
-}
-
-/// Relative displacement of element (i, j) in the state y (j = None: to ground).
-pub fn element_slip(y: &[f64], i: usize, j: Option<usize>) -> f64 {
-    y[i] - j.map_or(0.0, |j| y[j])
 }

@@ -137,11 +137,13 @@ pub fn joint_sample(l: &Lumped, joint: usize, samples: &[LoopSample]) -> LoopSam
     s
 }
 
-/// loops_time.csv (e.g. N, m, s): per frequency, joint and step of the last cycle
-/// frequency_Hz, joint, step (1..N), time_s (from the cycle's start), u1_m, u2_m (the
-/// tangential relative displacements), overclosure_m (a point's h; 0 for a joint at a
-/// fixed normal force), f1_N, f2_N (the tangential forces), normal_force_N.
-pub fn loops_csv(l: &Lumped, r: &[LumpedFreq], units: &Units) -> String {
+/// A loops table (loops_time.csv of the time domain, loops.csv of the balance; e.g. N,
+/// m, s): per frequency, joint and sample of one period frequency_Hz, joint, step (1..N),
+/// time_s (from the period's start), u1_m, u2_m (the tangential relative displacements),
+/// overclosure_m (a point's h; 0 for a joint at a fixed normal force), f1_N, f2_N (the
+/// tangential forces), normal_force_N. `loops`: per frequency (1/time) the samples of
+/// every element at t_k = kT/N, k = 1..N.
+pub fn loops_csv(l: &Lumped, loops: &[(f64, &[Vec<LoopSample>])], units: &Units) -> String {
     let u = ColumnUnits::new(units);
     let (len, force) = (&u.length, &units.force);
     let fu = frequency_unit(units);
@@ -160,14 +162,13 @@ pub fn loops_csv(l: &Lumped, r: &[LumpedFreq], units: &Units) -> String {
         format!("normal_force_{force}"),
     ]);
     let mut t = CsvTable::new(&header);
-    for x in r {
-        let Ok(s) = &x.result else { continue };
-        let h = 1.0 / (x.freq * x.steps_per_cycle as f64);
+    for &(freq, samples) in loops {
+        let h = 1.0 / (freq * samples.len() as f64);
         for (j, joint) in l.joints.iter().enumerate() {
-            for (k, samples) in s.loops.iter().enumerate() {
-                let js = joint_sample(l, j, samples);
+            for (k, at) in samples.iter().enumerate() {
+                let js = joint_sample(l, j, at);
                 let mut row = vec![
-                    exact(fu.show(x.freq)),
+                    exact(fu.show(freq)),
                     joint.name.clone(),
                     (k + 1).to_string(),
                     exact((k + 1) as f64 * h),
@@ -194,7 +195,12 @@ pub fn write(dir: &Path, scene: &Scene, run: &LumpedTimeRun) -> std::io::Result<
     let l = &run.lumped;
     put("results_time.csv", results_csv(l, &run.results, units))?;
     if !l.joints.is_empty() {
-        put("loops_time.csv", loops_csv(l, &run.results, units))?;
+        let loops: Vec<(f64, &[Vec<LoopSample>])> = run
+            .results
+            .iter()
+            .filter_map(|x| x.result.as_ref().ok().map(|s| (x.freq, s.loops.as_slice())))
+            .collect();
+        put("loops_time.csv", loops_csv(l, &loops, units))?;
     }
     let fu = frequency_unit(units);
     let frequencies: Vec<serde_json::Value> = run
