@@ -248,7 +248,7 @@ fn a_lumped_scene_is_not_integrated_by_newmark() {
 fn the_tradeoff_ladder_of_the_point_mass_shows_the_thesis_models_error_against_the_time_domain() {
     use jointlin_harness::input::scene::Scene;
     let s = Scene::load(&scene("mass-on-plane.toml")).unwrap();
-    let t = jointlin_harness::tradeoff::study(&s, Some(0.28), &|_| {}).unwrap();
+    let t = jointlin_harness::tradeoff::lumped::study(&s, Some(0.28), &|_| {}).unwrap();
     let err = |label: &str| {
         let r = t
             .rungs

@@ -7,7 +7,7 @@
 //! linear response); swept up, down or both as `[sweep] direction` says; results.csv
 //! (results_down.csv), harmonics.csv, frf.svg and run.json.
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use nalgebra::Complex;
@@ -33,7 +33,7 @@ use super::run_lumped_time::plot_joint_loops;
 /// One sweep pass: its results.csv and (harmonic balance) harmonics.csv tables, the
 /// FRF curve of the outputs and the frequencies that failed.
 struct Pass {
-    csv: CsvTable,
+    csv: Option<CsvTable>,
     harmonics: Option<CsvTable>,
     /// Harmonic balance: per converged frequency (ascending) every element's loop.
     loops: Vec<(f64, Vec<Vec<LoopSample>>)>,
@@ -77,36 +77,20 @@ pub fn main(s: &Scene, out: &Path, plots: bool) -> ExitCode {
     let mut curves = Vec::new();
     let mut failed = Vec::new();
     for (suffix, label, order) in &passes {
-        let pass = sweep_pass(&l, units, harmonic, order, label);
-        let mut files = vec![(format!("results{suffix}.csv"), pass.csv.finish())];
-        if let Some(t) = pass.harmonics {
-            files.push((format!("harmonics{suffix}.csv"), t.finish()));
-        }
-        if !pass.loops.is_empty() && !l.joints.is_empty() {
-            let loops: Vec<(f64, &[Vec<LoopSample>])> =
-                pass.loops.iter().map(|(f, x)| (*f, x.as_slice())).collect();
-            files.push((format!("loops{suffix}.csv"), loops_csv(&l, &loops, units)));
-            if let (true, true, Some(peak)) =
-                (plots, suffix.is_empty(), peak(&pass.loops, &pass.curve))
-            {
-                let file = out.join("loops.svg");
-                let what = format!("harmonic balance, H = {}", harmonic.map_or(1, |h| h.0));
-                match plot_joint_loops(s, &l, peak, &file, &what) {
-                    Ok(p) => written.extend(p),
-                    Err(e) => {
-                        eprintln!("error: {e}");
-                        return ExitCode::from(1);
-                    }
-                }
-            }
-        }
-        for (name, text) in files {
-            let p = out.join(name);
-            if let Err(e) = atomic::write_text(&p, &text) {
+        let mut pass = sweep_pass(&l, units, harmonic, order, label);
+        let scope = Written {
+            s,
+            l: &l,
+            out,
+            harmonic,
+            plots,
+        };
+        match scope.pass_files(suffix, &mut pass) {
+            Ok(files) => written.extend(files),
+            Err(e) => {
                 eprintln!("error: {e}");
                 return ExitCode::from(1);
             }
-            written.push(p);
         }
         curves.push(pass.curve);
         failed.extend(pass.failed);
@@ -283,7 +267,7 @@ fn sweep_pass(
     }
     loops.sort_by(|a, b| a.0.total_cmp(&b.0));
     Pass {
-        csv,
+        csv: Some(csv),
         harmonics,
         loops,
         curve,
@@ -345,4 +329,50 @@ fn peak<'p>(
         .iter()
         .max_by(|a, b| amplitude(a.0).total_cmp(&amplitude(b.0)))
         .map(|(f, x)| (*f, x.as_slice()))
+}
+
+/// Where a run's pass files go and what they describe.
+struct Written<'a> {
+    s: &'a Scene,
+    l: &'a lumped::Lumped,
+    out: &'a Path,
+    harmonic: Option<(usize, usize)>,
+    plots: bool,
+}
+
+impl Written<'_> {
+    /// Writes results{suffix}.csv, with the balance harmonics{suffix}.csv and
+    /// loops{suffix}.csv, and (first pass, plots) loops.svg; the files written.
+    fn pass_files(&self, suffix: &str, pass: &mut Pass) -> Result<Vec<PathBuf>, String> {
+        let (l, units) = (self.l, &self.s.spec.units);
+        let mut files = Vec::new();
+        if let Some(t) = pass.csv.take() {
+            files.push((format!("results{suffix}.csv"), t.finish()));
+        }
+        if let Some(t) = pass.harmonics.take() {
+            files.push((format!("harmonics{suffix}.csv"), t.finish()));
+        }
+        let mut written = Vec::new();
+        if !pass.loops.is_empty() && !l.joints.is_empty() {
+            let loops: Vec<(f64, &[Vec<LoopSample>])> =
+                pass.loops.iter().map(|(f, x)| (*f, x.as_slice())).collect();
+            files.push((format!("loops{suffix}.csv"), loops_csv(l, &loops, units)));
+            if let (true, true, Some(peak)) = (
+                self.plots,
+                suffix.is_empty(),
+                peak(&pass.loops, &pass.curve),
+            ) {
+                let file = self.out.join("loops.svg");
+                let h = self.harmonic.map_or(1, |h| h.0);
+                let what = format!("harmonic balance, H = {h}");
+                written.extend(plot_joint_loops(self.s, l, peak, &file, &what)?);
+            }
+        }
+        for (name, text) in files {
+            let p = self.out.join(name);
+            atomic::write_text(&p, &text)?;
+            written.push(p);
+        }
+        Ok(written)
+    }
 }

@@ -3,7 +3,7 @@
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use jointlin_harness::tradeoff::{markdown, study, write};
+use jointlin_harness::tradeoff::{lumped, markdown, study, write};
 
 use super::{study_main, SceneOverrides};
 
@@ -28,7 +28,14 @@ pub fn main(a: Args) -> ExitCode {
         &a.scene,
         &a.overrides.set,
         &a.out,
-        |s| study(s, a.freq, &|l| eprintln!("{l}")),
+        |s| {
+            let log = |l: &str| eprintln!("{l}");
+            if s.spec.is_lumped() {
+                lumped::study(s, a.freq, &log)
+            } else {
+                study(s, a.freq, &log)
+            }
+        },
         markdown,
         write,
     )

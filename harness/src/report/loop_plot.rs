@@ -10,6 +10,9 @@ use crate::util::ticks::linear_tick;
 
 type Res = Result<(), String>;
 
+/// A curve of a panel: its legend label, its points and its colour.
+type Curve<'a> = (&'a str, &'a [(f64, f64)], RGBColor);
+
 /// Panels drawn; further joints are named in the caption as left out.
 pub const MAX_PANELS: usize = 4;
 
@@ -24,7 +27,7 @@ pub struct JointLoop {
 
 /// Draws the loops of `joints` into `path`; `title` names the scene and the frequency.
 pub fn draw(path: &std::path::Path, title: &str, units: &Units, joints: &[JointLoop]) -> Res {
-    let shown = joints.len().min(MAX_PANELS).max(1);
+    let shown = joints.len().clamp(1, MAX_PANELS);
     let width = (460 * shown as u32 + 40).max(760);
     let root = SVGBackend::new(path, (width, 520)).into_drawing_area();
     root.fill(&WHITE).map_err(err)?;
@@ -36,7 +39,7 @@ pub fn draw(path: &std::path::Path, title: &str, units: &Units, joints: &[JointL
     let root = root.titled(&caption, ("sans-serif", 18)).map_err(err)?;
     for (panel, j) in root.split_evenly((1, shown)).iter().zip(joints) {
         let moves = |pts: &[(f64, f64)]| pts.iter().any(|p| p.0 != 0.0 || p.1 != 0.0);
-        let curves: Vec<(&str, &[(f64, f64)], RGBColor)> = [
+        let curves: Vec<Curve> = [
             ("t1", j.t1.as_slice(), RGBColor(31, 119, 180)),
             ("t2", j.t2.as_slice(), RGBColor(214, 39, 40)),
         ]

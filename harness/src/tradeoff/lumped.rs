@@ -19,7 +19,9 @@
 
 use std::time::Instant;
 
-use super::{at_frequency, ratios, Rung, Tradeoff, HARMONICS, HARMONICS_NORMAL_LOAD};
+use super::{
+    against_reference, at_frequency, ratios, Rung, Tradeoff, HARMONICS, HARMONICS_NORMAL_LOAD,
+};
 use crate::capi::{set_quadrature, Quadrature};
 use crate::input::scene::Scene;
 use crate::mhb::default_samples;
@@ -28,6 +30,10 @@ use crate::model::lumped::{self, Lumped};
 use crate::settings::Mode;
 use crate::time::lumped_sweep::run_lumped;
 use crate::time::{Integrator, Start, TimeSettings};
+
+/// A rung's solve of a lumped system at ω: (amplitude of the first output, joint energy
+/// per cycle).
+type Solver = dyn Fn(&Lumped, f64) -> Result<(f64, f64), String>;
 
 /// Steps per period of the time-domain rungs (each raised to RK4's stability bound).
 const STEPS: [usize; 4] = [64, 256, 1024, 4096];
@@ -69,7 +75,7 @@ fn fd(
     scene: &Scene,
     omega: f64,
     q: Option<Quadrature>,
-    how: &dyn Fn(&Lumped, f64) -> Result<(f64, f64), String>,
+    how: &Solver,
 ) -> Result<(f64, f64, bool, f64), String> {
     let prev = set_quadrature(q);
     let t = Instant::now();
@@ -131,8 +137,30 @@ pub fn study(scene: &Scene, freq: Option<f64>, log: &dyn Fn(&str)) -> Result<Tra
             peak_frequency(scene)?
         }
     };
-    let omega = std::f64::consts::TAU * f;
     let base = at_frequency(scene, f);
+    let (mut rungs, failed) = frequency_rungs(&base, std::f64::consts::TAU * f, log)?;
+    rungs.extend(time_rungs(&base, log)?);
+    against_reference(&mut rungs);
+    Ok(Tradeoff {
+        scene: scene.file.clone(),
+        freq: f,
+        output: base
+            .spec
+            .outputs
+            .first()
+            .map_or_else(String::new, |o| o.name.clone()),
+        units: base.spec.units.clone(),
+        summary: ratios(&rungs).into_iter().chain(failed).collect(),
+        rungs,
+    })
+}
+
+/// The frequency-domain rungs of `base` at ω, and the labels of those that failed.
+fn frequency_rungs(
+    base: &Scene,
+    omega: f64,
+    log: &dyn Fn(&str),
+) -> Result<(Vec<Rung>, Vec<String>), String> {
     let effects = &base.spec.effects;
     let thesis = {
         let mut s = base.clone();
@@ -142,12 +170,7 @@ pub fn study(scene: &Scene, freq: Option<f64>, log: &dyn Fn(&str)) -> Result<Tra
     };
     let mut rungs = Vec::new();
     let mut failed = Vec::new();
-    let mut push = |family,
-                    label: String,
-                    s: &Scene,
-                    q,
-                    how: &dyn Fn(&Lumped, f64) -> Result<(f64, f64), String>|
-     -> Result<(), String> {
+    let mut push = |family, label: String, s: &Scene, q, how: &Solver| -> Result<(), String> {
         log(&label);
         let (amplitude, energy, converged, seconds) = fd(s, omega, q, how)?;
         if !converged {
@@ -210,7 +233,7 @@ pub fn study(scene: &Scene, freq: Option<f64>, log: &dyn Fn(&str)) -> Result<Tra
         push(
             "harmonic",
             format!("harmonic balance H = {h} (N = {n}){with}"),
-            &base,
+            base,
             None,
             &move |l: &Lumped, w| solve(l, Some((h, n)), w),
         )?;
@@ -230,28 +253,7 @@ pub fn study(scene: &Scene, freq: Option<f64>, log: &dyn Fn(&str)) -> Result<Tra
             )?;
         }
     }
-    rungs.extend(time_rungs(&base, log)?);
-    let rf = rungs.last().expect("reference").clone();
-    for r in &mut rungs {
-        r.amplitude_error = (r.amplitude / rf.amplitude - 1.0).abs();
-        r.energy_error = if rf.energy > 0.0 {
-            (r.energy / rf.energy - 1.0).abs()
-        } else {
-            0.0
-        };
-    }
-    Ok(Tradeoff {
-        scene: scene.file.clone(),
-        freq: f,
-        output: base
-            .spec
-            .outputs
-            .first()
-            .map_or_else(String::new, |o| o.name.clone()),
-        units: base.spec.units.clone(),
-        summary: ratios(&rungs).into_iter().chain(failed).collect(),
-        rungs,
-    })
+    Ok((rungs, failed))
 }
 
 /// The time-domain rungs, the reference last (it must reach the periodic state; another

@@ -31,7 +31,8 @@
 //! Wall time: the whole computation at that frequency (model build, static step, solve);
 //! frequency-domain rungs are repeated until 0.2 s have passed and averaged.
 
-mod lumped;
+mod compare;
+pub mod lumped;
 mod plot;
 mod report;
 
@@ -53,6 +54,7 @@ use crate::time::{Integrator, Start, TimeSettings};
 use crate::util::atomic;
 use crate::util::csv_table::CsvTable;
 
+use compare::{against_reference, ratios};
 pub use report::{csv, markdown, write};
 
 /// The harmonic-balance rungs.
@@ -154,11 +156,9 @@ fn td(scene: &Scene, s: &TimeSettings) -> Result<(FreqResult, f64), String> {
     Ok((r.results.into_iter().next().expect("one frequency"), secs))
 }
 
-/// Runs the ladder. `freq`: the frequency (default: the scene's only one, else its peak).
+/// Runs the ladder of an FE scene or deck ([`lumped::study`] for lumped scenes). `freq`:
+/// the frequency (default: the scene's only one, else its peak).
 pub fn study(scene: &Scene, freq: Option<f64>, log: &dyn Fn(&str)) -> Result<Tradeoff, String> {
-    if scene.spec.is_lumped() {
-        return lumped::study(scene, freq, log);
-    }
     let f = match freq {
         Some(f) => f,
         None if scene.frequencies().len() == 1 => scene.frequencies()[0],
@@ -418,15 +418,7 @@ pub fn study(scene: &Scene, freq: Option<f64>, log: &dyn Fn(&str)) -> Result<Tra
             frequency_domain: false,
         });
     }
-    let rf = rungs.last().expect("reference").clone();
-    for r in &mut rungs {
-        r.amplitude_error = (r.amplitude / rf.amplitude - 1.0).abs();
-        r.energy_error = if rf.energy > 0.0 {
-            (r.energy / rf.energy - 1.0).abs()
-        } else {
-            0.0
-        };
-    }
+    against_reference(&mut rungs);
     let mut summary = ratios(&rungs);
     summary.extend(stopped);
     Ok(Tradeoff {
@@ -437,68 +429,6 @@ pub fn study(scene: &Scene, freq: Option<f64>, log: &dyn Fn(&str)) -> Result<Tra
         rungs,
         summary,
     })
-}
-
-/// Speed ratios: for the default frequency-domain rung, the cheapest time-domain rung
-/// (not the reference) at least as accurate in both quantities, and the ratio of wall
-/// times; if none is, the reference's.
-fn ratios(rungs: &[Rung]) -> Vec<String> {
-    let mut out = Vec::new();
-    let Some(d) = rungs.iter().find(|r| r.family == "default") else {
-        return out;
-    };
-    let err = |r: &Rung| r.amplitude_error.max(r.energy_error);
-    let target = err(d);
-    let cheapest = rungs
-        .iter()
-        .filter(|r| r.family == "time" && r.converged && err(r) <= target)
-        .min_by(|a, b| a.seconds.total_cmp(&b.seconds));
-    let reference = rungs
-        .iter()
-        .find(|r| r.family == "reference")
-        .expect("reference");
-    match cheapest {
-        Some(t) => out.push(format!(
-            "frequency domain (default) reaches {:.2e} (max of amplitude and energy error) in {:.3e} s; the cheapest time-domain run as accurate, {}, takes {:.3e} s: {:.0}× slower",
-            target,
-            d.seconds,
-            t.label,
-            t.seconds,
-            t.seconds / d.seconds
-        )),
-        None => out.push(format!(
-            "frequency domain (default) reaches {:.2e} in {:.3e} s; no time-domain rung below the reference is as accurate; the reference takes {:.3e} s: {:.0}× slower",
-            target,
-            d.seconds,
-            reference.seconds,
-            reference.seconds / d.seconds
-        )),
-    }
-    out.push(format!(
-        "reference time-domain run vs frequency domain (default): {:.0}× the wall time",
-        reference.seconds / d.seconds
-    ));
-    let hb: Vec<String> = rungs
-        .iter()
-        .filter(|r| r.family == "harmonic" || r.family == "normal_load")
-        .map(|r| {
-            let name = r.label.split(" (").next().unwrap_or(&r.label);
-            let name = name.trim_start_matches("harmonic balance ");
-            let with = if r.family == "normal_load" {
-                " with N(t)"
-            } else {
-                ""
-            };
-            format!("{name}{with}: {:.2e} in {:.2e} s", err(r), r.seconds)
-        })
-        .collect();
-    if !hb.is_empty() {
-        out.push(format!(
-            "harmonic balance (max of amplitude and energy error): {}",
-            hb.join("; ")
-        ));
-    }
-    out
 }
 
 #[cfg(test)]
