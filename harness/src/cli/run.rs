@@ -298,5 +298,75 @@ fn time_domain_run(s: &Scene, out: &Path, plots: bool, quiet: bool) -> ExitCode 
             x.seconds
         );
     }
-    report_written(tables::write(out, s, &r))
+    let mut written = Vec::new();
+    if plots {
+        match plot_point_loops(s, &r, out) {
+            Ok(p) => written.extend(p),
+            Err(e) => {
+                eprintln!("error: {e}");
+                return ExitCode::from(1);
+            }
+        }
+    }
+    report_written(tables::write(out, s, &r).map(|f| written.into_iter().chain(f).collect()))
+}
+
+/// loops_time.svg: the loops of the (at most four) contact points that dissipate most,
+/// at the frequency whose loops the run kept (its largest response).
+fn plot_point_loops(
+    s: &Scene,
+    r: &jointlin_harness::time::scene_run::TimeRun,
+    out: &Path,
+) -> Result<Option<PathBuf>, String> {
+    use jointlin_harness::report::loop_plot::{self, JointLoop, MAX_PANELS};
+    let Some(x) = r.results.iter().find(|x| !x.loops.is_empty()) else {
+        return Ok(None);
+    };
+    let mut order: Vec<usize> = (0..r.problem.contacts.len()).collect();
+    let energy = &x.last.point_energy;
+    order.sort_by(|&a, &b| energy[b].total_cmp(&energy[a]));
+    let nodes = jointlin_harness::model::node_ids(s, &r.problem);
+    let loops: Vec<JointLoop> = order
+        .iter()
+        .take(MAX_PANELS)
+        .map(|&i| {
+            let c = &r.problem.contacts[i];
+            let node = nodes
+                .get(c.nodes[1])
+                .map_or(String::new(), |n| format!(", node {n}"));
+            JointLoop {
+                name: format!(
+                    "point {i} ({}{node})",
+                    r.problem.interfaces[c.interface].name
+                ),
+                t1: x
+                    .loops
+                    .iter()
+                    .map(|p| (p[i].displacement[0], p[i].force[0]))
+                    .collect(),
+                t2: x
+                    .loops
+                    .iter()
+                    .map(|p| (p[i].displacement[1], p[i].force[1]))
+                    .collect(),
+            }
+        })
+        .collect();
+    if loops.is_empty() {
+        return Ok(None);
+    }
+    let fu = jointlin_harness::settings::units::frequency_unit(&s.spec.units);
+    let title = format!(
+        "{}: time domain, the {} points dissipating most, last period at {:.4} {}",
+        s.spec.title,
+        loops.len(),
+        fu.show(x.freq),
+        fu.text
+    );
+    std::fs::create_dir_all(out).map_err(|e| e.to_string())?;
+    let file = out.join("loops_time.svg");
+    jointlin_harness::util::atomic::with_temp(&file, |t| {
+        loop_plot::draw(t, &title, &s.spec.units, &loops)
+    })?;
+    Ok(Some(file))
 }

@@ -18,6 +18,7 @@ use super::step_control::{per_level, ControlledNewmark};
 use super::{Forcing, Integrator, Start, State, Stepper, TimeError, TimeSettings, C64};
 use crate::fe::csc::Csc;
 use crate::input::scene::Scene;
+use crate::mhb::loops::LoopSample;
 use crate::model::{build, Problem};
 use crate::solve::static_step::{self, StaticState};
 use crate::solve::sweep::harmonic_fe_point3d::{check_laws, PointModel};
@@ -48,6 +49,11 @@ pub struct FreqResult {
     pub cut_steps: usize,
     pub uinter_calls: u64,
     pub seconds: f64,
+    /// Per step of the last cycle, per contact point: its tangential relative
+    /// displacements, overclosure −δ_n and forces (F₁, F₂, N) (kept by [`sweep`] for the
+    /// frequency of the largest response only).
+    #[serde(skip)]
+    pub loops: Vec<Vec<LoopSample>>,
 }
 
 /// Which integrator `settings` means for a model with `n` free DOFs.
@@ -214,14 +220,17 @@ pub fn simulate(
     let mut distance = f64::INFINITY;
     let mut cycles = 0;
     let ramp_end = ramp_cycles.ceil() as usize;
+    let mut loops = Vec::with_capacity(steps_per_cycle);
     while cycles < settings.max_cycles {
         let mut cyc = Cycle::new(omega, steps_per_cycle, nout, contacts.dissipated());
+        loops.clear();
         for _ in 0..steps_per_cycle {
             let (f_old, d_old) = (contacts.force.clone(), contacts.delta.clone());
             newton += stepper.step(st, contacts)?;
             steps += 1;
             cyc.add_work(&f_old, &contacts.force, &d_old, &contacts.delta);
             cyc.push(st.t, &sample(&st.u));
+            loops.push(loop_samples(contacts));
         }
         cycles += 1;
         let stats = cyc.finish(&contacts.dissipated());
@@ -257,7 +266,21 @@ pub fn simulate(
         cut_steps: stepper.cut_steps(),
         uinter_calls: contacts.calls - calls0,
         seconds: clock.elapsed().as_secs_f64(),
+        loops,
     })
+}
+
+/// Every point's committed sample: (δ_t₁, δ_t₂, −δ_n) and (F₁, F₂, N = −q_n).
+fn loop_samples(contacts: &Contacts) -> Vec<LoopSample> {
+    contacts
+        .delta
+        .iter()
+        .zip(&contacts.force)
+        .map(|(d, q)| LoopSample {
+            displacement: [d[1], d[2], -d[0]],
+            force: [q[1], q[2], -q[0]],
+        })
+        .collect()
 }
 
 /// A scene run in the time domain.
@@ -335,15 +358,19 @@ pub fn sweep(
                 0.0
             }
         };
-        results.push(simulate(
-            problem,
-            stat,
-            &mut contacts,
-            &mut st,
-            f,
-            settings,
-            ramp,
-        )?);
+        let mut r = simulate(problem, stat, &mut contacts, &mut st, f, settings, ramp)?;
+        // The loops of the largest first-output response so far only (they take
+        // points × steps per frequency).
+        let amplitude = |x: &FreqResult| x.last.outputs.first().map_or(0.0, |o| o.amplitude);
+        match results
+            .iter_mut()
+            .find(|x: &&mut FreqResult| !x.loops.is_empty())
+        {
+            Some(best) if amplitude(best) >= amplitude(&r) => r.loops = Vec::new(),
+            Some(best) => best.loops = Vec::new(),
+            None => {}
+        }
+        results.push(r);
     }
     progress(freqs.len(), freqs.len());
     Ok(results)

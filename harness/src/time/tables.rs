@@ -1,5 +1,5 @@
-//! The files of a time-domain run: results_time.csv, points_time.csv and run.json (the
-//! scene's units in every column name).
+//! The files of a time-domain run: results_time.csv, points_time.csv, loops_time.csv and
+//! run.json (the scene's units in every column name).
 
 use std::path::{Path, PathBuf};
 
@@ -125,7 +125,56 @@ pub fn points_csv(p: &Problem, r: &[FreqResult], units: &Units, node_ids: &[u64]
     t.finish()
 }
 
-/// Writes results_time.csv, points_time.csv and, last, run.json into `dir`.
+/// loops_time.csv (e.g. N, mm, s) at the frequency of the largest response (the one
+/// whose loops [`super::scene_run::sweep`] kept): frequency_Hz, point, interface, node,
+/// step (1..N), time_s (from the period's start), u1_mm, u2_mm (tangential relative
+/// displacements), overclosure_mm (−δ_n), f1_N, f2_N (tangential forces on the upper
+/// side), normal_force_N (compressive > 0); None without such a frequency.
+pub fn loops_csv(p: &Problem, r: &[FreqResult], units: &Units, node_ids: &[u64]) -> Option<String> {
+    let x = r.iter().find(|x| !x.loops.is_empty())?;
+    let u = ColumnUnits::new(units);
+    let (l, force) = (&u.length, &units.force);
+    let fu = frequency_unit(units);
+    let mut header = vec![
+        fu.column.clone(),
+        "point".into(),
+        "interface".into(),
+        "node".into(),
+        "step".into(),
+        format!("time_{}", units.time),
+    ];
+    header.extend([
+        format!("u1_{l}"),
+        format!("u2_{l}"),
+        format!("overclosure_{l}"),
+        format!("f1_{force}"),
+        format!("f2_{force}"),
+        format!("normal_force_{force}"),
+    ]);
+    let mut t = CsvTable::new(&header);
+    let h = 1.0 / (x.freq * x.loops.len() as f64);
+    for (i, c) in p.contacts.iter().enumerate() {
+        for (k, at) in x.loops.iter().enumerate() {
+            let mut row = vec![
+                exact(fu.show(x.freq)),
+                i.to_string(),
+                p.interfaces[c.interface].name.clone(),
+                node_ids
+                    .get(c.nodes[1])
+                    .map_or(String::new(), u64::to_string),
+                (k + 1).to_string(),
+                exact((k + 1) as f64 * h),
+            ];
+            let s = at[i];
+            row.extend(s.displacement.iter().chain(&s.force).map(|v| exact(*v)));
+            t.row(&row);
+        }
+    }
+    Some(t.finish())
+}
+
+/// Writes results_time.csv, points_time.csv, loops_time.csv and, last, run.json into
+/// `dir`.
 pub fn write(dir: &Path, scene: &Scene, run: &TimeRun) -> std::io::Result<Vec<PathBuf>> {
     std::fs::create_dir_all(dir)?;
     let mut files = Vec::new();
@@ -140,15 +189,14 @@ pub fn write(dir: &Path, scene: &Scene, run: &TimeRun) -> std::io::Result<Vec<Pa
         "results_time.csv",
         results_csv(&run.problem, &run.results, units),
     )?;
+    let node_ids = crate::model::node_ids(scene, &run.problem);
     put(
         "points_time.csv",
-        points_csv(
-            &run.problem,
-            &run.results,
-            units,
-            &crate::model::node_ids(scene, &run.problem),
-        ),
+        points_csv(&run.problem, &run.results, units, &node_ids),
     )?;
+    if let Some(text) = loops_csv(&run.problem, &run.results, units, &node_ids) {
+        put("loops_time.csv", text)?;
+    }
     let head = provenance::head("run --time-domain", &capi::abi_version(), &scene.sources);
     let json = provenance::with_head(
         head,
