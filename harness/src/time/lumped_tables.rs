@@ -5,6 +5,7 @@ use std::path::{Path, PathBuf};
 
 use super::lumped::{LoopSample, Settled};
 use super::lumped_sweep::{LumpedFreq, LumpedTimeRun};
+use super::tables::run_columns;
 use crate::capi;
 use crate::input::scene::Scene;
 use crate::model::lumped::Lumped;
@@ -20,8 +21,8 @@ use crate::util::provenance;
 /// force varies, <joint>_normal_force_min_N and _max_N; dissipated_power_N_m_per_s,
 /// energy_per_cycle_N_m (all elements), energy_trapezoid_N_m (Σ ½(F + F₊)·Δδ over the
 /// tangential components, a check); integrator, steps_per_cycle, cycles, steady,
-/// distance, wall_time_s; status ("converged", "not periodic" or why the integration
-/// stopped, its fields empty).
+/// distance, loose_steps and cut_steps (0: RK4), wall_time_s; status ("converged",
+/// "not periodic" or why the integration stopped, its fields empty).
 pub fn results_csv(l: &Lumped, r: &[LumpedFreq], units: &Units) -> String {
     let u = ColumnUnits::new(units);
     let len = &u.length;
@@ -42,23 +43,8 @@ pub fn results_csv(l: &Lumped, r: &[LumpedFreq], units: &Units) -> String {
             header.push(format!("{}_normal_force_max_{}", j.name, units.force));
         }
     }
-    header.extend([
-        format!("dissipated_power_{}", u.power),
-        format!("energy_per_cycle_{}", u.energy),
-        format!("energy_trapezoid_{}", u.energy),
-    ]);
-    header.extend(
-        [
-            "integrator",
-            "steps_per_cycle",
-            "cycles",
-            "steady",
-            "distance",
-            "wall_time_s",
-            "status",
-        ]
-        .map(String::from),
-    );
+    header.extend(run_columns(&u));
+    header.push("status".into());
     let mut t = CsvTable::new(&header);
     for x in r {
         let mut row = vec![exact(fu.show(x.freq))];
@@ -83,6 +69,9 @@ pub fn results_csv(l: &Lumped, r: &[LumpedFreq], units: &Units) -> String {
                     s.cycles.to_string(),
                     s.steady.to_string(),
                     exact(s.distance),
+                    // RK4 has no Newton iteration to loosen and no step control.
+                    "0".into(),
+                    "0".into(),
                     exact(s.seconds),
                     if s.steady {
                         "converged"

@@ -207,12 +207,6 @@ pub fn simulate(
     };
 
     let nout = p.outputs.len();
-    let sample = |u: &[f64]| -> Vec<f64> {
-        p.outputs
-            .iter()
-            .map(|o| o.dofs.iter().map(|&(i, w)| w * u[i]).sum())
-            .collect()
-    };
     let mut test = SteadyTest::default();
     let mut prev: Option<CycleStats> = None;
     let (mut steps, mut newton) = (0usize, 0usize);
@@ -229,7 +223,7 @@ pub fn simulate(
             newton += stepper.step(st, contacts)?;
             steps += 1;
             cyc.add_work(&f_old, &contacts.force, &d_old, &contacts.delta);
-            cyc.push(st.t, &sample(&st.u));
+            cyc.push(st.t, &output_values(p, &st.u));
             loops.push(loop_samples(contacts));
         }
         cycles += 1;
@@ -250,11 +244,7 @@ pub fn simulate(
     }
     Ok(FreqResult {
         freq,
-        integrator: if kind == Integrator::Newmark {
-            "newmark"
-        } else {
-            "rk4"
-        },
+        integrator: ["rk4", "newmark"][usize::from(kind == Integrator::Newmark)],
         steps_per_cycle,
         cycles,
         steady,
@@ -268,6 +258,14 @@ pub fn simulate(
         seconds: clock.elapsed().as_secs_f64(),
         loops,
     })
+}
+
+/// The outputs' values at the displacements `u`.
+fn output_values(p: &Problem, u: &[f64]) -> Vec<f64> {
+    p.outputs
+        .iter()
+        .map(|o| o.dofs.iter().map(|&(i, w)| w * u[i]).sum())
+        .collect()
 }
 
 /// Every point's committed sample: (δ_t₁, δ_t₂, −δ_n) and (F₁, F₂, N = −q_n).

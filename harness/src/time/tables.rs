@@ -35,24 +35,7 @@ pub fn results_csv(p: &Problem, r: &[FreqResult], units: &Units) -> String {
             format!("{n}_min_{l}"),
         ]);
     }
-    header.extend([
-        format!("dissipated_power_{}", u.power),
-        format!("energy_per_cycle_{}", u.energy),
-        format!("energy_trapezoid_{}", u.energy),
-    ]);
-    header.extend(
-        [
-            "integrator",
-            "steps_per_cycle",
-            "cycles",
-            "steady",
-            "distance",
-            "loose_steps",
-            "cut_steps",
-            "wall_time_s",
-        ]
-        .map(String::from),
-    );
+    header.extend(run_columns(&u));
     let mut t = CsvTable::new(&header);
     for x in r {
         let mut row = vec![exact(fu.show(x.freq))];
@@ -81,6 +64,31 @@ pub fn results_csv(p: &Problem, r: &[FreqResult], units: &Units) -> String {
         t.row(&row);
     }
     t.finish()
+}
+
+/// The closing columns of every results_time.csv: dissipated_power, energy_per_cycle,
+/// energy_trapezoid (in the scene's units), integrator, steps_per_cycle, cycles, steady,
+/// distance, loose_steps, cut_steps, wall_time_s.
+pub fn run_columns(u: &ColumnUnits) -> Vec<String> {
+    let mut c = vec![
+        format!("dissipated_power_{}", u.power),
+        format!("energy_per_cycle_{}", u.energy),
+        format!("energy_trapezoid_{}", u.energy),
+    ];
+    c.extend(
+        [
+            "integrator",
+            "steps_per_cycle",
+            "cycles",
+            "steady",
+            "distance",
+            "loose_steps",
+            "cut_steps",
+            "wall_time_s",
+        ]
+        .map(String::from),
+    );
+    c
 }
 
 /// points_time.csv (e.g. N, mm, s): frequency_Hz, point, interface, x_mm, y_mm, z_mm,

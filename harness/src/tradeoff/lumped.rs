@@ -216,18 +216,7 @@ fn frequency_rungs(
         None,
         &first_order,
     )?;
-    let with: Vec<&str> = [
-        (effects.coupled_slip, "coupled_slip"),
-        (effects.normal_load_variation, "normal_load_variation"),
-    ]
-    .iter()
-    .filter_map(|&(on, name)| on.then_some(name))
-    .collect();
-    let with = if with.is_empty() {
-        String::new()
-    } else {
-        format!(" with {}", with.join(" and "))
-    };
+    let with = super::report::effects_label(effects.coupled_slip, effects.normal_load_variation);
     for h in HARMONICS {
         let n = default_samples(h);
         push(

@@ -243,18 +243,7 @@ pub fn study(scene: &Scene, freq: Option<f64>, log: &dyn Fn(&str)) -> Result<Tra
         s.spec.effects.normal_load_variation |= normal_load_variation;
         s
     };
-    let effects: Vec<&str> = [
-        (scene_model.coupled_slip, " coupled_slip"),
-        (scene_model.normal_load_variation, " normal_load_variation"),
-    ]
-    .iter()
-    .filter_map(|&(on, name)| on.then_some(name))
-    .collect();
-    let with = if effects.is_empty() {
-        String::new()
-    } else {
-        format!(" with{}", effects.join(" and"))
-    };
+    let with = report::effects_label(scene_model.coupled_slip, scene_model.normal_load_variation);
     for h in HARMONICS {
         push_fd(
             "harmonic",

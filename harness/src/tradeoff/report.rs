@@ -84,3 +84,20 @@ pub fn write(dir: &Path, t: &Tradeoff) -> Result<Vec<PathBuf>, String> {
     atomic::with_temp(&c, |tmp| plot::pareto(tmp, t))?;
     Ok(vec![a, b, c])
 }
+
+/// " with coupled_slip and normal_load_variation" (the effects that are on), or nothing:
+/// the rung labels' note of the point model.
+pub(super) fn effects_label(coupled_slip: bool, normal_load_variation: bool) -> String {
+    let on: Vec<&str> = [
+        (coupled_slip, "coupled_slip"),
+        (normal_load_variation, "normal_load_variation"),
+    ]
+    .iter()
+    .filter_map(|&(on, name)| on.then_some(name))
+    .collect();
+    if on.is_empty() {
+        String::new()
+    } else {
+        format!(" with {}", on.join(" and "))
+    }
+}
