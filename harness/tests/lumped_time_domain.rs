@@ -10,7 +10,7 @@
 //!   the balance's loop (loops.csv, rebuilt from its harmonics) encloses the same.
 //! - `scenes/jenkins-chain.toml` (two one-direction Jenkins joints at a fixed normal
 //!   force): the same within 5e-3, from rest and from the stuck linear start.
-//! - A lumped scene asking for Newmark is refused with the reason.
+//! - A lumped scene asking for Newmark is refused at its key (`check`, `run`).
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -228,7 +228,8 @@ fn the_jenkins_chain_in_time_matches_its_harmonic_balance_from_rest_and_from_the
 }
 
 #[test]
-fn a_lumped_scene_is_not_integrated_by_newmark() {
+fn a_lumped_scene_asking_for_newmark_is_refused_at_its_key() {
+    // On the command line.
     let out = scratch("newmark");
     let o = run(
         &scene("jenkins-chain.toml"),
@@ -237,11 +238,36 @@ fn a_lumped_scene_is_not_integrated_by_newmark() {
         &["--time-domain"],
     );
     let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{err}");
     assert!(
-        !o.status.success() && err.contains("integrated by RK4"),
+        err.contains("key `time_domain.integrator`") && err.contains("integrated by RK4"),
         "{err}"
     );
     assert!(!out.join("run.json").exists());
+    // In the scene file: `check` names its line.
+    let text = std::fs::read_to_string(scene("jenkins-chain.toml")).unwrap();
+    let lines = text.lines().count();
+    let dir = scratch("newmark-file");
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("chain.toml");
+    std::fs::write(
+        &file,
+        format!("{text}\n[time_domain]\nintegrator = \"newmark\"\n"),
+    )
+    .unwrap();
+    let o = Command::new(env!("CARGO_BIN_EXE_jointlin"))
+        .arg("check")
+        .arg(&file)
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    let at = format!(
+        "{}:{}:1: key `time_domain.integrator`",
+        file.display(),
+        lines + 3
+    );
+    assert!(err.contains(&at), "want {at}: {err}");
 }
 
 #[test]

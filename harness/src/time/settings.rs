@@ -3,7 +3,8 @@
 //!
 //! ```toml
 //! [time_domain]
-//! integrator = "auto"      # "rk4", "newmark" or "auto" (RK4 up to 12 free DOFs)
+//! integrator = "auto"      # "rk4", "newmark" or "auto" (RK4 up to 12 free DOFs);
+//!                          # lumped scenes: RK4 ("newmark" is refused at this key)
 //! steps_per_cycle = 256    # per forcing period (RK4 raises it to its stability limit)
 //! ramp_cycles = 2.0        # C² ramp of the excitation when starting from rest
 //! start = "rest"           # "rest" (static state, ramp) or "linear" (stuck linear steady state)

@@ -281,6 +281,12 @@ pub(super) fn time_domain(c: &mut Checker, s: &SceneFile) {
             c.fail(p.key("tolerance"), format!("must be in [0, 1), got {v}"));
         }
     }
+    if s.is_lumped() && t.integrator == crate::settings::Integrator::Newmark {
+        c.fail(
+            p.key("integrator"),
+            "a lumped system is integrated by RK4 (\"rk4\" or \"auto\"), its step kept below the stability limit of its stiffest mode",
+        );
+    }
     if let Some(a) = t.alpha {
         if !(-1.0 / 3.0..=0.0).contains(&a) {
             c.fail(
