@@ -304,3 +304,24 @@ fn the_tradeoff_ladder_of_the_point_mass_shows_the_thesis_models_error_against_t
     assert!(err("linear stick") > 0.5);
     assert!(t.summary[0].contains("slower"), "{:?}", t.summary);
 }
+
+#[test]
+fn an_unloaded_lumped_scene_rests_periodic_at_its_static_state() {
+    // No excitation: the mass rests on the plane; the round-off of its static state is
+    // not a transient (the steady test's floor), so every frequency is periodic at once.
+    let out = scratch("unloaded");
+    let set = [
+        "excitation.0.amplitude=0",
+        "excitation.1.amplitude=0",
+        "sweep.count=2",
+    ];
+    ok(&scene("mass-on-plane.toml"), &out, &set, &["--time-domain"]);
+    for t in rows(&out.join("results_time.csv")) {
+        assert_eq!(&t["status"], "converged");
+        assert_eq!(num(&t, "x_amp_m"), 0.0);
+        assert_eq!(num(&t, "plane_energy_N_m"), 0.0);
+        assert!(num(&t, "cycles") < 50.0, "{}", t["cycles"]);
+        // N₀ = 100/102 N throughout.
+        assert!((num(&t, "plane_normal_force_min_N") - 100.0 / 102.0).abs() < 1e-12);
+    }
+}

@@ -8,8 +8,9 @@
 //! its law), cross-checked by a trapezoid sum of F·Δδ over the tangential components.
 //!
 //! Steady state: Δ_c = the largest change from the previous cycle of an output's first
-//! harmonic (relative to the largest one) and of the total joint energy per cycle (relative
-//! to itself). A transient that decays by a factor ρ per cycle leaves the distance
+//! harmonic (relative to the largest one, at least 1e-9 of the largest |sample|: below
+//! that a harmonic is a static state's round-off) and of the total joint energy per cycle
+//! (relative to itself). A transient that decays by a factor ρ per cycle leaves the distance
 //! Δ_c ρ/(1 − ρ) to the periodic state; the test uses d_c = Δ_c · max(1, ρ/(1 − ρ)) with ρ
 //! the larger of the last two ratios Δ_c/Δ_{c−1} (capped at 0.999).
 
@@ -155,12 +156,20 @@ impl Cycle {
 /// in the change measure (a stuck joint dissipates only round-off).
 const ENERGY_FLOOR: f64 = 1e-300;
 
+/// A first harmonic below this share of an output's magnitude (its largest |sample|) is
+/// the round-off of a static state: the change is measured against this floor, so an
+/// unloaded (or nearly unloaded) model is periodic at once instead of never.
+const ROUND_OFF_SHARE: f64 = 1e-9;
+
 /// Relative change of cycle `b` from cycle `a`.
 pub fn change(a: &CycleStats, b: &CycleStats) -> f64 {
     let scale = b
         .outputs
         .iter()
-        .fold(0.0f64, |m, o| m.max(o.harmonic.norm()))
+        .fold(0.0f64, |m, o| {
+            let magnitude = o.max.abs().max(o.min.abs());
+            m.max(o.harmonic.norm()).max(ROUND_OFF_SHARE * magnitude)
+        })
         .max(f64::MIN_POSITIVE);
     let mut d = a.outputs.iter().zip(&b.outputs).fold(0.0f64, |m, (x, y)| {
         m.max((x.harmonic - y.harmonic).norm() / scale)

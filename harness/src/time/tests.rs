@@ -207,6 +207,29 @@ fn steady_state_distance_extrapolates_a_geometric_transient() {
 }
 
 #[test]
+fn a_static_state_with_round_off_harmonics_is_periodic() {
+    // An unloaded output resting at 0.01: two cycles whose first harmonics are round-off
+    // (1e-18 and 3e-18, plus the rectangle rule's own round-off of the constant) change by
+    // about 2e-18 against the floor 1e-9 × 0.01: 2e-7, below the default tolerance 1e-5,
+    // not by 2/3 of the harmonic.
+    let cycle = |noise: f64| {
+        let (w, n) = (1.0, 8);
+        let h = 2.0 * std::f64::consts::PI / w / n as f64;
+        let mut c = periodic::Cycle::new(w, n, 1, vec![]);
+        for k in 1..=n {
+            let t = k as f64 * h;
+            c.push(t, &[0.01 + noise * (w * t).cos()]);
+        }
+        c.finish(&[])
+    };
+    let d = periodic::change(&cycle(1e-18), &cycle(3e-18));
+    assert!(d < 1e-6, "{d}");
+    // A response of its own is measured against itself.
+    let d = periodic::change(&cycle(1e-3), &cycle(1.1e-3));
+    assert!((d - 0.1 / 1.1).abs() < 1e-9, "{d}");
+}
+
+#[test]
 fn first_harmonic_of_a_sampled_cosine_is_exact() {
     // x = 0.3 + 2 cos(ωt + 0.4) + 0.5 cos(3ωt): û = 2 e^{0.4i} to round-off with N = 16.
     let (w, n) = (1.7, 16);
