@@ -325,3 +325,27 @@ fn an_unloaded_lumped_scene_rests_periodic_at_its_static_state() {
         assert!((num(&t, "plane_normal_force_min_N") - 100.0 / 102.0).abs() < 1e-12);
     }
 }
+
+#[test]
+fn a_period_too_long_for_rk4_fails_that_frequency_only() {
+    // 1e-7 Hz against the stuck mode at 1.6 Hz: 4.5e7 RK4 steps per period, beyond the
+    // limit; the frequency is failed with the reason, the next one starts from rest.
+    let out = scratch("long-period");
+    let set = ["sweep.f_min=1e-7", "sweep.f_max=0.3", "sweep.count=2"];
+    let o = run(&scene("mass-on-plane.toml"), &out, &set, &["--time-domain"]);
+    assert_eq!(
+        o.status.code(),
+        Some(1),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    let r = rows(&out.join("results_time.csv"));
+    assert!(
+        r[0]["status"].starts_with("failed: RK4 needs"),
+        "{}",
+        r[0]["status"]
+    );
+    assert!(r[0]["x_amp_m"].is_empty());
+    assert_eq!(&r[1]["status"], "converged");
+    assert!(out.join("run.json").is_file());
+}

@@ -17,6 +17,7 @@ use crate::mhb::contact3d::System3;
 use crate::mhb::{linear_coefficients, state_at_zero};
 use crate::model::lumped::{self, Lumped};
 use crate::model::lumped_static;
+use crate::settings::MAX_STEPS_PER_CYCLE;
 
 /// One frequency of a lumped time-domain sweep.
 #[derive(Debug, Clone)]
@@ -78,6 +79,18 @@ pub fn run_lumped(
             omega,
             std::f64::consts::TAU * highest_frequency,
         ));
+        if steps_per_cycle > MAX_STEPS_PER_CYCLE {
+            // A period this long against the stiffest mode: no explicit integration ends.
+            results.push(LumpedFreq {
+                freq,
+                steps_per_cycle,
+                result: Err(format!(
+                    "RK4 needs {steps_per_cycle} steps per period here (its stability bound on the stiffest stuck mode, {highest_frequency:.6e} per time unit), more than {MAX_STEPS_PER_CYCLE}"
+                )),
+            });
+            state = None;
+            continue;
+        }
         let (mut st, ramp_cycles) = match (settings.start, state.take()) {
             (Start::Rest, Some(st)) => (st, 0.0),
             (Start::Rest, None) => (LumpedState::at_rest(&sys, &static_x)?, settings.ramp_cycles),
