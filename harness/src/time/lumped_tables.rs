@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 
 use super::lumped::{LoopSample, Settled};
 use super::lumped_sweep::{LumpedFreq, LumpedTimeRun};
-use super::tables::run_columns;
+use super::tables::{put_file, run_columns};
 use crate::capi;
 use crate::input::scene::Scene;
 use crate::model::lumped::Lumped;
@@ -174,12 +174,7 @@ pub fn loops_csv(l: &Lumped, loops: &[(f64, &[Vec<LoopSample>])], units: &Units)
 pub fn write(dir: &Path, scene: &Scene, run: &LumpedTimeRun) -> std::io::Result<Vec<PathBuf>> {
     std::fs::create_dir_all(dir)?;
     let mut files = Vec::new();
-    let mut put = |name: &str, text: String| -> std::io::Result<()> {
-        let f = dir.join(name);
-        crate::util::atomic::write_text(&f, &text).map_err(std::io::Error::other)?;
-        files.push(f);
-        Ok(())
-    };
+    let mut put = |name: &str, text: String| put_file(dir, &mut files, name, &text);
     let units = &scene.spec.units;
     let l = &run.lumped;
     put("results_time.csv", results_csv(l, &run.results, units))?;

@@ -181,17 +181,26 @@ pub fn loops_csv(p: &Problem, r: &[FreqResult], units: &Units, node_ids: &[u64])
     Some(t.finish())
 }
 
+/// Writes `text` to `dir/name` (atomically: a temporary name, then renamed) and records
+/// its path in `files`.
+pub fn put_file(
+    dir: &Path,
+    files: &mut Vec<PathBuf>,
+    name: &str,
+    text: &str,
+) -> std::io::Result<()> {
+    let f = dir.join(name);
+    crate::util::atomic::write_text(&f, text).map_err(std::io::Error::other)?;
+    files.push(f);
+    Ok(())
+}
+
 /// Writes results_time.csv, points_time.csv, loops_time.csv and, last, run.json into
 /// `dir`.
 pub fn write(dir: &Path, scene: &Scene, run: &TimeRun) -> std::io::Result<Vec<PathBuf>> {
     std::fs::create_dir_all(dir)?;
     let mut files = Vec::new();
-    let mut put = |name: &str, text: String| -> std::io::Result<()> {
-        let f = dir.join(name);
-        crate::util::atomic::write_text(&f, &text).map_err(std::io::Error::other)?;
-        files.push(f);
-        Ok(())
-    };
+    let mut put = |name: &str, text: String| put_file(dir, &mut files, name, &text);
     let units = &scene.spec.units;
     put(
         "results_time.csv",
