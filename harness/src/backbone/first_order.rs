@@ -403,6 +403,7 @@ fn point_at(sys: &System, current: &Mode, qa: f64) -> Result<(BackbonePoint, Mod
         shape: shape.iter().map(|v| v * qa).collect(),
         element_amplitudes: relative(sys, &shape).iter().map(|r| qa * r).collect(),
         energy_per_cycle: lin.iter().map(|l| l.2).collect(),
+        normal_range: Vec::new(),
     };
     Ok((point, next))
 }

@@ -44,6 +44,9 @@ pub struct BackbonePoint {
     pub element_amplitudes: Vec<f64>,
     /// Energy dissipated per cycle by each element (force·length).
     pub energy_per_cycle: Vec<f64>,
+    /// Per three-direction point: its smallest and largest normal force over the
+    /// cycle (force; empty without points).
+    pub normal_range: Vec<(f64, f64)>,
 }
 
 /// Errors of a backbone computation.

@@ -29,8 +29,15 @@ pub fn frequency(omega: f64, units: &Units) -> f64 {
 /// backbone.csv: `modal_amplitude_<length>_sqrt_<mass>` (q of u = φ q with φᵀMφ = 1),
 /// `frequency_<unit>`, `damping_ratio`, `<output>_amp_<length>`,
 /// `energy_per_cycle_<force>_<length>` (all joints), `<element>_energy_<force>_<length>`
-/// (per cycle).
-pub fn csv(units: &Units, outputs: &[String], elements: &[String], rows: &[Row]) -> String {
+/// (per cycle; the 1D elements, then the three-direction points), and per point its
+/// normal force range over the cycle, `<point>_normal_min_<force>`,
+/// `<point>_normal_max_<force>`.
+pub fn csv(
+    units: &Units,
+    outputs: &[String],
+    (elements, points): (&[String], &[String]),
+    rows: &[Row],
+) -> String {
     let mut s = format!(
         "modal_amplitude_{}_sqrt_{},{},damping_ratio",
         units.length,
@@ -43,6 +50,10 @@ pub fn csv(units: &Units, outputs: &[String], elements: &[String], rows: &[Row])
     let _ = write!(s, ",energy_per_cycle_{}_{}", units.force, units.length);
     for e in elements {
         let _ = write!(s, ",{e}_energy_{}_{}", units.force, units.length);
+    }
+    for p in points {
+        let f = &units.force;
+        let _ = write!(s, ",{p}_normal_min_{f},{p}_normal_max_{f}");
     }
     s.push('\n');
     for r in rows {
@@ -61,6 +72,9 @@ pub fn csv(units: &Units, outputs: &[String], elements: &[String], rows: &[Row])
         let _ = write!(s, ",{}", exact(total));
         for e in &p.energy_per_cycle {
             let _ = write!(s, ",{}", exact(*e));
+        }
+        for (lo, hi) in &p.normal_range {
+            let _ = write!(s, ",{},{}", exact(*lo), exact(*hi));
         }
         s.push('\n');
     }

@@ -50,26 +50,77 @@ pub struct Args {
     quiet: bool,
 }
 
-/// The lumped system of a scene: its own (mass bodies, [[matrices]]) or an FE scene's
-/// reduction with how it was reduced.
-fn build(scene: &Scene, mode: usize) -> Result<(Lumped, Option<fe::Reduced>), String> {
+/// What a backbone traces: the lumped system (its own, or an FE scene's reduction with
+/// how it was reduced) and, with three-direction points, the same scene as the thesis's
+/// model (each point two 1D directions at its static normal force), which gives the stuck
+/// mode and slip limits the EPMC starts from.
+struct Built {
+    lumped: Lumped,
+    linearized: Option<Lumped>,
+    reduction: Option<fe::Reduced>,
+}
+
+impl Built {
+    /// The system of the stuck modes and slip limits (one-direction elements only).
+    fn stuck(&self) -> &Lumped {
+        self.linearized.as_ref().unwrap_or(&self.lumped)
+    }
+
+    /// Names per element of the EPMC's energies: the 1D elements, then each point's joint.
+    fn element_names(&self) -> Vec<String> {
+        let l = &self.lumped;
+        let mut names = l.elements.clone();
+        names.extend(point_names(l));
+        names
+    }
+}
+
+/// The joint of each three-direction point, in the points' order.
+fn point_names(l: &Lumped) -> Vec<String> {
+    (0..l.points.len())
+        .map(|k| {
+            l.joints
+                .iter()
+                .find(|j| j.point == Some(k))
+                .map_or(format!("point{}", k + 1), |j| j.name.clone())
+        })
+        .collect()
+}
+
+fn build(scene: &Scene, mode: usize, epmc: bool) -> Result<Built, String> {
     let s = &scene.spec;
     let fe_scene = scene.deck.is_some()
         || !s.interfaces.is_empty()
         || s.bodies.iter().any(|b| b.kind != BodyKind::Mass);
     if !fe_scene {
-        let l = lumped::build(scene)?;
-        if !l.points.is_empty() {
-            return Err("the backbone follows one-direction joints: joints with `normal` need [effects] normal_load_variation = false and coupled_slip = false here (the thesis's model: two directions at the static normal force)".into());
+        let lumped = lumped::build(scene)?;
+        if lumped.points.is_empty() {
+            return Ok(Built {
+                lumped,
+                linearized: None,
+                reduction: None,
+            });
         }
-        return Ok((l, None));
+        if !epmc {
+            return Err("the first-order backbone linearizes one-direction joints: joints with `normal` and [effects] normal_load_variation or coupled_slip need the EPMC (--harmonics H), or both effects off (the thesis's model)".into());
+        }
+        let linearized = Some(lumped::build(&scene.thesis_points())?);
+        return Ok(Built {
+            lumped,
+            linearized,
+            reduction: None,
+        });
     }
     let p = jointlin_harness::model::build(scene).map_err(|e| e.to_string())?;
     for w in &p.warnings {
         eprintln!("warning: {w}");
     }
     let r = fe::reduce(&p, &s.effects, mode)?;
-    Ok((r.lumped.clone(), Some(r)))
+    Ok(Built {
+        lumped: r.lumped.clone(),
+        linearized: None,
+        reduction: Some(r),
+    })
 }
 
 pub fn main(a: Args) -> ExitCode {
@@ -77,14 +128,15 @@ pub fn main(a: Args) -> ExitCode {
         Ok(s) => s,
         Err(code) => return code,
     };
-    let (l, reduction) = match build(&scene, a.mode) {
-        Ok(l) => l,
+    let built = match build(&scene, a.mode, a.harmonics.is_some()) {
+        Ok(b) => b,
         Err(e) => {
             eprintln!("error: {}: {e}", a.scene.display());
             return ExitCode::from(2);
         }
     };
-    if let Some(r) = &reduction {
+    let l = &built.lumped;
+    if let Some(r) = &built.reduction {
         let unit = frequency_unit(&scene.spec.units);
         let fu = &unit.text;
         let last = |f: &[f64]| {
@@ -127,7 +179,7 @@ pub fn main(a: Args) -> ExitCode {
         }
         log_space(f, t, n as usize)
     } else {
-        match first_order::slip_range(&l.system, a.mode) {
+        match first_order::slip_range(&built.stuck().system, a.mode) {
             Ok((f, t)) => log_space(f, t, 60),
             Err(e) => {
                 eprintln!("error: {e}; give --amplitudes FROM,TO,COUNT");
@@ -151,7 +203,7 @@ pub fn main(a: Args) -> ExitCode {
         ),
         Some(h) => (
             format!("EPMC, H = {h}"),
-            epmc_with_progress(&l, (&scene, a.quiet), a.mode, h, &q).map(|t| {
+            epmc_with_progress(&built, (&scene, a.quiet), a.mode, h, &q).map(|t| {
                 (
                     t.points
                         .into_iter()
@@ -234,15 +286,7 @@ pub fn main(a: Args) -> ExitCode {
         );
         return ExitCode::from(1);
     }
-    let code = report_written(write(
-        &a,
-        &scene,
-        &l,
-        reduction.as_ref(),
-        &method,
-        &rows,
-        &path,
-    ));
+    let code = report_written(write(&a, &scene, &built, &method, &rows, &path));
     match stopped {
         Some(e) => stopped_early(&e, rows.len()),
         None => code,
@@ -253,7 +297,7 @@ pub fn main(a: Args) -> ExitCode {
 /// batch log): the farthest modal amplitude reached and how many requested ones lie
 /// below it.
 fn epmc_with_progress(
-    l: &Lumped,
+    b: &Built,
     (scene, quiet): (&Scene, bool),
     mode: usize,
     h: usize,
@@ -274,7 +318,15 @@ fn epmc_with_progress(
             farthest.get()
         ));
     };
-    epmc::trace_observed(&l.system, mode, h, default_samples(h.max(1)), q, &on_point)
+    epmc::trace_points(
+        &b.lumped.system3(),
+        &b.stuck().system,
+        mode,
+        h,
+        default_samples(h.max(1)),
+        q,
+        &on_point,
+    )
 }
 
 /// A trace that stopped after `kept` amplitudes: the failure, exit code 1.
@@ -290,16 +342,18 @@ fn stopped_early(e: &BackboneError, kept: usize) -> ExitCode {
 fn write(
     a: &Args,
     scene: &Scene,
-    l: &Lumped,
-    reduction: Option<&fe::Reduced>,
+    built: &Built,
     method: &str,
     rows: &[Row],
     path: &Path,
 ) -> Result<Vec<PathBuf>, String> {
+    let (l, reduction) = (&built.lumped, built.reduction.as_ref());
     let units = &scene.spec.units;
     let names: Vec<String> = l.outputs.iter().map(|o| o.0.clone()).collect();
+    let elements = built.element_names();
+    let points = point_names(l);
     let csv = a.out.join("backbone.csv");
-    let text = report::csv(units, &names, &l.elements, rows);
+    let text = report::csv(units, &names, (&elements, &points), rows);
     atomic::write_text(&csv, &text)?;
     let svg = a.out.join("backbone.svg");
     let x_label = match names.first() {
@@ -317,7 +371,8 @@ fn write(
                 "frequency": report::frequency(r.point.omega, units),
                 "damping_ratio": r.point.damping_ratio,
                 "outputs": names.iter().zip(&r.outputs).map(|(n, v)| json!({"name": n, "amplitude": v})).collect::<Vec<_>>(),
-                "elements": l.elements.iter().zip(r.point.element_amplitudes.iter().zip(&r.point.energy_per_cycle)).map(|(n, (amp, e))| json!({"name": n, "amplitude": amp, "energy_per_cycle": e})).collect::<Vec<_>>(),
+                "elements": elements.iter().zip(r.point.element_amplitudes.iter().zip(&r.point.energy_per_cycle)).map(|(n, (amp, e))| json!({"name": n, "amplitude": amp, "energy_per_cycle": e})).collect::<Vec<_>>(),
+                "normal_force_range": points.iter().zip(&r.point.normal_range).map(|(n, (lo, hi))| json!({"name": n, "min": lo, "max": hi})).collect::<Vec<_>>(),
             })
         })
         .collect();

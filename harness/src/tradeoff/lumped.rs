@@ -162,12 +162,7 @@ fn frequency_rungs(
     log: &dyn Fn(&str),
 ) -> Result<(Vec<Rung>, Vec<String>), String> {
     let effects = &base.spec.effects;
-    let thesis = {
-        let mut s = base.clone();
-        s.spec.effects.normal_load_variation = false;
-        s.spec.effects.coupled_slip = false;
-        s
-    };
+    let thesis = base.thesis_points();
     let mut rungs = Vec::new();
     let mut failed = Vec::new();
     let mut push = |family, label: String, s: &Scene, q, how: &Solver| -> Result<(), String> {

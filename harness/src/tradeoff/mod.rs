@@ -171,12 +171,7 @@ pub fn study(scene: &Scene, freq: Option<f64>, log: &dyn Fn(&str)) -> Result<Tra
     let problem = crate::model::build(&base).map_err(|e| e.to_string())?;
     let n_free = problem.sys.dofs.n_free();
     // The first-order rungs: the thesis's point model.
-    let first_order = {
-        let mut s = base.clone();
-        s.spec.effects.normal_load_variation = false;
-        s.spec.effects.coupled_slip = false;
-        s
-    };
+    let first_order = base.thesis_points();
     let scene_model = PointModel::from_effects(&base.spec.effects);
     let mut rungs = Vec::new();
     let mut push_fd = |family, label: String, s: &Scene, q| -> Result<(), String> {

@@ -1,21 +1,22 @@
 //! The EPMC equations at one modal amplitude and Newton on them.
 //!
-//! Unknowns (ψ, ω, ξ) at modal amplitude q (x = qψ, DOF-major coefficients of
-//! [`crate::mhb::aft`]); equations
+//! Unknowns (ψ, ω, ξ) at modal amplitude q (x = x_s + qψ about the static state x_s,
+//! DOF-major coefficients of [`crate::mhb::aft`]); equations
 //!
-//!   F = R(qψ, ω)/q − ξ ω M ∂ψ/∂τ-term = 0 (2H + 1 rows per DOF),
+//!   F = R(x_s + qψ, ω)/q − ξ ω M ∂ψ/∂τ-term = 0 (2H + 1 rows per DOF),
 //!   ψ₁ᴴMψ₁ − 1 = 0 (normalization of the first harmonic),
 //!   φ_rᵀM b₁ = 0 (phase: sine part of the first harmonic orthogonal to the stuck mode),
 //!
-//! with R the residual of the free harmonic balance ([`crate::mhb::Hb::eval`]). The
+//! with R the residual of the free harmonic balance, one-direction elements and
+//! three-direction points ([`crate::mhb::contact3d::Hb3::eval`]; R(x_s) = 0). The
 //! derivative in ln q, for continuation through turning points, is exact:
-//! ∂(R(qψ)/q)/∂ln q = R_x ψ − R/q (zero for a linear system).
+//! ∂(R(x_s + qψ)/q)/∂ln q = R_x ψ − R/q (zero for a linear system).
 
 use nalgebra::{DMatrix, DVector};
 
 use super::super::BackboneError;
 use crate::linalg;
-use crate::mhb::Hb;
+use crate::mhb::contact3d::Hb3;
 
 /// Newton tolerance on the scaled residual.
 pub const RTOL: f64 = 1e-9;
@@ -43,12 +44,14 @@ pub struct Evaluated {
     pub jac: DMatrix<f64>,
     /// ∂F/∂ln q.
     pub d_lnq: DVector<f64>,
-    /// Energy dissipated per cycle by each element (force·length).
+    /// Energy dissipated per cycle by each 1D element, then each point (force·length).
     pub dissipated: Vec<f64>,
 }
 
 pub struct Epmc<'a> {
-    pub hb: Hb<'a>,
+    pub hb: Hb3<'a>,
+    /// The static state's coefficients x_s (its mean only; zeros without a static load).
+    pub rest: Vec<f64>,
     /// M·φ_r (phase condition row).
     pub m_ref: Vec<f64>,
     /// Residual scale ω₀² (ψ is mass-normalized).
@@ -67,10 +70,15 @@ impl Epmc<'_> {
 
     /// F and its derivatives at (ψ, ω, ξ) and modal amplitude q.
     pub fn eval(&mut self, st: &State, q: f64) -> Result<Evaluated, BackboneError> {
-        let s = self.hb.sys;
-        let (n, m) = (s.n(), self.hb.tr.ncoef());
+        let s = &self.hb.system().linear;
+        let (n, m) = (s.n(), self.hb.ncoef());
         let dim = n * m;
-        let x: Vec<f64> = st.psi.iter().map(|v| v * q).collect();
+        let x: Vec<f64> = st
+            .psi
+            .iter()
+            .zip(&self.rest)
+            .map(|(v, r)| r + v * q)
+            .collect();
         let ev = self.hb.eval(&x, st.omega)?;
         let mut f = DVector::zeros(dim + 2);
         let mut jac = DMatrix::zeros(dim + 2, dim + 2);
@@ -121,11 +129,13 @@ impl Epmc<'_> {
         }
         f[dim] = norm;
         f[dim + 1] = (0..n).map(|a| self.m_ref[a] * st.psi[a * m + 2]).sum();
+        let mut dissipated = ev.element_dissipated;
+        dissipated.extend(ev.dissipated);
         Ok(Evaluated {
             f,
             jac,
             d_lnq,
-            dissipated: ev.dissipated,
+            dissipated,
         })
     }
 

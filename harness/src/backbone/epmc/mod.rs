@@ -12,6 +12,13 @@
 //! harmonic this is the first-order backbone up to the O(ζ²) difference between |λ| and
 //! the frequency of the damping-compensated motion.
 //!
+//! Three-direction points (`mhb::contact3d`: the normal force varies, the point may lift
+//! off, both tangential directions share one slip limit) take part through their AFT; the
+//! motion is then about the static state x_s (the static step with every contact stuck,
+//! `model::lumped_static`): x = x_s + qψ. Their stuck mode and first slip limit come from
+//! the same system linearized at x_s: each point as the thesis's model at its static
+//! normal force (two tangential 1D elements and the closed contact's normal spring).
+//!
 //! The backbone starts where every contact sticks and is followed in ln q by
 //! pseudo-arclength continuation ([`arclength`]) through turning points; each requested
 //! amplitude is solved where the path crosses it, so past a turning point it appears
@@ -25,7 +32,9 @@ mod stepping;
 use super::first_order::{stick_limit, stuck_mode};
 use super::{BackboneError, BackbonePoint, C64};
 use crate::mhb::aft::Jacobian;
-use crate::mhb::{default_samples, Hb, System};
+use crate::mhb::contact3d::{Hb3, System3};
+use crate::mhb::{default_samples, MhbError, System};
+use crate::model::lumped_static;
 use equations::{Epmc, State};
 
 /// An EPMC point: the backbone point and the full solution.
@@ -34,7 +43,8 @@ pub struct EpmcPoint {
     pub point: BackbonePoint,
     /// Artificial damping ξ (1/time).
     pub xi: f64,
-    /// Coefficients of x = qψ, DOF-major (layout of [`crate::mhb::aft`]).
+    /// Coefficients of the vibration qψ about the static state, DOF-major (layout of
+    /// [`crate::mhb::aft`]).
     pub u: Vec<f64>,
 }
 
@@ -122,10 +132,29 @@ pub fn trace_observed(
     q: &[f64],
     on_point: &dyn Fn(f64),
 ) -> Result<Traced, BackboneError> {
+    let full = System3 {
+        linear: sys.clone(),
+        elements: Vec::new(),
+    };
+    trace_points(&full, sys, mode, h, samples, q, on_point)
+}
+
+/// [`trace_observed`] of a system with three-direction points, `full`, and the same
+/// system linearized at its static state, `linearized` (module docs; the same DOFs).
+pub fn trace_points(
+    full: &System3,
+    linearized: &System,
+    mode: usize,
+    h: usize,
+    samples: usize,
+    q: &[f64],
+    on_point: &dyn Fn(f64),
+) -> Result<Traced, BackboneError> {
     if let Some(&bad) = q.iter().find(|v| !(v.is_finite() && **v > 0.0)) {
         return Err(BackboneError::Amplitude(bad));
     }
-    let free = unforced(sys);
+    let sys = linearized;
+    let free = unforced(full);
     let (mut ep, guess, w0, lq_stuck) = setup(&free, sys, mode, h, samples)?;
     ep.on_point = Some(on_point);
     let mut targets: Vec<f64> = q.iter().map(|v| v.ln()).collect();
@@ -169,12 +198,12 @@ pub fn trace_observed(
         }
         // Where the path stopped the balance is rough (sampled loops' kinks): Newton at
         // fixed q with difference Jacobians, which straddle the kinks.
-        ep.hb.jacobian = Jacobian::Differences;
+        ep.hb.set_jacobian(Jacobian::Differences);
         let stepped = starts
             .into_iter()
             .map(|s| (s.0, stepping::toward(&mut ep, s, &rest)))
             .find(|(from, s)| s.last.0 > path.farthest.max(*from));
-        ep.hb.jacobian = Jacobian::Exact;
+        ep.hb.set_jacobian(Jacobian::Exact);
         let Some((from, stepped)) = stepped else {
             out.stopped = Some(why);
             break;
@@ -190,28 +219,46 @@ pub fn trace_observed(
             break;
         }
     }
-    out.points = crossings
-        .into_iter()
-        .map(|(lq, st, diss)| point(&ep.hb, sys, &st, lq.exp(), diss))
-        .collect();
+    out.points = points(&mut ep, sys, crossings)?;
     Ok(out)
 }
 
-/// The system without its loads (the EPMC motion is free).
-fn unforced(sys: &System) -> System {
-    let n = sys.n();
-    System {
-        f0: vec![0.0; n],
-        f1: vec![C64::new(0.0, 0.0); n],
-        ..sys.clone()
+/// The system without its harmonic load (the EPMC motion is free); without points its
+/// static load too (one-direction joints at a fixed normal force: the motion is about
+/// x = 0), with them the static load stays (it sets their normal forces).
+fn unforced(sys: &System3) -> System3 {
+    let mut free = sys.clone();
+    let n = free.linear.n();
+    free.linear.f1 = vec![C64::new(0.0, 0.0); n];
+    if free.elements.is_empty() {
+        free.linear.f0 = vec![0.0; n];
     }
+    free
+}
+
+/// The static state of `free` in the coefficients' layout (its mean only).
+fn static_state(free: &System3, m: usize) -> Result<Vec<f64>, BackboneError> {
+    let n = free.linear.n();
+    let mut rest = vec![0.0; n * m];
+    if free.linear.f0.iter().all(|f| *f == 0.0) && free.elements.is_empty() {
+        return Ok(rest);
+    }
+    let names: Vec<String> = (1..=free.elements.len())
+        .map(|k| format!("point {k}"))
+        .collect();
+    let st = lumped_static::solve(free, &names)
+        .map_err(|e| BackboneError::Mhb(MhbError::Continuation(e)))?;
+    for (d, x) in st.x.iter().enumerate() {
+        rest[d * m] = *x;
+    }
+    Ok(rest)
 }
 
 /// The EPMC equations of mode `mode` of `free` (the unforced `sys`) at H harmonics and N
 /// samples, the stuck mode as the first guess, its ω₀ (rad/time) and the ln q where
 /// every contact still sticks (half the first slip limit).
 fn setup<'a>(
-    free: &'a System,
+    free: &'a System3,
     sys: &System,
     mode: usize,
     h: usize,
@@ -233,7 +280,8 @@ fn setup<'a>(
         .collect();
     let w0 = stuck.omega();
     let ep = Epmc {
-        hb: Hb::new(free, h, samples),
+        hb: Hb3::new(free, h, samples),
+        rest: static_state(free, m)?,
         m_ref,
         scale: (w0 * w0).max(f64::MIN_POSITIVE),
         on_point: None,
@@ -257,7 +305,10 @@ pub fn amplitude_stepping(
     samples: usize,
     q: &[f64],
 ) -> Result<Vec<EpmcPoint>, BackboneError> {
-    let free = unforced(sys);
+    let free = unforced(&System3 {
+        linear: sys.clone(),
+        elements: Vec::new(),
+    });
     let (mut ep, guess, _, lq0) = setup(&free, sys, mode, h, samples)?;
     let (st, diss) =
         ep.solve(guess, lq0.exp())
@@ -273,28 +324,71 @@ pub fn amplitude_stepping(
             residual,
         });
     }
-    Ok(s.crossings
-        .into_iter()
-        .map(|(lq, st, diss)| point(&ep.hb, sys, &st, lq.exp(), diss))
-        .collect())
+    points(&mut ep, sys, s.crossings)
 }
 
-fn point(hb: &Hb, sys: &System, st: &State, q: f64, diss: Vec<f64>) -> EpmcPoint {
-    let m = hb.tr.ncoef();
+/// The EPMC points of the solutions found, in path order.
+fn points(
+    ep: &mut Epmc,
+    sys: &System,
+    found: Vec<(f64, State, Vec<f64>)>,
+) -> Result<Vec<EpmcPoint>, BackboneError> {
+    found
+        .into_iter()
+        .map(|(lq, st, diss)| point(ep, sys, &st, lq.exp(), diss))
+        .collect()
+}
+
+/// One point: the 1D elements' relative amplitudes (of `sys`, the linearized system)
+/// and each three-direction point's tangential amplitude (the semi-major axis of its
+/// first-harmonic ellipse) and normal force range.
+fn point(
+    ep: &mut Epmc,
+    sys: &System,
+    st: &State,
+    q: f64,
+    diss: Vec<f64>,
+) -> Result<EpmcPoint, BackboneError> {
+    let m = ep.hb.ncoef();
     let u: Vec<f64> = st.psi.iter().map(|v| v * q).collect();
     let shape: Vec<C64> = (0..sys.n())
         .map(|d| C64::new(u[d * m + 1], -u[d * m + 2]))
         .collect();
-    EpmcPoint {
+    let full = ep.hb.system();
+    let mut element_amplitudes = super::first_order::relative(&full.linear, &shape);
+    for e in &full.elements {
+        let first = |a: usize| e.rows[a].iter().map(|&(d, w)| shape[d] * w).sum::<C64>();
+        element_amplitudes.push(semi_major(first(0), first(1)));
+    }
+    let normal_range = if full.elements.is_empty() {
+        Vec::new()
+    } else {
+        let x: Vec<f64> = u.iter().zip(&ep.rest).map(|(v, r)| v + r).collect();
+        ep.hb.normal_ranges(&x)?
+    };
+    Ok(EpmcPoint {
         point: BackbonePoint {
             modal_amplitude: q,
             omega: st.omega,
             damping_ratio: st.xi / (2.0 * st.omega),
-            element_amplitudes: super::first_order::relative(sys, &shape),
+            element_amplitudes,
             shape,
             energy_per_cycle: diss,
+            normal_range,
         },
         xi: st.xi,
         u,
-    }
+    })
+}
+
+/// The largest |Re((a, b) e^{iθ})| over θ: the semi-major axis of the ellipse a
+/// two-component first harmonic (a, b) draws (|a| for a line along the first component,
+/// the radius for a circle).
+fn semi_major(a: C64, b: C64) -> f64 {
+    let p = a.norm_sqr() + b.norm_sqr();
+    // Re(v e^{iθ}) = cos θ·Re v − sin θ·Im v; its squared length is
+    // p/2 + (c·cos 2θ − s·sin 2θ)/2 with c = |Re v|² − |Im v|², s = 2 Re v·Im v.
+    let c = a.re * a.re + b.re * b.re - a.im * a.im - b.im * b.im;
+    let s2 = 2.0 * (a.re * a.im + b.re * b.im);
+    (0.5 * (p + c.hypot(s2))).max(0.0).sqrt()
 }

@@ -56,6 +56,18 @@ fn on_command_line(e: SceneError, set: &[overrides::Override]) -> SceneError {
 }
 
 impl Scene {
+    /// This scene with its contact points as the thesis's model: both `[effects]`
+    /// switches of the three-direction point off (`normal_load_variation`,
+    /// `coupled_slip`), so each point or joint with `normal` is two independent
+    /// tangential directions at its static normal force (the first-order rungs, and the
+    /// linearization a backbone with points starts from).
+    pub fn thesis_points(&self) -> Scene {
+        let mut s = self.clone();
+        s.spec.effects.normal_load_variation = false;
+        s.spec.effects.coupled_slip = false;
+        s
+    }
+
     /// Reads and validates a scene file.
     pub fn load(path: &Path) -> Result<Scene, SceneError> {
         Scene::load_with(path, &[])

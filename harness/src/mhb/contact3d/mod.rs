@@ -31,6 +31,8 @@ pub use march::{march3, march3_from, march_point, step, Marched, Period3, States
 pub struct Evaluated3 {
     pub r: DVector<f64>,
     pub j: DMatrix<f64>,
+    /// ∂R/∂ω (the points are rate independent: the linear part's).
+    pub r_omega: DVector<f64>,
     /// Energy dissipated per period by each 1D element of the linear system (force·length).
     pub element_dissipated: Vec<f64>,
     /// Energy dissipated per period by each point (force·length).
@@ -82,6 +84,39 @@ impl<'a> Hb3<'a> {
 
     fn m(&self) -> usize {
         self.tr.ncoef()
+    }
+
+    /// Harmonics H.
+    pub fn h(&self) -> usize {
+        self.tr.h
+    }
+
+    /// Coefficients per DOF, 2H + 1.
+    pub fn ncoef(&self) -> usize {
+        self.m()
+    }
+
+    /// The system balanced.
+    pub fn system(&self) -> &'a System3 {
+        self.sys
+    }
+
+    /// How the 1D elements' Jacobians are formed (the points' are differences always).
+    pub fn set_jacobian(&mut self, j: super::aft::Jacobian) {
+        self.linear.jacobian = j;
+    }
+
+    /// Each point's smallest and largest normal force over the period at `u` (force),
+    /// marched from the memory: the ranges of [`Hb3::eval`] without its Jacobian.
+    pub fn normal_ranges(&mut self, u: &[f64]) -> Result<Vec<(f64, f64)>, MhbError> {
+        let mut out = Vec::with_capacity(self.sys.elements.len());
+        for (k, e) in self.sys.elements.iter().enumerate() {
+            let c = self.element_coefficients(e, u);
+            let memory = self.memory[k];
+            let (_, period) = self.element_forces(e, &c, &memory)?;
+            out.push(range(&period.force[2]));
+        }
+        Ok(out)
     }
 
     /// The element's relative coefficients (u₁, u₂, h) from the system's u.
@@ -140,11 +175,7 @@ impl<'a> Hb3<'a> {
             let (f, period) = self.element_forces(e, &c, &memory)?;
             dissipated.push(period.dissipated);
             states.push(period.states);
-            let n = &period.force[2];
-            normal_range.push((
-                n.iter().copied().fold(f64::INFINITY, f64::min),
-                n.iter().copied().fold(f64::NEG_INFINITY, f64::max),
-            ));
+            normal_range.push(range(&period.force[2]));
             for (a, row) in e.rows.iter().enumerate() {
                 for &(d, w) in row {
                     for q in 0..m {
@@ -183,6 +214,7 @@ impl<'a> Hb3<'a> {
         Ok(Evaluated3 {
             r,
             j,
+            r_omega: ev.r_omega,
             element_dissipated: ev.dissipated,
             dissipated,
             normal_range,
@@ -263,6 +295,14 @@ impl<'a> Hb3<'a> {
         };
         coef(1).hypot(coef(2))
     }
+}
+
+/// Smallest and largest sample.
+fn range(v: &[f64]) -> (f64, f64) {
+    (
+        v.iter().copied().fold(f64::INFINITY, f64::min),
+        v.iter().copied().fold(f64::NEG_INFINITY, f64::max),
+    )
 }
 
 /// Load-step halvings before [`solve_ramped`] gives up.
