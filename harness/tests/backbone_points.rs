@@ -91,7 +91,7 @@ fn a_mode_that_leaves_the_normal_alone_is_the_thesis_models() {
         dz = dz.max((a["damping_ratio"] / b["damping_ratio"] - 1.0).abs());
         let e = b["energy_per_cycle_N_m"];
         de = de.max((a["plane_energy_N_m"] - e).abs() / e.max(1e-300));
-        for col in ["plane_normal_min_N", "plane_normal_max_N"] {
+        for col in ["plane_normal_force_min_N", "plane_normal_force_max_N"] {
             assert!((a[col] / n0 - 1.0).abs() < 1e-9, "{col} {}", a[col]);
         }
     }
@@ -194,11 +194,11 @@ fn a_forced_response_in_time_peaks_on_the_backbone_with_the_varying_normal_force
     let (a_th, f_th) = phase_resonance(&without, force);
     let lifted = with
         .iter()
-        .filter(|r| r["plane_normal_min_N"] == 0.0)
+        .filter(|r| r["plane_normal_force_min_N"] == 0.0)
         .count();
     let varied = with
         .iter()
-        .map(|r| r["plane_normal_max_N"] / r["plane_normal_min_N"])
+        .map(|r| r["plane_normal_force_max_N"] / r["plane_normal_force_min_N"])
         .filter(|v| v.is_finite())
         .fold(0.0f64, f64::max);
     eprintln!(

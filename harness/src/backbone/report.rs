@@ -30,8 +30,8 @@ pub fn frequency(omega: f64, units: &Units) -> f64 {
 /// `frequency_<unit>`, `damping_ratio`, `<output>_amp_<length>`,
 /// `energy_per_cycle_<force>_<length>` (all joints), `<element>_energy_<force>_<length>`
 /// (per cycle; the 1D elements, then the three-direction points), and per point its
-/// normal force range over the cycle, `<point>_normal_min_<force>`,
-/// `<point>_normal_max_<force>`.
+/// normal force range over the cycle, `<point>_normal_force_min_<force>`,
+/// `<point>_normal_force_max_<force>`.
 pub fn csv(
     units: &Units,
     outputs: &[String],
@@ -53,7 +53,7 @@ pub fn csv(
     }
     for p in points {
         let f = &units.force;
-        let _ = write!(s, ",{p}_normal_min_{f},{p}_normal_max_{f}");
+        let _ = write!(s, ",{p}_normal_force_min_{f},{p}_normal_force_max_{f}");
     }
     s.push('\n');
     for r in rows {

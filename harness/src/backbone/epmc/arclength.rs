@@ -37,6 +37,11 @@ const CORNER_STEP: f64 = 1e-4;
 const BEHIND: usize = 16;
 /// Steps along one backbone before it counts as lost.
 const MAX_STEPS: usize = 20_000;
+/// Steps in a row that reach no farther in ln q (by [`STALL_LNQ`]) before the path is
+/// given up as wandering (a rough balance, or modes that exchange energy): the caller
+/// then steps in q alone.
+const STALL_STEPS: usize = 400;
+const STALL_LNQ: f64 = 1e-6;
 const MAX_CORRECTOR: usize = 20;
 /// Full steps that raise |F| (at most tenfold) allowed per correction.
 const MAX_NONMONOTONE: usize = 3;
@@ -246,7 +251,15 @@ pub fn follow(
     // The last points passed, so that a corner switch does not return along them.
     let mut behind: Vec<DVector<f64>> = Vec::new();
     let mut step = STEP_START;
+    let mut stalled = 0;
     for _ in 0..MAX_STEPS {
+        if stalled >= STALL_STEPS {
+            out.stopped = Some(stop(
+                p.lnq(&node.y).exp(),
+                &format!("{STALL_STEPS} continuation steps reached no farther in the modal amplitude (the path wanders)"),
+            ));
+            return out;
+        }
         if p.lnq(&node.y) >= lq_end {
             return out;
         }
@@ -297,7 +310,13 @@ pub fn follow(
         if adv.switched {
             step = STEP_START.min(step.max(CORNER_STEP));
         }
-        out.farthest = out.farthest.max(p.lnq(&adv.node.y));
+        let reached = p.lnq(&adv.node.y);
+        if reached > out.farthest + STALL_LNQ {
+            stalled = 0;
+        } else {
+            stalled += 1;
+        }
+        out.farthest = out.farthest.max(reached);
         out.end = (
             p.lnq(&adv.node.y),
             p.state(&adv.node.y),
