@@ -25,6 +25,7 @@ declare -A commands=(
   [tradeoff_oblique_both]="cargo run --release -q -p jointlin-harness --bin jointlin -- tradeoff scenes/three-beams-oblique.toml --set effects.coupled_slip=true --set effects.normal_load_variation=true --out out/tradeoff-oblique-both"
   [backbone_plot]="cargo run --release -q -p jointlin-harness --bin jointlin -- backbone scenes/jenkins-chain.toml --out harness/assets/backbone-chain 2>&1"
   [backbone_chain_h7]="cargo run --release -q -p jointlin-harness --bin jointlin -- backbone scenes/jenkins-chain.toml --harmonics 7 --amplitudes 0.02,20,300 --out harness/assets/backbone-chain-h7 --quiet 2>&1"
+  [backbone_braced]="cargo run --release -q -p jointlin-harness --bin jointlin -- backbone scenes/mass-on-plane-braced.toml --harmonics 7 --out harness/assets/backbone-braced --quiet 2>&1"
   [backbone_cost]="cargo run --release -q -p jointlin-harness --bin jointlin -- mhb --backbones --scene scenes/three-beams-coarse.toml,scenes/three-beams.toml"
   [contact_effects]="cargo run --release -q -p jointlin-harness --bin jointlin -- effects scenes/three-beams-oblique.toml --out harness/assets/contact-effects"
   [backbone_fe]="cargo run --release -q -p jointlin-harness --bin jointlin -- backbone scenes/three-beams-coarse.toml --out harness/assets/backbone-three-beams 2>&1"
