@@ -16,12 +16,14 @@
 //! corner, taken in the orientation that does not return along the old branch; where
 //! that fails too, the balance has no solution to the tolerance over a short range of q
 //! (its sampled forces jump) and the path jumps over it by Newton at fixed q a little
-//! further ([`jump`]), reporting the range.
+//! further ([`past_end::jump`]), reporting the range.
 //!
 //! The requested amplitudes are solved at fixed q wherever the path crosses them, in
 //! path order: past a turning point an amplitude is met again.
 
 use nalgebra::{DMatrix, DVector};
+
+mod past_end;
 
 use super::super::BackboneError;
 use super::equations::{damped_step, Epmc, Evaluated, State, FLOOR_RTOL, RTOL, STAGNATION};
@@ -42,6 +44,8 @@ const MAX_STEPS: usize = 20_000;
 /// then steps in q alone.
 const STALL_STEPS: usize = 400;
 const STALL_LNQ: f64 = 1e-6;
+const WANDERS: &str =
+    "the path wanders: many continuation steps in a row reached no farther in the modal amplitude";
 const MAX_CORRECTOR: usize = 20;
 /// Full steps that raise |F| (at most tenfold) allowed per correction.
 const MAX_NONMONOTONE: usize = 3;
@@ -254,10 +258,7 @@ pub fn follow(
     let mut stalled = 0;
     for _ in 0..MAX_STEPS {
         if stalled >= STALL_STEPS {
-            out.stopped = Some(stop(
-                p.lnq(&node.y).exp(),
-                &format!("{STALL_STEPS} continuation steps reached no farther in the modal amplitude (the path wanders)"),
-            ));
+            out.stopped = Some(stop(p.lnq(&node.y).exp(), WANDERS));
             return out;
         }
         if p.lnq(&node.y) >= lq_end {
@@ -269,8 +270,8 @@ pub fn follow(
                 step *= 0.5;
                 continue;
             }
-            None => corner(&mut p, &node, &t, &behind, targets)
-                .or_else(|| jump(&mut p, &node, &t, &behind, targets)),
+            None => past_end::corner(&mut p, &node, &t, &behind, targets)
+                .or_else(|| past_end::jump(&mut p, &node, &t, &behind, targets)),
         };
         let Some(adv) = next else {
             out.stopped = Some(stop(
@@ -279,49 +280,36 @@ pub fn follow(
             ));
             return out;
         };
+        let (from, reached) = (p.lnq(&node.y), p.lnq(&adv.node.y));
+        step = next_step(step, &adv);
         // A turning point: ln q reverses between the two tangents (the step's ends
         // bracket it; the extreme one is reported).
         if t[dim + 2] * adv.t[dim + 2] < 0.0 {
-            let (a, b) = (p.lnq(&node.y), p.lnq(&adv.node.y));
-            let q = if t[dim + 2] > 0.0 { a.max(b) } else { a.min(b) };
+            let q = if t[dim + 2] > 0.0 {
+                from.max(reached)
+            } else {
+                from.min(reached)
+            };
             out.turning_points.push(q.exp());
         }
-        p.ep.passed(p.lnq(&adv.node.y).exp());
+        p.ep.passed(reached.exp());
         out.crossings.extend(adv.crossings);
         if adv.jumped {
-            let (a, b) = (p.lnq(&node.y).exp(), p.lnq(&adv.node.y).exp());
-            out.gaps.push((a.min(b), a.max(b)));
+            out.gaps
+                .push((from.min(reached).exp(), from.max(reached).exp()));
             out.skipped.extend(adv.skipped.iter().map(|l| l.exp()));
         }
-        if p.lnq(&adv.node.y) < lq0 - 1.0 {
+        if reached < lq0 - 1.0 {
             out.stopped = Some(stop(
                 p.lnq(&adv.node.y).exp(),
                 "the backbone turns back below its start",
             ));
             return out;
         }
-        step = if adv.corrector_steps <= 3 {
-            (step * 1.5).min(STEP_MAX)
-        } else if adv.corrector_steps > 6 {
-            (step * 0.7).max(STEP_MIN)
-        } else {
-            step
-        };
-        if adv.switched {
-            step = STEP_START.min(step.max(CORNER_STEP));
-        }
-        let reached = p.lnq(&adv.node.y);
-        if reached > out.farthest + STALL_LNQ {
-            stalled = 0;
-        } else {
-            stalled += 1;
-        }
+        // Counts the steps in a row that reach no farther.
+        stalled = (stalled + 1) * usize::from(reached <= out.farthest + STALL_LNQ);
         out.farthest = out.farthest.max(reached);
-        out.end = (
-            p.lnq(&adv.node.y),
-            p.state(&adv.node.y),
-            adv.node.dissipated.clone(),
-        );
+        out.end = (reached, p.state(&adv.node.y), adv.node.dissipated.clone());
         behind.push(std::mem::replace(&mut node, adv.node).y);
         if behind.len() > BEHIND {
             behind.remove(0);
@@ -330,6 +318,23 @@ pub fn follow(
     }
     out.stopped = Some(stop(p.lnq(&node.y).exp(), "too many continuation steps"));
     out
+}
+
+/// The step after `adv`: longer after an easy correction, shorter after a hard one,
+/// short again after a corner switch.
+fn next_step(step: f64, adv: &Advanced) -> f64 {
+    let step = if adv.corrector_steps <= 3 {
+        (step * 1.5).min(STEP_MAX)
+    } else if adv.corrector_steps > 6 {
+        (step * 0.7).max(STEP_MIN)
+    } else {
+        step
+    };
+    if adv.switched {
+        STEP_START.min(step.max(CORNER_STEP))
+    } else {
+        step
+    }
 }
 
 /// An accepted step: the new point, its tangent, the requested amplitudes solved on
@@ -423,130 +428,4 @@ fn crossings_or_missed(
         }
     }
     (found, missed)
-}
-
-/// Ln q steps of [`jump`].
-const JUMPS: [f64; 6] = [1e-3, 3e-3, 1e-2, 3e-2, 0.1, 0.3];
-
-/// Past a gap: the balance of sampled forces may have no solution to the tolerance over
-/// a short range of q (Newton's residual stalls above it: a sample's stick–slip state
-/// switches across the range, the forces jump). From `node`, where neither a step nor
-/// the corner switch goes on, Newton at fixed q a little further in the direction of
-/// travel (predicted along the tangent), the nearest that converges, close in ω and not
-/// back on the path; its tangent keeps the orientation.
-fn jump(
-    p: &mut Path,
-    node: &Node,
-    t: &DVector<f64>,
-    behind: &[DVector<f64>],
-    targets: &[f64],
-) -> Option<Advanced> {
-    let dim = p.dim;
-    let dir = t[dim + 2].signum();
-    let ts = t[dim + 2].abs();
-    for dl in JUMPS {
-        let l = p.lnq(&node.y) + dir * dl;
-        // Along the tangent where it rises in q, else from the point itself.
-        let guess = if ts > 1e-3 {
-            &node.y + (dl / ts) * t
-        } else {
-            node.y.clone()
-        };
-        let Some((y, dissipated)) = p.at_amplitude(&guess, l) else {
-            continue;
-        };
-        let omega_change = (y[dim] / node.y[dim] - 1.0).abs();
-        let d = (&y - &node.y).norm();
-        if omega_change > MAX_OMEGA_CHANGE || distance_to_path(&y, behind, &node.y) < d / 3.0 {
-            continue;
-        }
-        let new = Node { y, dissipated };
-        let Some(ev) = p.eval(&new.y) else { continue };
-        let Some(tn) = p.tangent(&ev, t) else {
-            continue;
-        };
-        let (crossings, skipped) = crossings_or_missed(p, node, &new, targets);
-        return Some(Advanced {
-            node: new,
-            t: tn,
-            crossings,
-            corrector_steps: 0,
-            switched: false,
-            jumped: true,
-            skipped,
-        });
-    }
-    None
-}
-
-/// Distance of `y` from the polyline through `pts` and `last`.
-fn distance_to_path(y: &DVector<f64>, pts: &[DVector<f64>], last: &DVector<f64>) -> f64 {
-    let mut best = (y - last).norm();
-    for (i, a) in pts.iter().enumerate() {
-        let b = pts.get(i + 1).unwrap_or(last);
-        let ab = b - a;
-        let l2 = ab.norm_squared();
-        let s = if l2 > 0.0 {
-            ((y - a).dot(&ab) / l2).clamp(0.0, 1.0)
-        } else {
-            0.0
-        };
-        best = best.min((y - a - s * ab).norm());
-    }
-    best
-}
-
-/// Past a corner that turns back: from `node` (where even the shortest step failed)
-/// along the kernel of G_y just beyond it, in the orientation that does not run back
-/// along the old branch: a candidate within a third of its distance from `node` of the
-/// points passed (`behind`, oldest first) or behind the old tangent is refused.
-fn corner(
-    p: &mut Path,
-    node: &Node,
-    t: &DVector<f64>,
-    behind: &[DVector<f64>],
-    targets: &[f64],
-) -> Option<Advanced> {
-    for beyond in [1e-5, 1e-4, 1e-3] {
-        let yb = &node.y + beyond * t;
-        let Some(ev) = p.eval(&yb) else { continue };
-        // Border row: a generic vector (t itself may be orthogonal to the new kernel).
-        let mut b = t.clone();
-        b[p.dim + 2] += 1.0;
-        let Some(k) = p.tangent(&ev, &b) else {
-            continue;
-        };
-        for sign in [1.0, -1.0] {
-            let dir = sign * &k;
-            for len in [1e-4, 1e-3, 1e-2] {
-                let yp = &node.y + len * &dir;
-                let Some((new, ev, steps)) = p.correct(&yp, &dir) else {
-                    continue;
-                };
-                let d = &new.y - &node.y;
-                let dn = d.norm();
-                let back =
-                    -d.dot(t) / dn > 0.98 || distance_to_path(&new.y, behind, &node.y) < dn / 3.0;
-                if dn < 0.3 * len || back {
-                    continue;
-                }
-                let Some(tn) = p.tangent(&ev, &(&d / dn)) else {
-                    continue;
-                };
-                let Some(crossings) = crossings(p, node, &new, targets) else {
-                    continue;
-                };
-                return Some(Advanced {
-                    node: new,
-                    t: tn,
-                    crossings,
-                    corrector_steps: steps,
-                    switched: true,
-                    jumped: false,
-                    skipped: Vec::new(),
-                });
-            }
-        }
-    }
-    None
 }
