@@ -230,6 +230,37 @@ fn lumped_scenes_are_refused() {
     assert!(err.contains("reduced already"), "{err}");
 }
 
+/// A scene that asks for the three-direction point's effects is refused with the reason
+/// by `reduce` and the FE backbone: the reduced joints would leave them out.
+#[test]
+fn three_direction_effects_are_refused_not_dropped() {
+    let scene = repo("scenes/three-beams-oblique.toml");
+    for effect in ["normal_load_variation", "coupled_slip"] {
+        let out = Command::new(env!("CARGO_BIN_EXE_jointlin"))
+            .args(["reduce", scene.to_str().unwrap(), "--set"])
+            .arg(format!("effects.{effect}=true"))
+            .arg("--out")
+            .arg(tmp(effect))
+            .output()
+            .unwrap();
+        assert_eq!(out.status.code(), Some(1), "{effect}");
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(err.contains("are not carried by a reduction"), "{err}");
+        assert!(!tmp(effect).join("scene.toml").exists());
+        // The FE backbone reduces the same way and refuses them too.
+        let out = Command::new(env!("CARGO_BIN_EXE_jointlin"))
+            .args(["backbone", scene.to_str().unwrap(), "--set"])
+            .arg(format!("effects.{effect}=true"))
+            .arg("--out")
+            .arg(tmp(effect))
+            .output()
+            .unwrap();
+        assert_eq!(out.status.code(), Some(2), "{effect}");
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(err.contains("are not carried"), "{err}");
+    }
+}
+
 /// knife-coarse: points on the symmetry plane have their lateral direction held by the
 /// plane's clamp (both nodes' y fixed): no row, no joint (a zero row made B K_s⁻¹ Bᵀ
 /// singular). The reduced sweep (3 face loads: one load pattern) is the FE sweep's.

@@ -73,12 +73,16 @@ pub struct Reduced {
 }
 
 /// Reduces the FE problem `p` for a backbone of mode `mode` (1-based). `effects`:
-/// `normal_contact_nonlinearity` for the static step, `material_damping` for D.
+/// `normal_contact_nonlinearity` for the static step, `material_damping` for D; the
+/// three-direction point's effects are refused (not carried).
 pub fn reduce(p: &Problem, effects: &Effects, mode: usize) -> Result<Reduced, String> {
     if p.has_area_samples() {
         return Err(
             "backbones take node-based contact points: an interface has `area_samples`".into(),
         );
+    }
+    if effects.normal_load_variation || effects.coupled_slip {
+        return Err("the FE backbone reduces each closed point to the thesis's one-direction joints at its static normal force: [effects] normal_load_variation and coupled_slip are not carried; switch both off for that model (lumped scenes' joints with `normal` carry them)".into());
     }
     let stat =
         static_step::solve(p, effects.normal_contact_nonlinearity).map_err(|e| e.to_string())?;

@@ -62,7 +62,8 @@ pub struct Reduction {
 }
 
 /// Reduces `p`; `effects`: `normal_contact_nonlinearity` for the static step,
-/// `material_damping` for D.
+/// `material_damping` for D; the three-direction point's effects are refused (not
+/// carried).
 pub fn reduce(p: &Problem, effects: &Effects, interior: Interior) -> Result<Reduction, String> {
     if p.has_area_samples() {
         return Err(
@@ -74,6 +75,9 @@ pub fn reduce(p: &Problem, effects: &Effects, interior: Interior) -> Result<Redu
     }
     if effects.material_damping && p.structural.is_some() {
         return Err("the model has structural damping (*DAMPING, STRUCTURAL=): a reduced model takes viscous damping only".into());
+    }
+    if effects.normal_load_variation || effects.coupled_slip {
+        return Err("[effects] normal_load_variation and coupled_slip are not carried by a reduction: its joints are the thesis's one-direction joints at the static normal force (the three-direction point would need the normal direction retained); switch both off for that model (--set effects.normal_load_variation=false --set effects.coupled_slip=false)".into());
     }
     if !p.modal_damping.is_empty() {
         return Err("the model has modal damping: it belongs to the full model's modes, not to a reduced model's; give Rayleigh damping".into());
