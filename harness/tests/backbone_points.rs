@@ -17,16 +17,11 @@ use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-fn scene(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../scenes")
-        .join(name)
-}
+mod common;
+use common::{numbers, scene};
 
 fn scratch(tag: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("jointlin-bb3-{}-{tag}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    d
+    common::scratch("bb3", tag)
 }
 
 /// backbone.csv of `jointlin backbone SCENE --harmonics 7 --amplitudes A --set …`, as
@@ -55,18 +50,7 @@ fn backbone(scene: &Path, tag: &str, amplitudes: &str, set: &[&str]) -> Vec<Hash
         scene.display(),
         String::from_utf8_lossy(&o.stderr)
     );
-    let mut r = csv::Reader::from_path(out.join("backbone.csv")).unwrap();
-    let header: Vec<String> = r.headers().unwrap().iter().map(String::from).collect();
-    let rows = r
-        .records()
-        .map(|rec| {
-            header
-                .iter()
-                .cloned()
-                .zip(rec.unwrap().iter().map(|v| v.parse::<f64>().unwrap()))
-                .collect()
-        })
-        .collect();
+    let rows = numbers(&out.join("backbone.csv"));
     let _ = std::fs::remove_dir_all(&out);
     rows
 }
@@ -119,22 +103,6 @@ fn time_domain(scene: &Path, tag: &str, set: &[&str]) -> Vec<HashMap<String, f64
     let rows = numbers(&out.join("results_time.csv"));
     let _ = std::fs::remove_dir_all(&out);
     rows
-}
-
-/// The numeric columns of a CSV file, per row.
-fn numbers(path: &Path) -> Vec<HashMap<String, f64>> {
-    let mut r = csv::Reader::from_path(path).unwrap();
-    let header: Vec<String> = r.headers().unwrap().iter().map(String::from).collect();
-    r.records()
-        .map(|rec| {
-            header
-                .iter()
-                .cloned()
-                .zip(rec.unwrap().iter().map(String::from))
-                .filter_map(|(k, v)| v.parse::<f64>().ok().map(|v| (k, v)))
-                .collect()
-        })
-        .collect()
 }
 
 /// Where a backbone meets the force F along x at phase resonance (the force's work

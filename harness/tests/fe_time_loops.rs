@@ -11,24 +11,8 @@ use std::collections::HashMap;
 use std::path::Path;
 use std::process::Command;
 
-/// The rows of a CSV file as column → value.
-fn rows(path: &Path) -> Vec<HashMap<String, String>> {
-    let mut r = csv::Reader::from_path(path).unwrap();
-    let header: Vec<String> = r.headers().unwrap().iter().map(String::from).collect();
-    r.records()
-        .map(|rec| {
-            header
-                .iter()
-                .cloned()
-                .zip(rec.unwrap().iter().map(String::from))
-                .collect()
-        })
-        .collect()
-}
-
-fn num(row: &HashMap<String, String>, col: &str) -> f64 {
-    row[col].parse().unwrap_or_else(|e| panic!("{col}: {e}"))
-}
+mod common;
+use common::{num, rows};
 
 #[test]
 fn the_loops_of_the_largest_response_enclose_each_points_energy() {

@@ -15,16 +15,11 @@
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-fn scene(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../scenes")
-        .join(name)
-}
+mod common;
+use common::{num, rows, scene};
 
 fn scratch(tag: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("jointlin-lumped-td-{}-{tag}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    d
+    common::scratch("lumped-td", tag)
 }
 
 /// `jointlin run SCENE --out DIR --set …` plus `extra` arguments; its output.
@@ -46,28 +41,6 @@ fn ok(scene: &Path, out: &Path, set: &[&str], extra: &[&str]) {
         scene.display(),
         String::from_utf8_lossy(&o.stderr)
     );
-}
-
-/// The rows of a CSV file as column → value.
-fn rows(path: &Path) -> Vec<std::collections::HashMap<String, String>> {
-    let mut r = csv::Reader::from_path(path).unwrap();
-    let header: Vec<String> = r.headers().unwrap().iter().map(String::from).collect();
-    r.records()
-        .map(|rec| {
-            header
-                .iter()
-                .cloned()
-                .zip(rec.unwrap().iter().map(String::from))
-                .collect()
-        })
-        .collect()
-}
-
-fn num(row: &std::collections::HashMap<String, String>, col: &str) -> f64 {
-    row.get(col)
-        .unwrap_or_else(|| panic!("no column {col}"))
-        .parse()
-        .unwrap_or_else(|e| panic!("{col}: {e}"))
 }
 
 fn rel(a: f64, b: f64) -> f64 {
