@@ -318,40 +318,13 @@ fn plot_point_loops(
     r: &jointlin_harness::time::scene_run::TimeRun,
     out: &Path,
 ) -> Result<Option<PathBuf>, String> {
-    use jointlin_harness::report::loop_plot::{self, JointLoop, MAX_PANELS};
+    use jointlin_harness::report::{loop_plot, point_loops};
     let Some(x) = r.results.iter().find(|x| !x.loops.is_empty()) else {
         return Ok(None);
     };
-    let mut order: Vec<usize> = (0..r.problem.contacts.len()).collect();
-    let energy = &x.last.point_energy;
-    order.sort_by(|&a, &b| energy[b].total_cmp(&energy[a]));
     let nodes = jointlin_harness::model::node_ids(s, &r.problem);
-    let loops: Vec<JointLoop> = order
-        .iter()
-        .take(MAX_PANELS)
-        .map(|&i| {
-            let c = &r.problem.contacts[i];
-            let node = nodes
-                .get(c.nodes[1])
-                .map_or(String::new(), |n| format!(", node {n}"));
-            JointLoop {
-                name: format!(
-                    "point {i} ({}{node})",
-                    r.problem.interfaces[c.interface].name
-                ),
-                t1: x
-                    .loops
-                    .iter()
-                    .map(|p| (p[i].displacement[0], p[i].force[0]))
-                    .collect(),
-                t2: x
-                    .loops
-                    .iter()
-                    .map(|p| (p[i].displacement[1], p[i].force[1]))
-                    .collect(),
-            }
-        })
-        .collect();
+    let all: Vec<usize> = (0..r.problem.contacts.len()).collect();
+    let loops = point_loops::most_dissipating(&r.problem, &nodes, &x.loops, &all);
     if loops.is_empty() {
         return Ok(None);
     }

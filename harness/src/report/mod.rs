@@ -6,6 +6,7 @@ pub mod field;
 pub mod frf_plot;
 pub mod loop_plot;
 pub mod modes;
+pub mod point_loops;
 pub mod svg;
 pub mod vtu;
 
@@ -285,6 +286,7 @@ pub fn write_all(
             write(dir, &name, &text, &mut out)?;
         }
     }
+    out.extend(point_loops::balance_files(dir, scene, r, opts.plots)?);
     if opts.plots {
         let title = if scene.spec.title.is_empty() {
             "FRF"

@@ -6,6 +6,7 @@ use std::path::{Path, PathBuf};
 use super::scene_run::{FreqResult, TimeRun};
 use crate::capi;
 use crate::input::scene::Scene;
+use crate::mhb::loops::LoopSample;
 use crate::model::Problem;
 use crate::settings::units::{frequency_unit, ColumnUnits};
 use crate::settings::Units;
@@ -134,14 +135,39 @@ pub fn points_csv(p: &Problem, r: &[FreqResult], units: &Units, node_ids: &[u64]
 }
 
 /// loops_time.csv (e.g. N, mm, s) at the frequency of the largest response (the one
-/// whose loops [`super::scene_run::sweep`] kept): frequency_Hz, point, interface, node,
-/// step (1..N), time_s (from the period's start), u1_mm, u2_mm (tangential relative
-/// displacements), overclosure_mm (−δ_n), f1_N, f2_N (tangential forces on the upper
-/// side), normal_force_N (compressive > 0); None without such a frequency.
+/// whose loops [`super::scene_run::sweep`] kept), every contact point
+/// ([`point_loops_csv`]); None without such a frequency.
 pub fn loops_csv(p: &Problem, r: &[FreqResult], units: &Units, node_ids: &[u64]) -> Option<String> {
     let x = r.iter().find(|x| !x.loops.is_empty())?;
+    let all: Vec<usize> = (0..p.contacts.len()).collect();
+    let loops = PointLoops {
+        freq: x.freq,
+        samples: &x.loops,
+        points: &all,
+        overclosure: true,
+    };
+    Some(point_loops_csv(p, &loops, units, node_ids))
+}
+
+/// Contact points' loops over one period at one frequency.
+pub struct PointLoops<'a> {
+    /// Frequency (1/time).
+    pub freq: f64,
+    /// Per sample t_k = kT/N (k = 1..N), per contact point of the problem.
+    pub samples: &'a [Vec<LoopSample>],
+    /// The points written (indices into the problem's contacts).
+    pub points: &'a [usize],
+    /// Whether the overclosure is written (it is part of the solution).
+    pub overclosure: bool,
+}
+
+/// A loops table (e.g. N, mm, s): frequency_Hz, point, interface, node, step (1..N),
+/// time_s (from the period's start), u1_mm, u2_mm (tangential relative displacements),
+/// overclosure_mm (−δ_n, where written), f1_N, f2_N (tangential forces on the upper
+/// side), normal_force_N (compressive > 0).
+pub fn point_loops_csv(p: &Problem, l: &PointLoops, units: &Units, node_ids: &[u64]) -> String {
     let u = ColumnUnits::new(units);
-    let (l, force) = (&u.length, &units.force);
+    let (len, force) = (&u.length, &units.force);
     let fu = frequency_unit(units);
     let mut header = vec![
         fu.column.clone(),
@@ -150,21 +176,24 @@ pub fn loops_csv(p: &Problem, r: &[FreqResult], units: &Units, node_ids: &[u64])
         "node".into(),
         "step".into(),
         format!("time_{}", units.time),
+        format!("u1_{len}"),
+        format!("u2_{len}"),
     ];
+    if l.overclosure {
+        header.push(format!("overclosure_{len}"));
+    }
     header.extend([
-        format!("u1_{l}"),
-        format!("u2_{l}"),
-        format!("overclosure_{l}"),
         format!("f1_{force}"),
         format!("f2_{force}"),
         format!("normal_force_{force}"),
     ]);
     let mut t = CsvTable::new(&header);
-    let h = 1.0 / (x.freq * x.loops.len() as f64);
-    for (i, c) in p.contacts.iter().enumerate() {
-        for (k, at) in x.loops.iter().enumerate() {
+    let h = 1.0 / (l.freq * l.samples.len() as f64);
+    for &i in l.points {
+        let c = &p.contacts[i];
+        for (k, at) in l.samples.iter().enumerate() {
             let mut row = vec![
-                exact(fu.show(x.freq)),
+                exact(fu.show(l.freq)),
                 i.to_string(),
                 p.interfaces[c.interface].name.clone(),
                 node_ids
@@ -174,11 +203,12 @@ pub fn loops_csv(p: &Problem, r: &[FreqResult], units: &Units, node_ids: &[u64])
                 exact((k + 1) as f64 * h),
             ];
             let s = at[i];
-            row.extend(s.displacement.iter().chain(&s.force).map(|v| exact(*v)));
+            let d = &s.displacement[..if l.overclosure { 3 } else { 2 }];
+            row.extend(d.iter().chain(&s.force).map(|v| exact(*v)));
             t.row(&row);
         }
     }
-    Some(t.finish())
+    t.finish()
 }
 
 /// Writes `text` to `dir/name` (atomically: a temporary name, then renamed) and records

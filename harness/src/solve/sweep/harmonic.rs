@@ -45,9 +45,18 @@ pub fn sweep(
         h,
         start: None,
         index: 0,
+        largest: None,
     };
     drive(&mut solver, freqs, shape, progress, &mut res);
-    let hb = solver.hb;
+    let mut hb = solver.hb;
+    if let Some((_, f, r)) = solver.largest {
+        let t = Instant::now();
+        let loops = hb
+            .loops(&r, f)
+            .map_err(|source| SweepError::Balance { freq: f, source })?;
+        res.loops = Some(loops);
+        res.time("contact loops", t);
+    }
     res.factorizations = hb.stats.factorizations;
     res.gmres_solves = hb.stats.gmres_iterations;
     *res.timings.entry("receptance solves".into()).or_default() += hb.stats.receptance_seconds;
@@ -80,6 +89,9 @@ struct Harmonic<'s, 'a> {
     start: Option<Vec<f64>>,
     /// Frequencies solved so far.
     index: usize,
+    /// The converged solution of the largest response so far: (first output's
+    /// first-harmonic amplitude, or the energy per cycle without outputs; frequency; r).
+    largest: Option<(f64, f64, Vec<f64>)>,
 }
 
 impl FrequencySolver for Harmonic<'_, '_> {
@@ -151,6 +163,13 @@ impl FrequencySolver for Harmonic<'_, '_> {
                     v.passes(it.tolerance)
                 }
             });
+        let size = sol
+            .outputs
+            .first()
+            .map_or(energy.iter().sum(), |hs| hs[1.min(self.h)].norm());
+        if converged && self.largest.as_ref().is_none_or(|l| size > l.0) {
+            self.largest = Some((size, f, sol.r.clone()));
+        }
         self.start = sol.converged.then(|| sol.r.clone());
         Ok(Outcome::Solved(Row {
             outputs: sol.outputs.iter().map(|hs| hs[1.min(self.h)]).collect(),

@@ -106,10 +106,10 @@ pub struct Dir {
 /// Directions marched together: `len` consecutive ones from `first`, by the
 /// one-direction law (`point3` none, len 1) or the three-direction point.
 #[derive(Debug, Clone, Copy)]
-struct Group {
-    first: usize,
-    len: usize,
-    point3: Option<Point3>,
+pub(super) struct Group {
+    pub(super) first: usize,
+    pub(super) len: usize,
+    pub(super) point3: Option<Point3>,
     /// Offset of the group's Γ block ((len·(2H+1))² doubles) in `Forces::gamma`.
     gamma_at: usize,
 }
@@ -130,10 +130,10 @@ pub struct FeBalance<'s, 'a> {
     pub(super) setup: &'s mut Setup<'a>,
     pub tr: Transforms,
     pub(super) tang: Vec<Tangential>,
-    area: Vec<f64>,
+    pub(super) area: Vec<f64>,
     /// The unknown directions in the order of r.
     pub dirs: Vec<Dir>,
-    groups: Vec<Group>,
+    pub(super) groups: Vec<Group>,
     rec: Vec<Receptance>,
     /// The modal route's basis ([`FeBalance::use_modal`]); `None`: a factorization per
     /// harmonic.

@@ -21,6 +21,7 @@
 use crate::capi::{Contact3, Tangential};
 use crate::mhb::aft::Transforms;
 use crate::mhb::contact3d::{march_point, Marched, VIRGIN};
+use crate::mhb::loops::LoopSample;
 use crate::mhb::MhbError;
 use crate::model::Problem;
 use crate::names::{NormalLawName, RuleName};
@@ -155,19 +156,9 @@ fn stresses(
     dc: &[f64],
     start: Start,
 ) -> Result<(Vec<f64>, f64, Marched), MhbError> {
-    let (n, nc) = (tr.n, tr.ncoef());
+    let nc = tr.ncoef();
     let comps = p.model.components();
-    let mut path = vec![[0.0, 0.0, p.h0]; n];
-    let mut x = vec![0.0; n];
-    for (d, &c) in comps.iter().enumerate() {
-        tr.synthesize(&dc[d * nc..(d + 1) * nc], &mut x);
-        for (s, r) in path.iter_mut().zip(&x) {
-            match c {
-                0 => s[2] = p.h0 - r,
-                _ => s[c - 1] = *r,
-            }
-        }
-    }
+    let path = path(tr, p, dc);
     let states = match start {
         Start::Virgin => &VIRGIN,
         Start::Near(m) => &m.states,
@@ -183,6 +174,44 @@ fn stresses(
         tr.analyse(&series, &mut out[d * nc..(d + 1) * nc]);
     }
     Ok((out, marched.dissipated, marched))
+}
+
+/// Point `p`'s path (u₁, u₂, h) over the samples of a period at its direction
+/// coefficients `dc` (h = h₀ − r_n; h₀ where the normal is not in the balance).
+fn path(tr: &mut Transforms, p: &Point3, dc: &[f64]) -> Vec<[f64; 3]> {
+    let (n, nc) = (tr.n, tr.ncoef());
+    let mut path = vec![[0.0, 0.0, p.h0]; n];
+    let mut x = vec![0.0; n];
+    for (d, &c) in p.model.components().iter().enumerate() {
+        tr.synthesize(&dc[d * nc..(d + 1) * nc], &mut x);
+        for (s, r) in path.iter_mut().zip(&x) {
+            match c {
+                0 => s[2] = p.h0 - r,
+                _ => s[c - 1] = *r,
+            }
+        }
+    }
+    path
+}
+
+/// Point `p`'s closed loop at its direction coefficients `dc`: per sample (u₁, u₂, h)
+/// and the forces (F₁, F₂, N) = area × stresses, marched from a virgin state as the
+/// balance marches it.
+pub fn loop_samples(
+    tr: &mut Transforms,
+    p: &Point3,
+    dc: &[f64],
+) -> Result<Vec<LoopSample>, MhbError> {
+    let path = path(tr, p, dc);
+    let m = march_point(&p.contact, p.model.coupled_slip, &path, &VIRGIN)?;
+    Ok(path
+        .iter()
+        .enumerate()
+        .map(|(k, d)| LoopSample {
+            displacement: *d,
+            force: [0, 1, 2].map(|a| p.area * m.force[a][k]),
+        })
+        .collect())
 }
 
 /// ĝ of point `p` at its direction coefficients `dc` (and Γ when `jac`).

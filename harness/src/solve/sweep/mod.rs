@@ -24,6 +24,7 @@ pub mod harmonic;
 pub mod harmonic_check;
 pub mod harmonic_fe;
 pub mod harmonic_fe_point3d;
+pub mod harmonic_loops;
 pub mod krylov;
 mod modal_residual;
 pub mod modal_route;
@@ -226,6 +227,8 @@ pub struct SweepResult {
     pub timings: BTreeMap<String, f64>,
     /// The modal route's basis, when the sweep used it.
     pub modal: Option<modal_route::ModalSummary>,
+    /// The harmonic balance's contact loops at its largest converged response.
+    pub loops: Option<harmonic_loops::BalanceLoops>,
 }
 
 impl SweepResult {
