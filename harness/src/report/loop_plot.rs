@@ -6,7 +6,7 @@ use plotters::prelude::*;
 
 use super::svg::drawing_error as err;
 use crate::settings::Units;
-use crate::util::ticks::linear_tick;
+use crate::util::ticks::linear_tick_on;
 
 type Res = Result<(), String>;
 
@@ -73,8 +73,8 @@ pub fn draw(path: &std::path::Path, title: &str, units: &Units, joints: &[JointL
             .x_labels(6)
             .x_desc(format!("tangential displacement [{}]", units.length))
             .y_desc(format!("tangential force [{}]", units.force))
-            .x_label_formatter(&|v: &f64| linear_tick(*v))
-            .y_label_formatter(&|v: &f64| linear_tick(*v))
+            .x_label_formatter(&|v: &f64| linear_tick_on(*v, x))
+            .y_label_formatter(&|v: &f64| linear_tick_on(*v, y))
             .draw()
             .map_err(err)?;
         for (label, pts, colour) in &curves {

@@ -158,9 +158,26 @@ pub fn linear_tick(v: f64) -> String {
     }
 }
 
+/// [`linear_tick`] of a tick on an axis from `lo` to `hi`: a tick within 1e-9 of the
+/// span from zero is zero (the axis's own round-off, e.g. −6.8e-21 for 0).
+pub fn linear_tick_on(v: f64, (lo, hi): (f64, f64)) -> String {
+    linear_tick(if v.abs() <= 1e-9 * (hi - lo).abs() {
+        0.0
+    } else {
+        v
+    })
+}
+
 #[cfg(test)]
 mod linear_tick_tests {
-    use super::linear_tick;
+    use super::{linear_tick, linear_tick_on};
+
+    #[test]
+    fn round_off_at_zero_is_labelled_zero() {
+        assert_eq!(linear_tick_on(-6.776e-21, (-4e-5, 4e-5)), "0");
+        assert_eq!(linear_tick_on(2e-5, (-4e-5, 4e-5)), "2e-5");
+        assert_eq!(linear_tick_on(1e-12, (0.0, 1e-9)), "1e-12");
+    }
 
     #[test]
     fn ticks_carry_four_significant_digits_at_most() {
