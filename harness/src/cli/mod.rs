@@ -90,6 +90,9 @@ pub enum Command {
     ///                 node id) and the frame n, t1, t2 (effects.point_energy_output);
     ///                 harmonic balance: first-harmonic amplitude, k* + iωd* = F̂₁/δ̂₁ of
     ///                 the closed loop, its energy per cycle
+    ///   loops.csv/.svg harmonic balance only: every closed point's loop over one period
+    ///                 at the largest converged response (u1, u2, the overclosure where
+    ///                 normal_load_variation, f1, f2, normal force; docs/outputs.md)
     ///   stick_slip.csv/.svg  points per regime over frequency (effects.stick_slip_map)
     ///   run.json      written last: provenance (schema version, versions, command
     ///                 line, time, SHA-256 of every input file; docs/outputs.md), scene
