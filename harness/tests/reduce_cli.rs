@@ -235,28 +235,28 @@ fn lumped_scenes_are_refused() {
 #[test]
 fn three_direction_effects_are_refused_not_dropped() {
     let scene = repo("scenes/three-beams-oblique.toml");
-    for effect in ["normal_load_variation", "coupled_slip"] {
+    // `jointlin COMMAND scene --set effects.<effect>=true`: exit code and stderr.
+    let refused = |command: &str, effect: &str| {
         let out = Command::new(env!("CARGO_BIN_EXE_jointlin"))
-            .args(["reduce", scene.to_str().unwrap(), "--set"])
+            .args([command, scene.to_str().unwrap(), "--set"])
             .arg(format!("effects.{effect}=true"))
             .arg("--out")
             .arg(tmp(effect))
             .output()
             .unwrap();
-        assert_eq!(out.status.code(), Some(1), "{effect}");
-        let err = String::from_utf8_lossy(&out.stderr);
+        (
+            out.status.code(),
+            String::from_utf8_lossy(&out.stderr).to_string(),
+        )
+    };
+    for effect in ["normal_load_variation", "coupled_slip"] {
+        let (code, err) = refused("reduce", effect);
+        assert_eq!(code, Some(1), "{effect}");
         assert!(err.contains("are not carried by a reduction"), "{err}");
         assert!(!tmp(effect).join("scene.toml").exists());
         // The FE backbone reduces the same way and refuses them too.
-        let out = Command::new(env!("CARGO_BIN_EXE_jointlin"))
-            .args(["backbone", scene.to_str().unwrap(), "--set"])
-            .arg(format!("effects.{effect}=true"))
-            .arg("--out")
-            .arg(tmp(effect))
-            .output()
-            .unwrap();
-        assert_eq!(out.status.code(), Some(2), "{effect}");
-        let err = String::from_utf8_lossy(&out.stderr);
+        let (code, err) = refused("backbone", effect);
+        assert_eq!(code, Some(2), "{effect}");
         assert!(err.contains("are not carried"), "{err}");
     }
 }
