@@ -93,7 +93,8 @@ pub fn main(a: Args) -> ExitCode {
                 "units": scene.spec.units,
                 "closed_points": r.closed,
                 "open_points": r.open,
-                "joints": r.set.joints.len(),
+                "joints": r.set.joints.len() + r.set.points.len(),
+                "three_direction_joints": r.set.points.len(),
                 "held_contact_directions": r.set.held,
                 "retained_coordinates": r.set.rows.len(),
                 "interior_modes": r.interior,
@@ -129,7 +130,7 @@ fn log(r: &Reduction, interior: Interior, unit: &jointlin_harness::settings::uni
          {} interior modes ({why})",
         r.closed,
         r.open,
-        r.set.joints.len(),
+        r.set.joints.len() + r.set.points.len(),
         r.set.rows.len(),
         r.interior
     );

@@ -14,6 +14,7 @@ pub mod scene;
 
 use nalgebra::DMatrix;
 
+use crate::fe::csc::Csc;
 use crate::model::Problem;
 use crate::settings::Effects;
 use crate::solve::modal::{lowest_modes, ModalOptions};
@@ -76,9 +77,6 @@ pub fn reduce(p: &Problem, effects: &Effects, interior: Interior) -> Result<Redu
     if effects.material_damping && p.structural.is_some() {
         return Err("the model has structural damping (*DAMPING, STRUCTURAL=): a reduced model takes viscous damping only".into());
     }
-    if effects.normal_load_variation || effects.coupled_slip {
-        return Err("[effects] normal_load_variation and coupled_slip are not carried by a reduction: its joints are the thesis's one-direction joints at the static normal force (the three-direction point would need the normal direction retained); switch both off for that model (--set effects.normal_load_variation=false --set effects.coupled_slip=false)".into());
-    }
     if !p.modal_damping.is_empty() {
         return Err("the model has modal damping: it belongs to the full model's modes, not to a reduced model's; give Rayleigh damping".into());
     }
@@ -88,7 +86,15 @@ pub fn reduce(p: &Problem, effects: &Effects, interior: Interior) -> Result<Redu
     eff.tangential_microslip = true;
     let setup = Setup::new(p, &stat, &eff).map_err(|e| e.to_string())?;
     let stuck = stuck_contacts(p, &setup);
-    let set = retained::retained(p, &stuck)?;
+    // With the three-direction effects each closed point is one joint of three
+    // coordinates, its normal spring moved from K₀ into the joint.
+    let three = effects.normal_load_variation || effects.coupled_slip;
+    let set = retained::retained(p, &stuck, three.then_some(setup.normal_k.as_slice()))?;
+    let k0 = if three {
+        without_normal_springs(p, &setup, &stuck.k0)
+    } else {
+        stuck.k0.clone()
+    };
     let nb = set.rows.len();
     if nb > MAX_RETAINED {
         return Err(format!(
@@ -120,7 +126,7 @@ pub fn reduce(p: &Problem, effects: &Effects, interior: Interior) -> Result<Redu
     let phi = DMatrix::from_fn(n, count, |i, c| modes.shapes[c][i]);
     let inner = interior_modes(&psi, &rows, &phi, (&stuck.k0, m));
     let t = basis(&psi, &inner);
-    let k = project(&stuck.k0, &t);
+    let k = project(&k0, &t);
     let mr = project(m, &t);
     let d = match (&p.damping, effects.material_damping) {
         (Some(d), true) => Some(project(d, &t)),
@@ -129,6 +135,12 @@ pub fn reduce(p: &Problem, effects: &Effects, interior: Interior) -> Result<Redu
     let mut kstuck = k.clone();
     for j in &set.joints {
         kstuck[(j.coordinate, j.coordinate)] += j.law.k_t0;
+    }
+    for pt in &set.points {
+        let [c1, c2, cn] = pt.coordinates;
+        kstuck[(c1, c1)] += pt.law.k_t0;
+        kstuck[(c2, c2)] += pt.law.k_t0;
+        kstuck[(cn, cn)] += pt.k_n;
     }
     let stuck_full = modes.frequencies_hz();
     let stuck_reduced: Vec<f64> = crate::model::lumped::undamped_frequencies(&kstuck, &mr)?
@@ -147,4 +159,17 @@ pub fn reduce(p: &Problem, effects: &Effects, interior: Interior) -> Result<Redu
         stuck_full,
         stuck_reduced,
     })
+}
+
+/// K₀ without the closed points' normal springs k_N·A·n nᵀ (the three-direction joints
+/// carry them on their normal coordinates).
+fn without_normal_springs(p: &Problem, setup: &Setup, k0: &Csc<f64>) -> Csc<f64> {
+    let mut k = k0.clone();
+    for &i in &setup.active {
+        let c = &p.contacts[i];
+        let n = c.frame.column(0);
+        let block = n * n.transpose() * (-setup.normal_k[i] * c.area);
+        p.sys.pairs.add(&mut k.values, c.pair, &block);
+    }
+    k
 }

@@ -12,6 +12,9 @@ use crate::fe::dofs::DofMap;
 use crate::model::Problem;
 use crate::solve::reduction::StuckContacts;
 
+/// A tangential row of a stuck contact ([`StuckContacts::rows`]).
+type ContactRow<'p> = (usize, usize, &'p [(usize, f64)], Tangential);
+
 /// One retained coordinate r = Σ w·u over free DOFs.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Retained {
@@ -30,6 +33,24 @@ pub struct Joint {
     pub coordinate: usize,
     /// The point's law in force form.
     pub law: Tangential,
+}
+
+/// A three-direction joint of the reduced scene (with `[effects] normal_load_variation`
+/// or `coupled_slip`): one closed contact point, its two tangential relative
+/// displacements and its opening along n.
+#[derive(Debug, Clone)]
+pub struct PointJoint {
+    /// `<interface>.<point index>`.
+    pub name: String,
+    /// The retained coordinates of u₁ (t₁), u₂ (t₂) and the opening δ_n (n).
+    pub coordinates: [usize; 3],
+    /// Per coordinate: the global axis ±e_k its frame axis is (the coordinate is the
+    /// displacement along +e_k), or (k, 1) of the point's own x, y, z (t₁, t₂, n).
+    pub axes: [(usize, f64); 3],
+    /// The point's law in force form (normal force N₀ = pA, k_T0·A).
+    pub law: Tangential,
+    /// The closed contact's normal stiffness k_N·A (force/length).
+    pub k_n: f64,
 }
 
 /// The harmonic load on its retained coordinate: F = sign·amplitude·e^{iφ} along +label.
@@ -56,6 +77,8 @@ pub struct RetainedSet {
     /// DOF-list comments: the frames of points not named by global axes.
     pub notes: Vec<String>,
     pub joints: Vec<Joint>,
+    /// Three-direction joints (instead of `joints`, with the effects).
+    pub points: Vec<PointJoint>,
     pub outputs: Vec<OutputRow>,
     pub load: Option<Load>,
     /// Contact directions whose relative displacement is held at zero by clamps (no row,
@@ -123,42 +146,19 @@ impl RetainedSet {
 }
 
 /// The retained set of problem `p`: the stuck contacts' rows, then the outputs, then
-/// the load. Errors: a load whose entries differ in phase.
-pub fn retained(p: &Problem, stuck: &StuckContacts) -> Result<RetainedSet, String> {
+/// the load; with `normal_k` (per contact point, force/length³) each closed point is a
+/// three-direction joint, its opening retained too. Errors: a load whose entries differ
+/// in phase; a three-direction point with a held direction.
+pub fn retained(
+    p: &Problem,
+    stuck: &StuckContacts,
+    normal_k: Option<&[f64]>,
+) -> Result<RetainedSet, String> {
     let mut set = RetainedSet::default();
     for pair in stuck.rows.chunks(2) {
-        let (i, _, _, law) = pair[0];
-        let c = &p.contacts[i];
-        let itf = &p.interfaces[c.interface].name;
-        let point = set.fresh(&format!("{itf}.{i}"));
-        let t: Vec<[f64; 3]> = (1..=2)
-            .map(|d| [c.frame[(0, d)], c.frame[(1, d)], c.frame[(2, d)]])
-            .collect();
-        let axes = [axis_of(t[0]), axis_of(t[1])];
-        let named = match axes {
-            [Some(a), Some(b)] => [(AXES[a.0], a.1), (AXES[b.0], b.1)],
-            _ => {
-                set.notes.push(format!(
-                    "{point}: x along t1 = {}, y along t2 = {} (its contact frame)",
-                    show(t[0]),
-                    show(t[1])
-                ));
-                [('x', 1.0), ('y', 1.0)]
-            }
-        };
-        for (d, &(_, _, row, _)) in pair.iter().enumerate() {
-            // Both nodes held in this direction (a symmetry plane's clamp): it never
-            // moves, its joint never acts.
-            if row.iter().all(|&(_, w)| w == 0.0) {
-                set.held += 1;
-                continue;
-            }
-            let k = set.add(&point, named[d].0, scaled(row, named[d].1));
-            set.joints.push(Joint {
-                name: format!("{itf}.{i}.t{}", d + 1),
-                coordinate: k,
-                law,
-            });
+        match normal_k {
+            Some(kn) => point_joint(p, &mut set, pair, kn)?,
+            None => direction_joints(p, &mut set, pair),
         }
     }
     for o in &p.outputs {
@@ -183,6 +183,96 @@ pub fn retained(p: &Problem, stuck: &StuckContacts) -> Result<RetainedSet, Strin
     }
     set.load = load(p, &mut set)?;
     Ok(set)
+}
+
+/// The one-direction joints of one closed point: a joint per tangential `pair` row that
+/// moves (thesis's model).
+fn direction_joints(p: &Problem, set: &mut RetainedSet, pair: &[ContactRow]) {
+    let (i, _, _, law) = pair[0];
+    let c = &p.contacts[i];
+    let itf = &p.interfaces[c.interface].name;
+    let point = set.fresh(&format!("{itf}.{i}"));
+    let t: Vec<[f64; 3]> = (1..=2)
+        .map(|d| [c.frame[(0, d)], c.frame[(1, d)], c.frame[(2, d)]])
+        .collect();
+    let axes = [axis_of(t[0]), axis_of(t[1])];
+    let named = match axes {
+        [Some(a), Some(b)] => [(AXES[a.0], a.1), (AXES[b.0], b.1)],
+        _ => {
+            set.notes.push(format!(
+                "{point}: x along t1 = {}, y along t2 = {} (its contact frame)",
+                show(t[0]),
+                show(t[1])
+            ));
+            [('x', 1.0), ('y', 1.0)]
+        }
+    };
+    for (d, &(_, _, row, _)) in pair.iter().enumerate() {
+        // Both nodes held in this direction (a symmetry plane's clamp): it never
+        // moves, its joint never acts.
+        if row.iter().all(|&(_, w)| w == 0.0) {
+            set.held += 1;
+            continue;
+        }
+        let k = set.add(&point, named[d].0, scaled(row, named[d].1));
+        set.joints.push(Joint {
+            name: format!("{itf}.{i}.t{}", d + 1),
+            coordinate: k,
+            law,
+        });
+    }
+}
+
+/// The three-direction joint of one closed point (its two tangential `pair` rows, its
+/// normal row from the problem) with its three coordinates.
+fn point_joint(
+    p: &Problem,
+    set: &mut RetainedSet,
+    pair: &[ContactRow],
+    normal_k: &[f64],
+) -> Result<(), String> {
+    let (i, _, _, law) = pair[0];
+    let c = &p.contacts[i];
+    let itf = &p.interfaces[c.interface].name;
+    let point = set.fresh(&format!("{itf}.{i}"));
+    // Frame columns t₁, t₂, n (the problem's frame is n, t₁, t₂).
+    let v: Vec<[f64; 3]> = [1, 2, 0]
+        .iter()
+        .map(|&d| [c.frame[(0, d)], c.frame[(1, d)], c.frame[(2, d)]])
+        .collect();
+    let global: Option<Vec<(usize, f64)>> = v.iter().map(|&d| axis_of(d)).collect();
+    let axes: [(usize, f64); 3] = match global {
+        Some(a) => [a[0], a[1], a[2]],
+        None => {
+            set.notes.push(format!(
+                "{point}: x along t1 = {}, y along t2 = {}, z along n = {} (its contact frame)",
+                show(v[0]),
+                show(v[1]),
+                show(v[2])
+            ));
+            [(0, 1.0), (1, 1.0), (2, 1.0)]
+        }
+    };
+    let rows = [
+        c.rows[1].as_slice(),
+        c.rows[2].as_slice(),
+        c.rows[0].as_slice(),
+    ];
+    if rows.iter().any(|r| r.iter().all(|&(_, w)| w == 0.0)) {
+        return Err(format!(
+            "contact point {i} ({itf}) has a direction held by clamps: a three-direction joint needs all three"
+        ));
+    }
+    let coordinates =
+        [0, 1, 2].map(|a| set.add(&point, AXES[axes[a].0], scaled(rows[a], axes[a].1)));
+    set.points.push(PointJoint {
+        name: format!("{itf}.{i}"),
+        coordinates,
+        axes,
+        law,
+        k_n: normal_k[i] * c.area,
+    });
+    Ok(())
 }
 
 /// The output's direction at its node from its weights (clamped components absent).

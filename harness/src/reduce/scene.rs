@@ -28,8 +28,9 @@ fn unit_axis(label: char, sign: f64) -> [f64; 3] {
 pub fn dofs_csv(r: &Reduction) -> String {
     let mut s = String::from(
         "# Retained coordinates (relative tangential displacements of the closed contact\n\
-         # points, second surface minus first; the outputs; the load), then the interior\n\
-         # modes' amplitudes (modal,k). Named by global axes unless noted:\n",
+         # points, second surface minus first, and with the three-direction effects their\n\
+         # opening; the outputs; the load), then the interior modes' amplitudes\n\
+         # (modal,k). Named by global axes unless noted:\n",
     );
     for n in &r.set.notes {
         s.push_str(&format!("# {n}\n"));
@@ -65,6 +66,27 @@ pub fn scene_file(r: &Reduction, spec: &SceneFile) -> SceneFile {
             normal: None,
             normal_stiffness: None,
         })
+        .chain(r.set.points.iter().map(|pt| {
+            let axis = |a: usize| {
+                let mut d = [0.0; 3];
+                d[pt.axes[a].0] = pt.axes[a].1;
+                d
+            };
+            // Opening along n = ±e_k, g = the point's coordinate along it: δ_n (the
+            // normal row is the coordinate along +e_k, so n·x = δ_n); clamped by N₀.
+            JointSpec {
+                name: pt.name.clone(),
+                between: ["ground".into(), point(pt.coordinates[0])],
+                direction: axis(0),
+                law: pt.law.law,
+                rule: pt.law.rule,
+                mu: pt.law.mu,
+                normal_force: Some(pt.law.normal),
+                k_t0: pt.law.k_t0,
+                normal: Some(axis(2)),
+                normal_stiffness: Some(pt.k_n),
+            }
+        }))
         .collect();
     let excitation = r
         .set
@@ -125,9 +147,12 @@ pub fn scene_file(r: &Reduction, spec: &SceneFile) -> SceneFile {
             ..spec.sweep.clone()
         },
         iteration,
-        // A lumped system switches material damping only (D.mtx is written with it on).
+        // A lumped system switches material damping (D.mtx is written with it on) and,
+        // on joints with `normal`, the three-direction point's effects.
         effects: Effects {
             material_damping: r.d.is_some(),
+            normal_load_variation: spec.effects.normal_load_variation,
+            coupled_slip: spec.effects.coupled_slip,
             ..Effects::default()
         },
         loss_study: None,
