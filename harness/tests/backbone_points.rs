@@ -88,6 +88,43 @@ fn a_mode_that_leaves_the_normal_alone_is_the_thesis_models() {
     assert!(dw < 1e-7 && dz < 1e-6 && de < 1e-6, "{dw:e} {dz:e} {de:e}");
 }
 
+#[test]
+fn extreme_amplitudes_give_the_stuck_mode_or_an_honest_stop() {
+    // 1e-300 m·kg^½ is far below the slip limit: the stuck mode, as at 1e-3; 1e300 has
+    // no periodic motion to trace: the path stops, says where, writes what it has and
+    // exits 1.
+    let path = scene("mass-on-plane-braced.toml");
+    let out = scratch("extremes");
+    let o = Command::new(env!("CARGO_BIN_EXE_jointlin"))
+        .args([
+            "backbone",
+            "--quiet",
+            "--harmonics",
+            "3",
+            "--amplitudes",
+            "1e-300,1e300,3",
+        ])
+        .arg("--out")
+        .arg(&out)
+        .arg(&path)
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(1), "{err}");
+    assert!(
+        err.contains("the continuation stopped at modal amplitude"),
+        "{err}"
+    );
+    let rows = numbers(&out.join("backbone.csv"));
+    assert!(!rows.is_empty() && rows.iter().all(|r| r.values().all(|v| v.is_finite())));
+    let stuck = &backbone(&path, "stuck", "1e-3,1e-3,1", &[])[0];
+    let tiny = &rows[0];
+    assert!((tiny["modal_amplitude_m_sqrt_kg"] / 1e-300 - 1.0).abs() < 1e-12);
+    assert!((tiny["frequency_Hz"] / stuck["frequency_Hz"] - 1.0).abs() < 1e-9);
+    assert!((tiny["damping_ratio"] / stuck["damping_ratio"] - 1.0).abs() < 1e-6);
+    let _ = std::fs::remove_dir_all(&out);
+}
+
 /// `jointlin run SCENE --time-domain --set …` (the lumped RK4 sweep): results_time.csv.
 fn time_domain(scene: &Path, tag: &str, set: &[&str]) -> Vec<HashMap<String, f64>> {
     let out = scratch(tag);

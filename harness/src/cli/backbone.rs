@@ -104,7 +104,9 @@ fn build(scene: &Scene, mode: usize, epmc: bool) -> Result<Built, String> {
         if !epmc {
             return Err("the first-order backbone linearizes one-direction joints: joints with `normal` and [effects] normal_load_variation or coupled_slip need the EPMC (--harmonics H), or both effects off (the thesis's model)".into());
         }
-        let linearized = Some(lumped::build(&scene.thesis_points())?);
+        let linearized = Some(lumped::build(&scene.thesis_points()).map_err(|e| {
+            format!("the stuck mode is the scene's as the thesis's model (both effects off), which fails: {e}")
+        })?);
         return Ok(Built {
             lumped,
             linearized,

@@ -37,6 +37,9 @@ use crate::mhb::{default_samples, MhbError, System};
 use crate::model::lumped_static;
 use equations::{Epmc, State};
 
+/// Decades below the first slip limit where the path starts at the lowest.
+const STUCK_DECADES: f64 = 6.0;
+
 /// An EPMC point: the backbone point and the full solution.
 #[derive(Debug, Clone)]
 pub struct EpmcPoint {
@@ -163,8 +166,13 @@ pub fn trace_points(
     let Some(&first) = targets.first() else {
         return Ok(Traced::empty(None));
     };
-    // The path starts where every contact still sticks.
-    let lq0 = first.min(lq_stuck);
+    // The path starts where every contact still sticks, at most STUCK_DECADES below
+    // the stick limit: the backbone is the stuck linear mode all the way down, and far
+    // below, the motion is round-off against the static state (amplitudes there are
+    // given the start's solution).
+    let lq0 = first
+        .min(lq_stuck)
+        .max(lq_stuck - STUCK_DECADES * std::f64::consts::LN_10);
     let (st, dissipated) = match ep.solve(guess, lq0.exp()) {
         Ok(s) => s,
         Err(residual) => {
