@@ -149,7 +149,6 @@ const OVERSIZED: &[(&str, usize)] = &[
     ("solve/sweep/harmonic_fe.rs", 658),
     ("solve/sweep/thesis.rs::sweep", 318),
     ("time/newmark.rs::step", 161),
-    ("time/scene_run.rs::simulate", 128),
     ("tradeoff/mod.rs::study", 280),
 ];
 

@@ -206,6 +206,58 @@ pub fn simulate(
         }
     };
 
+    let cycles = integrate_cycles(
+        p,
+        contacts,
+        st,
+        stepper,
+        omega,
+        steps_per_cycle,
+        settings,
+        ramp_cycles,
+    )?;
+    Ok(FreqResult {
+        freq,
+        integrator: ["rk4", "newmark"][usize::from(kind == Integrator::Newmark)],
+        steps_per_cycle,
+        cycles: cycles.cycles,
+        steady: cycles.steady,
+        distance: cycles.distance,
+        last: cycles.last,
+        steps: cycles.steps,
+        newton_iterations: cycles.newton,
+        loose_steps: stepper.loose_steps(),
+        cut_steps: stepper.cut_steps(),
+        uinter_calls: contacts.calls - calls0,
+        seconds: clock.elapsed().as_secs_f64(),
+        loops: cycles.loops,
+    })
+}
+
+/// What [`integrate_cycles`] did.
+struct Cycles {
+    cycles: usize,
+    steady: bool,
+    distance: f64,
+    last: CycleStats,
+    steps: usize,
+    newton: usize,
+    loops: Vec<Vec<LoopSample>>,
+}
+
+/// Whole cycles of `steps_per_cycle` steps from `st` until the steady-state test passes
+/// (after the ramp and `min_cycles`) or `max_cycles`; the last cycle's loops are kept.
+#[allow(clippy::too_many_arguments)]
+fn integrate_cycles(
+    p: &Problem,
+    contacts: &mut Contacts,
+    st: &mut State,
+    stepper: &mut dyn Stepper,
+    omega: f64,
+    steps_per_cycle: usize,
+    settings: &TimeSettings,
+    ramp_cycles: f64,
+) -> Result<Cycles, TimeError> {
     let nout = p.outputs.len();
     let mut test = SteadyTest::default();
     let mut prev: Option<CycleStats> = None;
@@ -242,20 +294,13 @@ pub fn simulate(
             break;
         }
     }
-    Ok(FreqResult {
-        freq,
-        integrator: ["rk4", "newmark"][usize::from(kind == Integrator::Newmark)],
-        steps_per_cycle,
+    Ok(Cycles {
         cycles,
         steady,
         distance,
         last: prev.expect("max_cycles ≥ 2"),
         steps,
-        newton_iterations: newton,
-        loose_steps: stepper.loose_steps(),
-        cut_steps: stepper.cut_steps(),
-        uinter_calls: contacts.calls - calls0,
-        seconds: clock.elapsed().as_secs_f64(),
+        newton,
         loops,
     })
 }
