@@ -104,6 +104,9 @@ const ALL_MODES: [&str; 3] = ["fast", "thesis", "harmonic-balance"];
 fn a_stiff_stuck_block_converges_to_its_own_scale() {
     let stiff = ("k_t0_per_area = 1282.7", "k_t0_per_area = 1e12 #");
     for mode in MODES {
+        let own = run("block-stick", &scene_text("block-stick.toml", &[]), mode);
+        assert!(own.ok, "{mode}: {}", own.stderr);
+        let unscaled = num(&own.results[0], "block_x_amp_mm");
         for start in ["1e-4", "1e-13", "1.0"] {
             let text = scene_text(
                 "block-stick.toml",
@@ -126,11 +129,20 @@ fn a_stiff_stuck_block_converges_to_its_own_scale() {
             }
             assert_eq!(r["status"], "converged", "{mode} {start}");
             let a = num(r, "block_x_amp_mm");
-            // The reference 5.4891990e-13 mm: fast and thesis from 1e-13 mm agree to 1e-8;
-            // the scene's rtol 1e-6 on a ↔ a* leaves ≈ 1e-6/(1 − g') on a itself.
+            // 5.4891990e-13 mm is a regression pin (fast and thesis from 1e-13 mm agree to
+            // 1e-8; the scene's rtol 1e-6 on a ↔ a* leaves ≈ 1e-6/(1 − g') on a itself).
             assert!(
                 rel(a, 5.4891990e-13) < 1e-5,
                 "{mode} from {start}: {a:e} mm"
+            );
+            // Its independent check: the Mindlin point scales with k_T0 (δ* = 1.5μF_N/k_T0,
+            // k*(a/δ*) ∝ k_T0), so k_T0 × 1e12/1282.7 divides the amplitude by the same
+            // factor up to mω²/k* ≈ 3e-6: the scene's own block, 4.2794e-4 mm (held
+            // against the thesis's 4.267e-4 mm by sweep_modes.rs, within 1 %).
+            let scaled = a * 1e12 / 1282.7;
+            assert!(
+                rel(scaled, unscaled) < 2e-5,
+                "{mode} from {start}: {scaled:e} mm against {unscaled:e} mm"
             );
             let p = &o.points[0];
             assert_eq!(p["regime_t1"], "microslip", "{mode} {start}");
@@ -375,6 +387,7 @@ fn an_undamped_stuck_resonance_is_singular() {
         ),
     ]);
     let text = scene_text("three-beams-coarse.toml", &edits);
+    let mut direct = f64::NAN;
     for mode in MODES {
         let o = run("stuck-resonance", &text, mode);
         assert!(o.ok, "{mode}: {}", o.stderr);
@@ -384,7 +397,36 @@ fn an_undamped_stuck_resonance_is_singular() {
             ["converged", "singular", "singular"],
             "{mode} at {f1}, {f3}"
         );
-        // 1000 Hz, below the first mode: the stuck beams' 5.7e-4 mm.
-        assert!(rel(num(&o.results[0], "top_tip_amp_mm"), 5.7142e-4) < 1e-4);
+        // 1000 Hz, below the first mode: the stuck beams' 5.7142e-4 mm, a regression pin
+        // of the direct route.
+        direct = num(&o.results[0], "top_tip_amp_mm");
+        assert!(rel(direct, 5.7142e-4) < 1e-4);
     }
+    // Its independent check: the modal route (the stuck beams' modes by shift-invert
+    // Lanczos plus the static residual flexibility, no factorization of the dynamic
+    // stiffness) at the same 1000 Hz. Measured: 1.5e-10 from the direct route.
+    let mut modal = undamped.to_vec();
+    modal.extend([
+        ("f_min = 900.0", "f_min = 1000.0"),
+        ("f_max = 9000.0", "f_max = 1000.0"),
+        ("count = 40", "count = 1\nmethod = \"modal\""),
+        ("{ f_min = 1100.0, f_max = 1250.0, count = 30 },", ""),
+        ("{ f_min = 7000.0, f_max = 7500.0, count = 30 },", ""),
+    ]);
+    let o = run(
+        "stuck-modal",
+        &scene_text("three-beams-coarse.toml", &modal),
+        "fast",
+    );
+    assert!(o.ok, "modal: {}", o.stderr);
+    assert_eq!(o.results[0]["status"], "converged");
+    let a = num(&o.results[0], "top_tip_amp_mm");
+    eprintln!(
+        "modal route at 1000 Hz: {a:e} mm, direct {direct:e} mm ({:e})",
+        rel(a, direct)
+    );
+    assert!(
+        rel(a, direct) < 1e-8,
+        "modal route {a:e} mm, direct {direct:e} mm"
+    );
 }
