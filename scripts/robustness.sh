@@ -89,8 +89,19 @@ cmd_asan() {
         soname_link "$TARGET/asan-lib/x86_64-unknown-linux-gnu/release"
         asan_hosts instrumented "$TARGET/asan-lib/x86_64-unknown-linux-gnu/release"
     else
-        echo "no nightly toolchain: libjointlin.so itself not ASan-instrumented (hosts are)"
+        no_nightly "libjointlin.so itself not ASan-instrumented (hosts are)"
     fi
+}
+
+# Without a nightly toolchain the weaker run is said; on CI (CI set, neither empty nor
+# "false", as tests/tools/mod.rs reads it) it fails instead: scripts/test.sh installs
+# nightly first.
+no_nightly() {
+    if [ -n "${CI:-}" ] && [ "${CI:-}" != false ]; then
+        echo "no nightly Rust toolchain on CI: $1; run  rustup toolchain install nightly --profile minimal" >&2
+        exit 1
+    fi
+    echo "no nightly toolchain: $1"
 }
 
 asan_hosts() {
@@ -188,6 +199,7 @@ cmd_fuzz_ci() {
     local secs=${1:-15}
     MODE=$(fuzz_mode)
     if [ "$MODE" = replay ]; then
+        [ "${ROBUST_FUZZ:-auto}" = replay ] || no_nightly "fuzzing replays the corpus with random mutation, not coverage-guided"
         log "fuzz mode: stable replay + random mutation (no nightly), $secs s per target"
         CARGO_TARGET_DIR=$TARGET/fuzz-replay cargo build --release -q \
             --manifest-path fuzz/Cargo.toml --no-default-features --features replay

@@ -17,6 +17,8 @@
 //! The README must carry each example file verbatim.
 
 mod hosts_common;
+#[path = "tools/mod.rs"]
+mod tools;
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -356,7 +358,11 @@ fn installed_shim_rebuilds_from_the_share_directory_with_other_flags() {
         let nm = run_ok(Command::new("nm").arg(mpi.join("libjointlin_abaqus.a")));
         assert!(text(&nm).contains(" U mpi_allreduce_"), "{}", text(&nm));
     } else {
-        eprintln!("mpif90 not found: the MPI build of the installed shim not checked");
+        tools::missing(
+            "hosts_install_mpi_shim",
+            "mpif90",
+            "the MPI build of the installed shim",
+        );
     }
 }
 
