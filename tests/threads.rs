@@ -534,7 +534,8 @@ fn fortran_uinter_from_openmp_threads_through_the_shim_matches_one_thread() {
             .arg(format!("JOINTLIN_LIBDIR={}", lib.display()))
             .arg(host.join("uinter_omp")),
     );
-    let run = |threads: usize| -> String {
+    // stdout (the points' outputs), and the number of threads that handled points.
+    let run = |threads: usize| -> (String, String) {
         let out = run_ok(
             Command::new(host.join("uinter_omp"))
                 .env("OMP_NUM_THREADS", threads.to_string())
@@ -544,9 +545,16 @@ fn fortran_uinter_from_openmp_threads_through_the_shim_matches_one_thread() {
                 )
                 .current_dir(scratch("uinter_omp")),
         );
-        String::from_utf8(out.stdout).unwrap()
+        let stderr = String::from_utf8(out.stderr).unwrap();
+        let workers = stderr
+            .lines()
+            .find_map(|l| l.strip_prefix("threads "))
+            .unwrap_or_else(|| panic!("no thread count in {stderr}"))
+            .to_string();
+        (String::from_utf8(out.stdout).unwrap(), workers)
     };
-    let serial = run(1);
+    let (serial, one) = run(1);
+    assert_eq!(one, "1");
     let passes: u32 = serial
         .lines()
         .last()
@@ -555,6 +563,9 @@ fn fortran_uinter_from_openmp_threads_through_the_shim_matches_one_thread() {
         .expect("the last record is the number of passes");
     assert!(passes >= 3, "{passes} passes");
     for round in 0..3 {
-        assert!(run(8) == serial, "round {round}: 8 threads differ from 1");
+        let (parallel, workers) = run(8);
+        // 32 points over 8 threads, schedule(static, 1): every thread worked.
+        assert_eq!(workers, "8", "round {round}");
+        assert!(parallel == serial, "round {round}: 8 threads differ from 1");
     }
 }

@@ -5,12 +5,14 @@
 ! master thread makes the UEXTERNALDB calls between increments. A multi-pass sweep until
 ! the store is done; after each increment every point's outputs are printed in point
 ! order (STATEV(1), the store id, is left out: ids follow the order of registration,
-! which is the threads'). The output must not depend on OMP_NUM_THREADS.
+! which is the threads'). The output must not depend on OMP_NUM_THREADS; the number of
+! threads that handled points is written to stderr.
 ! Configuration: uinter_omp.cfg through JOINTLIN_CONFIG.
 program uinter_omp
   use, intrinsic :: iso_c_binding
   use jointlin
   use jointlin_abaqus, only: jl_store, jl_report, jl_check
+  use omp_lib, only: omp_get_thread_num
   implicit none
   external :: uinter, uexternaldb
 
@@ -24,6 +26,9 @@ program uinter_omp
        rdisp(ndir, npoints) = 0, drdisp(ndir, npoints) = 0, props(nprops), &
        coords(mcrd, npoints) = 0, time(2) = 0
   integer :: lopenclose(npoints) = -1
+  ! Per point, the OpenMP thread that handled it last: how many threads worked is
+  ! written to stderr (stdout must not depend on OMP_NUM_THREADS).
+  integer :: worker(npoints) = -1
   integer :: i, j, step, count, list(ninc)
   integer(c_int32_t) :: action, pass, k(ninc)
   integer(c_size_t) :: n
@@ -54,6 +59,7 @@ program uinter_omp
         !$omp parallel do schedule(static, 1)
         do j = 1, npoints
            call work(j, i, step, freqs(list(i)))
+           worker(j) = omp_get_thread_num()
         end do
         !$omp end parallel do
         step = step + 1
@@ -68,8 +74,19 @@ program uinter_omp
   end do
   if (action /= JOINTLIN_ACTION_DONE) error stop 'the sweep did not finish'
   write (*, '(a,1x,i0)') 'passes', pass
+  write (0, '(a,1x,i0)') 'threads', count_distinct(worker)
 
 contains
+
+  !> The number of distinct values in v.
+  integer function count_distinct(v)
+    integer, intent(in) :: v(:)
+    integer :: a
+    count_distinct = 0
+    do a = 1, size(v)
+       if (all(v(:a - 1) /= v(a))) count_distinct = count_distinct + 1
+    end do
+  end function count_distinct
 
   !> One point's work in one increment: its own arrays only.
   subroutine work(j, kinc, step, freqr)
