@@ -4,8 +4,10 @@
 # is replaced by the output of the command registered for `name` below. With arguments,
 # only the named blocks (e.g. `bash scripts/readme-tables.sh knife`). With `--check`
 # first, the named blocks are regenerated and compared with the documents instead (no
-# file is written): a difference is printed and fails (the test suite checks the blocks
-# whose output holds no timings and takes seconds).
+# file is written) by scripts/compare-blocks.py, which leaves out timings (time columns,
+# durations, speed ratios) and lets a number move by two units of its last printed
+# digit: a difference is printed and fails (the test suite checks the blocks that take
+# under a minute; harness/tests/readme_blocks.rs, ignored, the long ones).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 declare -A commands=(
@@ -102,6 +104,14 @@ for name in "${names[@]}"; do
     continue
   fi
   echo "== $name: ${commands[$name]}"
+  # A check leaves the command's output directory as it was (its run.json has a time
+  # stamp): kept aside and put back.
+  kept=""
+  out_dir=$(sed -n 's/.*--out \([^ ]*\).*/\1/p' <<< "${commands[$name]}")
+  if [ "$check" = 1 ] && [ -n "$out_dir" ] && [ -d "$out_dir" ]; then
+    kept=$(mktemp -d)
+    cp -a "$out_dir/." "$kept/"
+  fi
   out=$(mktemp)
   if [[ "$markdown" == *" $name "* ]]; then
     { echo "Produced by \`${commands[$name]}\`:"; echo; eval "${commands[$name]}"; } > "$out"
@@ -116,7 +126,7 @@ for name in "${names[@]}"; do
     if [ "$check" = 1 ]; then
       written=$(mktemp)
       perl -0ne "print \$1 if /<!-- BEGIN $name -->\n(.*?)<!-- END $name -->/s" "$f" > "$written"
-      if ! diff -u "$written" "$out" --label "$f ($name, as written)" --label "$name, regenerated"; then
+      if ! python3 scripts/compare-blocks.py "$written" "$out" "$f ($name)"; then
         stale=1
       fi
       rm -f "$written"
@@ -125,6 +135,12 @@ for name in "${names[@]}"; do
     perl -0pi -e "my \$t = do { local \$/; open my \$f, '<', '$out' or die; <\$f> }; s/(<!-- BEGIN $name -->\n).*?(<!-- END $name -->)/\$1\$t\$2/s" "$f"
   done
   rm -f "$out"
+  if [ -n "$kept" ]; then
+    rm -rf "$out_dir"
+    mkdir -p "$out_dir"
+    cp -a "$kept/." "$out_dir/"
+    rm -rf "$kept"
+  fi
   [ "$check" = 0 ] || continue
   if [ -n "${plots[$name]:-}" ]; then
     copy_plots "${plots[$name]}"
