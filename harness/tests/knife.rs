@@ -707,3 +707,46 @@ fn contact_maps_draw_each_face_whole() {
     assert!(!text.contains("face1_s2:"), "a slab drawn on its own");
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// The README's facts of knife.toml: 30 108 free DOFs and 500 contact points (`jointlin
+/// check`); with stuck joints its working mode, longitudinal, at 31.67 kHz between
+/// neighbours at 25.5 and 34.9 kHz (`jointlin modes`, Lanczos on the 30k DOFs).
+#[test]
+fn the_graded_knife_has_the_size_and_modes_the_readme_states() {
+    let scene = Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes/knife.toml");
+    let run = |args: &[&str]| {
+        let out = std::process::Command::new(env!("CARGO_BIN_EXE_jointlin"))
+            .args(args)
+            .arg(&scene)
+            .output()
+            .unwrap();
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        String::from_utf8(out.stdout).unwrap()
+    };
+    let check = run(&["check"]);
+    assert!(
+        check.contains("model: 30108 free DOFs, 500 contact points"),
+        "{check}"
+    );
+    let modes = run(&["modes", "--count", "9"]);
+    let row = |mode: usize| -> Vec<String> {
+        modes
+            .lines()
+            .find(|l| l.starts_with(&format!("| {mode} |")))
+            .unwrap_or_else(|| panic!("mode {mode} in {modes}"))
+            .split('|')
+            .map(|c| c.trim().to_string())
+            .collect()
+    };
+    let khz = |mode: usize| row(mode)[2].parse::<f64>().unwrap() / 1e3;
+    assert!((khz(8) - 31.67).abs() < 0.005, "{modes}");
+    assert_eq!(row(8)[3], "longitudinal_x", "{modes}");
+    assert!(
+        (khz(7) - 25.5).abs() < 0.05 && (khz(9) - 34.9).abs() < 0.05,
+        "{modes}"
+    );
+}

@@ -19,6 +19,9 @@ pub struct Steady {
     pub cycles: usize,
     /// Energy dissipated per cycle by the elements.
     pub energy: f64,
+    /// Per three-direction point: the fraction of the last cycle's steps at which it
+    /// carries no normal force (open).
+    pub open_fraction: Vec<f64>,
 }
 
 /// Integrates `sys` (one-direction elements) from x(0) = x0, v(0) = v0 with `steps` RK4
@@ -65,10 +68,19 @@ pub fn steady3(
             "time integration not periodic to {tol:.1e} within {max_cycles} cycles"
         )));
     }
+    // Per step the elements' samples: one-direction elements, then the points.
+    let first_point = sys.linear.elements.len();
+    let open_fraction = (0..sys.elements.len())
+        .map(|p| {
+            let open = s.loops.iter().filter(|step| step[first_point + p].force[2] <= 0.0);
+            open.count() as f64 / s.loops.len().max(1) as f64
+        })
+        .collect();
     Ok(Steady {
         amplitude: s.last.outputs.iter().map(|o| o.amplitude).collect(),
         half_range: s.last.outputs.iter().map(|o| o.half_range()).collect(),
         cycles: s.cycles,
         energy: s.last.energy,
+        open_fraction,
     })
 }
