@@ -72,7 +72,10 @@ pub fn steady3(
     let first_point = sys.linear.elements.len();
     let open_fraction = (0..sys.elements.len())
         .map(|p| {
-            let open = s.loops.iter().filter(|step| step[first_point + p].force[2] <= 0.0);
+            let open = s
+                .loops
+                .iter()
+                .filter(|step| step[first_point + p].force[2] <= 0.0);
             open.count() as f64 / s.loops.len().max(1) as f64
         })
         .collect();

@@ -60,94 +60,13 @@ impl DeckJob {
             mass: "deck mass".into(),
             frequency: None,
         });
-        let (mut preload, mut frequency, mut dynamics) = (None, None, None);
-        for (i, st) in deck.steps.iter().enumerate() {
-            let (slot, what) = match st.procedure {
-                Procedure::Static => (&mut preload, "*STATIC"),
-                Procedure::Frequency { .. } => (&mut frequency, "*FREQUENCY"),
-                Procedure::SteadyState { .. } => (&mut dynamics, "*STEADY STATE DYNAMICS"),
-            };
-            if slot.is_some() {
-                return Err(st.origin.error(
-                    K::Unsupported,
-                    "*STEP",
-                    format!("a second {what} step: a run has one preload, one frequency and one steady-state step"),
-                ));
-            }
-            *slot = Some(i);
-            check_step(st)?;
-        }
-        if let Some(d) = dynamics {
-            let st = &deck.steps[d];
-            let direct = matches!(st.procedure, Procedure::SteadyState { direct: true, .. });
-            if !direct && frequency.is_none_or(|f| f >= d) {
-                return Err(st.origin.error(
-                    K::Unsupported,
-                    "*STEADY STATE DYNAMICS",
-                    "mode-based (no DIRECT) needs a preceding *FREQUENCY step: its modes are the basis (or give DIRECT)",
-                ));
-            }
-            if let (true, Some((_, o))) = (direct, st.modal_damping.first()) {
-                return Err(o.error(
-                    K::Unsupported,
-                    "*MODAL DAMPING",
-                    "in a DIRECT steady state: modal damping damps the modes of a mode-based step (give the step without DIRECT, or material damping)",
-                ));
-            }
-        }
-        for st in &deck.steps {
-            if let (false, Some((_, o))) = (
-                matches!(st.procedure, Procedure::SteadyState { .. }),
-                st.modal_damping.first(),
-            ) {
-                return Err(o.error(
-                    K::Unsupported,
-                    "*MODAL DAMPING",
-                    "outside a steady-state step: it damps a mode-based steady state",
-                ));
-            }
-        }
-        if let (Some(p), Some(d)) = (preload, dynamics) {
-            if p > d {
-                return Err(deck.steps[p].origin.error(
-                    K::Unsupported,
-                    "*STATIC",
-                    "the static step must come before the steady-state step it preloads",
-                ));
-            }
-        }
-        for b in deck
-            .boundaries
-            .iter()
-            .chain(deck.steps.iter().flat_map(|s| &s.boundaries))
-        {
-            if b.value != 0.0 {
-                return Err(b.origin.error(
-                    K::Unsupported,
-                    "*BOUNDARY",
-                    format!(
-                        "prescribed displacement {} on DOFs {}–{}: a run holds boundary DOFs at zero only",
-                        b.value, b.first, b.last
-                    ),
-                ));
-            }
-        }
-        for st in &deck.steps {
-            for o in &st.outputs {
-                let other: Vec<&str> = o
-                    .variables
-                    .iter()
-                    .map(String::as_str)
-                    .filter(|v| *v != "U")
-                    .collect();
-                if !other.is_empty() {
-                    warnings.push(o.origin.warning(
-                        "*NODE OUTPUT",
-                        format!("{other:?} not written (only U, as results.csv columns)"),
-                    ));
-                }
-            }
-        }
+        let StepRoles {
+            preload,
+            frequency,
+            dynamics,
+        } = step_roles(&deck)?;
+        check_boundaries(&deck)?;
+        note_outputs(&deck, &mut warnings);
         let laws = deck
             .contact_pairs
             .iter()
@@ -422,6 +341,122 @@ pub fn stated_units(file: &str, text: &str) -> Result<Option<Units>, DeckError> 
         return Ok(Some(units));
     }
     Ok(None)
+}
+
+/// Which of a deck's steps is the preload, the frequency and the steady-state step.
+struct StepRoles {
+    preload: Option<usize>,
+    frequency: Option<usize>,
+    dynamics: Option<usize>,
+}
+
+/// The indices of the deck's preload (*STATIC), *FREQUENCY and steady-state steps, each
+/// at most once and in an order a run can follow; each step checked ([`check_step`]),
+/// *MODAL DAMPING only where a mode-based steady state uses it.
+fn step_roles(deck: &Deck) -> Result<StepRoles, DeckError> {
+    let (mut preload, mut frequency, mut dynamics) = (None, None, None);
+    for (i, st) in deck.steps.iter().enumerate() {
+        let (slot, what) = match st.procedure {
+            Procedure::Static => (&mut preload, "*STATIC"),
+            Procedure::Frequency { .. } => (&mut frequency, "*FREQUENCY"),
+            Procedure::SteadyState { .. } => (&mut dynamics, "*STEADY STATE DYNAMICS"),
+        };
+        if slot.is_some() {
+            return Err(st.origin.error(
+                K::Unsupported,
+                "*STEP",
+                format!("a second {what} step: a run has one preload, one frequency and one steady-state step"),
+            ));
+        }
+        *slot = Some(i);
+        check_step(st)?;
+    }
+    if let Some(d) = dynamics {
+        let st = &deck.steps[d];
+        let direct = matches!(st.procedure, Procedure::SteadyState { direct: true, .. });
+        if !direct && frequency.is_none_or(|f| f >= d) {
+            return Err(st.origin.error(
+                K::Unsupported,
+                "*STEADY STATE DYNAMICS",
+                "mode-based (no DIRECT) needs a preceding *FREQUENCY step: its modes are the basis (or give DIRECT)",
+            ));
+        }
+        if let (true, Some((_, o))) = (direct, st.modal_damping.first()) {
+            return Err(o.error(
+                K::Unsupported,
+                "*MODAL DAMPING",
+                "in a DIRECT steady state: modal damping damps the modes of a mode-based step (give the step without DIRECT, or material damping)",
+            ));
+        }
+    }
+    for st in &deck.steps {
+        if let (false, Some((_, o))) = (
+            matches!(st.procedure, Procedure::SteadyState { .. }),
+            st.modal_damping.first(),
+        ) {
+            return Err(o.error(
+                K::Unsupported,
+                "*MODAL DAMPING",
+                "outside a steady-state step: it damps a mode-based steady state",
+            ));
+        }
+    }
+    if let (Some(p), Some(d)) = (preload, dynamics) {
+        if p > d {
+            return Err(deck.steps[p].origin.error(
+                K::Unsupported,
+                "*STATIC",
+                "the static step must come before the steady-state step it preloads",
+            ));
+        }
+    }
+    Ok(StepRoles {
+        preload,
+        frequency,
+        dynamics,
+    })
+}
+
+/// Every *BOUNDARY of the model and the steps holds its DOFs at zero.
+fn check_boundaries(deck: &Deck) -> Result<(), DeckError> {
+    for b in deck
+        .boundaries
+        .iter()
+        .chain(deck.steps.iter().flat_map(|s| &s.boundaries))
+    {
+        if b.value != 0.0 {
+            return Err(b.origin.error(
+                K::Unsupported,
+                "*BOUNDARY",
+                format!(
+                    "prescribed displacement {} on DOFs {}–{}: a run holds boundary DOFs at zero only",
+                    b.value, b.first, b.last
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// A warning per *NODE OUTPUT variable besides U (only U is written, as results.csv
+/// columns).
+fn note_outputs(deck: &Deck, warnings: &mut Vec<DeckWarning>) {
+    for st in &deck.steps {
+        for o in &st.outputs {
+            let other: Vec<&str> = o
+                .variables
+                .iter()
+                .map(String::as_str)
+                .filter(|v| *v != "U")
+                .collect();
+            if !other.is_empty() {
+                warnings.push(o.origin.warning(
+                    "*NODE OUTPUT",
+                    format!("{other:?} not written (only U, as results.csv columns)"),
+                ));
+            }
+        }
+    }
 }
 
 #[cfg(test)]
