@@ -60,19 +60,15 @@ pub fn trace(hb: &mut Hb, u0: &[f64], opt: Options) -> Result<Branch, MhbError> 
     let first = hb.solve(u0, opt.omega_start, super::NewtonOptions::default())?;
     let dim = hb.size();
     // Scales: ω by ω_start, u by the first solution's norm (so both are O(1)).
-    let ws = opt.omega_start.abs();
-    let us = DVector::from_column_slice(&first.u).norm().max(1e-300);
-    let to_y = |u: &[f64], w: f64| -> DVector<f64> {
-        let mut y = DVector::zeros(dim + 1);
-        for i in 0..dim {
-            y[i] = u[i] / us;
-        }
-        y[dim] = w / ws;
-        y
+    let sc = Scaling {
+        dim,
+        us: DVector::from_column_slice(&first.u).norm().max(1e-300),
+        ws: opt.omega_start.abs(),
     };
+    let ws = sc.ws;
     let dir = (opt.omega_end - opt.omega_start).signum();
     let start_sign = first.det_sign;
-    let mut y = to_y(&first.u, first.omega);
+    let mut y = sc.y(&first.u, first.omega);
     let mut t_prev = DVector::zeros(dim + 1);
     t_prev[dim] = dir;
     let mut pts = vec![Point {
@@ -84,49 +80,17 @@ pub fn trace(hb: &mut Hb, u0: &[f64], opt: Options) -> Result<Branch, MhbError> 
     let mut step = opt.step;
     let mut iterations = 0;
     let scale = hb.load().norm().max(f64::MIN_POSITIVE);
-    // Augmented matrix [R_u·us, R_ω·ws; tᵀ].
-    let augmented = |ev: &super::Eval, t: &DVector<f64>| -> DMatrix<f64> {
-        let mut a = DMatrix::zeros(dim + 1, dim + 1);
-        a.view_mut((0, 0), (dim, dim)).copy_from(&(&ev.j * us));
-        a.view_mut((0, dim), (dim, 1))
-            .copy_from(&(&ev.r_omega * ws));
-        a.view_mut((dim, 0), (1, dim + 1)).copy_from(&t.transpose());
-        a
-    };
     let ev0 = hb.eval(&pts[0].sol.u, pts[0].sol.omega)?;
     let mut rhs = DVector::zeros(dim + 1);
     rhs[dim] = 1.0;
-    let mut t = linalg::solve(&augmented(&ev0, &t_prev), &rhs).ok_or(MhbError::Singular {
+    let mut t = linalg::solve(&sc.augmented(&ev0, &t_prev), &rhs).ok_or(MhbError::Singular {
         omega: opt.omega_start,
     })?;
     t /= t.norm();
     let mut s_total = 0.0;
     while pts.len() < opt.max_points {
         let yp = &y + step * &t;
-        // Corrector.
-        let mut yc = yp.clone();
-        let mut ok = None;
-        for it in 1..=12 {
-            let u: Vec<f64> = (0..dim).map(|i| yc[i] * us).collect();
-            let w = yc[dim] * ws;
-            let ev = hb.eval(&u, w)?;
-            let res = ev.r.norm() / scale;
-            let mut g = DVector::zeros(dim + 1);
-            g.rows_mut(0, dim).copy_from(&ev.r);
-            g[dim] = t.dot(&(&yc - &yp));
-            if res <= opt.rtol && g[dim].abs() <= 1e-12 {
-                ok = Some((it, ev, res));
-                break;
-            }
-            let Some(dy) = linalg::solve(&augmented(&ev, &t), &g) else {
-                break;
-            };
-            yc -= dy;
-            if !yc.iter().all(|v| v.is_finite()) {
-                break;
-            }
-        }
-        let Some((its, ev, res)) = ok else {
+        let Some((its, ev, res, yc)) = correct(hb, &sc, &yp, &t, opt.rtol, scale)? else {
             step *= 0.5;
             if step < opt.step_min {
                 return Err(MhbError::Continuation(format!(
@@ -138,7 +102,7 @@ pub fn trace(hb: &mut Hb, u0: &[f64], opt: Options) -> Result<Branch, MhbError> 
             continue;
         };
         // New tangent at the corrected point.
-        let Some(mut tn) = linalg::solve(&augmented(&ev, &t), &rhs) else {
+        let Some(mut tn) = linalg::solve(&sc.augmented(&ev, &t), &rhs) else {
             return Err(MhbError::Singular {
                 omega: yc[dim] * ws,
             });
@@ -169,10 +133,9 @@ pub fn trace(hb: &mut Hb, u0: &[f64], opt: Options) -> Result<Branch, MhbError> 
         }
         iterations += its;
         s_total += (&yc - &y).norm();
-        let u: Vec<f64> = (0..dim).map(|i| yc[i] * us).collect();
         let sol = Solution {
             omega: w,
-            u,
+            u: sc.u(&yc),
             iterations: its,
             residual: res,
             det_sign: det,
@@ -207,6 +170,75 @@ pub fn trace(hb: &mut Hb, u0: &[f64], opt: Options) -> Result<Branch, MhbError> 
         folds,
         iterations,
     })
+}
+
+/// The continuation's scaled unknowns y = (u/us, ω/ws), both O(1).
+struct Scaling {
+    dim: usize,
+    us: f64,
+    ws: f64,
+}
+
+impl Scaling {
+    fn y(&self, u: &[f64], w: f64) -> DVector<f64> {
+        let mut y = DVector::zeros(self.dim + 1);
+        for i in 0..self.dim {
+            y[i] = u[i] / self.us;
+        }
+        y[self.dim] = w / self.ws;
+        y
+    }
+
+    fn u(&self, y: &DVector<f64>) -> Vec<f64> {
+        (0..self.dim).map(|i| y[i] * self.us).collect()
+    }
+
+    /// Augmented matrix [R_u·us, R_ω·ws; tᵀ].
+    fn augmented(&self, ev: &super::Eval, t: &DVector<f64>) -> DMatrix<f64> {
+        let dim = self.dim;
+        let mut a = DMatrix::zeros(dim + 1, dim + 1);
+        a.view_mut((0, 0), (dim, dim)).copy_from(&(&ev.j * self.us));
+        a.view_mut((0, dim), (dim, 1))
+            .copy_from(&(&ev.r_omega * self.ws));
+        a.view_mut((dim, 0), (1, dim + 1)).copy_from(&t.transpose());
+        a
+    }
+}
+
+/// A converged corrector: its iterations, the evaluation there, ‖R‖/scale, the point.
+type Corrected = (usize, super::Eval, f64, DVector<f64>);
+
+/// The corrector: Newton on R(y) = 0 with tᵀ(y − yp) = 0 from the predictor `yp`, at
+/// most 12 iterations; None where it does not converge (a singular matrix, a non-finite
+/// step).
+fn correct(
+    hb: &mut Hb,
+    sc: &Scaling,
+    yp: &DVector<f64>,
+    t: &DVector<f64>,
+    rtol: f64,
+    scale: f64,
+) -> Result<Option<Corrected>, MhbError> {
+    let dim = sc.dim;
+    let mut yc = yp.clone();
+    for it in 1..=12 {
+        let ev = hb.eval(&sc.u(&yc), yc[dim] * sc.ws)?;
+        let res = ev.r.norm() / scale;
+        let mut g = DVector::zeros(dim + 1);
+        g.rows_mut(0, dim).copy_from(&ev.r);
+        g[dim] = t.dot(&(&yc - yp));
+        if res <= rtol && g[dim].abs() <= 1e-12 {
+            return Ok(Some((it, ev, res, yc)));
+        }
+        let Some(dy) = linalg::solve(&sc.augmented(&ev, t), &g) else {
+            return Ok(None);
+        };
+        yc -= dy;
+        if !yc.iter().all(|v| v.is_finite()) {
+            return Ok(None);
+        }
+    }
+    Ok(None)
 }
 
 /// Vertex of the parabola ω(s) through (a, b, c); falls back to b's ω.
