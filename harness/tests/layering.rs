@@ -143,7 +143,6 @@ const OVERSIZED: &[(&str, usize)] = &[
     ("model/deck/mod.rs::build", 286),
     ("model/lumped.rs::build", 201),
     ("run.rs::run", 214),
-    ("solve/arpack/mod.rs::shift_invert", 150),
     ("solve/sweep/harmonic_fe.rs", 658),
     ("solve/sweep/thesis.rs::sweep", 318),
     ("time/newmark.rs::step", 161),

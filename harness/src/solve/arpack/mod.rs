@@ -95,21 +95,7 @@ pub fn shift_invert<E: std::error::Error + 'static>(
     mut mass: impl FnMut(&[f64], &mut [f64]),
 ) -> Result<Lanczos, LanczosError<E>> {
     let n = start.len();
-    let ncv = basis_size(nev, n);
-    let int = |v: usize| c_int::try_from(v).map_err(|_| LanczosError::TooLarge { n });
-    let (n_c, nev_c, ncv_c) = (int(n)?, int(nev)?, int(ncv)?);
-    let lworkl = ncv * (ncv + 8);
-    let lworkl_c = int(lworkl)?;
-    let mut resid = start.to_vec();
-    let mut v = vec![0.0; n * ncv];
-    let mut workd = vec![0.0; 3 * n];
-    let mut workl = vec![0.0; lworkl];
-    let mut iparam = [0 as c_int; 11];
-    iparam[0] = 1; // exact shifts
-    iparam[2] = int(max_restarts.max(1))?;
-    iparam[6] = 3; // shift-invert, generalized
-    let mut ipntr = [0 as c_int; 11];
-    let (bmat, which) = (c"G".as_ptr(), c"LM".as_ptr());
+    let mut w = Workspace::new(nev, start, max_restarts).ok_or(LanczosError::TooLarge { n })?;
     let mut ido: c_int = 0;
     let mut info: c_int = 1; // resid holds the start vector
     let mut solves = 0;
@@ -117,31 +103,10 @@ pub fn shift_invert<E: std::error::Error + 'static>(
 
     let _guard = ARPACK_LOCK.lock().unwrap_or_else(|e| e.into_inner());
     loop {
-        // SAFETY: every array has the length dsaupd.f documents for these n, nev, ncv
-        // (resid n, v n·ncv with ldv = n, iparam/ipntr 11, workd 3n, workl lworkl);
-        // strings are NUL-terminated; the lock keeps ARPACK's SAVE state to this run.
-        unsafe {
-            ffi::dsaupd_c(
-                &mut ido,
-                bmat,
-                n_c,
-                which,
-                nev_c,
-                tol,
-                resid.as_mut_ptr(),
-                ncv_c,
-                v.as_mut_ptr(),
-                n_c,
-                iparam.as_mut_ptr(),
-                ipntr.as_mut_ptr(),
-                workd.as_mut_ptr(),
-                workl.as_mut_ptr(),
-                lworkl_c,
-                &mut info,
-            )
-        };
+        w.saupd(&mut ido, tol, &mut info);
         // ipntr holds 1-based offsets into workd of the operands ARPACK asks about.
-        let at = |k: usize| (ipntr[k] - 1) as usize;
+        let at = |k: usize| (w.ipntr[k] - 1) as usize;
+        let workd = &mut w.workd;
         match ido {
             -1 => {
                 // y = OP x = (K − σM)⁻¹ M x.
@@ -165,8 +130,8 @@ pub fn shift_invert<E: std::error::Error + 'static>(
             _ => break,
         }
     }
-    let restarts = iparam[2].max(0) as usize;
-    let converged = iparam[4].max(0) as usize;
+    let restarts = w.iparam[2].max(0) as usize;
+    let converged = w.iparam[4].max(0) as usize;
     match info {
         0 => {}
         1 => {
@@ -184,45 +149,7 @@ pub fn shift_invert<E: std::error::Error + 'static>(
             })
         }
     }
-
-    let select = vec![0 as c_int; ncv];
-    let mut d = vec![0.0; nev];
-    let mut z = vec![0.0; n * nev];
-    let mut info_e: c_int = 0;
-    // SAFETY: as above; select has ncv entries, d nev, z n·nev with ldz = n.
-    unsafe {
-        ffi::dseupd_c(
-            1,
-            c"A".as_ptr(),
-            select.as_ptr(),
-            d.as_mut_ptr(),
-            z.as_mut_ptr(),
-            n_c,
-            sigma,
-            bmat,
-            n_c,
-            which,
-            nev_c,
-            tol,
-            resid.as_mut_ptr(),
-            ncv_c,
-            v.as_mut_ptr(),
-            n_c,
-            iparam.as_mut_ptr(),
-            ipntr.as_mut_ptr(),
-            workd.as_mut_ptr(),
-            workl.as_mut_ptr(),
-            lworkl_c,
-            &mut info_e,
-        )
-    };
-    if info_e != 0 {
-        return Err(LanczosError::Arpack {
-            call: "dseupd",
-            info: info_e,
-            meaning: info_meaning(info_e),
-        });
-    }
+    let (d, z) = w.eupd(sigma, tol)?;
     let mut order: Vec<usize> = (0..nev).collect();
     order.sort_by(|&a, &b| d[a].total_cmp(&d[b]));
     Ok(Lanczos {
@@ -235,3 +162,125 @@ pub fn shift_invert<E: std::error::Error + 'static>(
         solves,
     })
 }
+
+/// ARPACK's arrays for one run, of the lengths dsaupd.f documents for n, nev and ncv
+/// (resid n, v n·ncv with ldv = n, iparam/ipntr 11, workd 3n, workl ncv(ncv + 8)).
+struct Workspace {
+    n: c_int,
+    nev: c_int,
+    ncv: c_int,
+    lworkl: c_int,
+    resid: Vec<f64>,
+    v: Vec<f64>,
+    workd: Vec<f64>,
+    workl: Vec<f64>,
+    iparam: [c_int; 11],
+    ipntr: [c_int; 11],
+}
+
+impl Workspace {
+    /// The arrays for `nev` pairs from the first Lanczos vector `start`, exact shifts,
+    /// shift-invert of the generalized problem; None beyond 32-bit indices.
+    fn new(nev: usize, start: &[f64], max_restarts: usize) -> Option<Self> {
+        let n = start.len();
+        let ncv = basis_size(nev, n);
+        let lworkl = ncv * (ncv + 8);
+        let int = |v: usize| c_int::try_from(v).ok();
+        let mut iparam = [0 as c_int; 11];
+        iparam[0] = 1; // exact shifts
+        iparam[2] = int(max_restarts.max(1))?;
+        iparam[6] = 3; // shift-invert, generalized
+        Some(Workspace {
+            n: int(n)?,
+            nev: int(nev)?,
+            ncv: int(ncv)?,
+            lworkl: int(lworkl)?,
+            resid: start.to_vec(),
+            v: vec![0.0; n * ncv],
+            workd: vec![0.0; 3 * n],
+            workl: vec![0.0; lworkl],
+            iparam,
+            ipntr: [0; 11],
+        })
+    }
+
+    /// One reverse-communication call of dsaupd.
+    fn saupd(&mut self, ido: &mut c_int, tol: f64, info: &mut c_int) {
+        // SAFETY: every array has the length dsaupd.f documents ([`Workspace`]); strings
+        // are NUL-terminated; the caller holds ARPACK_LOCK for the whole run.
+        unsafe {
+            ffi::dsaupd_c(
+                ido,
+                BMAT.as_ptr(),
+                self.n,
+                WHICH.as_ptr(),
+                self.nev,
+                tol,
+                self.resid.as_mut_ptr(),
+                self.ncv,
+                self.v.as_mut_ptr(),
+                self.n,
+                self.iparam.as_mut_ptr(),
+                self.ipntr.as_mut_ptr(),
+                self.workd.as_mut_ptr(),
+                self.workl.as_mut_ptr(),
+                self.lworkl,
+                info,
+            )
+        };
+    }
+
+    /// dseupd after a converged dsaupd: the nev eigenvalues λ (unsorted) and their
+    /// vectors, n values each, one after the other.
+    fn eupd<E: std::error::Error + 'static>(
+        &mut self,
+        sigma: f64,
+        tol: f64,
+    ) -> Result<(Vec<f64>, Vec<f64>), LanczosError<E>> {
+        let (n, nev) = (self.n as usize, self.nev as usize);
+        let select = vec![0 as c_int; self.ncv as usize];
+        let mut d = vec![0.0; nev];
+        let mut z = vec![0.0; n * nev];
+        let mut info: c_int = 0;
+        // SAFETY: as in saupd; select has ncv entries, d nev, z n·nev with ldz = n.
+        unsafe {
+            ffi::dseupd_c(
+                1,
+                c"A".as_ptr(),
+                select.as_ptr(),
+                d.as_mut_ptr(),
+                z.as_mut_ptr(),
+                self.n,
+                sigma,
+                BMAT.as_ptr(),
+                self.n,
+                WHICH.as_ptr(),
+                self.nev,
+                tol,
+                self.resid.as_mut_ptr(),
+                self.ncv,
+                self.v.as_mut_ptr(),
+                self.n,
+                self.iparam.as_mut_ptr(),
+                self.ipntr.as_mut_ptr(),
+                self.workd.as_mut_ptr(),
+                self.workl.as_mut_ptr(),
+                self.lworkl,
+                &mut info,
+            )
+        };
+        if info != 0 {
+            return Err(LanczosError::Arpack {
+                call: "dseupd",
+                info,
+                meaning: info_meaning(info),
+            });
+        }
+        Ok((d, z))
+    }
+}
+
+/// ARPACK's problem kind (generalized: B = M) and which Ritz values (largest magnitude
+/// of OP, i.e. λ nearest σ).
+const BMAT: &std::ffi::CStr = c"G";
+const WHICH: &std::ffi::CStr = c"LM";
