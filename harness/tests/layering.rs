@@ -145,7 +145,6 @@ const OVERSIZED: &[(&str, usize)] = &[
     ("run.rs::run", 214),
     ("solve/sweep/harmonic_fe.rs", 658),
     ("solve/sweep/thesis.rs::sweep", 318),
-    ("time/newmark.rs::step", 161),
     ("tradeoff/mod.rs::study", 280),
 ];
 

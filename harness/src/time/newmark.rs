@@ -292,6 +292,64 @@ impl<'a, 'n> Newmark<'a, 'n> {
         }
         out
     }
+
+    /// The Newton matrix's contact part: per point its tangent less K_c0 (m × m, block
+    /// diagonal).
+    fn tangent_stiffness(&self, tangents: &[Matrix3<f64>]) -> DMatrix<f64> {
+        let m = 3 * tangents.len();
+        let mut d = DMatrix::zeros(m, m);
+        for (i, t) in tangents.iter().enumerate() {
+            let dt = t - self.kc0[i];
+            for a in 0..3 {
+                for b in 0..3 {
+                    d[(3 * i + a, 3 * i + b)] = dt[(a, b)];
+                }
+            }
+        }
+        d
+    }
+
+    /// The secant iterations' contact part: per component the chord stiffness from the
+    /// committed state to the trial at `r` (no kink inside a chord, so no cycling across
+    /// one), less K_c0; the tangent where the chord is shorter than 1e-14 `scale`.
+    fn secant_stiffness(
+        &self,
+        contacts: &Contacts,
+        r: &DVector<f64>,
+        tangents: &[Matrix3<f64>],
+        scale: f64,
+    ) -> DMatrix<f64> {
+        let m = 3 * contacts.len();
+        let mut d = DMatrix::zeros(m, m);
+        let q = contacts.trial_force();
+        for i in 0..contacts.len() {
+            for a in 0..3 {
+                let dd = r[3 * i + a] - contacts.delta[i][a];
+                let chord = if dd.abs() > 1e-14 * scale {
+                    (q[i][a] - contacts.force[i][a]) / dd
+                } else {
+                    tangents[i][(a, a)]
+                };
+                d[(3 * i + a, 3 * i + a)] = chord - self.kc0[i][(a, a)];
+            }
+        }
+        d
+    }
+
+    /// u₊ = u₀ − H g: the linear step's displacement corrected by the contacts'
+    /// nonlinear part g through H's columns.
+    fn corrected(&self, mut u: Vec<f64>, g: &DVector<f64>) -> Vec<f64> {
+        let n = u.len();
+        for (j, &gj) in g.iter().enumerate() {
+            if gj != 0.0 {
+                let col = &self.hmat[n * j..n * (j + 1)];
+                for (x, hv) in u.iter_mut().zip(col) {
+                    *x -= hv * gj;
+                }
+            }
+        }
+        u
+    }
 }
 
 fn to_points(r: &DVector<f64>) -> Vec<[f64; 3]> {
@@ -376,22 +434,8 @@ impl Stepper for Newmark<'_, '_> {
                 });
             }
             iterations += 1;
-            let mut d = DMatrix::zeros(m, m);
             if iterations > MAX_NEWTON {
-                // Secant iterations: per component the chord stiffness from the committed
-                // state to the trial (no kink inside a chord, so no cycling across one).
-                let q = contacts.trial_force();
-                for i in 0..contacts.len() {
-                    for a in 0..3 {
-                        let dd = r[3 * i + a] - contacts.delta[i][a];
-                        let chord = if dd.abs() > 1e-14 * scale {
-                            (q[i][a] - contacts.force[i][a]) / dd
-                        } else {
-                            tangents[i][(a, a)]
-                        };
-                        d[(3 * i + a, 3 * i + a)] = chord - self.kc0[i][(a, a)];
-                    }
-                }
+                let d = self.secant_stiffness(contacts, &r, &tangents, scale);
                 let jac = DMatrix::identity(m, m) + &self.g * d;
                 let Some(dr) = jac.lu().solve(&(-&phi)) else {
                     return Err(TimeError::Singular { t: t1 });
@@ -402,15 +446,7 @@ impl Stepper for Newmark<'_, '_> {
                 phi = p2;
                 continue;
             }
-            for (i, t) in tangents.iter().enumerate() {
-                let dt = t - self.kc0[i];
-                for a in 0..3 {
-                    for b in 0..3 {
-                        d[(3 * i + a, 3 * i + b)] = dt[(a, b)];
-                    }
-                }
-            }
-            let jac = DMatrix::identity(m, m) + &self.g * d;
+            let jac = DMatrix::identity(m, m) + &self.g * self.tangent_stiffness(&tangents);
             let Some(dr) = jac.lu().solve(&(-&phi)) else {
                 return Err(TimeError::Singular { t: t1 });
             };
@@ -432,16 +468,7 @@ impl Stepper for Newmark<'_, '_> {
             phi = p2;
         }
         // u₊ = u₀ − H g(r); the last evaluation was at r: commit it.
-        let mut u1 = u0;
-        for j in 0..m {
-            let gj = gr[j];
-            if gj != 0.0 {
-                let col = &self.hmat[n * j..n * (j + 1)];
-                for (u, hv) in u1.iter_mut().zip(col) {
-                    *u -= hv * gj;
-                }
-            }
-        }
+        let u1 = self.corrected(u0, &gr);
         if u1.iter().any(|x| !x.is_finite()) {
             return Err(TimeError::NonFinite { t: t1 });
         }
