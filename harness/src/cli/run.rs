@@ -67,24 +67,8 @@ pub fn main(a: Args) -> ExitCode {
         Ok(s) => s,
         Err(code) => return code,
     };
-    if let Some(m) = a.mode {
-        s.spec.iteration.mode = match m {
-            ModeArg::Fast => Mode::Fast,
-            ModeArg::Thesis => Mode::Thesis,
-            ModeArg::HarmonicBalance => Mode::HarmonicBalance,
-        };
-    }
-    let it = &mut s.spec.iteration;
-    it.harmonics = a.harmonics.or(it.harmonics);
-    it.samples = a.samples.or(it.samples);
-    // The overrides are checked by the scene's own rules.
-    let size = || validate::size::check(&s.spec);
-    if let Some((key, msg)) = validate::validate(&s.spec).into_iter().next().or_else(size) {
-        eprintln!(
-            "error: {}: with the command-line overrides, `{key}`: {msg}",
-            s.file
-        );
-        return ExitCode::from(2);
+    if let Err(code) = apply_options(&mut s, &a) {
+        return code;
     }
     if s.deck.is_some() && s.frequencies().is_empty() {
         eprintln!(
@@ -145,6 +129,54 @@ pub fn main(a: Args) -> ExitCode {
     for w in &r.problem.warnings {
         eprintln!("warning: {w}");
     }
+    print_summary(&s, &r);
+    let unconverged = std::iter::once(&r.main)
+        .chain(&r.down)
+        .map(|sweep| sweep.converged.iter().filter(|&&c| !c).count())
+        .sum::<usize>();
+    match report::write_all(&a.out, &s, &r, ReportOptions { plots: !a.no_plots }) {
+        Ok(files) => {
+            for f in files {
+                eprintln!("wrote {}", f.display());
+            }
+        }
+        Err(e) => {
+            eprintln!("error writing reports: {e}");
+            return ExitCode::from(1);
+        }
+    }
+    print_warnings(&s, &r, unconverged);
+    ExitCode::SUCCESS
+}
+
+/// The command line's mode, harmonics and samples over the scene's, checked by the
+/// scene's own rules (exit 2 naming the key).
+fn apply_options(s: &mut Scene, a: &Args) -> Result<(), ExitCode> {
+    if let Some(m) = a.mode {
+        s.spec.iteration.mode = match m {
+            ModeArg::Fast => Mode::Fast,
+            ModeArg::Thesis => Mode::Thesis,
+            ModeArg::HarmonicBalance => Mode::HarmonicBalance,
+        };
+    }
+    let it = &mut s.spec.iteration;
+    it.harmonics = a.harmonics.or(it.harmonics);
+    it.samples = a.samples.or(it.samples);
+    // The overrides are checked by the scene's own rules.
+    let size = || validate::size::check(&s.spec);
+    if let Some((key, msg)) = validate::validate(&s.spec).into_iter().next().or_else(size) {
+        eprintln!(
+            "error: {}: with the command-line overrides, `{key}`: {msg}",
+            s.file
+        );
+        return Err(ExitCode::from(2));
+    }
+    Ok(())
+}
+
+/// The run's log: the model, the modal route, the effects with their costs, the passes
+/// and the timings.
+fn print_summary(s: &Scene, r: &RunResult) {
     eprintln!(
         "{}: {} free DOFs, {} contact points ({} closed), mode {}",
         s.file,
@@ -197,27 +229,10 @@ pub fn main(a: Args) -> ExitCode {
             );
         }
     }
-    let unconverged = std::iter::once(&r.main)
-        .chain(&r.down)
-        .map(|sweep| sweep.converged.iter().filter(|&&c| !c).count())
-        .sum::<usize>();
     eprintln!(
         "timings: build {:.3} s, static {:.3} s, sweep {:.3} s, reference {:.3} s; {} factorizations",
         r.seconds[0], r.seconds[1], r.seconds[2], r.seconds[3], r.main.factorizations
     );
-    match report::write_all(&a.out, &s, &r, ReportOptions { plots: !a.no_plots }) {
-        Ok(files) => {
-            for f in files {
-                eprintln!("wrote {}", f.display());
-            }
-        }
-        Err(e) => {
-            eprintln!("error writing reports: {e}");
-            return ExitCode::from(1);
-        }
-    }
-    print_warnings(&s, &r, unconverged);
-    ExitCode::SUCCESS
 }
 
 /// The run's closing warnings: failed, singular and unconverged frequencies, and
