@@ -134,7 +134,6 @@ fn only_capi_names_the_library() {
 /// split. A listed item that grows, a new one, or one that no longer needs listing fails.
 const OVERSIZED: &[(&str, usize)] = &[
     ("backbone/fe.rs::reduce", 212),
-    ("cli/backbone.rs::main", 181),
     ("input/deck/parse/mod.rs", 523),
     ("input/deck/parse/mod.rs::card", 249),
     ("input/matrices/mtx.rs::parse", 189),

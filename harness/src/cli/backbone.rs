@@ -138,56 +138,10 @@ pub fn main(a: Args) -> ExitCode {
         }
     };
     let l = &built.lumped;
-    if let Some(r) = &built.reduction {
-        let unit = frequency_unit(&scene.spec.units);
-        let fu = &unit.text;
-        let last = |f: &[f64]| {
-            f.last()
-                .map_or("–".into(), |&f| format!("{:.9}", unit.show(f)))
-        };
-        eprintln!(
-            "reduced: {} closed contact points ({} open, no joint), {} joints, {} interior modes; \
-             mode {}: stuck {} {fu} (full model {} {fu}), sliding {} {fu}{}",
-            r.closed,
-            r.open,
-            r.lumped.elements.len(),
-            r.modes,
-            a.mode,
-            last(&r.stuck),
-            last(&r.stuck_full),
-            last(&r.sliding),
-            if r.converged {
-                String::new()
-            } else {
-                format!(
-                    " (not converged to {:e} at {} modes)",
-                    fe::MODE_TOL,
-                    r.modes
-                )
-            }
-        );
-    }
-    if !a.amplitudes.is_empty() && a.amplitudes.len() != 3 {
-        eprintln!("error: --amplitudes FROM,TO,COUNT: three numbers");
-        return ExitCode::from(2);
-    }
-    let q = if a.amplitudes.len() == 3 {
-        let (f, t, n) = (a.amplitudes[0], a.amplitudes[1], a.amplitudes[2]);
-        if !(f > 0.0 && t > 0.0 && f.is_finite() && t.is_finite() && (1.0..=1e6).contains(&n)) {
-            eprintln!(
-                "error: --amplitudes FROM,TO,COUNT: positive finite amplitudes, 1 ≤ COUNT ≤ 1e6"
-            );
-            return ExitCode::from(2);
-        }
-        log_space(f, t, n as usize)
-    } else {
-        match first_order::slip_range(&built.stuck().system, a.mode) {
-            Ok((f, t)) => log_space(f, t, 60),
-            Err(e) => {
-                eprintln!("error: {e}; give --amplitudes FROM,TO,COUNT");
-                return ExitCode::from(1);
-            }
-        }
+    print_reduction(&built, &scene, a.mode);
+    let q = match amplitudes(&a, &built) {
+        Ok(q) => q,
+        Err(code) => return code,
     };
     // No earlier run's marker survives this one; an interrupt says so.
     if let Err(e) = atomic::begin(&a.out) {
@@ -235,35 +189,7 @@ pub fn main(a: Args) -> ExitCode {
         q.len(),
         started.elapsed().as_secs_f64()
     );
-    let unit = format!("{}·{}^½", scene.spec.units.length, scene.spec.units.mass);
-    for (from, to) in &path.gaps {
-        eprintln!(
-            "no solution to the tolerance for modal amplitudes between {from:.6e} and {to:.6e} [{unit}]: the path jumped over them"
-        );
-    }
-    if !path.skipped.is_empty() {
-        let list: Vec<String> = path.skipped.iter().map(|q| format!("{q:.6e}")).collect();
-        eprintln!(
-            "requested amplitudes in those ranges, not in the results: {} [{unit}]",
-            list.join(", ")
-        );
-    }
-    for (from, to) in &path.fixed_q {
-        eprintln!(
-            "the arclength path stopped: continued in the modal amplitude alone from {from:.6e} to {to:.6e} [{unit}] (turning points in that range not followed)"
-        );
-    }
-    let turning = &path.turning;
-    if let (Some(lo), Some(hi)) = (
-        turning.iter().copied().reduce(f64::min),
-        turning.iter().copied().reduce(f64::max),
-    ) {
-        eprintln!(
-            "{} turning points of the modal amplitude between {lo:.6e} and {hi:.6e} [{unit}]: \
-             amplitudes in that range appear once per passage (rows in path order)",
-            turning.len(),
-        );
-    }
+    print_path(&path, &scene);
     let rows: Vec<Row> = points
         .into_iter()
         .map(|p| {
@@ -292,6 +218,101 @@ pub fn main(a: Args) -> ExitCode {
     match stopped {
         Some(e) => stopped_early(&e, rows.len()),
         None => code,
+    }
+}
+
+/// The reduction's line of the log (FE scenes): its points, joints and modes, the mode's
+/// stuck frequency against the full model's and its sliding one.
+fn print_reduction(built: &Built, scene: &Scene, mode: usize) {
+    if let Some(r) = &built.reduction {
+        let unit = frequency_unit(&scene.spec.units);
+        let fu = &unit.text;
+        let last = |f: &[f64]| {
+            f.last()
+                .map_or("–".into(), |&f| format!("{:.9}", unit.show(f)))
+        };
+        eprintln!(
+            "reduced: {} closed contact points ({} open, no joint), {} joints, {} interior modes; \
+             mode {}: stuck {} {fu} (full model {} {fu}), sliding {} {fu}{}",
+            r.closed,
+            r.open,
+            r.lumped.elements.len(),
+            r.modes,
+            mode,
+            last(&r.stuck),
+            last(&r.stuck_full),
+            last(&r.sliding),
+            if r.converged {
+                String::new()
+            } else {
+                format!(
+                    " (not converged to {:e} at {} modes)",
+                    fe::MODE_TOL,
+                    r.modes
+                )
+            }
+        );
+    }
+}
+
+/// The modal amplitudes to trace: `--amplitudes FROM,TO,COUNT` log-spaced, else 60 over
+/// the mode's slip range; an unusable option is exit 2.
+fn amplitudes(a: &Args, built: &Built) -> Result<Vec<f64>, ExitCode> {
+    if !a.amplitudes.is_empty() && a.amplitudes.len() != 3 {
+        eprintln!("error: --amplitudes FROM,TO,COUNT: three numbers");
+        return Err(ExitCode::from(2));
+    }
+    Ok(if a.amplitudes.len() == 3 {
+        let (f, t, n) = (a.amplitudes[0], a.amplitudes[1], a.amplitudes[2]);
+        if !(f > 0.0 && t > 0.0 && f.is_finite() && t.is_finite() && (1.0..=1e6).contains(&n)) {
+            eprintln!(
+                "error: --amplitudes FROM,TO,COUNT: positive finite amplitudes, 1 ≤ COUNT ≤ 1e6"
+            );
+            return Err(ExitCode::from(2));
+        }
+        log_space(f, t, n as usize)
+    } else {
+        match first_order::slip_range(&built.stuck().system, a.mode) {
+            Ok((f, t)) => log_space(f, t, 60),
+            Err(e) => {
+                eprintln!("error: {e}; give --amplitudes FROM,TO,COUNT");
+                return Err(ExitCode::from(1));
+            }
+        }
+    })
+}
+
+/// The path's notes: gaps jumped over, requested amplitudes not in the results, stretches
+/// continued in q alone, turning points.
+fn print_path(path: &Path, scene: &Scene) {
+    let unit = format!("{}·{}^½", scene.spec.units.length, scene.spec.units.mass);
+    for (from, to) in &path.gaps {
+        eprintln!(
+            "no solution to the tolerance for modal amplitudes between {from:.6e} and {to:.6e} [{unit}]: the path jumped over them"
+        );
+    }
+    if !path.skipped.is_empty() {
+        let list: Vec<String> = path.skipped.iter().map(|q| format!("{q:.6e}")).collect();
+        eprintln!(
+            "requested amplitudes in those ranges, not in the results: {} [{unit}]",
+            list.join(", ")
+        );
+    }
+    for (from, to) in &path.fixed_q {
+        eprintln!(
+            "the arclength path stopped: continued in the modal amplitude alone from {from:.6e} to {to:.6e} [{unit}] (turning points in that range not followed)"
+        );
+    }
+    let turning = &path.turning;
+    if let (Some(lo), Some(hi)) = (
+        turning.iter().copied().reduce(f64::min),
+        turning.iter().copied().reduce(f64::max),
+    ) {
+        eprintln!(
+            "{} turning points of the modal amplitude between {lo:.6e} and {hi:.6e} [{unit}]: \
+             amplitudes in that range appear once per passage (rows in path order)",
+            turning.len(),
+        );
     }
 }
 
