@@ -136,7 +136,6 @@ const OVERSIZED: &[(&str, usize)] = &[
     ("backbone/fe.rs::reduce", 212),
     ("input/deck/parse/mod.rs", 523),
     ("input/deck/parse/mod.rs::card", 249),
-    ("input/matrices/mtx.rs::parse", 189),
     ("model/build.rs::build", 382),
     ("model/deck/mod.rs::build", 286),
     ("model/lumped.rs::build", 201),

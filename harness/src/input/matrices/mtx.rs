@@ -39,88 +39,16 @@ pub fn parse(file: &str, text: &str) -> Result<Read, MatrixError> {
             "empty file: a Matrix Market file starts with `%%MatrixMarket matrix …`".into(),
         )
     })?;
-    let words: Vec<String> = header.split_whitespace().map(str::to_lowercase).collect();
-    if words.len() != 5 || words[0] != "%%matrixmarket" || words[1] != "matrix" {
-        return Err(err(
-            1,
-            format!("not a Matrix Market header: `{header}` (expected `%%MatrixMarket matrix coordinate real symmetric` or the like)"),
-        ));
-    }
-    let coordinate = match words[2].as_str() {
-        "coordinate" => true,
-        "array" => false,
-        f => {
-            return Err(err(
-                1,
-                format!("format `{f}`: only `coordinate` and `array` are read"),
-            ))
-        }
-    };
-    if !matches!(words[3].as_str(), "real" | "integer") {
-        return Err(err(
-            1,
-            format!(
-                "field `{}`: only `real` and `integer` matrices are model matrices",
-                words[3]
-            ),
-        ));
-    }
-    let symmetric = match words[4].as_str() {
-        "general" => false,
-        "symmetric" => true,
-        s => {
-            return Err(err(
-                1,
-                format!("symmetry `{s}`: only `general` and `symmetric` are read"),
-            ))
-        }
-    };
+    let (coordinate, symmetric, symmetry) = header_kind(file, header)?;
     let mut data = lines.filter(|(_, l)| !l.trim().is_empty() && !l.trim_start().starts_with('%'));
     let (size_line, size) = data
         .next()
         .ok_or_else(|| err(1, "no size line after the header".into()))?;
-    let numbers: Vec<&str> = size.split_whitespace().collect();
-    let want = if coordinate { 3 } else { 2 };
-    let int = |s: &str| s.parse::<usize>().ok();
-    let dims: Vec<usize> = numbers.iter().filter_map(|s| int(s)).collect();
-    if numbers.len() != want || dims.len() != want {
-        return Err(err(
-            size_line,
-            format!(
-                "size line `{size}`: expected {} non-negative integers",
-                if coordinate {
-                    "rows, columns, entries:"
-                } else {
-                    "rows, columns:"
-                }
-            ),
-        ));
-    }
-    let (nr, nc) = (dims[0], dims[1]);
-    if nr != nc {
-        return Err(err(
-            size_line,
-            format!("the matrix is {nr} × {nc}: model matrices are square"),
-        ));
-    }
-    if nr == 0 || nr > MAX_DIM {
-        return Err(err(
-            size_line,
-            format!("dimension {nr}: 1 to {MAX_DIM} rows are read"),
-        ));
-    }
-    let n = nr;
+    let dims = dimensions(file, size_line, size, coordinate)?;
+    let n = dims[0];
     let mut matrix = DMatrix::<f64>::zeros(n, n);
     let mut at = DMatrix::<u32>::zeros(n, n);
-    let value = |line: usize, s: &str| -> Result<f64, MatrixError> {
-        let v: f64 = s
-            .parse()
-            .map_err(|_| err(line, format!("`{s}` is not a number")))?;
-        if !v.is_finite() {
-            return Err(err(line, format!("value `{s}` is not finite")));
-        }
-        Ok(v)
-    };
+    let value = |line: usize, s: &str| value(file, line, s);
     let mut store = |line: usize, i: usize, j: usize, v: f64| -> Result<(), MatrixError> {
         if at[(i, j)] != 0 {
             return Err(err(
@@ -149,7 +77,7 @@ pub fn parse(file: &str, text: &str) -> Result<Read, MatrixError> {
             if f.len() != 3 {
                 return Err(err(line, format!("`{l}`: expected `row column value`")));
             }
-            let idx = |s: &str| match int(s) {
+            let idx = |s: &str| match s.parse::<usize>().ok() {
                 Some(k) if (1..=n).contains(&k) => Ok(k - 1),
                 _ => Err(err(line, format!("index `{s}` outside 1..={n}"))),
             };
@@ -193,7 +121,7 @@ pub fn parse(file: &str, text: &str) -> Result<Read, MatrixError> {
                         format!(
                             "more values than the {} of a {n} × {n} {} array",
                             cells.len(),
-                            words[4]
+                            symmetry
                         ),
                     ));
                 };
@@ -206,7 +134,7 @@ pub fn parse(file: &str, text: &str) -> Result<Read, MatrixError> {
                 size_line,
                 format!(
                     "a {n} × {n} {} array has {} values, the file has {count}",
-                    words[4],
+                    symmetry,
                     cells.len()
                 ),
             ));
@@ -218,6 +146,106 @@ pub fn parse(file: &str, text: &str) -> Result<Read, MatrixError> {
         lines: at,
         size_line,
     })
+}
+
+/// A finite number, or the error at `line` naming `s`.
+fn value(file: &str, line: usize, s: &str) -> Result<f64, MatrixError> {
+    let v: f64 = s
+        .parse()
+        .map_err(|_| MatrixError::at(file, line, format!("`{s}` is not a number")))?;
+    if !v.is_finite() {
+        return Err(MatrixError::at(
+            file,
+            line,
+            format!("value `{s}` is not finite"),
+        ));
+    }
+    Ok(v)
+}
+
+/// The header line's kind: coordinate (else array), symmetric (else general), and the
+/// symmetry's word; anything else is refused at line 1.
+fn header_kind(file: &str, header: &str) -> Result<(bool, bool, String), MatrixError> {
+    let err = |line: usize, msg: String| MatrixError::at(file, line, msg);
+    let words: Vec<String> = header.split_whitespace().map(str::to_lowercase).collect();
+    if words.len() != 5 || words[0] != "%%matrixmarket" || words[1] != "matrix" {
+        return Err(err(
+            1,
+            format!("not a Matrix Market header: `{header}` (expected `%%MatrixMarket matrix coordinate real symmetric` or the like)"),
+        ));
+    }
+    let coordinate = match words[2].as_str() {
+        "coordinate" => true,
+        "array" => false,
+        f => {
+            return Err(err(
+                1,
+                format!("format `{f}`: only `coordinate` and `array` are read"),
+            ))
+        }
+    };
+    if !matches!(words[3].as_str(), "real" | "integer") {
+        return Err(err(
+            1,
+            format!(
+                "field `{}`: only `real` and `integer` matrices are model matrices",
+                words[3]
+            ),
+        ));
+    }
+    let symmetric = match words[4].as_str() {
+        "general" => false,
+        "symmetric" => true,
+        s => {
+            return Err(err(
+                1,
+                format!("symmetry `{s}`: only `general` and `symmetric` are read"),
+            ))
+        }
+    };
+    Ok((coordinate, symmetric, words[4].clone()))
+}
+
+/// The size line's numbers (rows, columns and, for `coordinate`, entries) of a square
+/// matrix of 1 to [`MAX_DIM`] rows; anything else is refused at `size_line`.
+fn dimensions(
+    file: &str,
+    size_line: usize,
+    size: &str,
+    coordinate: bool,
+) -> Result<Vec<usize>, MatrixError> {
+    let err = |line: usize, msg: String| MatrixError::at(file, line, msg);
+    let numbers: Vec<&str> = size.split_whitespace().collect();
+    let want = if coordinate { 3 } else { 2 };
+    let int = |s: &str| s.parse::<usize>().ok();
+    let dims: Vec<usize> = numbers.iter().filter_map(|s| int(s)).collect();
+    if numbers.len() != want || dims.len() != want {
+        return Err(err(
+            size_line,
+            format!(
+                "size line `{size}`: expected {} non-negative integers",
+                if coordinate {
+                    "rows, columns, entries:"
+                } else {
+                    "rows, columns:"
+                }
+            ),
+        ));
+    }
+    let (nr, nc) = (dims[0], dims[1]);
+    if nr != nc {
+        return Err(err(
+            size_line,
+            format!("the matrix is {nr} × {nc}: model matrices are square"),
+        ));
+    }
+    if nr == 0 || nr > MAX_DIM {
+        return Err(err(
+            size_line,
+            format!("dimension {nr}: 1 to {MAX_DIM} rows are read"),
+        ));
+    }
+    Ok(dims)
 }
 
 /// `matrix` (symmetric) as Matrix Market `coordinate real symmetric` text: its nonzero
