@@ -170,51 +170,14 @@ pub fn reduce(p: &Problem, effects: &Effects, mode: usize) -> Result<Reduced, St
         });
         let last = count >= interior_max;
         if converged || last {
-            let dr = match damping {
-                Some(d) => project(d, &t),
-                None => DMatrix::zeros(nb + ni, nb + ni),
-            };
-            let f1 = (0..nb + ni)
-                .map(|c| {
-                    (0..n)
-                        .map(|i| p.excitation[i] * t[(i, c)])
-                        .sum::<Complex<f64>>()
-                })
-                .collect();
-            let outputs = p
-                .outputs
-                .iter()
-                .map(|o| {
-                    let w = (0..nb + ni)
-                        .map(|c| o.dofs.iter().map(|&(i, wi)| wi * t[(i, c)]).sum())
-                        .collect();
-                    (o.name.clone(), w)
-                })
-                .collect();
-            let elements = laws
-                .iter()
-                .enumerate()
-                .map(|(j, &law)| Element { i: j, j: None, law })
-                .collect();
-            let dofs = names
-                .iter()
-                .cloned()
-                .chain((1..=ni).map(|c| format!("interior{c}")))
-                .collect();
             let closed = stat.closed.iter().filter(|&&c| c).count();
             return Ok(Reduced {
-                lumped: Lumped::of_system(
-                    System {
-                        m: mr,
-                        d: dr,
-                        k: kr,
-                        f0: vec![0.0; nb + ni],
-                        f1,
-                        elements,
-                    },
-                    dofs,
-                    names,
-                    outputs,
+                lumped: assemble(
+                    p,
+                    &t,
+                    (mr, kr, damping.map(|d| project(d, &t))),
+                    &laws,
+                    &names,
                 ),
                 closed,
                 open: p.contacts.len() - closed,
@@ -229,4 +192,60 @@ pub fn reduce(p: &Problem, effects: &Effects, mode: usize) -> Result<Reduced, St
         previous = Some(sliding);
         count = (2 * count).min(interior_max);
     }
+}
+
+/// The reduced model on the basis `t` (n × (nb + ni): the nb joints' constraint modes,
+/// then the interior modes): its projected mass, stiffness and material damping `mr`,
+/// `kr`, `dr` (None: undamped), the load, the outputs' weights and one element per joint on its own
+/// coordinate.
+fn assemble(
+    p: &Problem,
+    t: &DMatrix<f64>,
+    (mr, kr, dr): (DMatrix<f64>, DMatrix<f64>, Option<DMatrix<f64>>),
+    laws: &[Law],
+    names: &[String],
+) -> Lumped {
+    let (n, nb) = (t.nrows(), laws.len());
+    let ni = t.ncols() - nb;
+    let dr = dr.unwrap_or_else(|| DMatrix::zeros(nb + ni, nb + ni));
+    let f1 = (0..nb + ni)
+        .map(|c| {
+            (0..n)
+                .map(|i| p.excitation[i] * t[(i, c)])
+                .sum::<Complex<f64>>()
+        })
+        .collect();
+    let outputs = p
+        .outputs
+        .iter()
+        .map(|o| {
+            let w = (0..nb + ni)
+                .map(|c| o.dofs.iter().map(|&(i, wi)| wi * t[(i, c)]).sum())
+                .collect();
+            (o.name.clone(), w)
+        })
+        .collect();
+    let elements = laws
+        .iter()
+        .enumerate()
+        .map(|(j, &law)| Element { i: j, j: None, law })
+        .collect();
+    let dofs = names
+        .iter()
+        .cloned()
+        .chain((1..=ni).map(|c| format!("interior{c}")))
+        .collect();
+    Lumped::of_system(
+        System {
+            m: mr,
+            d: dr,
+            k: kr,
+            f0: vec![0.0; nb + ni],
+            f1,
+            elements,
+        },
+        dofs,
+        names.to_vec(),
+        outputs,
+    )
 }
