@@ -181,3 +181,69 @@ fn craig_bampton_with_joint_against_full_with_spring() {
         );
     }
 }
+
+/// `jointlin backbone --mode 2 SCENE --out DIR --quiet`: backbone.csv's (frequency Hz,
+/// damping ratio) rows.
+fn backbone_rows(scene: &Path, out: &Path) -> Vec<(f64, f64)> {
+    let run = Command::new(env!("CARGO_BIN_EXE_jointlin"))
+        .args(["backbone", "--mode", "2", "--quiet", "--out"])
+        .arg(out)
+        .arg(scene)
+        .output()
+        .unwrap();
+    assert!(
+        run.status.success(),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    let text = std::fs::read_to_string(out.join("backbone.csv")).unwrap();
+    let mut lines = text.lines();
+    let head: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let col = |name: &str| head.iter().position(|h| *h == name).unwrap();
+    let (f, z) = (col("frequency_Hz"), col("damping_ratio"));
+    lines
+        .map(|l| {
+            let v: Vec<f64> = l.split(',').map(|w| w.parse().unwrap()).collect();
+            (v[f], v[z])
+        })
+        .collect()
+}
+
+/// (iii) The unreduced matrices (180 rows) with the tip joint have the backbone of their
+/// Craig–Bampton reduction (scenes/beam-cb.toml): the stuck mode of a model above the
+/// dense search's size is found and traced like a reduced model's (it stopped at once,
+/// "no oscillatory mode (overdamped)", when the tracking's λ jittered at round-off).
+#[test]
+fn unreduced_matrices_have_the_reduced_backbone() {
+    if !ccx_here() {
+        return;
+    }
+    let dir = tmp("matrices-backbone");
+    let _ = full_model(&dir).unwrap();
+    let imp = jointlin_harness::input::matrices::ccx::import(&dir.join("beam_k")).unwrap();
+    std::fs::write(dir.join("K.mtx"), &imp.stiffness).unwrap();
+    std::fs::write(dir.join("M.mtx"), &imp.mass).unwrap();
+    std::fs::write(dir.join("dofs.csv"), &imp.dofs).unwrap();
+    let tip = beam::tip_node();
+    let joint = format!(
+        "[[joints]]\nname = \"tip\"\nbetween = [\"beam.{tip}\", \"ground\"]\ndirection = [0.0, 0.0, 1.0]\n\
+         law = \"mindlin\"\nrule = \"thesis\"\nmu = 0.3\nnormal_force = 10.0\nk_t0 = 1000.0\n"
+    );
+    write_scene(&dir, &scene_text(&joint, &tip.to_string()));
+    let full = backbone_rows(&dir.join("scene.toml"), &dir.join("bb"));
+    let cb = backbone_rows(&root().join("scenes/beam-cb.toml"), &dir.join("bb-cb"));
+    let _ = std::fs::remove_dir_all(&dir);
+    assert_eq!(full.len(), cb.len());
+    let (mut df, mut dz) = (0.0f64, 0.0f64);
+    for (a, b) in full.iter().zip(&cb) {
+        df = df.max((b.0 / a.0 - 1.0).abs());
+        dz = dz.max((b.1 - a.1).abs() / a.1.max(1e-3));
+    }
+    eprintln!(
+        "{} amplitudes; full {:?} .. {:?}; cb differs by {df:.2e} (frequency), {dz:.2e} (damping)",
+        full.len(),
+        full[0],
+        full[full.len() - 1]
+    );
+    assert!(df < 1e-4 && dz < 1e-3, "{df:e} {dz:e}");
+}
