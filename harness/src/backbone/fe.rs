@@ -135,7 +135,9 @@ pub fn reduce(p: &Problem, effects: &Effects, mode: usize) -> Result<Reduced, St
     } else {
         None
     };
-    let interior_max = n.saturating_sub(nb).min(MAX_MODES);
+    // Up to every mode of the model: a stuck mode in the joints' span adds nothing to
+    // the interior (a block on a plane: its lowest modes are the joints' directions).
+    let interior_max = n.min(MAX_MODES);
     let mut count = MIN_MODES.max(2 * mode).min(interior_max);
     let mut previous: Option<Vec<f64>> = None;
     loop {
@@ -161,13 +163,16 @@ pub fn reduce(p: &Problem, effects: &Effects, mode: usize) -> Result<Reduced, St
         }
         let stuck: Vec<f64> = frequencies(&kstuck, &mr)?.into_iter().take(mode).collect();
         let fref = stuck.last().copied().unwrap_or(1.0);
-        let converged = previous.as_ref().is_some_and(|prev| {
-            prev.len() == sliding.len()
-                && prev
-                    .iter()
-                    .zip(&sliding)
-                    .all(|(a, b)| (a - b).abs() <= MODE_TOL * fref)
-        });
+        // A basis spanning the model is exact.
+        let spans = nb + ni == n;
+        let converged = spans
+            || previous.as_ref().is_some_and(|prev| {
+                prev.len() == sliding.len()
+                    && prev
+                        .iter()
+                        .zip(&sliding)
+                        .all(|(a, b)| (a - b).abs() <= MODE_TOL * fref)
+            });
         let last = count >= interior_max;
         if converged || last {
             let closed = stat.closed.iter().filter(|&&c| c).count();

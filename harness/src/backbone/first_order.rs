@@ -328,10 +328,8 @@ pub fn trace(sys: &System, mode: usize, q: &[f64]) -> Result<Traced, BackboneErr
                 current = mode;
             }
             Err(e) => {
-                return Ok(Traced {
-                    points,
-                    stopped: Some(e),
-                })
+                let stopped = Some(near_critical(&points, e));
+                return Ok(Traced { points, stopped });
             }
         }
     }
@@ -339,6 +337,30 @@ pub fn trace(sys: &System, mode: usize, q: &[f64]) -> Result<Traced, BackboneErr
         points,
         stopped: None,
     })
+}
+
+/// Damping ratio from which a trace that fails next is said to end at critical damping.
+const NEAR_CRITICAL: f64 = 0.9;
+
+/// The failure `e` after `points`, named as the mode's end when the last point's damping
+/// ratio is at least [`NEAR_CRITICAL`] and rose over the last three points (a block
+/// sliding on a plane as a whole: the mode's stiffness goes with its joints).
+fn near_critical(points: &[BackbonePoint], e: BackboneError) -> BackboneError {
+    let z: Vec<f64> = points
+        .iter()
+        .rev()
+        .take(3)
+        .map(|p| p.damping_ratio)
+        .collect();
+    let rising = z.len() == 3 && z.windows(2).all(|w| w[0] > w[1]);
+    match points.last() {
+        Some(p) if rising && p.damping_ratio >= NEAR_CRITICAL => BackboneError::CriticalDamping {
+            last: p.modal_amplitude,
+            damping_ratio: p.damping_ratio,
+            cause: Box::new(e),
+        },
+        _ => e,
+    }
 }
 
 /// The consistent point at modal amplitude `qa`, started from the mode `current` of

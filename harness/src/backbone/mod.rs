@@ -74,6 +74,14 @@ pub enum BackboneError {
         /// The iteration that stalled.
         method: &'static str,
     },
+    #[error("the mode nears critical damping (damping ratio {damping_ratio:.3} at modal amplitude {last:.6e}): its joints slide through and past it no oscillatory mode remains; {cause}")]
+    CriticalDamping {
+        /// The last solved point's modal amplitude and damping ratio.
+        last: f64,
+        damping_ratio: f64,
+        /// Why the next amplitude failed.
+        cause: Box<BackboneError>,
+    },
     #[error("EPMC: Newton did not converge at modal amplitude {modal_amplitude:.6e} (|R| = {residual:.3e})")]
     NotConverged { modal_amplitude: f64, residual: f64 },
     #[error("EPMC: the continuation stopped at modal amplitude {modal_amplitude:.6e}: {reason}")]

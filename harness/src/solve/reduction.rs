@@ -19,8 +19,9 @@ use crate::solve::contact::tangential;
 use crate::solve::sweep::Setup;
 use crate::solve::umfpack::Symbolic;
 
-/// Interior Ritz vectors whose M-norm falls below this fraction of the largest are
-/// dependent on the constraint modes and left out.
+/// Interior Ritz vectors whose squared M-norm falls below this fraction of the largest
+/// stuck mode's (or of the largest interior one's) are dependent on the constraint modes
+/// and left out.
 const DEPENDENT: f64 = 1e-12;
 
 /// A sparse row of B: (free DOF, weight).
@@ -90,10 +91,17 @@ pub fn interior_modes(
     let mt = project(m, &theta);
     let kt = project(k0, &theta);
     let eig = mt.symmetric_eigen();
-    let big = eig.eigenvalues.iter().copied().fold(0.0f64, f64::max);
+    // The stuck modes' own M-norms scale the test: when every mode lies in the span of
+    // the constraint modes (a block on a plane: its lowest modes are the joints'
+    // directions), all of Θ is round-off and none of it is kept.
+    let modes_norm = project(m, phi).diagonal().max();
+    let big = eig.eigenvalues.iter().copied().fold(modes_norm, f64::max);
     let keep: Vec<usize> = (0..count)
         .filter(|&c| eig.eigenvalues[c] > DEPENDENT * big)
         .collect();
+    if keep.is_empty() {
+        return DMatrix::zeros(phi.nrows(), 0);
+    }
     // Whitened basis W (count × kept): Wᵀ M_θ W = I.
     let w = DMatrix::from_fn(count, keep.len(), |r, c| {
         eig.eigenvectors[(r, keep[c])] / eig.eigenvalues[keep[c]].sqrt()
