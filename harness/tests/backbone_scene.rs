@@ -227,3 +227,60 @@ fn block_stick_backbone_is_the_single_dof_closed_form() {
     );
     assert!(rows.last().unwrap()[cz] > 0.9);
 }
+
+/// `jointlin` with `args`: (exit code, stderr).
+fn jointlin(args: &[&str]) -> (Option<i32>, String) {
+    let run = std::process::Command::new(env!("CARGO_BIN_EXE_jointlin"))
+        .args(args)
+        .output()
+        .unwrap();
+    (
+        run.status.code(),
+        String::from_utf8_lossy(&run.stderr).into_owned(),
+    )
+}
+
+/// `backbone` and `modes` read the free structure: a scene without `[sweep]`,
+/// `[[excitation]]` and `[[outputs]]` runs and gives the same backbone as with them;
+/// `run` still names the missing sweep.
+#[test]
+fn backbone_and_modes_need_no_sweep_excitation_or_outputs() {
+    let scene = scene_path();
+    let scene = scene.to_str().unwrap();
+    let free = [
+        "--set",
+        "sweep=",
+        "--set",
+        "excitation=",
+        "--set",
+        "outputs=",
+    ];
+    let dir = std::env::temp_dir().join(format!("jointlin-backbone-free-{}", std::process::id()));
+    let (a, b) = (dir.join("with"), dir.join("free"));
+    let (code, log) = jointlin(&["backbone", scene, "--quiet", "--out", a.to_str().unwrap()]);
+    assert_eq!(code, Some(0), "{log}");
+    let mut args = vec!["backbone", scene, "--quiet", "--out", b.to_str().unwrap()];
+    args.extend(free);
+    let (code, log) = jointlin(&args);
+    assert_eq!(code, Some(0), "{log}");
+    let first3 = |d: &Path| -> Vec<String> {
+        std::fs::read_to_string(d.join("backbone.csv"))
+            .unwrap()
+            .lines()
+            .map(|l| l.split(',').take(3).collect::<Vec<_>>().join(","))
+            .collect()
+    };
+    let (with, without) = (first3(&a), first3(&b));
+    assert!(with.len() > 10);
+    assert_eq!(with, without);
+    let mut args = vec!["modes", scene];
+    args.extend(free);
+    let (code, log) = jointlin(&args);
+    assert_eq!(code, Some(0), "{log}");
+    let mut args = vec!["run", scene, "--out", b.to_str().unwrap()];
+    args.extend(free);
+    let (code, log) = jointlin(&args);
+    assert_eq!(code, Some(2), "{log}");
+    assert!(log.contains("key `sweep`: missing"), "{log}");
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -15,20 +15,21 @@ use jointlin_harness::backbone::{
 };
 use jointlin_harness::capi;
 use jointlin_harness::input::scene::schema::BodyKind;
-use jointlin_harness::input::scene::Scene;
+use jointlin_harness::input::scene::{Reading, Scene};
 use jointlin_harness::mhb::default_samples;
 use jointlin_harness::model::lumped::{self, Lumped};
 use jointlin_harness::settings::units::frequency_unit;
 use jointlin_harness::util::progress::progress_bar;
 use jointlin_harness::util::{atomic, provenance};
 
-use super::{load_scene_with, report_written, SceneOverrides};
+use super::{load_scene_for, report_written, SceneOverrides};
 
 // The command's help is the doc comment of `Command::Backbone`.
 #[derive(clap::Args)]
 pub struct Args {
     /// Lumped scene (mass bodies, springs, [[joints]], [[matrices]]) or FE scene (box
-    /// bodies with [[interfaces]], or a deck).
+    /// bodies with [[interfaces]], or a deck); [sweep], [[excitation]] and [[outputs]]
+    /// may be left out (outputs given become amplitude columns).
     scene: PathBuf,
     #[command(flatten)]
     overrides: SceneOverrides,
@@ -126,7 +127,7 @@ fn build(scene: &Scene, mode: usize, epmc: bool) -> Result<Built, String> {
 }
 
 pub fn main(a: Args) -> ExitCode {
-    let scene = match load_scene_with(&a.scene, &a.overrides.set) {
+    let scene = match load_scene_for(&a.scene, &a.overrides.set, Reading::Free) {
         Ok(s) => s,
         Err(code) => return code,
     };
@@ -383,7 +384,7 @@ fn write(
         Some(n) => format!("{n} amplitude [{}]", units.length),
         None => format!("modal amplitude [{}·{}^½]", units.length, units.mass),
     };
-    let title = format!("{}: mode {}, {method}", scene.spec.title, a.mode);
+    let title = format!("{}: mode {}, {method}", scene.title(), a.mode);
     atomic::with_temp(&svg, |t| report::svg(t, &title, units, &x_label, rows))?;
     let json_rows: Vec<_> = rows
         .iter()

@@ -25,7 +25,7 @@ use std::process::ExitCode;
 use clap::{Parser, Subcommand};
 
 use jointlin_harness::capi;
-use jointlin_harness::input::{self, scene::overrides::Override, scene::Scene};
+use jointlin_harness::input::{self, scene::overrides::Override, scene::Reading, scene::Scene};
 use jointlin_harness::util::progress::progress_bar;
 use jointlin_harness::util::{atomic, provenance};
 
@@ -279,7 +279,12 @@ pub struct SceneOverrides {
 
 /// [`load_scene`] with overrides.
 fn load_scene_with(path: &Path, set: &[Override]) -> Result<Scene, ExitCode> {
-    match input::load_with(path, set) {
+    load_scene_for(path, set, Reading::Forced)
+}
+
+/// [`load_scene_with`] for a command that reads the scene as `reading`.
+fn load_scene_for(path: &Path, set: &[Override], reading: Reading) -> Result<Scene, ExitCode> {
+    match input::load_for(path, set, reading) {
         Ok(i) => Ok(i.into_scene()),
         Err(e) => {
             eprintln!("error: {e}");

@@ -4,6 +4,7 @@
 use std::path::PathBuf;
 use std::process::ExitCode;
 
+use jointlin_harness::input::scene::Reading;
 use jointlin_harness::report::modes::ModeTable;
 use jointlin_harness::settings::units::frequency_unit;
 use jointlin_harness::solve::modal_stuck::{stuck_modes, ModeCount};
@@ -12,12 +13,13 @@ use jointlin_harness::util::csv_table::CsvTable;
 use jointlin_harness::util::number::exact;
 use jointlin_harness::util::number::sig;
 
-use super::{load_scene_with, SceneOverrides};
+use super::{load_scene_for, SceneOverrides};
 
 // The command's help is the doc comment of `Command::Modes`.
 #[derive(clap::Args)]
 pub struct Args {
-    /// Scene file (TOML) or Abaqus-format deck (.inp).
+    /// Scene file (TOML) or Abaqus-format deck (.inp); [sweep], [[excitation]] and
+    /// [[outputs]] may be left out.
     scene: PathBuf,
     #[command(flatten)]
     overrides: SceneOverrides,
@@ -35,7 +37,7 @@ pub fn main(a: Args) -> ExitCode {
         eprintln!("error: --count must be at least 1");
         return ExitCode::from(2);
     }
-    let s = match load_scene_with(&a.scene, &a.overrides.set) {
+    let s = match load_scene_for(&a.scene, &a.overrides.set, Reading::Free) {
         Ok(s) => s,
         Err(code) => return code,
     };

@@ -346,7 +346,7 @@ fn plot_point_loops(
     let fu = jointlin_harness::settings::units::frequency_unit(&s.spec.units);
     let title = format!(
         "{}: time domain, the {} points dissipating most, last period at {:.4} {}",
-        s.spec.title,
+        s.title(),
         loops.len(),
         fu.show(x.freq),
         fu.text

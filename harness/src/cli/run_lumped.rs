@@ -109,8 +109,8 @@ pub fn main(s: &Scene, out: &Path, plots: bool) -> ExitCode {
         let names: Vec<String> = l.outputs.iter().map(|(n, _)| n.clone()).collect();
         let p = out.join("frf.svg");
         let title = match harmonic {
-            None => format!("{}: first order", s.spec.title),
-            Some((h, _)) => format!("{}: harmonic balance, H = {h}", s.spec.title),
+            None => format!("{}: first order", s.title()),
+            Some((h, _)) => format!("{}: harmonic balance, H = {h}", s.title()),
         };
         match atomic::with_temp(&p, |t| frf_curves(t, &title, units, &names, &curves)) {
             Ok(()) => written.push(p),

@@ -121,7 +121,7 @@ pub(super) fn plot_joint_loops(
     let fu = frequency_unit(&s.spec.units);
     let title = format!(
         "{}: {what}, one period at {:.4} {}",
-        s.spec.title,
+        s.title(),
         fu.show(freq),
         fu.text
     );

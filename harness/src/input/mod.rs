@@ -105,9 +105,18 @@ pub fn load(path: &Path) -> Result<Input, InputError> {
 
 /// [`load`] with `--set` overrides of a scene's values (a deck has none to set).
 pub fn load_with(path: &Path, set: &[scene::overrides::Override]) -> Result<Input, InputError> {
+    load_for(path, set, scene::Reading::Forced)
+}
+
+/// [`load_with`] for a command that reads the input as `reading` (a deck is read whole).
+pub fn load_for(
+    path: &Path,
+    set: &[scene::overrides::Override],
+    reading: scene::Reading,
+) -> Result<Input, InputError> {
     match format_of(path) {
         Format::Scene => {
-            let mut s = Scene::load_with(path, set)?;
+            let mut s = Scene::load_for(path, set, reading)?;
             scene::model_file::attach(&mut s, path)?;
             Ok(Input::Scene(s))
         }

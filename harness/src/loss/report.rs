@@ -153,7 +153,7 @@ pub fn write(dir: &Path, scene: &Scene, r: &StudyResult) -> Result<Vec<PathBuf>,
     put("loss.md", markdown(scene, st, r))?;
     let p = dir.join("loss.svg");
     crate::util::atomic::with_temp(&p, |t| {
-        plot::curves(t, &scene.spec.title, &torque_unit(scene), st, r)
+        plot::curves(t, scene.title(), &torque_unit(scene), st, r)
     })?;
     out.push(p);
     if let Some((op, sample)) = &r.maps {

@@ -288,11 +288,7 @@ pub fn write_all(
     }
     out.extend(point_loops::balance_files(dir, scene, r, opts.plots)?);
     if opts.plots {
-        let title = if scene.spec.title.is_empty() {
-            "FRF"
-        } else {
-            &scene.spec.title
-        };
+        let title = scene.title();
         let main_label = match (&r.down, &r.reference) {
             (Some(_), _) => "sweep up",
             (None, Some(_)) => "with contact damping",

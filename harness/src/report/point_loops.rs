@@ -86,7 +86,7 @@ pub fn balance_files(
         let fu = frequency_unit(units);
         let title = format!(
             "{}: harmonic balance, the {} points dissipating most, one period at {:.4} {}",
-            scene.spec.title,
+            scene.title(),
             loops.len(),
             fu.show(l.freq),
             fu.text

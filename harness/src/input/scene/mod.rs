@@ -21,6 +21,15 @@ use super::deck::job::DeckJob;
 pub use error::SceneError;
 pub use schema::*;
 
+/// What a command reads of a scene: a forced response (its `[sweep]` and
+/// `[[excitation]]` required) or the free structure alone (modes, backbones: both may be
+/// left out).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Reading {
+    Forced,
+    Free,
+}
+
 /// A validated scene and where it came from.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Scene {
@@ -68,6 +77,18 @@ impl Scene {
         s
     }
 
+    /// The scene's title, or its file's name without extension when it has none (for
+    /// plot titles).
+    pub fn title(&self) -> &str {
+        if !self.spec.title.trim().is_empty() {
+            return &self.spec.title;
+        }
+        Path::new(&self.file)
+            .file_stem()
+            .and_then(|s| s.to_str())
+            .unwrap_or(&self.file)
+    }
+
     /// Reads and validates a scene file.
     pub fn load(path: &Path) -> Result<Scene, SceneError> {
         Scene::load_with(path, &[])
@@ -76,6 +97,15 @@ impl Scene {
     /// [`Scene::load`] with `--set` overrides applied to the text first
     /// ([`overrides`]).
     pub fn load_with(path: &Path, set: &[overrides::Override]) -> Result<Scene, SceneError> {
+        Scene::load_for(path, set, Reading::Forced)
+    }
+
+    /// [`Scene::load_with`] for a command that reads the scene as `reading`.
+    pub fn load_for(
+        path: &Path,
+        set: &[overrides::Override],
+        reading: Reading,
+    ) -> Result<Scene, SceneError> {
         let file = path.display().to_string();
         let text = std::fs::read_to_string(path).map_err(|e| SceneError {
             file: file.clone(),
@@ -92,16 +122,23 @@ impl Scene {
             key: String::new(),
             message,
         })?;
-        let mut scene = Scene::parse(&file, &text).map_err(|e| on_command_line(e, set))?;
+        let mut scene =
+            Scene::parse_for(&file, &text, reading).map_err(|e| on_command_line(e, set))?;
         scene.sources.push(source);
         Ok(scene)
     }
 
     /// Parses and validates scene text; `file` names it in errors.
     pub fn parse(file: &str, text: &str) -> Result<Scene, SceneError> {
+        Scene::parse_for(file, text, Reading::Forced)
+    }
+
+    /// [`Scene::parse`] for a command that reads the scene as `reading`.
+    pub fn parse_for(file: &str, text: &str, reading: Reading) -> Result<Scene, SceneError> {
         let spec: SceneFile = toml::from_str(text).map_err(|e| error::from_toml(file, text, &e))?;
         let size = || validate::size::check(&spec);
-        if let Some((path, msg)) = validate::validate(&spec).into_iter().next().or_else(size) {
+        let problems = validate::validate_for(&spec, reading);
+        if let Some((path, msg)) = problems.into_iter().next().or_else(size) {
             return Err(error::at_path(file, text, &path, msg));
         }
         Ok(Scene {

@@ -15,6 +15,7 @@ use std::collections::{BTreeMap, BTreeSet};
 use super::error::KeyPath;
 pub use super::error::Problem;
 use super::schema::*;
+use super::Reading;
 use crate::settings::units::frequency_spellings;
 
 /// Name of the implicit fixed body a mass body can rest on.
@@ -107,7 +108,36 @@ impl Checker {
 }
 
 /// Checks a scene; returns every problem found, in file order of the tables.
+/// [`validate_for`] a forced response.
 pub fn validate(s: &SceneFile) -> Vec<Problem> {
+    validate_for(s, Reading::Forced)
+}
+
+/// The scene's problems for a command that reads it as `reading`: without a forced
+/// response an absent `[sweep]`, `[[excitation]]` or `[[outputs]]` is no problem (a
+/// given one is checked all the same).
+pub fn validate_for(s: &SceneFile, reading: Reading) -> Vec<Problem> {
+    let problems = checked(s);
+    if reading == Reading::Forced {
+        return problems;
+    }
+    let no_sweep = s.sweep == SweepSpec::default();
+    let absent = [
+        ("excitation", s.excitation.is_empty()),
+        ("outputs", s.outputs.is_empty()),
+    ];
+    problems
+        .into_iter()
+        .filter(|(p, _)| {
+            let first = p.0.first();
+            let is = |k: &str| matches!(first, Some(super::error::Seg::Key(x)) if x == k);
+            let left_out = absent.iter().any(|&(k, a)| a && is(k) && p.0.len() == 1);
+            !(no_sweep && is("sweep")) && !left_out
+        })
+        .collect()
+}
+
+fn checked(s: &SceneFile) -> Vec<Problem> {
     let mut c = Checker {
         problems: Vec::new(),
         kinds: BTreeMap::new(),
