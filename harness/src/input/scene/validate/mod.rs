@@ -132,7 +132,8 @@ pub fn validate_for(s: &SceneFile, reading: Reading) -> Vec<Problem> {
             let first = p.0.first();
             let is = |k: &str| matches!(first, Some(super::error::Seg::Key(x)) if x == k);
             let left_out = absent.iter().any(|&(k, a)| a && is(k) && p.0.len() == 1);
-            !(no_sweep && is("sweep")) && !left_out
+            let sweep_left_out = no_sweep && is("sweep");
+            !(left_out || sweep_left_out)
         })
         .collect()
 }
