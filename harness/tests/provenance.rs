@@ -237,6 +237,33 @@ fn a_scene_is_listed_as_on_disk_and_every_command_writes_the_same_head() {
         0,
     );
     checked_head(&d, "backbone", "backbone", &["jenkins-chain.toml"]);
+    // A [[matrices]] model: the scene, then its mass, stiffness and DOF files.
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes");
+    std::fs::create_dir_all(d.join("beam-cb")).unwrap();
+    for f in [
+        "beam-cb.toml",
+        "beam-cb/M.mtx",
+        "beam-cb/K.mtx",
+        "beam-cb/dofs.csv",
+    ] {
+        std::fs::copy(root.join(f), d.join(f)).unwrap();
+    }
+    let cb = [
+        "--out",
+        "cb",
+        "--quiet",
+        "--no-plots",
+        "--set",
+        "sweep.count=3",
+    ];
+    jointlin(&d, &[&["run", "beam-cb.toml"][..], &cb[..]].concat(), 0);
+    let files = [
+        "beam-cb.toml",
+        "beam-cb/M.mtx",
+        "beam-cb/K.mtx",
+        "beam-cb/dofs.csv",
+    ];
+    checked_head(&d, "cb", "run", &files);
     jointlin(&d, &["effects", "duffing.toml", "--out", "effects"], 0);
     let json = checked_head(&d, "effects", "effects", &["duffing.toml"]);
     assert!(json["files"]

@@ -118,6 +118,8 @@ pub fn load_for(
         Format::Scene => {
             let mut s = Scene::load_for(path, set, reading)?;
             scene::model_file::attach(&mut s, path)?;
+            let dir = path.parent().unwrap_or(Path::new(""));
+            s.sources.extend(matrices::sources(&s.spec.matrices, dir));
             Ok(Input::Scene(s))
         }
         Format::AbaqusDeck => {

@@ -20,6 +20,7 @@ use thiserror::Error;
 pub use dofs::Dof;
 
 use crate::input::scene::schema::{DofsSpec, MatricesSpec};
+use crate::util::provenance::SourceFile;
 
 /// A matrix file or DOF list that cannot be used: `file:line: message` (line 0: the
 /// file as a whole).
@@ -109,6 +110,27 @@ fn matrix(
         }
     }
     Ok(r.matrix)
+}
+
+/// The files of `[[matrices]]` entries (M, K, D, the DOF list; paths relative to `dir`)
+/// as read for run.json's `inputs`; one that cannot be read is left to [`load`] to name.
+pub fn sources(specs: &[MatricesSpec], dir: &Path) -> Vec<SourceFile> {
+    let files = specs.iter().flat_map(|m| {
+        let dofs = match &m.dofs {
+            DofsSpec::File(f) => Some(f),
+            DofsSpec::Inline(_) => None,
+        };
+        [Some(&m.mass), Some(&m.stiffness), m.damping.as_ref(), dofs]
+            .into_iter()
+            .flatten()
+    });
+    files
+        .filter_map(|f| {
+            let p = dir.join(f);
+            let bytes = std::fs::read(&p).ok()?;
+            Some(SourceFile::of(&p.display().to_string(), &bytes))
+        })
+        .collect()
 }
 
 /// Reads a `[[matrices]]` entry; paths are relative to `dir` (the scene's directory).
