@@ -24,13 +24,14 @@
 
 use nalgebra::{Complex, DMatrix};
 
+use crate::capi::Tangential;
 use crate::mhb::{Element, Law, System};
 use crate::model::lumped::{undamped_frequencies as frequencies, Lumped};
 use crate::model::Problem;
 use crate::settings::Effects;
 use crate::solve::modal::{lowest_modes, ModalOptions};
 use crate::solve::reduction::{
-    basis, constraint_modes, interior_modes, project, stuck_contacts, StuckContacts,
+    basis, constraint_modes, interior_modes, project, stuck_contacts, Row, StuckContacts,
 };
 use crate::solve::static_step;
 use crate::solve::sweep::Setup;
@@ -72,6 +73,38 @@ pub struct Reduced {
     pub converged: bool,
 }
 
+/// The reduced model's joints: per closed contact direction, then per cubic spring, its
+/// row of B, its law (force form), k_T0·A (0 for a spring) and name.
+struct Joints<'p> {
+    rows: Vec<&'p [(usize, f64)]>,
+    laws: Vec<Law>,
+    kt: Vec<f64>,
+    names: Vec<String>,
+}
+
+fn joints<'p>(p: &'p Problem, stuck: &[(usize, usize, &'p Row, Tangential)]) -> Joints<'p> {
+    let mut j = Joints {
+        rows: Vec::new(),
+        laws: Vec::new(),
+        kt: Vec::new(),
+        names: Vec::new(),
+    };
+    for &(i, d, row, force) in stuck {
+        j.rows.push(row);
+        j.laws.push(Law::Point(force));
+        j.kt.push(force.k_t0);
+        let interface = &p.interfaces[p.contacts[i].interface].name;
+        j.names.push(format!("{interface}.{i}.t{d}"));
+    }
+    for sp in &p.cubic_springs {
+        j.rows.push(&sp.row);
+        j.laws.push(Law::Cubic(sp.cubic));
+        j.kt.push(0.0);
+        j.names.push(format!("spring{}_cubic", sp.spring));
+    }
+    j
+}
+
 /// Reduces the FE problem `p` for a backbone of mode `mode` (1-based). `effects`:
 /// `normal_contact_nonlinearity` for the static step, `material_damping` for D; the
 /// three-direction point's effects are refused (not carried).
@@ -95,26 +128,12 @@ pub fn reduce(p: &Problem, effects: &Effects, mode: usize) -> Result<Reduced, St
         ks,
         rows: stuck,
     } = stuck_contacts(p, &setup);
-    // Rows of B, the joints' laws (force form) and k_T0·A per row; then cubic springs.
-    let mut rows: Vec<&[(usize, f64)]> = Vec::new();
-    let mut laws = Vec::new();
-    let mut kt = Vec::new();
-    let mut names = Vec::new();
-    for &(i, d, row, force) in &stuck {
-        rows.push(row);
-        laws.push(Law::Point(force));
-        kt.push(force.k_t0);
-        names.push(format!(
-            "{}.{i}.t{d}",
-            p.interfaces[p.contacts[i].interface].name
-        ));
-    }
-    for sp in &p.cubic_springs {
-        rows.push(&sp.row);
-        laws.push(Law::Cubic(sp.cubic));
-        kt.push(0.0);
-        names.push(format!("spring{}_cubic", sp.spring));
-    }
+    let Joints {
+        rows,
+        laws,
+        kt,
+        names,
+    } = joints(p, &stuck);
     let nb = rows.len();
     if nb > MAX_JOINTS {
         return Err(format!(

@@ -22,7 +22,7 @@ use jointlin_harness::settings::units::frequency_unit;
 use jointlin_harness::util::progress::progress_bar;
 use jointlin_harness::util::{atomic, provenance};
 
-use super::{load_scene_for, report_written, SceneOverrides};
+use super::{load_scene_for, print_findings, report_written, SceneOverrides};
 
 // The command's help is the doc comment of `Command::Backbone`.
 #[derive(clap::Args)]
@@ -115,9 +115,7 @@ fn build(scene: &Scene, mode: usize, epmc: bool) -> Result<Built, String> {
         });
     }
     let p = jointlin_harness::model::build(scene).map_err(|e| e.to_string())?;
-    for w in &p.warnings {
-        eprintln!("warning: {w}");
-    }
+    print_findings(&p);
     let r = fe::reduce(&p, &s.effects, mode)?;
     Ok(Built {
         lumped: r.lumped.clone(),

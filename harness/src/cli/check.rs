@@ -5,7 +5,7 @@
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use super::{load_scene_with, SceneOverrides};
+use super::{load_scene_with, print_findings, SceneOverrides};
 use jointlin_harness::input::scene::Scene;
 use jointlin_harness::input::{deck, format_of, Format};
 use jointlin_harness::model::{self, Problem};
@@ -93,9 +93,7 @@ pub fn main(a: Args) -> ExitCode {
             p.sys.dofs.n_free(),
             p.contacts.len()
         );
-        for w in &p.warnings {
-            eprintln!("warning: {w}");
-        }
+        print_findings(&p);
         extras(&a, &s, &p);
     }
     ExitCode::SUCCESS
@@ -176,9 +174,7 @@ fn check_deck(path: &std::path::Path, a: &Args) -> ExitCode {
 fn run_checks(s: &Scene, a: &Args) -> ExitCode {
     match model::build(s) {
         Ok(p) => {
-            for w in &p.warnings {
-                eprintln!("warning: {w}");
-            }
+            print_findings(&p);
             println!(
                 "run checks: ok — {} free DOFs, {} contact points, {} frequencies",
                 p.sys.dofs.n_free(),
@@ -190,7 +186,7 @@ fn run_checks(s: &Scene, a: &Args) -> ExitCode {
         }
         Err(model::BuildError::Deck(e)) => {
             for w in s.deck.iter().flat_map(|j| &j.warnings) {
-                eprintln!("warning: {w}");
+                eprintln!("{}: {w}", if w.note { "note" } else { "warning" });
             }
             eprintln!("error: {e}");
             ExitCode::from(2)

@@ -277,6 +277,16 @@ pub struct SceneOverrides {
     pub set: Vec<Override>,
 }
 
+/// The build's notes and warnings, one `note:` or `warning:` line each on stderr.
+fn print_findings(p: &jointlin_harness::model::Problem) {
+    for n in &p.notes {
+        eprintln!("note: {n}");
+    }
+    for w in &p.warnings {
+        eprintln!("warning: {w}");
+    }
+}
+
 /// [`load_scene`] with overrides.
 fn load_scene_with(path: &Path, set: &[Override]) -> Result<Scene, ExitCode> {
     load_scene_for(path, set, Reading::Forced)

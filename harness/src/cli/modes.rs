@@ -13,7 +13,7 @@ use jointlin_harness::util::csv_table::CsvTable;
 use jointlin_harness::util::number::exact;
 use jointlin_harness::util::number::sig;
 
-use super::{load_scene_for, SceneOverrides};
+use super::{load_scene_for, print_findings, SceneOverrides};
 
 // The command's help is the doc comment of `Command::Modes`.
 #[derive(clap::Args)]
@@ -57,9 +57,7 @@ pub fn main(a: Args) -> ExitCode {
             return ExitCode::from(1);
         }
     };
-    for w in &modes.problem.warnings {
-        eprintln!("warning: {w}");
-    }
+    print_findings(&modes.problem);
     let units = &s.spec.units;
     let unit = frequency_unit(units);
     let fu = &unit.text;

@@ -12,7 +12,7 @@ use jointlin_harness::reduce::{self, scene, Interior, Reduction};
 use jointlin_harness::settings::units::frequency_unit;
 use jointlin_harness::util::{atomic, provenance};
 
-use super::{load_scene_with, report_written, SceneOverrides};
+use super::{load_scene_with, print_findings, report_written, SceneOverrides};
 
 // The command's help is the doc comment of `Command::Reduce`.
 #[derive(clap::Args)]
@@ -60,9 +60,7 @@ pub fn main(a: Args) -> ExitCode {
             return ExitCode::from(2);
         }
     };
-    for w in &p.warnings {
-        eprintln!("warning: {w}");
-    }
+    print_findings(&p);
     let r = match reduce::reduce(&p, &scene.spec.effects, interior) {
         Ok(r) => r,
         Err(e) => {

@@ -15,7 +15,7 @@ use jointlin_harness::settings::units::frequency_unit;
 use jointlin_harness::settings::Mode;
 use jointlin_harness::util::progress::progress_bar;
 
-use super::{load_scene_with, report_written, SceneOverrides};
+use super::{load_scene_with, print_findings, report_written, SceneOverrides};
 
 #[derive(Clone, Copy, ValueEnum)]
 pub enum ModeArg {
@@ -126,9 +126,7 @@ pub fn main(a: Args) -> ExitCode {
             return ExitCode::from(1);
         }
     };
-    for w in &r.problem.warnings {
-        eprintln!("warning: {w}");
-    }
+    print_findings(&r.problem);
     print_summary(&s, &r);
     let unconverged = std::iter::once(&r.main)
         .chain(&r.down)

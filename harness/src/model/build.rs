@@ -466,6 +466,7 @@ pub fn build(scene: &Scene) -> Result<Problem, BuildError> {
         outputs,
         screws,
         warnings: Vec::new(),
+        notes: Vec::new(),
     })
 }
 

@@ -234,6 +234,9 @@ pub struct Problem {
     /// What the build could not honour exactly and says so (a deck's slave nodes that
     /// project onto no master face, contact gaps taken as closed), for the run log.
     pub warnings: Vec<String>,
+    /// What a deck asks that a run has no use for and loses nothing by (output requests
+    /// for Abaqus's own files), for the run log.
+    pub notes: Vec<String>,
 }
 
 impl Problem {

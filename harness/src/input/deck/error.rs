@@ -67,6 +67,16 @@ impl Origin {
             line: self.line,
             keyword: keyword.to_string(),
             message: message.into(),
+            note: false,
+        }
+    }
+
+    /// A note at this origin: a card a run has no use for and loses nothing by (an
+    /// output request for Abaqus's own files).
+    pub fn note(&self, keyword: &str, message: impl Into<String>) -> DeckWarning {
+        DeckWarning {
+            note: true,
+            ..self.warning(keyword, message)
         }
     }
 }
@@ -78,6 +88,8 @@ pub struct DeckWarning {
     pub line: usize,
     pub keyword: String,
     pub message: String,
+    /// A note (nothing of the analysis is lost), not a warning.
+    pub note: bool,
 }
 
 impl std::fmt::Display for DeckWarning {

@@ -25,6 +25,7 @@ use super::{BuildError, ContactPoint, Interface, Output, Problem};
 use crate::fe::assembly::assemble_couplings;
 use crate::fe::pair_blocks::Coupling;
 use crate::fe::pairing::{PairedNode, Pairing};
+use crate::input::deck::error::DeckWarning;
 use crate::input::deck::job::DeckJob;
 use crate::input::deck::summary::{self, pair_surfaces, pair_tolerance};
 use crate::input::deck::Deck;
@@ -108,16 +109,12 @@ fn gaps(
     ))
 }
 
-/// Builds the problem of a deck for `scene` (its effects and outputs).
-pub fn build(scene: &Scene, job: &DeckJob) -> Result<Problem, BuildError> {
-    let deck = &job.deck;
-    let mesh::DeckMesh {
-        mut model,
-        rayleigh,
-        structural,
-        orphans,
-    } = mesh::mesh(job)?;
-    let mut warnings: Vec<String> = job.warnings.iter().map(|w| w.to_string()).collect();
+/// The deck reader's notes and warnings for the run log, and the nodes in no element
+/// (dropped) among the warnings.
+fn findings(job: &DeckJob, orphans: &[u64]) -> (Vec<String>, Vec<String>) {
+    let (notes, warnings): (Vec<_>, Vec<_>) = job.warnings.iter().partition(|w| w.note);
+    let text = |v: Vec<&DeckWarning>| -> Vec<String> { v.iter().map(|w| w.to_string()).collect() };
+    let mut warnings = text(warnings);
     if !orphans.is_empty() {
         let shown: Vec<String> = orphans.iter().take(10).map(u64::to_string).collect();
         warnings.push(format!(
@@ -128,6 +125,19 @@ pub fn build(scene: &Scene, job: &DeckJob) -> Result<Problem, BuildError> {
             if orphans.len() > 10 { ", …" } else { "" }
         ));
     }
+    (text(notes), warnings)
+}
+
+/// Builds the problem of a deck for `scene` (its effects and outputs).
+pub fn build(scene: &Scene, job: &DeckJob) -> Result<Problem, BuildError> {
+    let deck = &job.deck;
+    let mesh::DeckMesh {
+        mut model,
+        rayleigh,
+        structural,
+        orphans,
+    } = mesh::mesh(job)?;
+    let (notes, mut warnings) = findings(job, &orphans);
     let length = &scene.spec.units.length;
     let e_max = model
         .materials
@@ -393,6 +403,7 @@ pub fn build(scene: &Scene, job: &DeckJob) -> Result<Problem, BuildError> {
         outputs,
         screws: Vec::new(),
         warnings,
+        notes,
     })
 }
 

@@ -506,10 +506,10 @@ impl Reader {
             }
             "NODE PRINT" | "NODE OUTPUT" => self.output(card, scope)?,
             _ if IGNORED_KEYWORDS.contains(&kw) => {
-                self.warnings.push(
-                    card.origin
-                        .warning(&card.name(), "ignored (output the harness does not need)"),
-                );
+                self.warnings.push(card.origin.note(
+                    &card.name(),
+                    "a request for Abaqus's own output, skipped: jointlin writes its results as CSV, VTU and run.json",
+                ));
             }
             _ => {
                 return Err(card.error(
