@@ -384,6 +384,16 @@ fn cli_set_is_taken_by_every_scene_command_and_its_errors_name_the_command_line(
             String::from_utf8_lossy(&o.stderr)
         );
     }
+    // A table the override creates, incomplete: named on the command line too.
+    let o = jl(&["check", &scene, "--set", "loss_study.output=block_x"]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains(
+            "error: --set loss_study.output=block_x: key `loss_study.amplitudes`: missing"
+        ),
+        "{err}"
+    );
     // The exported deck carries the overridden μ.
     let deck = std::fs::read_to_string(&inp).unwrap();
     // (PROPS 1–3: law, rule, μ; the scene's own μ is 0.2.)

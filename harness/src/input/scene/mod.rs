@@ -46,14 +46,23 @@ pub struct Scene {
     pub sources: Vec<SourceFile>,
 }
 
-/// An error at a key a `--set` gave: placed on the command line (`--set KEY=VALUE:`),
-/// not at a line of the file that does not hold that value.
-fn on_command_line(e: SceneError, set: &[overrides::Override]) -> SceneError {
-    match set
+/// An error at a key a `--set` gave, or in a table a `--set` created (absent from the
+/// file's text `original`): placed on the command line (`--set KEY=VALUE:`), not at a
+/// line of the file that does not hold that value.
+fn on_command_line(e: SceneError, set: &[overrides::Override], original: &str) -> SceneError {
+    let table = e.key.split(['.', '[']).next().unwrap_or("");
+    let created = || {
+        !table.is_empty()
+            && original
+                .parse::<toml::Table>()
+                .is_ok_and(|t| !t.contains_key(table))
+    };
+    let covering = set
         .iter()
         .rev()
-        .find(|o| !e.key.is_empty() && o.covers(&e.key))
-    {
+        .find(|o| !e.key.is_empty() && o.covers(&e.key));
+    let creating = || set.iter().rev().find(|o| o.table() == table && created());
+    match covering.or_else(creating) {
         Some(o) => SceneError {
             file: format!("--set {}", o.text()),
             line: 0,
@@ -115,15 +124,16 @@ impl Scene {
             message: format!("cannot read: {e}"),
         })?;
         let source = SourceFile::of(&file, text.as_bytes());
-        let text = overrides::apply(&text, set).map_err(|message| SceneError {
+        let original = text;
+        let text = overrides::apply(&original, set).map_err(|message| SceneError {
             file: file.clone(),
             line: 0,
             column: 0,
             key: String::new(),
             message,
         })?;
-        let mut scene =
-            Scene::parse_for(&file, &text, reading).map_err(|e| on_command_line(e, set))?;
+        let mut scene = Scene::parse_for(&file, &text, reading)
+            .map_err(|e| on_command_line(e, set, &original))?;
         scene.sources.push(source);
         Ok(scene)
     }

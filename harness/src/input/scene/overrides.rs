@@ -23,6 +23,11 @@ pub struct Override {
 }
 
 impl Override {
+    /// The top-level key (table) this override sets a value in.
+    pub fn table(&self) -> &str {
+        self.path.first().map_or("", String::as_str)
+    }
+
     /// Whether this override set the value at `key` or a table holding it: `key` in
     /// the errors' form (`interfaces[0].mu`), the override's path with `*` for any index.
     pub fn covers(&self, key: &str) -> bool {
