@@ -74,3 +74,56 @@ fn every_pass_of_a_multi_pass_run_gets_its_time_left() {
         .collect();
     assert!(later.iter().any(|l| l.contains("s left")), "{lines:?}");
 }
+
+/// The progress lines' texts of `jointlin ARGS` with stderr a pipe.
+fn stage_lines(args: &[&str]) -> Vec<String> {
+    let run = Command::new(env!("CARGO_BIN_EXE_jointlin"))
+        .args(args)
+        .env("JOINTLIN_PROGRESS_SECONDS", "0.05")
+        .output()
+        .unwrap();
+    let log = String::from_utf8_lossy(&run.stderr).into_owned();
+    assert!(run.status.success(), "{args:?}: {log}");
+    log.lines()
+        .filter_map(|l| Some(l.strip_prefix('[')?.split_once(" s] ")?.1.to_string()))
+        .collect()
+}
+
+/// `modes`, `reduce` and `backbone` say in a batch log what they are doing from the
+/// start (the static step and the eigen solver of a large model take minutes), and the
+/// backbone counts its amplitudes; `--quiet` prints none of it.
+#[test]
+fn modes_reduce_and_backbone_print_their_stages() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+    let scene = root.join("scenes/three-beams-coarse.toml");
+    let scene = scene.to_str().unwrap();
+    let out = std::env::temp_dir().join(format!("jointlin-stages-{}", std::process::id()));
+    let (r, b) = (out.join("reduce"), out.join("backbone"));
+    let (r, b) = (r.to_str().unwrap(), b.to_str().unwrap());
+    let cases: [(Vec<&str>, &str); 3] = [
+        (vec!["modes", scene], "stuck modes: building the model"),
+        (vec!["reduce", scene, "--out", r], "building the model"),
+        (
+            vec!["backbone", scene, "--out", b],
+            "building the model (an FE model",
+        ),
+    ];
+    for (args, first) in &cases {
+        let lines = stage_lines(args);
+        assert!(
+            lines.first().is_some_and(|l| l.starts_with(first)),
+            "{args:?}: {lines:?}"
+        );
+        let mut quiet = args.clone();
+        quiet.push("--quiet");
+        assert!(stage_lines(&quiet).is_empty(), "{quiet:?}");
+    }
+    let lines = stage_lines(&cases[2].0);
+    assert!(
+        lines
+            .iter()
+            .any(|l| l.starts_with("first-order backbone: modal amplitudes")),
+        "{lines:?}"
+    );
+    let _ = std::fs::remove_dir_all(&out);
+}

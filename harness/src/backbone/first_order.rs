@@ -319,9 +319,20 @@ pub struct Traced {
 /// trace keeps its converged points): the stuck mode not found is an error, a later
 /// failure stops the trace.
 pub fn trace(sys: &System, mode: usize, q: &[f64]) -> Result<Traced, BackboneError> {
+    trace_with(sys, mode, q, &|_| {})
+}
+
+/// [`trace`], calling `on_amplitude(i)` before amplitude `i` (0-based) is solved.
+pub fn trace_with(
+    sys: &System,
+    mode: usize,
+    q: &[f64],
+    on_amplitude: &dyn Fn(usize),
+) -> Result<Traced, BackboneError> {
     let mut current = stuck_mode(sys, mode)?;
     let mut points = Vec::with_capacity(q.len());
-    for &qa in q {
+    for (i, &qa) in q.iter().enumerate() {
+        on_amplitude(i);
         match point_at(sys, &current, qa) {
             Ok((point, mode)) => {
                 points.push(point);

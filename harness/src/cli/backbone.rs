@@ -16,7 +16,7 @@ use jointlin_harness::backbone::{
 use jointlin_harness::capi;
 use jointlin_harness::input::scene::schema::BodyKind;
 use jointlin_harness::input::scene::{Reading, Scene};
-use jointlin_harness::mhb::default_samples;
+use jointlin_harness::mhb::{default_samples, System};
 use jointlin_harness::model::lumped::{self, Lumped};
 use jointlin_harness::settings::units::frequency_unit;
 use jointlin_harness::util::progress::progress_bar;
@@ -129,7 +129,11 @@ pub fn main(a: Args) -> ExitCode {
         Ok(s) => s,
         Err(code) => return code,
     };
-    let built = match build(&scene, a.mode, a.harmonics.is_some()) {
+    let mut pb = progress_bar(a.quiet);
+    pb.set_message("building the model (an FE model: static step, stuck modes, reduction)");
+    let built = build(&scene, a.mode, a.harmonics.is_some());
+    pb.finish_and_clear();
+    let built = match built {
         Ok(b) => b,
         Err(e) => {
             eprintln!("error: {}: {e}", a.scene.display());
@@ -153,7 +157,7 @@ pub fn main(a: Args) -> ExitCode {
     let (method, result) = match a.harmonics {
         None => (
             "first order (jointlin_linearize)".to_string(),
-            first_order::trace(&l.system, a.mode, &q)
+            first_order_with_progress(&l.system, (a.mode, a.quiet), &q)
                 .map(|t| (t.points, Path::default(), t.stopped)),
         ),
         Some(h) => (
@@ -349,6 +353,20 @@ fn epmc_with_progress(
         q,
         &on_point,
     )
+}
+
+/// [`first_order::trace`] with its amplitudes counted on the progress (stderr).
+fn first_order_with_progress(
+    sys: &System,
+    (mode, quiet): (usize, bool),
+    q: &[f64],
+) -> Result<first_order::Traced, BackboneError> {
+    let mut pb = progress_bar(quiet);
+    pb.set_message("first-order backbone: modal amplitudes");
+    pb.set_length(q.len() as u64);
+    let t = first_order::trace_with(sys, mode, q, &|i| pb.set_position(i as u64));
+    pb.finish_and_clear();
+    t
 }
 
 /// A trace that stopped after `kept` amplitudes: the failure, exit code 1.

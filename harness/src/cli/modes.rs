@@ -12,6 +12,7 @@ use jointlin_harness::util::atomic;
 use jointlin_harness::util::csv_table::CsvTable;
 use jointlin_harness::util::number::exact;
 use jointlin_harness::util::number::sig;
+use jointlin_harness::util::progress::progress_bar;
 
 use super::{load_scene_for, print_findings, SceneOverrides};
 
@@ -30,6 +31,9 @@ pub struct Args {
     /// Directory for modes.csv and modes.vtu (created if missing).
     #[arg(long)]
     out: Option<PathBuf>,
+    /// No progress (the stage and elapsed time, on stderr).
+    #[arg(long)]
+    quiet: bool,
 }
 
 pub fn main(a: Args) -> ExitCode {
@@ -50,7 +54,11 @@ pub fn main(a: Args) -> ExitCode {
         .count
         .or(deck_modes)
         .map_or(ModeCount::DEFAULT, ModeCount::Exactly);
-    let modes = match stuck_modes(&s, count) {
+    let mut pb = progress_bar(a.quiet);
+    pb.set_message("stuck modes: building the model, static step, shift-invert Lanczos");
+    let modes = stuck_modes(&s, count);
+    pb.finish_and_clear();
+    let modes = match modes {
         Ok(m) => m,
         Err(e) => {
             eprintln!("error: {e}");

@@ -10,6 +10,7 @@ use serde_json::json;
 use jointlin_harness::capi;
 use jointlin_harness::reduce::{self, scene, Interior, Reduction};
 use jointlin_harness::settings::units::frequency_unit;
+use jointlin_harness::util::progress::progress_bar;
 use jointlin_harness::util::{atomic, provenance};
 
 use super::{load_scene_with, print_findings, report_written, SceneOverrides};
@@ -29,6 +30,9 @@ pub struct Args {
     /// frequency (at least 8).
     #[arg(long)]
     modes: Option<usize>,
+    /// No progress (the stage and elapsed time, on stderr).
+    #[arg(long)]
+    quiet: bool,
 }
 
 pub fn main(a: Args) -> ExitCode {
@@ -53,15 +57,21 @@ pub fn main(a: Args) -> ExitCode {
         None if f_top > 0.0 => Interior::Below(reduce::BAND_FACTOR * f_top),
         None => Interior::Count(reduce::MIN_MODES),
     };
+    let mut pb = progress_bar(a.quiet);
+    pb.set_message("building the model");
     let p = match jointlin_harness::model::build(&scene) {
         Ok(p) => p,
         Err(e) => {
+            pb.finish_and_clear();
             eprintln!("error: {}: {e}", a.model.display());
             return ExitCode::from(2);
         }
     };
+    pb.set_message("reducing: static step, stuck modes, constraint modes, projection");
+    let r = reduce::reduce(&p, &scene.spec.effects, interior);
+    pb.finish_and_clear();
     print_findings(&p);
-    let r = match reduce::reduce(&p, &scene.spec.effects, interior) {
+    let r = match r {
         Ok(r) => r,
         Err(e) => {
             eprintln!("error: {}: {e}", a.model.display());
