@@ -69,7 +69,7 @@ pub fn frf_curves(
 ) -> Res {
     let root = SVGBackend::new(path, (900, 560)).into_drawing_area();
     root.fill(&WHITE).map_err(err)?;
-    let main = curves.first().ok_or("no sweep")?;
+    curves.first().ok_or("no sweep")?;
     let fu = frequency_unit(units);
     let (x, y) = ranges(curves, &fu)?;
     let mut chart = ChartBuilder::on(&root)
@@ -105,7 +105,7 @@ pub fn frf_curves(
             draw_curve(&mut chart, pts, k, c, label, units, x)?;
         }
     }
-    mark_not_converged(&mut chart, main, &fu, y.0)?;
+    mark_not_converged(&mut chart, curves, &fu, y.0)?;
     if names.len() > LEGEND_OUTPUTS {
         chart
             .draw_series(std::iter::once(EmptyElement::at((x.0, y.0))))
@@ -214,22 +214,22 @@ fn draw_curve<'a, 'b: 'a>(
     Ok(())
 }
 
-/// Frequencies that did not converge, crossed on the main curve (a line through them
-/// would pass them off as results), with a legend line.
+/// Frequencies that did not converge, crossed on every curve they belong to (a line
+/// through them would pass them off as results), with a legend line.
 fn mark_not_converged<'a, 'b: 'a>(
     chart: &mut FrfChart<'a, 'b>,
-    main: &FrfCurve,
+    curves: &[FrfCurve],
     fu: &FrequencyUnit,
     ymin: f64,
 ) -> Res {
-    if main.not_converged.is_empty() {
+    let count: usize = curves.iter().map(|c| c.not_converged.len()).sum();
+    if count == 0 {
         return Ok(());
     }
-    let marks: Vec<(f64, f64)> = main
-        .not_converged
+    let marks: Vec<(f64, f64)> = curves
         .iter()
-        .flat_map(|&i| {
-            let (f, a) = &main.points[i];
+        .flat_map(|c| c.not_converged.iter().map(move |&i| &c.points[i]))
+        .flat_map(|(f, a)| {
             let f = fu.show(*f);
             a.iter().map(move |&a| (f, a.max(ymin)))
         })
@@ -241,10 +241,11 @@ fn mark_not_converged<'a, 'b: 'a>(
                 .map(|q| Cross::new(q, 5, RED.stroke_width(2))),
         )
         .map_err(err)?
-        .label(format!(
-            "not converged ({} frequencies; status in results.csv)",
-            main.not_converged.len()
-        ))
+        .label(if curves.len() == 1 {
+            format!("not converged ({count} frequencies; status in results.csv)")
+        } else {
+            format!("not converged ({count} frequencies of the curves; status in their CSVs)")
+        })
         .legend(|(x, y)| Cross::new((x + 12, y), 5, RED.stroke_width(2)));
     Ok(())
 }
@@ -284,7 +285,7 @@ mod tests {
         let names: Vec<String> = (0..20).map(|i| format!("node_{i}")).collect();
         let curve = |label: &str, scale: f64| FrfCurve {
             label: label.into(),
-            not_converged: if scale == 1.0 { vec![3, 7] } else { Vec::new() },
+            not_converged: if scale == 1.0 { vec![3, 7] } else { vec![5] },
             points: (0..50)
                 .map(|i| {
                     let f = 100.0 + i as f64;
@@ -321,6 +322,11 @@ mod tests {
         assert_eq!(named, LEGEND_OUTPUTS);
         assert!(has("(+12 more outputs, not in the legend)"));
         assert!(has("0.001") && has("0.01"), "{svg}");
-        assert!(has("not converged (2 frequencies; status in results.csv)"));
+        // Crossed on both curves: 2 + 1 frequencies, 20 outputs each.
+        assert!(has(
+            "not converged (3 frequencies of the curves; status in their CSVs)"
+        ));
+        let red_crosses = svg.matches("stroke=\"#FF0000\"").count();
+        assert!(red_crosses >= 3 * 20, "{red_crosses}");
     }
 }

@@ -12,14 +12,16 @@ pub fn at_least_a_decade(lo: f64, hi: f64) -> (f64, f64) {
 }
 
 /// `[lo, hi]` (> 0) widened to a decade at least ([`at_least_a_decade`]) and then out to
-/// the nearest 1, 2 or 5 times a power of ten at both ends, so the axis's first and last
-/// ticks carry labels ([`log_tick`]).
+/// the power of ten below (plotters' log ticks start at a power of ten: from 2e-3 the
+/// first were 0.01) and the nearest 1, 2 or 5 times a power of ten above, so the axis's
+/// first and last ticks carry labels ([`log_tick`]).
 pub fn labelled_log_range(lo: f64, hi: f64) -> (f64, f64) {
     let (lo, hi) = at_least_a_decade(lo, hi);
     let steps = |e: f64| [1.0, 2.0, 5.0, 10.0].map(|m| m * 10f64.powf(e));
     let down = steps(lo.log10().floor())
         .into_iter()
         .rev()
+        .step_by(3)
         .find(|&v| v <= lo * (1.0 + 1e-12))
         .unwrap_or(lo);
     let up = steps(hi.log10().floor())
@@ -92,7 +94,15 @@ mod tests {
         use plotters::coord::combinators::{IntoLogRange, LogCoord};
         use plotters::coord::ranged1d::Ranged;
         // Ranges ending on powers of ten, where the rounding of ln(lo)/ln 10 bit.
-        for (lo, hi) in [(1.2e-3, 0.09), (1e-3, 1.0), (1.5e-7, 8e-3), (1.5e-12, 8e-9)] {
+        let cases = [
+            (1.2e-3, 0.09),
+            (1e-3, 1.0),
+            (1.5e-7, 8e-3),
+            (1.5e-12, 8e-9),
+            (2.53e-3, 0.047),
+            (6e-5, 3e-3),
+        ];
+        for (lo, hi) in cases {
             let (a, b) = labelled_log_range(lo, hi);
             let coord = LogCoord::from(plotted_log_range(lo, hi).log_scale());
             let keys: Vec<f64> = coord.key_points(30);
@@ -106,7 +116,7 @@ mod tests {
         assert_eq!(labelled_log_range(1.3e-7, 6.8e-3), (1e-7, 1e-2));
         let (lo, hi) = labelled_log_range(0.064, 2.6);
         assert!(
-            (lo - 0.05).abs() < 1e-15 && (hi - 5.0).abs() < 1e-12,
+            (lo - 0.01).abs() < 1e-15 && (hi - 5.0).abs() < 1e-12,
             "{lo} {hi}"
         );
         let (lo, hi) = labelled_log_range(1e-3, 1.0);
