@@ -12,7 +12,7 @@ use jointlin_harness::model::{self, Problem};
 use jointlin_harness::settings::units::frequency_unit;
 use jointlin_harness::solve::cost;
 use jointlin_harness::solve::modal_stuck::{stuck_modes, ModeCount};
-use jointlin_harness::util::number::{sig, sig_n};
+use jointlin_harness::util::number::{counted, sig, sig_n};
 
 // The command's help is the doc comment of `Command::Check`.
 #[derive(clap::Args)]
@@ -79,9 +79,9 @@ pub fn main(a: Args) -> ExitCode {
     }
     let fu = frequency_unit(&s.spec.units);
     println!(
-        "{}: ok — {parts}, {} frequencies ({} to {} {}), mode {}",
+        "{}: ok — {parts}, {} ({} to {} {}), mode {}",
         s.file,
-        s.frequencies().len(),
+        counted(s.frequencies().len(), "frequency", "frequencies"),
         fu.show(s.frequencies().first().copied().unwrap_or(0.0)),
         fu.show(s.frequencies().last().copied().unwrap_or(0.0)),
         fu.text,
@@ -89,9 +89,9 @@ pub fn main(a: Args) -> ExitCode {
     );
     if let Some(p) = built {
         println!(
-            "model: {} free DOFs, {} contact points",
+            "model: {} free DOFs, {}",
             p.sys.dofs.n_free(),
-            p.contacts.len()
+            counted(p.contacts.len(), "contact point", "contact points")
         );
         print_findings(&p);
         extras(&a, &s, &p);
@@ -103,10 +103,7 @@ pub fn main(a: Args) -> ExitCode {
 /// contact pairs, ties), or the bodies, matrices, springs, joints and interfaces the
 /// scene lists (those it has).
 fn model_parts(s: &Scene) -> String {
-    let count = |n: usize, word: &str| match n {
-        1 => format!("1 {word}"),
-        _ => format!("{n} {word}s"),
-    };
+    let count = |n: usize, word: &str| counted(n, word, &format!("{word}s"));
     if let Some(job) = &s.deck {
         let d = &job.deck;
         return format!(
@@ -176,10 +173,10 @@ fn run_checks(s: &Scene, a: &Args) -> ExitCode {
         Ok(p) => {
             print_findings(&p);
             println!(
-                "run checks: ok — {} free DOFs, {} contact points, {} frequencies",
+                "run checks: ok — {} free DOFs, {}, {}",
                 p.sys.dofs.n_free(),
-                p.contacts.len(),
-                s.frequencies().len()
+                counted(p.contacts.len(), "contact point", "contact points"),
+                counted(s.frequencies().len(), "frequency", "frequencies")
             );
             extras(a, s, &p);
             ExitCode::SUCCESS

@@ -67,3 +67,8 @@ mod tests {
         assert_eq!(super::exact(0.1), "1e-1");
     }
 }
+
+/// `n` with its noun: `1 frequency`, `3 frequencies` (`one` for one, `many` otherwise).
+pub fn counted(n: usize, one: &str, many: &str) -> String {
+    format!("{n} {}", if n == 1 { one } else { many })
+}
