@@ -263,7 +263,14 @@ fn a_scene_is_listed_as_on_disk_and_every_command_writes_the_same_head() {
         "beam-cb/K.mtx",
         "beam-cb/dofs.csv",
     ];
-    checked_head(&d, "cb", "run", &files);
+    let json = checked_head(&d, "cb", "run", &files);
+    // The body names what the FE run's names (model counts, mode, effects, convergence).
+    assert_eq!(json["model"]["dofs"], 18);
+    assert_eq!(json["model"]["joints"], 1);
+    assert_eq!(json["mode"], "fast");
+    assert_eq!(json["all_converged"], true);
+    assert!(json["effects"]["contact_damping"].is_boolean());
+    assert!(json["timings_s"]["sweep"].as_f64().unwrap() >= 0.0);
     jointlin(&d, &["effects", "duffing.toml", "--out", "effects"], 0);
     let json = checked_head(&d, "effects", "effects", &["duffing.toml"]);
     assert!(json["files"]

@@ -76,6 +76,7 @@ pub fn main(s: &Scene, out: &Path, plots: bool) -> ExitCode {
     let mut written = Vec::new();
     let mut curves = Vec::new();
     let mut failed = Vec::new();
+    let started = std::time::Instant::now();
     for (suffix, label, order) in &passes {
         let mut pass = sweep_pass(&l, units, harmonic, order, label);
         let scope = Written {
@@ -95,6 +96,7 @@ pub fn main(s: &Scene, out: &Path, plots: bool) -> ExitCode {
         curves.push(pass.curve);
         failed.extend(pass.failed);
     }
+    let sweep_seconds = started.elapsed().as_secs_f64();
     let method = match harmonic {
         None => "first order (jointlin_linearize), lumped system".to_string(),
         Some((h, n)) if l.points.is_empty() => format!(
@@ -127,6 +129,13 @@ pub fn main(s: &Scene, out: &Path, plots: bool) -> ExitCode {
         json!({
             "scene": {"file": s.file, "spec": s.spec, "text": s.text},
             "units": units,
+            "effects": s.spec.effects,
+            "model": {
+                "dofs": l.dofs.len(),
+                "elements": l.elements.len(),
+                "joints": l.joints.len(),
+            },
+            "mode": s.spec.iteration.mode,
             "frequency_unit": frequency_unit(units).text,
             "method": method,
             "dofs": l.dofs,
@@ -139,6 +148,8 @@ pub fn main(s: &Scene, out: &Path, plots: bool) -> ExitCode {
             "frequencies": up.len(),
             "sweep_direction": s.spec.sweep.direction,
             "failed_frequencies": failed.iter().map(|&f| frequency_unit(units).show(f)).collect::<Vec<f64>>(),
+            "all_converged": failed.is_empty(),
+            "timings_s": {"sweep": sweep_seconds},
         }),
     );
     let text = serde_json::to_string_pretty(&run).expect("json");
