@@ -124,34 +124,13 @@ pub fn main(s: &Scene, out: &Path, plots: bool) -> ExitCode {
     }
     let solved = up.len() * passes.len();
     let head = provenance::head("run", &capi::abi_version(), &s.sources);
-    let run = provenance::with_head(
-        head,
-        json!({
-            "scene": {"file": s.file, "spec": s.spec, "text": s.text},
-            "units": units,
-            "effects": s.spec.effects,
-            "model": {
-                "dofs": l.dofs.len(),
-                "elements": l.elements.len(),
-                "joints": l.joints.len(),
-            },
-            "mode": s.spec.iteration.mode,
-            "frequency_unit": frequency_unit(units).text,
-            "method": method,
-            "dofs": l.dofs,
-            "joints": l.joints.iter().map(|j| json!({
-                "name": j.name,
-                "static_normal_force": j.static_normal,
-                "normal_force_varies": j.normal_varies,
-                "three_direction_point": j.point.is_some(),
-            })).collect::<Vec<_>>(),
-            "frequencies": up.len(),
-            "sweep_direction": s.spec.sweep.direction,
-            "failed_frequencies": failed.iter().map(|&f| frequency_unit(units).show(f)).collect::<Vec<f64>>(),
-            "all_converged": failed.is_empty(),
-            "timings_s": {"sweep": sweep_seconds},
-        }),
-    );
+    let record = Record {
+        method: &method,
+        frequencies: up.len(),
+        failed: &failed,
+        sweep_seconds,
+    };
+    let run = provenance::with_head(head, body(s, &l, &record));
     let text = serde_json::to_string_pretty(&run).expect("json");
     match atomic::write_marker(out, &text) {
         Ok(p) => {
@@ -173,6 +152,47 @@ pub fn main(s: &Scene, out: &Path, plots: bool) -> ExitCode {
             ExitCode::from(1)
         }
     }
+}
+
+/// What a lumped run's record states besides the scene and the system.
+struct Record<'a> {
+    /// How each frequency was solved (first order or the harmonic balance).
+    method: &'a str,
+    /// Frequencies of one pass.
+    frequencies: usize,
+    /// Frequencies that failed (1/time).
+    failed: &'a [f64],
+    sweep_seconds: f64,
+}
+
+/// run.json's body of a lumped run: the FE run's names where they mean the same.
+fn body(s: &Scene, l: &lumped::Lumped, r: &Record) -> serde_json::Value {
+    let units = &s.spec.units;
+    json!({
+        "scene": {"file": s.file, "spec": s.spec, "text": s.text},
+        "units": units,
+        "effects": s.spec.effects,
+        "model": {
+            "dofs": l.dofs.len(),
+            "elements": l.elements.len(),
+            "joints": l.joints.len(),
+        },
+        "mode": s.spec.iteration.mode,
+        "frequency_unit": frequency_unit(units).text,
+        "method": r.method,
+        "dofs": l.dofs,
+        "joints": l.joints.iter().map(|j| json!({
+            "name": j.name,
+            "static_normal_force": j.static_normal,
+            "normal_force_varies": j.normal_varies,
+            "three_direction_point": j.point.is_some(),
+        })).collect::<Vec<_>>(),
+        "frequencies": r.frequencies,
+        "sweep_direction": s.spec.sweep.direction,
+        "failed_frequencies": r.failed.iter().map(|&f| frequency_unit(units).show(f)).collect::<Vec<f64>>(),
+        "all_converged": r.failed.is_empty(),
+        "timings_s": {"sweep": r.sweep_seconds},
+    })
 }
 
 /// One pass over `order` (each frequency continued from the last), its tables' rows

@@ -30,6 +30,11 @@ pub fn sig_n(v: f64, digits: usize) -> String {
     }
 }
 
+/// `n` with its noun: `1 frequency`, `3 frequencies` (`one` for one, `many` otherwise).
+pub fn counted(n: usize, one: &str, many: &str) -> String {
+    format!("{n} {}", if n == 1 { one } else { many })
+}
+
 #[cfg(test)]
 mod tests {
     use super::sig;
@@ -66,9 +71,4 @@ mod tests {
         assert_eq!(super::exact(-0.0), "0e0");
         assert_eq!(super::exact(0.1), "1e-1");
     }
-}
-
-/// `n` with its noun: `1 frequency`, `3 frequencies` (`one` for one, `many` otherwise).
-pub fn counted(n: usize, one: &str, many: &str) -> String {
-    format!("{n} {}", if n == 1 { one } else { many })
 }

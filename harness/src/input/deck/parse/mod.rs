@@ -2,13 +2,15 @@
 //!
 //! `mod.rs` holds the reader's state, the instance replay and the dispatch of each card
 //! to its handler; the handlers live by subject: `mesh` (nodes, elements, sets,
-//! surfaces), `model_data` (materials, interactions, contact pairs and ties,
-//! boundaries), `steps` (procedures and output requests); `fields` reads the numbers,
-//! DOFs and labels of data lines.
+//! surfaces), `model_data` (materials, sections, interactions, boundaries), `pairs`
+//! (contact pairs and ties), `steps` (steps, procedures and output requests), `loads`
+//! (the steps' loads); `fields` reads the numbers, DOFs and labels of data lines.
 
 mod fields;
+mod loads;
 mod mesh;
 mod model_data;
+mod pairs;
 mod steps;
 
 use std::collections::HashMap;
@@ -286,224 +288,20 @@ impl Reader {
             "ELEMENT" => self.elements(card, scope)?,
             "NSET" | "ELSET" => self.set(card, scope)?,
             "SURFACE" => self.surface(card, scope)?,
-            "MATERIAL" => {
-                let name = Scope::default().name(card.required("NAME")?);
-                let m = MaterialDef {
-                    name: name.clone(),
-                    origin: card.origin.clone(),
-                    ..Default::default()
-                };
-                if self.deck.materials.insert(name.clone(), m).is_some() {
-                    return Err(card.error(K::Duplicate, format!("material {name} defined twice")));
-                }
-                self.material = Some(name);
-            }
+            "MATERIAL" => self.material(card)?,
             "ELASTIC" | "DENSITY" | "DAMPING" => self.material_data(card)?,
-            "SOLID SECTION" => {
-                let section = Section {
-                    element_set: scope.name(card.required("ELSET")?),
-                    material: Scope::default().name(card.required("MATERIAL")?),
-                    origin: card.origin.clone(),
-                };
-                match self.deck.element_sets.get(&section.element_set) {
-                    None => {
-                        return Err(card.error(
-                            K::Undefined,
-                            format!("element set {} is not defined", section.element_set),
-                        ))
-                    }
-                    Some(set) if set.is_empty() => {
-                        return Err(card.error(
-                            K::BadValue,
-                            format!("element set {} is empty", section.element_set),
-                        ))
-                    }
-                    Some(_) => {}
-                }
-                self.deck.sections.push(section);
-            }
+            "SOLID SECTION" => self.solid_section(card, scope)?,
             "SURFACE INTERACTION" => self.interaction(card)?,
-            "CONTACT PAIR" => {
-                let interaction = scope.name(card.required("INTERACTION")?);
-                if let Some(t) = card
-                    .param("TYPE")
-                    .filter(|t| !t.eq_ignore_ascii_case("NODE TO SURFACE"))
-                {
-                    return Err(card.error(
-                        K::Unsupported,
-                        format!("TYPE={t}: a run pairs node to surface (UINTER per slave node)"),
-                    ));
-                }
-                for l in lines(card) {
-                    let [slave, master] = self.surface_pair(card, l, scope)?;
-                    let earlier = (self.deck.contact_pairs.iter())
-                        .map(|c| (&c.slave, &c.master, c.origin.line));
-                    if let Some(w) = repeated(card, l, [&slave, &master], earlier) {
-                        self.warnings.push(w);
-                        continue;
-                    }
-                    self.deck.contact_pairs.push(ContactPair {
-                        interaction: interaction.clone(),
-                        slave,
-                        master,
-                        small_sliding: card.flag("SMALL SLIDING"),
-                        origin: data_origin(card, l),
-                    });
-                }
-            }
-            "TIE" => {
-                let name = scope.name(card.required("NAME")?);
-                let tol = match card.param("POSITION TOLERANCE") {
-                    None => None,
-                    Some(_) => Some(param_number(card, "POSITION TOLERANCE", 0.0)?),
-                };
-                choice(card, "ADJUST", &["YES", "NO"], "YES")?;
-                let surface_to_surface = choice(
-                    card,
-                    "TYPE",
-                    &["NODE TO SURFACE", "SURFACE TO SURFACE"],
-                    "NODE TO SURFACE",
-                )? == "SURFACE TO SURFACE";
-                for l in lines(card) {
-                    let [slave, master] = self.surface_pair(card, l, scope)?;
-                    let earlier =
-                        (self.deck.ties.iter()).map(|t| (&t.slave, &t.master, t.origin.line));
-                    if let Some(w) = repeated(card, l, [&slave, &master], earlier) {
-                        self.warnings.push(w);
-                        continue;
-                    }
-                    self.deck.ties.push(Tie {
-                        name: name.clone(),
-                        slave,
-                        master,
-                        position_tolerance: tol,
-                        surface_to_surface,
-                        origin: data_origin(card, l),
-                    });
-                }
-            }
+            "CONTACT PAIR" => self.contact_pair(card, scope)?,
+            "TIE" => self.tie(card, scope)?,
             "BOUNDARY" => self.boundary(card, scope)?,
-            "STEP" => {
-                if self.step.is_some() {
-                    return Err(card.error(K::Syntax, "*STEP inside a step (missing *END STEP?)"));
-                }
-                if choice(card, "NLGEOM", &["NO", "YES"], "NO")? == "YES" {
-                    return Err(card.error(
-                        K::Unsupported,
-                        "NLGEOM=YES: the model is geometrically linear",
-                    ));
-                }
-                let n = self.deck.steps.len() + 1;
-                self.step = Some(Step {
-                    name: card
-                        .param("NAME")
-                        .map(|s| s.to_string())
-                        .unwrap_or_else(|| format!("Step-{n}")),
-                    perturbation: card.flag("PERTURBATION"),
-                    procedure: Procedure::Static,
-                    boundaries: Vec::new(),
-                    cloads: Vec::new(),
-                    dloads: Vec::new(),
-                    dsloads: Vec::new(),
-                    outputs: Vec::new(),
-                    modal_damping: Vec::new(),
-                    origin: card.origin.clone(),
-                });
-                self.procedure = None;
-            }
+            "STEP" => self.step_start(card)?,
             "STATIC" | "FREQUENCY" | "STEADY STATE DYNAMICS" => self.procedure(card)?,
             "MODAL DAMPING" => self.modal_damping(card)?,
-            "END STEP" => {
-                let mut step = self
-                    .step
-                    .take()
-                    .ok_or_else(|| card.error(K::Syntax, "*END STEP without *STEP"))?;
-                step.procedure = self.procedure.take().ok_or_else(|| {
-                    card.error(K::Syntax, format!("step {} has no procedure (*STATIC, *FREQUENCY, *STEADY STATE DYNAMICS)", step.name))
-                })?;
-                self.deck.steps.push(step);
-            }
-            "CLOAD" => {
-                let imaginary = load_part(card)?;
-                let mut loads = Vec::new();
-                for l in lines(card) {
-                    let target = self.node_target(card, l, scope)?;
-                    let dof = dof(card, l, 1)?;
-                    let value = number(card, l, 2, "load")?;
-                    loads.push(CLoad {
-                        target,
-                        dof,
-                        value,
-                        imaginary,
-                        origin: card.origin.clone(),
-                    });
-                }
-                self.step_mut(card)?.cloads.extend(loads);
-            }
-            "DLOAD" => {
-                let imaginary = load_part(card)?;
-                let mut loads = Vec::new();
-                for l in lines(card) {
-                    let elements = self.element_target(card, l, scope)?;
-                    let label = l.fields.get(1).map(String::as_str).unwrap_or("");
-                    let face = face_label(label, 'P').ok_or_else(|| {
-                        card.error_at(
-                            l.line,
-                            K::Unsupported,
-                            format!(
-                                "load type {:?}: only P1…P6 (pressure on a face) is supported",
-                                truncate(label)
-                            ),
-                        )
-                    })?;
-                    for id in self.element_ids(&elements) {
-                        self.check_face(card, l.line, id, face)?;
-                    }
-                    let pressure = number(card, l, 2, "pressure")?;
-                    loads.push(DLoad {
-                        elements,
-                        face,
-                        pressure,
-                        imaginary,
-                        origin: card.origin.clone(),
-                    });
-                }
-                self.step_mut(card)?.dloads.extend(loads);
-            }
-            "DSLOAD" => {
-                let imaginary = load_part(card)?;
-                let mut loads = Vec::new();
-                for l in lines(card) {
-                    let surface = scope.name(&l.fields[0]);
-                    if !self.deck.surfaces.contains_key(&surface) {
-                        return Err(card.error_at(
-                            l.line,
-                            K::Undefined,
-                            format!("surface {surface} is not defined"),
-                        ));
-                    }
-                    let label = l
-                        .fields
-                        .get(1)
-                        .map(|s| s.trim().to_ascii_uppercase())
-                        .unwrap_or_default();
-                    if label != "P" {
-                        return Err(card.error_at(
-                            l.line,
-                            K::Unsupported,
-                            format!("load type {:?}: only P is supported", truncate(&label)),
-                        ));
-                    }
-                    let pressure = number(card, l, 2, "pressure")?;
-                    loads.push(DsLoad {
-                        surface,
-                        pressure,
-                        imaginary,
-                        origin: card.origin.clone(),
-                    });
-                }
-                self.step_mut(card)?.dsloads.extend(loads);
-            }
+            "END STEP" => self.step_end(card)?,
+            "CLOAD" => self.cload(card, scope)?,
+            "DLOAD" => self.dload(card, scope)?,
+            "DSLOAD" => self.dsload(card, scope)?,
             "NODE PRINT" | "NODE OUTPUT" => self.output(card, scope)?,
             _ if IGNORED_KEYWORDS.contains(&kw) => {
                 self.warnings.push(card.origin.note(

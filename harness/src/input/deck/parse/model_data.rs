@@ -1,5 +1,5 @@
-//! `*ELASTIC`, `*DENSITY`, `*DAMPING`, `*SURFACE INTERACTION`, `*CONTACT PAIR`/`*TIE`,
-//! `*BOUNDARY`.
+//! `*MATERIAL` with `*ELASTIC`, `*DENSITY`, `*DAMPING`; `*SOLID SECTION`,
+//! `*SURFACE INTERACTION`, `*BOUNDARY`.
 
 use super::*;
 
@@ -210,6 +210,49 @@ impl Reader {
             Some(s) => s.boundaries.extend(out),
             None => self.deck.boundaries.extend(out),
         }
+        Ok(())
+    }
+}
+
+impl Reader {
+    /// `*MATERIAL, NAME=`: a new material, the one the following material cards fill.
+    pub(super) fn material(&mut self, card: &Card) -> Result<(), DeckError> {
+        let name = Scope::default().name(card.required("NAME")?);
+        let m = MaterialDef {
+            name: name.clone(),
+            origin: card.origin.clone(),
+            ..Default::default()
+        };
+        if self.deck.materials.insert(name.clone(), m).is_some() {
+            return Err(card.error(K::Duplicate, format!("material {name} defined twice")));
+        }
+        self.material = Some(name);
+        Ok(())
+    }
+
+    /// `*SOLID SECTION, ELSET=, MATERIAL=`: a non-empty element set defined before.
+    pub(super) fn solid_section(&mut self, card: &Card, scope: &Scope) -> Result<(), DeckError> {
+        let section = Section {
+            element_set: scope.name(card.required("ELSET")?),
+            material: Scope::default().name(card.required("MATERIAL")?),
+            origin: card.origin.clone(),
+        };
+        match self.deck.element_sets.get(&section.element_set) {
+            None => {
+                return Err(card.error(
+                    K::Undefined,
+                    format!("element set {} is not defined", section.element_set),
+                ))
+            }
+            Some(set) if set.is_empty() => {
+                return Err(card.error(
+                    K::BadValue,
+                    format!("element set {} is empty", section.element_set),
+                ))
+            }
+            Some(_) => {}
+        }
+        self.deck.sections.push(section);
         Ok(())
     }
 }

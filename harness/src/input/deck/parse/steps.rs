@@ -1,5 +1,5 @@
-//! The procedures of a step (`*STATIC`, `*FREQUENCY`, `*STEADY STATE DYNAMICS`) and its
-//! output requests.
+//! Steps (`*STEP` … `*END STEP`), their procedures (`*STATIC`, `*FREQUENCY`,
+//! `*STEADY STATE DYNAMICS`) and output requests.
 
 use super::*;
 use crate::input::deck::size::MAX_FREQUENCIES;
@@ -207,6 +207,58 @@ impl Reader {
             origin: card.origin.clone(),
         };
         self.step_mut(card)?.outputs.push(out);
+        Ok(())
+    }
+}
+
+impl Reader {
+    /// `*STEP`: opens a step (geometrically linear only).
+    pub(super) fn step_start(&mut self, card: &Card) -> Result<(), DeckError> {
+        if self.step.is_some() {
+            return Err(card.error(K::Syntax, "*STEP inside a step (missing *END STEP?)"));
+        }
+        if choice(card, "NLGEOM", &["NO", "YES"], "NO")? == "YES" {
+            return Err(card.error(
+                K::Unsupported,
+                "NLGEOM=YES: the model is geometrically linear",
+            ));
+        }
+        let n = self.deck.steps.len() + 1;
+        self.step = Some(Step {
+            name: card
+                .param("NAME")
+                .map(|s| s.to_string())
+                .unwrap_or_else(|| format!("Step-{n}")),
+            perturbation: card.flag("PERTURBATION"),
+            procedure: Procedure::Static,
+            boundaries: Vec::new(),
+            cloads: Vec::new(),
+            dloads: Vec::new(),
+            dsloads: Vec::new(),
+            outputs: Vec::new(),
+            modal_damping: Vec::new(),
+            origin: card.origin.clone(),
+        });
+        self.procedure = None;
+        Ok(())
+    }
+
+    /// `*END STEP`: closes the open step, which must have its procedure.
+    pub(super) fn step_end(&mut self, card: &Card) -> Result<(), DeckError> {
+        let mut step = self
+            .step
+            .take()
+            .ok_or_else(|| card.error(K::Syntax, "*END STEP without *STEP"))?;
+        step.procedure = self.procedure.take().ok_or_else(|| {
+            card.error(
+                K::Syntax,
+                format!(
+                    "step {} has no procedure (*STATIC, *FREQUENCY, *STEADY STATE DYNAMICS)",
+                    step.name
+                ),
+            )
+        })?;
+        self.deck.steps.push(step);
         Ok(())
     }
 }
