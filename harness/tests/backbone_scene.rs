@@ -165,15 +165,15 @@ fn block_stick_backbone_is_the_single_dof_closed_form() {
     use jointlin_harness::names::{LawName, RuleName};
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
     let out = std::env::temp_dir().join(format!("jointlin-backbone-block-{}", std::process::id()));
-    let run = std::process::Command::new(env!("CARGO_BIN_EXE_jointlin"))
-        .arg("backbone")
-        .arg(root.join("scenes/block-stick.toml"))
-        .arg("--out")
-        .arg(&out)
-        .output()
-        .unwrap();
-    let log = String::from_utf8_lossy(&run.stderr);
-    assert_eq!(run.status.code(), Some(1), "{log}");
+    let scene = root.join("scenes/block-stick.toml");
+    let args = [
+        "backbone",
+        scene.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ];
+    let (code, log) = jointlin(&args);
+    assert_eq!(code, Some(1), "{log}");
     assert!(
         log.contains("the mode nears critical damping") && log.contains("slide through"),
         "{log}"

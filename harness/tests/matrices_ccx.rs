@@ -8,6 +8,8 @@
 #[path = "../../tests/tools/mod.rs"]
 mod tools;
 
+mod common;
+
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
@@ -185,27 +187,13 @@ fn craig_bampton_with_joint_against_full_with_spring() {
 /// `jointlin backbone --mode 2 SCENE --out DIR --quiet`: backbone.csv's (frequency Hz,
 /// damping ratio) rows.
 fn backbone_rows(scene: &Path, out: &Path) -> Vec<(f64, f64)> {
-    let run = Command::new(env!("CARGO_BIN_EXE_jointlin"))
-        .args(["backbone", "--mode", "2", "--quiet", "--out"])
-        .arg(out)
-        .arg(scene)
-        .output()
-        .unwrap();
-    assert!(
-        run.status.success(),
-        "{}",
-        String::from_utf8_lossy(&run.stderr)
-    );
-    let text = std::fs::read_to_string(out.join("backbone.csv")).unwrap();
-    let mut lines = text.lines();
-    let head: Vec<&str> = lines.next().unwrap().split(',').collect();
-    let col = |name: &str| head.iter().position(|h| *h == name).unwrap();
-    let (f, z) = (col("frequency_Hz"), col("damping_ratio"));
-    lines
-        .map(|l| {
-            let v: Vec<f64> = l.split(',').map(|w| w.parse().unwrap()).collect();
-            (v[f], v[z])
-        })
+    let (scene, out_dir) = (scene.to_str().unwrap(), out.to_str().unwrap());
+    common::run_ok(&[
+        "backbone", "--mode", "2", "--quiet", "--out", out_dir, scene,
+    ]);
+    common::numbers(&out.join("backbone.csv"))
+        .iter()
+        .map(|r| (r["frequency_Hz"], r["damping_ratio"]))
         .collect()
 }
 

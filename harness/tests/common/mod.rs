@@ -20,6 +20,17 @@ pub fn scratch(prefix: &str, tag: &str) -> PathBuf {
     d
 }
 
+/// Runs `jointlin ARGS`, panicking with its stderr unless it succeeds; its stderr.
+pub fn run_ok<S: AsRef<std::ffi::OsStr>>(args: &[S]) -> String {
+    let run = std::process::Command::new(env!("CARGO_BIN_EXE_jointlin"))
+        .args(args)
+        .output()
+        .unwrap();
+    let log = String::from_utf8_lossy(&run.stderr).into_owned();
+    assert!(run.status.success(), "{log}");
+    log
+}
+
 /// The rows of a CSV file as column → text.
 pub fn rows(path: &Path) -> Vec<HashMap<String, String>> {
     let mut r = csv::Reader::from_path(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
