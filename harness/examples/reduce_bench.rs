@@ -98,7 +98,7 @@ fn main() -> Result<(), String> {
         for modes in counts {
             let dir = out(&format!("{scene}-{modes}"));
             let d = dir.to_str().ok_or("path")?;
-            let reduce_s = jointlin(&["reduce", path, "--out", d, "--modes", modes])?;
+            let reduce_s = jointlin(&["reduce", path, "--out", d, "--modes", modes, "--quiet"])?;
             let json: serde_json::Value = serde_json::from_str(
                 &std::fs::read_to_string(dir.join("run.json")).map_err(|e| e.to_string())?,
             )

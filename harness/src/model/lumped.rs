@@ -10,16 +10,14 @@
 use std::collections::BTreeMap;
 use std::path::Path;
 
-use nalgebra::{Complex, DMatrix, Vector3};
+use nalgebra::{DMatrix, Vector3};
 
+use super::lumped_ends::{axis, component, renumbered, Along, End, Ends, Loads, GROUND};
 use super::lumped_joints::{self, JointInfo, Planned, Site};
 use super::lumped_system::{Element, Element3, Law, System, System3};
-use crate::capi::Tangential;
 use crate::input::matrices::{self, MatrixModel};
 use crate::input::scene::schema::{BodyKind, SceneFile, SpringSpec};
 use crate::input::scene::Scene;
-
-const GROUND: &str = "ground";
 
 /// The lumped system of a scene with its names.
 #[derive(Debug, Clone)]
@@ -72,14 +70,6 @@ impl Lumped {
     }
 }
 
-fn axis(d: &[f64; 3]) -> Option<usize> {
-    let nz: Vec<usize> = (0..3).filter(|&c| d[c] != 0.0).collect();
-    (nz.len() == 1).then(|| nz[0])
-}
-
-/// A named end and its site.
-type End = (String, Site);
-
 /// Builds the lumped system; a scene with FE (`box`) bodies or interfaces is refused
 /// with a message. `[[matrices]]` models come first in the DOF order (their rows as
 /// listed), then three translations per mass body.
@@ -108,33 +98,13 @@ pub fn build(scene: &Scene) -> Result<Lumped, String> {
         names: all_names,
     } = full_system(s, &models);
     let n = k.nrows();
-    let site = |name: &str| -> Result<Site, String> {
-        sites.get(name).copied().ok_or_else(|| match name.split_once('.') {
-            Some((mat, _)) if s.matrices.iter().any(|x| x.name == mat) => format!(
-                "unknown point `{name}`: the DOF list of matrices `{mat}` has no x, y or z row of it"
-            ),
-            _ => format!("unknown body `{name}`"),
-        })
-    };
-    let ends = |x: &str, y: &str| -> Result<(End, Option<End>), String> {
-        let look = |n: &str| -> Result<Option<End>, String> {
-            if n == GROUND {
-                Ok(None)
-            } else {
-                site(n).map(|st| Some((n.to_string(), st)))
-            }
-        };
-        match (look(x)?, look(y)?) {
-            (Some(i), j) => Ok((i, j)),
-            (None, Some(j)) => Ok((j, None)),
-            (None, None) => Err(format!("`{x}`–`{y}`: no mass body")),
-        }
-    };
+    let ends = Ends { s, sites: &sites };
+    let site = |name: &str| ends.site(name);
     let mut elements = Vec::new();
     let mut names = Vec::new();
     for (i, sp) in s.springs.iter().enumerate() {
         let (a, b) = match &sp.between {
-            Some([x, y]) => ends(x, y)?,
+            Some([x, y]) => ends.pair(x, y)?,
             None => ((sp.body.clone(), site(&sp.body)?), None),
         };
         if let Some(e) = add_spring(sp, &a, b.as_ref(), &mut k, &mut d)
@@ -157,40 +127,13 @@ pub fn build(scene: &Scene) -> Result<Lumped, String> {
             planned.push(lumped_joints::plan(j, normal, k_n, ends)?);
             continue;
         }
-        let c =
-            axis(&j.direction).ok_or(format!("joint `{}`: direction must be an axis", j.name))?;
-        let (a, b) = ends(&j.between[0], &j.between[1])?;
-        let at = |e: &End| component(&e.0, &e.1, c).map_err(|m| format!("joint `{}`: {m}", j.name));
-        joints.push(JointInfo {
-            name: j.name.clone(),
-            elements: vec![elements.len()],
-            point: None,
-            static_normal: None,
-            normal_varies: false,
-        });
-        elements.push(Element {
-            i: at(&a)?,
-            j: b.as_ref().map(at).transpose()?,
-            law: Law::Point(Tangential {
-                law: j.law,
-                rule: j.rule,
-                mu: j.mu,
-                normal: j.normal_force.unwrap_or(0.0),
-                k_t0: j.k_t0,
-            }),
-        });
+        let (info, element) = ends.one_direction_joint(j, elements.len())?;
+        joints.push(info);
+        elements.push(element);
         names.push(j.name.clone());
     }
     // Kept DOFs: not clamped, and (a mass body's) something acts on them.
-    let mut clamped = vec![false; n];
-    for cl in &s.clamp {
-        let st = site(&cl.body)?;
-        for c in 0..3 {
-            if let (true, Some(r)) = (cl.components[c], st[c]) {
-                clamped[r] = true;
-            }
-        }
-    }
+    let clamped = ends.clamped(n)?;
     let used = |r: usize| {
         r < nm
             || (0..n).any(|c| k[(r, c)] != 0.0 || d[(r, c)] != 0.0)
@@ -201,15 +144,7 @@ pub fn build(scene: &Scene) -> Result<Lumped, String> {
     };
     let keep: Vec<usize> = (0..n).filter(|&r| !clamped[r] && used(r)).collect();
     let new = |r: usize| keep.iter().position(|&x| x == r);
-    let mut kept_elements = Vec::new();
-    for (e, name) in elements.iter().zip(&names) {
-        let i = new(e.i).ok_or(format!("`{name}` acts on a clamped direction"))?;
-        let j = match e.j {
-            Some(j) => Some(new(j).ok_or(format!("`{name}` acts on a clamped direction"))?),
-            None => None,
-        };
-        kept_elements.push(Element { i, j, law: e.law });
-    }
+    let kept_elements = renumbered(&elements, &names, &new)?;
     for p in &mut planned {
         lumped_joints::renumber(p, new)?;
     }
@@ -220,40 +155,12 @@ pub fn build(scene: &Scene) -> Result<Lumped, String> {
         return Err("every loaded direction needs a mass body with mass > 0".into());
     }
     let dofs = keep.iter().map(|&r| all_names[r].clone()).collect();
-    let dir = |name: &str, d: [f64; 3], loaded: bool| -> Result<Vec<f64>, String> {
-        let at = Along {
-            n: keep.len(),
-            new: &new,
-            clamped: &clamped,
-        };
-        at.weights(name, &site(name)?, d, loaded)
+    let along = Along {
+        n: keep.len(),
+        new: &new,
+        clamped: &clamped,
     };
-    let outputs = s
-        .outputs
-        .iter()
-        .map(|o| {
-            let w = dir(&o.body, o.direction, false)
-                .map_err(|e| format!("output `{}`: {e}", o.name))?;
-            Ok((o.name.clone(), w))
-        })
-        .collect::<Result<Vec<_>, String>>()?;
-    // Point excitations: f̂ = F e^{iφ} along their direction (f(t) = Re(f̂ e^{iωt})).
-    let mut f1 = vec![Complex::new(0.0, 0.0); keep.len()];
-    for (i, e) in s.excitation.iter().enumerate() {
-        let w = dir(&e.body, e.direction, true).map_err(|m| format!("excitation[{i}]: {m}"))?;
-        let amp = Complex::from_polar(e.amplitude, e.phase_deg.to_radians());
-        f1.iter_mut().zip(&w).for_each(|(f, w)| *f += amp * *w);
-    }
-    let mut f0 = vec![0.0; keep.len()];
-    for (i, l) in s.preload.iter().enumerate() {
-        let force = Vector3::from(l.force.unwrap_or([0.0; 3]));
-        if force.norm() > 0.0 {
-            let w = dir(&l.body, force.into(), true).map_err(|m| format!("preload[{i}]: {m}"))?;
-            f0.iter_mut()
-                .zip(&w)
-                .for_each(|(f, w)| *f += force.norm() * w);
-        }
-    }
+    let Loads { outputs, f1, f0 } = ends.loads(&along)?;
     let damping = if s.effects.material_damping {
         pick(&d)
     } else {
@@ -283,11 +190,6 @@ pub fn build(scene: &Scene) -> Result<Lumped, String> {
         points,
         joints,
     })
-}
-
-/// The DOF of `name` along axis `c`, or an error naming what lacks it.
-fn component(name: &str, st: &Site, c: usize) -> Result<usize, String> {
-    st[c].ok_or_else(|| format!("`{name}` has no {} DOF in its DOF list", ["x", "y", "z"][c]))
 }
 
 /// Adds spring `sp` between ends `a` and `b` (None: ground) to K and D (k·nnᵀ, c·nnᵀ
@@ -385,44 +287,6 @@ fn full_system(s: &SceneFile, models: &[MatrixModel]) -> Full {
         );
     }
     f
-}
-
-/// The kept DOFs: their count, the new index of a full one, which full ones are clamped.
-struct Along<'a> {
-    n: usize,
-    new: &'a dyn Fn(usize) -> Option<usize>,
-    clamped: &'a [bool],
-}
-
-impl Along<'_> {
-    /// Weights over the kept DOFs of the unit vector along `d` at end `name` (its
-    /// components at the end's DOFs; a clamped component carries none). A `loaded`
-    /// direction (a force) with a component along a direction nothing holds is an
-    /// error; an output there reads zero.
-    fn weights(
-        &self,
-        name: &str,
-        st: &Site,
-        d: [f64; 3],
-        loaded: bool,
-    ) -> Result<Vec<f64>, String> {
-        let d = Vector3::from(d).normalize();
-        let mut w = vec![0.0; self.n];
-        for c in (0..3).filter(|&c| d[c] != 0.0) {
-            let axis = ["x", "y", "z"][c];
-            let r = st[c].ok_or_else(|| format!("`{name}` has no {axis} DOF in its DOF list"))?;
-            match (self.new)(r) {
-                Some(p) => w[p] = d[c],
-                None if self.clamped[r] || !loaded => {}
-                None => {
-                    return Err(format!(
-                        "a force along {axis} of `{name}`, where nothing holds the body"
-                    ))
-                }
-            }
-        }
-        Ok(w)
-    }
 }
 
 /// Undamped frequencies (1/time, ascending) of (K, M), M positive definite: the

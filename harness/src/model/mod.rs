@@ -12,6 +12,7 @@ mod damping;
 pub mod deck;
 mod locate;
 pub mod lumped;
+mod lumped_ends;
 pub mod lumped_joints;
 pub mod lumped_static;
 pub mod lumped_system;
