@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The whole test suite: formatting, lints, every Rust/C/Fortran test, the header check,
+# The whole test suite: formatting, lints, rustdoc, every Rust/C/Fortran test, the header check,
 # the Python package's tests,
 # sanitizer runs of the host programs and a short fuzz run.
 set -euo pipefail
@@ -9,6 +9,11 @@ echo "== cargo fmt --check"
 cargo fmt --all -- --check
 echo "== cargo clippy -D warnings"
 cargo clippy --workspace --all-targets --release -- -D warnings
+echo "== rustdoc, warnings as errors"
+# The harness and the Python crate are documented with their private items (their docs
+# are for contributors); the library's public API last, so target/doc/jointlin is it.
+RUSTDOCFLAGS="-D warnings" cargo doc --workspace --no-deps --lib --release --document-private-items
+RUSTDOCFLAGS="-D warnings" cargo doc -p jointlin --no-deps --lib --release
 echo "== cargo build (workspace, release)"
 # The host-program tests load target/release/libjointlin.so and run target/release/jointlin:
 # built first, so that a target directory kept from an earlier build never hands them a

@@ -19,7 +19,9 @@
 //!
 //! Units are the caller's and must be consistent. The tests use N, mm, s, t, so E is
 //! in MPa (N/mm²), ρ in t/mm³, forces in N, frequencies in Hz or rad/s as named.
-
+// Documented with its private items (`cargo doc --document-private-items`, as
+// scripts/test.sh builds it): docs may link to private helpers and constants.
+#![allow(rustdoc::private_intra_doc_links)]
 // Index loops mirror the formulas (Σᵢ over nodes, components); iterator rewrites
 // would hide the maths.
 #![allow(clippy::needless_range_loop)]

@@ -8,6 +8,8 @@
 //! - [`point`]: the time-domain points (`jointlin_point_step`, `jointlin_point3d_step`)
 //!   as stateful objects;
 //! - [`scene`]: the harness's input check and its commands (run in a child process).
+// Documented with its private items (`cargo doc --document-private-items`).
+#![allow(rustdoc::private_intra_doc_links)]
 
 mod errors;
 mod linearize;

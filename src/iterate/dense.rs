@@ -316,7 +316,7 @@ fn newton_step(
     Ok(None)
 }
 
-/// [`two_cycle`] for every contact at once: each has settled (a_k ≈ a_{k−2}) and at least
+/// [`super::point`]'s `two_cycle` for every contact at once: each has settled (a_k ≈ a_{k−2}) and at least
 /// one still swings by more than the tolerance; reports the contact with the largest swing.
 fn dense_two_cycle(histories: &[Vec<(f64, f64)>], tolerance: f64) -> Option<(f64, f64)> {
     let mut worst: Option<(f64, f64, f64)> = None;

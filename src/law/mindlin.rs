@@ -24,7 +24,7 @@ impl Mindlin {
     }
 
     /// k_T0 from Hertz–Mindlin geometry, k_T0 = 8 r_A G* (2.38), with the contact radius
-    /// r_A from [`super::hertz::contact_radius`] and G* from [`effective_shear_modulus`].
+    /// r_A from [`super::hertz::Hertz::contact_radius`] and G* from [`effective_shear_modulus`].
     pub fn k_t0_from_geometry(contact_radius: f64, g_star: f64) -> f64 {
         8.0 * contact_radius * g_star // (2.38)
     }

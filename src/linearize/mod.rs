@@ -168,7 +168,7 @@ struct Normalized {
 /// (rad per time unit).
 ///
 /// The loop is evaluated for the point's own scale (μF_N = 1, δ* = 1) and scaled back with
-/// products that cannot overflow or underflow on the way ([`Wide`]), so every output is the
+/// products that cannot overflow or underflow on the way (`crate::wide::Wide`), so every output is the
 /// correctly scaled double of the normalized result over the whole double range: a
 /// subnormal δ* (k_T0 = f64::MAX) or A/δ* (F_N = 1e308, A = 1e-8), a friction limit of
 /// 1e-165. An output that is itself beyond the largest double is

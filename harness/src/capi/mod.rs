@@ -83,7 +83,7 @@ impl Quadrature {
     }
 }
 
-/// Sets the quadrature of this thread's [`linearize`] calls and of the PROPS built by
+/// Sets the quadrature of this thread's [`linearize()`] calls and of the PROPS built by
 /// [`props::encode`] afterwards (`None`: the library's default). For fidelity studies
 /// (`jointlin tradeoff`); returns the previous setting.
 pub fn set_quadrature(q: Option<Quadrature>) -> Option<Quadrature> {

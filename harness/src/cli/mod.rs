@@ -1,6 +1,10 @@
 //! The commands of `jointlin`, one file each: the clap arguments, the plumbing from the
 //! input to the study, the run log on stderr and the exit code (0 done, 1 the run
 //! failed, 2 the input or the arguments are wrong).
+// The doc comments of the clap arguments below are the commands' help texts, written
+// for the terminal: `[sweep]`, `[[outputs]]` and `<SCENE>` there are TOML tables and
+// placeholders, not links or HTML.
+#![allow(rustdoc::broken_intra_doc_links, rustdoc::invalid_html_tags)]
 
 mod backbone;
 mod bench;

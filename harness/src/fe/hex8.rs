@@ -82,7 +82,7 @@ pub fn shape(p: [f64; 3]) -> ([f64; 8], [[f64; 3]; 8]) {
     (n, d)
 }
 
-/// Jacobian J[a][b] = ∂x_b/∂ξ_a at natural point `p`.
+/// Jacobian `J[a][b]` = ∂x_b/∂ξ_a at natural point `p`.
 fn jacobian(x: &[[f64; 3]; 8], dn: &[[f64; 3]; 8]) -> Matrix3<f64> {
     let mut j = Matrix3::zeros();
     for i in 0..8 {

@@ -1,6 +1,6 @@
 //! Mesh study of a loss study (thesis §5.4.2, "a finer mesh changes the loss by less
 //! than 2 %"): the power at resonance at the first reference point's torque, at its
-//! amplitude and a quarter of it (each at its own resonance, as [`power_at`]), for every
+//! amplitude and a quarter of it (each at its own resonance, as [`super::power_at`]), for every
 //! box's divisions multiplied by each factor, or only some axes' of some boxes
 //! ([`Refinement`]: which part of the discretization error a change comes from), with
 //! the contact law averaged over area samples ([`crate::model::subgrid`]) and,
@@ -107,7 +107,7 @@ pub struct NodeBased {
     pub low_pressure_share: [f64; 2],
 }
 
-/// "Low pressure" for [`MeshRow::low_pressure_share`]: below this fraction of the
+/// "Low pressure" for [`NodeBased::low_pressure_share`]: below this fraction of the
 /// largest contact pressure.
 pub const LOW_PRESSURE: f64 = 0.2;
 

@@ -1,6 +1,6 @@
 //! Files of a loss study: loss.csv, loss.md (with the comparison against published
 //! points), loss.svg, and the contact maps of the scene's own torque at the largest
-//! amplitude (contact_ratio.svg, contact_energy.svg, contact_<interface>.vtu).
+//! amplitude (contact_ratio.svg, contact_energy.svg, `contact_<interface>.vtu`).
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};

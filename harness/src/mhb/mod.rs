@@ -11,7 +11,7 @@
 //! (Galerkin projection of the equation of motion on cos hτ, sin hτ, e.g. Krack & Gross,
 //! *Harmonic Balance for Nonlinear Vibration Problems*, 2019, eq. 2.19) with the element
 //! forces F̂ₑ from the alternating frequency–time scheme ([`aft`]), the library's
-//! stateful point marched through the C API. Newton ([`solve`]) uses the Jacobian
+//! stateful point marched through the C API. Newton ([`Hb::solve`]) uses the Jacobian
 //! assembled from the tangents the point returns; [`continuation`] traces branches in ω
 //! through folds. H = 1 is the thesis's first-order harmonic balance (3.5–3.8) applied to
 //! the actual force rather than to the Ersatzfunktion (4.3); [`first_order`] is the

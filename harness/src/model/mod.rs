@@ -1,7 +1,7 @@
 //! The assembled problem of a scene: mesh and lumped bodies, K, M, material damping,
 //! contact points with frames and areas, preload and excitation vectors, outputs.
 //!
-//! Built by [`build`] from a validated [`Scene`](crate::input::scene::Scene). Units are the scene's. Contact points
+//! Built by [`build()`] from a validated [`crate::input::scene::Scene`]. Units are the scene's. Contact points
 //! follow `fe::contact_pairs`: δ = u_upper − u_lower, frame Q = [n t₁ t₂] with n from the
 //! lower body into the upper one; a ground–mass interface has the fixed ground node as
 //! its lower side.
@@ -59,7 +59,7 @@ pub fn node_ids(scene: &Scene, p: &Problem) -> Vec<u64> {
     }
 }
 
-/// The one [`Problem`] of an input, whatever its format: a scene through [`build`], a
+/// The one [`Problem`] of an input, whatever its format: a scene through [`build()`], a
 /// deck (or a scene with `model`) through [`deck::build`].
 pub fn problem(input: &Input) -> Result<Problem, BuildError> {
     match input {

@@ -18,7 +18,7 @@ pub fn drawing_error<E: std::fmt::Display>(e: E) -> String {
     e.to_string()
 }
 
-/// "frequency [Hz]", "frequency [1/<time>]" or "angular frequency [rad/<time>]".
+/// `frequency [Hz]`, `frequency [1/<time>]` or `angular frequency [rad/<time>]`.
 pub(crate) fn freq_label(units: &crate::settings::Units) -> String {
     let fu = frequency_unit(units);
     if fu.factor == 1.0 {

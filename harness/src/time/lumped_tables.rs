@@ -15,10 +15,10 @@ use crate::util::csv_table::CsvTable;
 use crate::util::number::exact;
 use crate::util::provenance;
 
-/// results_time.csv (e.g. N, m, s): frequency_Hz; per output <name>_amp_m,
-/// <name>_phase_deg (first harmonic, u ≈ x̄ + Re(û e^{iωt})), <name>_half_range_m, _max_m,
-/// _min_m; per joint <joint>_energy_N_m (dissipated per cycle) and, where its normal
-/// force varies, <joint>_normal_force_min_N and _max_N; dissipated_power_N_m_per_s,
+/// results_time.csv (e.g. N, m, s): frequency_Hz; per output `<name>_amp_m`,
+/// `<name>_phase_deg` (first harmonic, u ≈ x̄ + Re(û e^{iωt})), `<name>_half_range_m`, _max_m,
+/// _min_m; per joint `<joint>_energy_N_m` (dissipated per cycle) and, where its normal
+/// force varies, `<joint>_normal_force_min_N` and _max_N; dissipated_power_N_m_per_s,
 /// energy_per_cycle_N_m (all elements), energy_trapezoid_N_m (Σ ½(F + F₊)·Δδ over the
 /// tangential components, a check); integrator, steps_per_cycle, cycles, steady,
 /// distance, loose_steps and cut_steps (0: RK4), wall_time_s; status ("converged",

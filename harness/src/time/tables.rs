@@ -15,8 +15,8 @@ use crate::util::number::exact;
 use crate::util::provenance;
 
 /// results_time.csv (units as in results.csv, e.g. N, mm, s): frequency_Hz; per output
-/// <name>_amp_mm, <name>_phase_deg (first harmonic, u ≈ x̄ + Re(û e^{iωt})),
-/// <name>_half_range_mm ((max − min)/2), <name>_max_mm, <name>_min_mm;
+/// `<name>_amp_mm`, `<name>_phase_deg` (first harmonic, u ≈ x̄ + Re(û e^{iωt})),
+/// `<name>_half_range_mm` ((max − min)/2), `<name>_max_mm`, `<name>_min_mm`;
 /// dissipated_power_N_mm_per_s (Σ energy per cycle × f); energy_per_cycle_N_mm;
 /// energy_trapezoid_N_mm (check); integrator, steps_per_cycle, cycles, steady, distance
 /// (relative), loose_steps, cut_steps (Newton acceptances at the loose tolerance, steps

@@ -1,5 +1,5 @@
 //! The mesh cards of the decks the CalculiX comparisons write: a structured box mesh
-//! ([`box_mesh`]) as `*NODE` and `*ELEMENT` cards.
+//! ([`crate::fe::elements::box_mesh::box_mesh`]) as `*NODE` and `*ELEMENT` cards.
 
 use std::fmt::Write as _;
 

@@ -346,7 +346,7 @@ struct Advanced {
     corrector_steps: usize,
     /// Reached by the corner switch.
     switched: bool,
-    /// Reached by a jump over a gap ([`jump`]), with the requested amplitudes in the gap
+    /// Reached by a jump over a gap ([`past_end::jump`]), with the requested amplitudes in the gap
     /// that have no solution.
     jumped: bool,
     skipped: Vec<f64>,

@@ -341,7 +341,7 @@ fn check_nodes(kind: ElementKind, x: &[[f64; 3]]) -> Result<(), ElementError> {
     Ok(())
 }
 
-/// det J and J⁻¹ (J[a][b] = ∂x_b/∂ξ_a) at natural point `p`; det J > 0 checked (a NaN
+/// det J and J⁻¹ (`J[a][b]` = ∂x_b/∂ξ_a) at natural point `p`; det J > 0 checked (a NaN
 /// determinant is rejected too).
 fn jacobian(
     kind: ElementKind,

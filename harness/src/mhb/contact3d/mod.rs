@@ -270,7 +270,7 @@ impl<'a> Hb3<'a> {
         })
     }
 
-    /// The linear response with every 1D element stuck ([`System::stuck_stiffness`]) and
+    /// The linear response with every 1D element stuck ([`crate::model::lumped_system::System::stuck_stiffness`]) and
     /// every point stuck and closed (k_T0 along its tangential rows, k_N along its normal
     /// row, that spring preloaded by k_N·g₀): the start of a solve.
     pub fn stuck_start(&self, omega: f64) -> Vec<f64> {

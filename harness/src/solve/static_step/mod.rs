@@ -1,5 +1,5 @@
 //! The static preload step: K u + f_c(u) = f_pre by Newton's method with a line search
-//! on the energy's slope ([`line_search`]), with the contact law of every point from
+//! on the energy's slope ([`crate::solve::line_search`]), with the contact law of every point from
 //! UINTER (LINPER = 0, KSTEP = 1, one increment), as Abaqus would call it; the Newton
 //! matrices are factored with UMFPACK's symmetric strategy ([`Symbolic::symmetric`]). The converged pressures are the operating point of the steady-state
 //! step; points open here stay open there.
@@ -239,7 +239,7 @@ fn friction_samples(
 
 /// Residual K u + α f_c(u) − f and per-point tangents (× α), one UINTER call per point;
 /// α = 1 is the model, α < 1 a softer contact on the continuation's path
-/// ([`continuation`]).
+/// ([`continuation::continuation()`]).
 fn evaluate(
     p: &Problem,
     props: &[[f64; 12]],

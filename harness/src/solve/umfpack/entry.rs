@@ -20,7 +20,7 @@ pub trait Entry: Copy + Default + Send + Sync + private::Sealed + 'static {
     /// umfpack_*_symbolic on the pattern alone (values NULL).
     ///
     /// # Safety
-    /// `ap` has n+1 and `ai` ap[n] entries; `control` UMFPACK_CONTROL, `info`
+    /// `ap` has n+1 and `ai` `ap[n]` entries; `control` UMFPACK_CONTROL, `info`
     /// UMFPACK_INFO doubles.
     unsafe fn symbolic(
         n: i64,
@@ -33,7 +33,7 @@ pub trait Entry: Copy + Default + Send + Sync + private::Sealed + 'static {
     /// umfpack_*_numeric.
     ///
     /// # Safety
-    /// As [`Entry::symbolic`]; `ax` holds ap[n] entries; `symbolic` from this family.
+    /// As [`Entry::symbolic`]; `ax` holds `ap[n]` entries; `symbolic` from this family.
     unsafe fn numeric(
         ap: *const i64,
         ai: *const i64,
