@@ -23,6 +23,8 @@
 #                                                 JOINTLIN_LIBDIR defaults to $(PREFIX)/lib)
 #   $(PREFIX)/share/jointlin/examples/            C, Fortran and Abaqus examples (the
 #                                                 Abaqus env file names $(PREFIX))
+#   $(PREFIX)/share/jointlin/examples/deck/       the Gmsh bolted lap deck (.geo, deck, mesh;
+#                                                 scenes/bolted-lap.toml reads it from there)
 #   $(PREFIX)/share/jointlin/scenes/              the scenes (`jointlin validate` finds
 #                                                 them there from any directory)
 #   $(PREFIX)/share/man/man1/jointlin*.1          man pages of the program and its
@@ -94,6 +96,7 @@ install: lib bin shim
 		$(DEST)/share/jointlin/examples/fortran $(DEST)/share/jointlin/examples/abaqus \
 		$(DEST)/share/jointlin/examples/abaqus/block-on-plane \
 		$(DEST)/share/jointlin/examples/abaqus/three-beams \
+		$(DEST)/share/jointlin/examples/deck \
 		$(DEST)/share/jointlin/scenes $(DEST)/share/man/man1
 	$(call stripped,$(BIN),$(DEST)/bin/jointlin,$(DEST)/bin/.debug)
 	$(call stripped,$(LIBDIR)/libjointlin.so,$(DEST)/lib/$(REALNAME),$(DEST)/lib/.debug)
@@ -122,6 +125,8 @@ install: lib bin shim
 		$(DEST)/share/jointlin/examples/abaqus/three-beams/
 	sed -e 's|@PREFIX@|$(PREFIX)|' -e 's|@VERSION@|$(VERSION)|' jointlin.pc.in \
 		> $(DEST)/lib/pkgconfig/jointlin.pc
+	install -m 644 examples/deck/bolted-lap.geo examples/deck/bolted-lap.inp \
+		examples/deck/bolted-lap-mesh.inp $(DEST)/share/jointlin/examples/deck/
 	cp -R scenes/. $(DEST)/share/jointlin/scenes/
 	$(DEST)/bin/jointlin man --out $(DEST)/share/man/man1 > /dev/null
 

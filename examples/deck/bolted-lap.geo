@@ -7,8 +7,7 @@
 // Mesh and deck mesh file (Gmsh writes its physical surfaces as CPS6 facets, which
 // the deck cannot hold; the converter turns them into element-face surfaces):
 //   gmsh -3 -format inp -o bolted-lap-gmsh.inp bolted-lap.geo
-//   cargo run --release -p jointlin-harness --example gmsh_deck_mesh -- \
-//       bolted-lap-gmsh.inp bolted-lap-mesh.inp
+//   jointlin deck from-gmsh bolted-lap-gmsh.inp --out bolted-lap-mesh.inp
 SetFactory("OpenCASCADE");
 
 t = 5;        // plate thickness

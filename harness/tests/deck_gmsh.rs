@@ -4,7 +4,8 @@
 //! pairs every node of the slave face (their number counted on the mesh, and equal to
 //! Gmsh's node set of that physical surface); the head and nut ties pair every ring node;
 //! the preload pressure on the bearing ring is the library's M8 preload at 20 N·m. A mesh
-//! Gmsh writes now from the .geo converts and pairs the same way. CalculiX's *FREQUENCY
+//! Gmsh writes now from the .geo converts (`jointlin deck from-gmsh`) and pairs the same way; a
+//! facet that bounds no solid is refused with file:line. CalculiX's *FREQUENCY
 //! on the tied variant (every interface *TIE; ccx has no USER interaction) gives the
 //! README's first mode, 142.9 Hz, inside the deck's sweep, and `jointlin modes`
 //! on the same deck gives CalculiX's six modes to 5e-6. The Gmsh and CalculiX parts fail on CI where the program is missing
@@ -185,12 +186,62 @@ fn fresh_gmsh_mesh_converts_and_pairs() {
         }
         Ok(o) => assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr)),
     }
-    let mesh = deck_mesh_from_gmsh(&export).unwrap();
-    std::fs::write(dir.join("bolted-lap-mesh.inp"), mesh).unwrap();
+    // The command a user runs (the .geo's header): `jointlin deck from-gmsh`.
+    let mesh = dir.join("bolted-lap-mesh.inp");
+    let log = jointlin_ok(
+        &["deck", "from-gmsh"],
+        &[&export, Path::new("--out"), &mesh],
+    );
+    assert!(log.contains("surfaces)"), "{log}");
+    assert_eq!(
+        std::fs::read_to_string(&mesh).unwrap(),
+        deck_mesh_from_gmsh(&export).unwrap()
+    );
     std::fs::copy(example("bolted-lap.inp"), dir.join("bolted-lap.inp")).unwrap();
     let (d, warnings) = deck::read(&dir.join("bolted-lap.inp")).unwrap();
     assert!(warnings.is_empty(), "{warnings:?}");
     check_lap(&d, "fresh bolted-lap.inp");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// `jointlin ARGS PATHS`, panicking with its stderr unless it succeeds; its stderr.
+fn jointlin_ok(args: &[&str], paths: &[&Path]) -> String {
+    let run = Command::new(env!("CARGO_BIN_EXE_jointlin"))
+        .args(args)
+        .args(paths)
+        .output()
+        .unwrap();
+    let log = String::from_utf8_lossy(&run.stderr).into_owned();
+    assert!(run.status.success(), "{log}");
+    log
+}
+
+/// A facet of a physical surface that is no face of a solid element: `jointlin deck
+/// from-gmsh` names the export's file and line, exits 2 and writes nothing.
+#[test]
+fn from_gmsh_refuses_a_facet_that_bounds_no_solid() {
+    let dir = temp_dir("gmsh-bad");
+    let export = dir.join("bad-gmsh.inp");
+    std::fs::write(
+        &export,
+        "*NODE\n1, 0, 0, 0\n2, 1, 0, 0\n3, 0, 1, 0\n4, 0, 0, 1\n5, 1, 1, 1\n\
+         *ELEMENT, type=C3D4, ELSET=Volume1\n1, 1, 2, 3, 4\n\
+         *ELEMENT, type=CPS3, ELSET=Surface1\n2, 2, 3, 5\n\
+         *ELSET, ELSET=TOP\n2\n",
+    )
+    .unwrap();
+    let out = dir.join("mesh.inp");
+    let run = Command::new(env!("CARGO_BIN_EXE_jointlin"))
+        .args(["deck", "from-gmsh"])
+        .arg(&export)
+        .arg("--out")
+        .arg(&out)
+        .output()
+        .unwrap();
+    let log = String::from_utf8_lossy(&run.stderr);
+    assert_eq!(run.status.code(), Some(2), "{log}");
+    assert!(log.contains("bad-gmsh.inp:"), "{log}");
+    assert!(!out.exists(), "nothing written");
     let _ = std::fs::remove_dir_all(&dir);
 }
 

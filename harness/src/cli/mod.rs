@@ -9,6 +9,7 @@
 mod backbone;
 mod bench;
 mod check;
+mod deck;
 mod effects;
 mod export;
 mod loss;
@@ -215,6 +216,9 @@ pub enum Command {
     /// codes' matrix output.
     #[command(subcommand)]
     Matrices(matrices::Args),
+    /// Abaqus-format decks from other tools: converters of mesh generators' exports.
+    #[command(subcommand)]
+    Deck(deck::Args),
     /// Write the man pages of the program and of every command (jointlin.1,
     /// jointlin-run.1, …) into DIR, generated from this help; `make install` puts them
     /// in PREFIX/share/man/man1.
@@ -259,6 +263,7 @@ pub fn dispatch(command: Command) -> ExitCode {
         Command::Backbone(a) => backbone::main(a),
         Command::Reduce(a) => reduce::main(a),
         Command::Matrices(a) => matrices::main(a),
+        Command::Deck(a) => deck::main(a),
         Command::Man(a) => man::main(a),
     }
 }

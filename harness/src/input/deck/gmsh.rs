@@ -81,7 +81,7 @@ fn write_ids(s: &mut String, ids: &[u64]) {
 pub fn convert(cards: &[Card], name: &str) -> Result<String, DeckError> {
     let mut out = format!(
         "** Mesh from the Gmsh export {name}: physical surfaces as element-face surfaces\n\
-         ** (jointlin_harness::input::deck::gmsh; example gmsh_deck_mesh).\n"
+         ** (`jointlin deck from-gmsh`).\n"
     );
     let mut members: HashMap<u64, Member> = HashMap::new();
     // Sorted face corners → (element id, face index) of every solid element face.
