@@ -22,7 +22,8 @@
 #                                                 with another compiler (its
 #                                                 JOINTLIN_LIBDIR defaults to $(PREFIX)/lib)
 #   $(PREFIX)/share/jointlin/examples/            C, Fortran and Abaqus examples (the
-#                                                 Abaqus env file names $(PREFIX))
+#                                                 Abaqus env file names $(PREFIX); the
+#                                                 pass drivers passes.sh and passes.py)
 #   $(PREFIX)/share/jointlin/examples/deck/       the Gmsh bolted lap deck (.geo, deck, mesh;
 #                                                 scenes/bolted-lap.toml reads it from there)
 #   $(PREFIX)/share/jointlin/scenes/              the scenes (`jointlin validate` finds
@@ -119,6 +120,8 @@ install: lib bin shim
 	sed 's|/opt/jointlin|$(PREFIX)|g' examples/abaqus/abaqus_v6.env \
 		> $(DEST)/share/jointlin/examples/abaqus/abaqus_v6.env
 	install -m 644 examples/abaqus/user.f $(DEST)/share/jointlin/examples/abaqus/
+	install -m 755 examples/abaqus/passes.sh examples/abaqus/passes.py \
+		$(DEST)/share/jointlin/examples/abaqus/
 	install -m 644 examples/abaqus/block-on-plane/* \
 		$(DEST)/share/jointlin/examples/abaqus/block-on-plane/
 	install -m 644 examples/abaqus/three-beams/* \

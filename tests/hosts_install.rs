@@ -179,6 +179,84 @@ fn installed_tree_validates_from_another_directory_with_its_man_pages() {
     assert!(!man1.join("jointlin-help.1").exists());
 }
 
+/// The README's first tutorial ("Using jointlin from Abaqus") from the installed tree
+/// alone, in a directory without a checkout: export the installed block scene as a job,
+/// copy the installed env file, user file and pass drivers beside it, check and run the
+/// job in the harness. Every installed scene checks from there too (the bolted lap's
+/// takes its model from the installed examples/deck).
+#[test]
+fn installed_tree_runs_the_abaqus_tutorial_from_another_directory() {
+    let p = prefix();
+    let share = p.join("share/jointlin");
+    let bin = p.join("bin/jointlin");
+    let elsewhere = scratch("tutorial-elsewhere");
+    run_ok(
+        Command::new(&bin)
+            .arg("export")
+            .arg(share.join("scenes/block-on-plane.toml"))
+            .args(["--inp", "job/block.inp"])
+            .current_dir(&elsewhere),
+    );
+    let job = elsewhere.join("job");
+    for f in ["block.inp", "sweep.frq", "jointlin.cfg"] {
+        assert!(job.join(f).is_file(), "export wrote no {f}");
+    }
+    for f in ["abaqus_v6.env", "user.f", "passes.sh", "passes.py"] {
+        let installed = share.join("examples/abaqus").join(f);
+        std::fs::copy(&installed, job.join(f)).unwrap();
+        if f.starts_with("passes") {
+            let repo = std::fs::read(root().join("examples/abaqus").join(f)).unwrap();
+            assert_eq!(
+                std::fs::read(&installed).unwrap(),
+                repo,
+                "{f} installed as is"
+            );
+        }
+    }
+    let env = std::fs::read_to_string(job.join("abaqus_v6.env")).unwrap();
+    assert!(
+        env.contains(&format!("jointlin = '{}'", p.display())),
+        "{env}"
+    );
+    let check = run_ok(
+        Command::new(&bin)
+            .args(["check", "job/block.inp"])
+            .current_dir(&elsewhere),
+    );
+    let summary = text(&check);
+    assert!(
+        summary.contains("9 contact points") && summary.contains("14 frequencies"),
+        "{summary}"
+    );
+    run_ok(
+        Command::new(&bin)
+            .args(["run", "job/block.inp", "--out", "job/harness", "--quiet"])
+            .current_dir(&elsewhere),
+    );
+    let results = std::fs::read_to_string(job.join("harness/results.csv")).unwrap();
+    assert!(
+        results.starts_with("frequency_Hz,BLOCK_X_24_u1_amp_mm"),
+        "{results}"
+    );
+    assert_eq!(results.lines().count(), 15, "14 frequencies");
+
+    let mut scenes: Vec<PathBuf> = std::fs::read_dir(share.join("scenes"))
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|f| f.extension().is_some_and(|e| e == "toml"))
+        .collect();
+    scenes.sort();
+    assert!(scenes.iter().any(|f| f.ends_with("bolted-lap.toml")));
+    for scene in scenes {
+        run_ok(
+            Command::new(&bin)
+                .arg("check")
+                .arg(&scene)
+                .current_dir(&elsewhere),
+        );
+    }
+}
+
 #[test]
 fn installed_program_runs() {
     let out = run_ok(Command::new(prefix().join("bin/jointlin")).arg("--version"));

@@ -1,0 +1,160 @@
+"""Runs an Abaqus job that uses jointlin pass by pass until the contact amplitudes are
+consistent (README, "Using jointlin from Abaqus", step 6): the same driver as passes.sh,
+for the Python that Abaqus ships (2.7 in older releases, 3 since 2024) and any other.
+From the job directory:
+
+    abaqus python passes.py INPUT.inp [ABAQUS OPTIONS...]    (or: python3 passes.py ...)
+
+Pass n is the job pass<n>: `$ABAQUS job=pass<n> input=INPUT user=$USER_FILE OPTIONS
+interactive` (ABAQUS default `abaqus`, USER_FILE default `user.f`). After each job the
+action file (jointlin.cfg's action_file) says what comes next: RUN_PASS with the
+increments to re-run (their lines of the full sweep become sweep.frq), RUN_FINAL (every
+frequency once more with converged amplitudes: that job's results are the answer), DONE
+or FAILED. The full sweep is kept in frequencies.frq while the passes run and sweep.frq
+is restored when they stop, however they stop.
+
+Exit status: 0 done (the last line on stdout names the job with the answer), 1 a job
+failed or the iteration did not converge (FAILED: the increments left), 2 the job
+directory is not ready (no sweep.frq, no jointlin.cfg with restart_file and action_file,
+or the files of an earlier run: delete them to start over).
+"""
+from __future__ import print_function
+
+import glob
+import os
+import re
+import shlex
+import shutil
+import subprocess
+import sys
+
+
+class Stop(Exception):
+    """Ends the driver with a message and an exit status."""
+
+    def __init__(self, message, status):
+        Exception.__init__(self, message)
+        self.status = status
+
+
+def setting(config, key):
+    """The value of `key = value` in the configuration (comments after # or !)."""
+    value = None
+    pattern = re.compile(r"^\s*" + key + r"\s*=\s*([^\s#!]*)")
+    with open(config) as f:
+        for line in f:
+            m = pattern.match(line)
+            if m:
+                value = m.group(1)
+    return value or None
+
+
+def read_action(path):
+    """The action file: (action, [increments])."""
+    action, increments = None, []
+    with open(path) as f:
+        for line in f:
+            words = line.split()
+            if words[:1] == ["action"] and len(words) > 1:
+                action = words[1]
+            elif words[:1] == ["increments"]:
+                increments = [int(k) for k in words[1:]]
+    return action, increments
+
+
+def lines(path):
+    with open(path) as f:
+        return [l for l in f.read().splitlines() if l.strip()]
+
+
+def check_ready(input_file, config):
+    """The job directory's files; returns (action_file, restart_file)."""
+    if not os.path.isfile(input_file):
+        raise Stop("%s: no such input file" % input_file, 2)
+    if not os.path.isfile("sweep.frq"):
+        raise Stop("no sweep.frq in %s: the steady-state step's frequencies "
+                   "(jointlin export writes it)" % os.getcwd(), 2)
+    if not os.path.isfile(config):
+        raise Stop("no %s: the UEXTERNALDB configuration (jointlin export writes it)"
+                   % config, 2)
+    action_file = setting(config, "action_file")
+    restart_file = setting(config, "restart_file")
+    if not action_file:
+        raise Stop("%s sets no action_file: the passes cannot be driven without it"
+                   % config, 2)
+    if not restart_file:
+        raise Stop("%s sets no restart_file: every pass is a job of its own and needs it"
+                   % config, 2)
+    if os.path.exists("frequencies.frq"):
+        raise Stop("frequencies.frq exists: an earlier run stopped while its passes ran; "
+                   "restore sweep.frq from it and delete it and %s* to start over"
+                   % restart_file, 2)
+    if glob.glob(restart_file + "*"):
+        raise Stop("%s exists: an earlier run's store; delete %s* to start over"
+                   % (restart_file, restart_file), 2)
+    return action_file, restart_file
+
+
+def passes(input_file, options):
+    """Runs the jobs; returns the name of the job with the answer."""
+    abaqus = shlex.split(os.environ.get("ABAQUS", "abaqus"))
+    user_file = os.environ.get("USER_FILE", "user.f")
+    config = os.environ.get("JOINTLIN_CONFIG", "jointlin.cfg")
+    action_file, _ = check_ready(input_file, config)
+    shutil.copyfile("sweep.frq", "frequencies.frq")
+    try:
+        every = lines("frequencies.frq")
+        n = 0
+        while True:
+            n += 1
+            job = "pass%d" % n
+            if os.path.exists(action_file):
+                os.remove(action_file)
+            print("passes.py: job %s (%d frequencies)" % (job, len(lines("sweep.frq"))),
+                  file=sys.stderr)
+            sys.stderr.flush()
+            command = abaqus + ["job=" + job, "input=" + input_file,
+                                "user=" + user_file] + options + ["interactive"]
+            if subprocess.call(command) != 0:
+                raise Stop("job %s failed (its .log and .msg say why)" % job, 1)
+            if not os.path.isfile(action_file):
+                raise Stop("job %s wrote no %s: is jointlin linked into the job "
+                           "(abaqus_v6.env) and %s in the job directory?"
+                           % (job, action_file, config), 1)
+            action, increments = read_action(action_file)
+            if action == "RUN_PASS":
+                with open("sweep.frq", "w") as f:
+                    for k in increments:
+                        f.write(every[k - 1] + "\n")
+            elif action == "RUN_FINAL":
+                shutil.copyfile("frequencies.frq", "sweep.frq")
+            elif action == "DONE":
+                print("passes.py: done after %d jobs; the answer is job %s" % (n, job),
+                      file=sys.stderr)
+                return job
+            elif action == "FAILED":
+                raise Stop("not converged after %d jobs: increments %s of frequencies.frq "
+                           "are out of tolerance (max_passes in %s)"
+                           % (n, " ".join(str(k) for k in increments), config), 1)
+            else:
+                raise Stop("%s: unexpected action %r" % (action_file, action), 1)
+    finally:
+        if os.path.exists("frequencies.frq"):
+            shutil.copyfile("frequencies.frq", "sweep.frq")
+            os.remove("frequencies.frq")
+
+
+def main(argv):
+    if len(argv) < 2:
+        print("usage: python passes.py INPUT.inp [ABAQUS OPTIONS...]", file=sys.stderr)
+        return 2
+    try:
+        print(passes(argv[1], argv[2:]))
+        return 0
+    except Stop as e:
+        print("passes.py: %s" % e, file=sys.stderr)
+        return e.status
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv))
