@@ -30,6 +30,8 @@ if [ -d target/tmp/skipped ]; then
 fi
 echo "== Python package: wheel, fresh virtual environment, pytest"
 bash scripts/python-tests.sh
+echo "== documentation site: mdBook build, every link and anchor checked"
+bash scripts/book.sh
 echo "== README blocks regenerated and compared (those that take under a minute; timings left out)"
 # The long ones: harness/tests/readme_blocks.rs (ignored tests).
 bash scripts/readme-tables.sh --check seed_cases deck_keywords python_study accuracy_table \
