@@ -17,9 +17,10 @@ fi
 book=target/book
 rm -rf "$book"
 mkdir -p "$book/src"
-# The repository's files: git's list in a checkout, else everything but build output.
+# The repository's files: git's list in a checkout (new files too, ignored ones not),
+# else everything but build output.
 if git rev-parse --is-inside-work-tree >/dev/null 2>&1; then
-  git ls-files -z | xargs -0 cp --parents -t "$book/src"
+  git ls-files -z --cached --others --exclude-standard | xargs -0 cp --parents -t "$book/src"
 else
   find . -path ./target -prune -o -path ./out -prune -o -path ./.git -prune -o -type f -print0 |
     xargs -0 cp --parents -t "$book/src"

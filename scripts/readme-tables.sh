@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Regenerates the measured tables of README.md and docs/accuracy.md: each block between
+# Regenerates the measured tables of README.md and docs/ (the files below): each block between
 #   <!-- BEGIN name -->  and  <!-- END name -->
 # is replaced by the output of the command registered for `name` below. With arguments,
 # only the named blocks (e.g. `bash scripts/readme-tables.sh knife`). With `--check`
@@ -64,7 +64,8 @@ declare -A plots=(
 may_stop=" backbone_fe_h7 "
 # Blocks whose command prints Markdown (the others are shown as terminal output).
 markdown=" python_cost contact_effects accuracy_table knife knife_graded_mesh knife_effects knife_graded_effects knife_mesh tradeoff_beams tradeoff_block tradeoff_oblique tradeoff_oblique_coupled tradeoff_oblique_normal tradeoff_oblique_both tradeoff_mass_on_plane backbone_cost deck_stack deck_bench modes_bench sweep_bench modal_deck_bench reduce_bench deck_keywords "
-files=(README.md docs/accuracy.md docs/python.md)
+files=(README.md docs/abaqus.md docs/c-fortran.md docs/harness.md docs/own-model.md
+  docs/thesis-cases.md docs/balance-and-backbones.md docs/cost.md docs/accuracy.md docs/python.md)
 # Copies each "from to" pair of a plots entry; a glob must match exactly one file.
 copy_plots() {
   local pair from to matches

@@ -1,5 +1,5 @@
 """Runs an Abaqus job that uses jointlin pass by pass until the contact amplitudes are
-consistent (README, "Using jointlin from Abaqus", step 6): the same driver as passes.sh,
+consistent (docs/abaqus.md, "Using jointlin from Abaqus", step 6): the same driver as passes.sh,
 for the Python that Abaqus ships (2.7 in older releases, 3 since 2024) and any other.
 From the job directory:
 

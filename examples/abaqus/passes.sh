@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Runs an Abaqus job that uses jointlin pass by pass until the contact amplitudes are
-# consistent (README, "Using jointlin from Abaqus", step 6). From the job directory:
+# consistent (docs/abaqus.md, "Using jointlin from Abaqus", step 6). From the job directory:
 #
 #   bash passes.sh INPUT.inp [ABAQUS OPTIONS...]     e.g.  bash passes.sh block.inp cpus=4 mp_mode=mpi
 #

@@ -1,6 +1,6 @@
 //! The block on a plane driven near and past its sliding limit 4μF_N/π = 0.764 N
 //! (scenes/block-slip.toml at ω = 1.3 rad/s; docs/accuracy.md "Validation against the
-//! time domain", README "What accuracy costs"), against the time domain: below the
+//! time domain", docs/cost.md "What accuracy costs"), against the time domain: below the
 //! limit the frequency domain has no first-harmonic solution of a sliding block and
 //! lands on a partial-slip root of 9e-4 … 1.2e-2 mm while the block travels 20–47 mm
 //! per cycle; above it the sliding solution overshoots the stick–slip motion's first

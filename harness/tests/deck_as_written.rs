@@ -483,23 +483,23 @@ fn includes_that_multiply_and_endless_files_stop_with_a_named_error() {
 }
 
 #[test]
-fn the_readme_keyword_table_is_the_one_the_reader_checks_against() {
+fn the_documented_keyword_table_is_the_one_the_reader_checks_against() {
     let out = Command::new(env!("CARGO_BIN_EXE_jointlin"))
         .args(["check", "--keywords"])
         .output()
         .unwrap();
     assert!(out.status.success());
     let table = String::from_utf8(out.stdout).unwrap();
-    let readme =
-        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../README.md")).unwrap();
-    let block = readme
+    let doc = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../docs/own-model.md"))
+        .unwrap();
+    let block = doc
         .split("<!-- BEGIN deck_keywords -->\n")
         .nth(1)
         .and_then(|b| b.split("<!-- END deck_keywords -->").next())
         .unwrap();
     assert!(
         block.ends_with(&table),
-        "README's deck_keywords block is stale: bash scripts/readme-tables.sh deck_keywords"
+        "docs/own-model.md's deck_keywords block is stale: bash scripts/readme-tables.sh deck_keywords"
     );
     assert!(table.contains("| `*DAMPING` | `ALPHA=`"), "{table}");
 }

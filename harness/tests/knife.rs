@@ -6,7 +6,7 @@
 //! The trends are taken at 3 µm end-face amplitude, where every closed point of the
 //! coarse model is in microslip at μ = 0.2 (the thesis's trend figures are at 15 µm,
 //! where its model was still all microslip; this simplified model's edge points slide
-//! there, see README "Ultrasonic knife").
+//! there, see docs/thesis-cases.md "Ultrasonic knife").
 
 use std::path::Path;
 
@@ -294,7 +294,7 @@ fn edge_points_slip_more_than_interior_points() {
 /// (`jointlin loss scenes/knife-graded.toml --mesh-study 2 --refine R --sampled-only`;
 /// the scene 0.011172 / 0.76543 W): x in the slot +0.27 % / +0.45 %, bar x −1.1 % /
 /// −1.0 %, z +1.7 % / +1.8 %, y −0.20 % / −0.41 %. On the uniform meshes of
-/// knife-coarse the loss does not settle at all (README "Ultrasonic knife": the patch
+/// knife-coarse the loss does not settle at all (docs/thesis-cases.md "Ultrasonic knife": the patch
 /// edge falls inside one element). Ignored because it takes about two hours on this
 /// machine's two cores (the y row alone ~1.5 h); run it with
 /// `cargo test --release -p jointlin-harness --test knife -- --ignored`.

@@ -47,7 +47,7 @@ pub struct Cli {
 
 #[derive(Subcommand)]
 pub enum Command {
-    /// Run a scene or an Abaqus-format deck (.inp; README, "Bring your own model"):
+    /// Run a scene or an Abaqus-format deck (.inp; docs/own-model.md, "Bring your own model"):
     /// static preload step, steady-state sweep, reports.
     ///
     /// Steps: (1) the static preload step solves K u + f_c(u) = f_pre by Newton with the
@@ -141,7 +141,7 @@ pub enum Command {
     /// factorization and solve timed here).
     Check(check::Args),
     /// Write a scene as an Abaqus/Standard job: FILE (the input deck), sweep.frq and
-    /// jointlin.cfg beside it (README, "Using jointlin from Abaqus").
+    /// jointlin.cfg beside it (docs/abaqus.md, "Using jointlin from Abaqus").
     ///
     /// The deck is the scene's model node for node: *NODE, *ELEMENT C3D8I per box,
     /// *MATERIAL with *DAMPING (Rayleigh), *SOLID SECTION, clamps as *BOUNDARY, ties as
