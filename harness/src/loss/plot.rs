@@ -6,7 +6,9 @@ use std::path::Path;
 use plotters::prelude::*;
 
 use super::{LossStudySpec, StudyResult};
+use crate::report::style::series;
 use crate::report::svg::drawing_error as err;
+use crate::util::ticks::linear_tick_on;
 
 /// Draws `r` into `path`; axes in the study's reported units, torques in `torque_unit`.
 pub fn curves(
@@ -39,17 +41,23 @@ pub fn curves(
         .y_label_area_size(60)
         .build_cartesian_2d(0.0..xmax * 1.05, 0.0..ymax.max(f64::MIN_POSITIVE) * 1.1)
         .map_err(err)?;
+    let (x_end, y_end) = (xmax * 1.05, ymax.max(f64::MIN_POSITIVE) * 1.1);
     chart
         .configure_mesh()
+        // One fine line between labelled ones: more draw a grey mesh.
+        .x_max_light_lines(1)
+        .y_max_light_lines(1)
+        .x_label_formatter(&|v: &f64| linear_tick_on(*v, (0.0, x_end)))
+        .y_label_formatter(&|v: &f64| linear_tick_on(*v, (0.0, y_end)))
         .x_desc(format!(
-            "amplitude of `{}` [{}]",
+            "amplitude of {} [{}]",
             st.output, st.amplitude_unit
         ))
         .y_desc(format!("joint power loss [{}]", st.power_unit))
         .draw()
         .map_err(err)?;
     for (k, (torque, samples)) in r.curves.iter().enumerate() {
-        let color = Palette99::pick(k).to_rgba();
+        let color = series(k);
         let mut pts: Vec<(f64, f64)> = std::iter::once((0.0, 0.0))
             .chain(samples.iter().map(|s| (a(s.amplitude), pw(s.power))))
             .collect();

@@ -175,7 +175,7 @@ fn draw_curve<'a, 'b: 'a>(
     units: &crate::settings::Units,
     x: Range,
 ) -> Res {
-    let color = OUTPUT_COLORS[k % OUTPUT_COLORS.len()];
+    let color = crate::report::style::series(k);
     let style = color.stroke_width(if c == 0 { 2 } else { 1 });
     let drawn = if pts.len() <= MARKED_POINTS {
         let size = 6 - 2 * c.min(1) as i32;
@@ -249,17 +249,6 @@ fn mark_not_converged<'a, 'b: 'a>(
         .legend(|(x, y)| Cross::new((x + 12, y), 5, RED.stroke_width(2)));
     Ok(())
 }
-
-/// Colours of the outputs (Okabe and Ito's colour-blind-safe set, no yellow on white).
-const OUTPUT_COLORS: [RGBColor; 7] = [
-    RGBColor(0, 114, 178),
-    RGBColor(213, 94, 0),
-    RGBColor(0, 158, 115),
-    RGBColor(204, 121, 167),
-    RGBColor(86, 180, 233),
-    RGBColor(230, 159, 0),
-    RGBColor(0, 0, 0),
-];
 
 /// Outputs named in the legend; more are drawn and counted in one line.
 const LEGEND_OUTPUTS: usize = 8;

@@ -7,6 +7,7 @@ pub mod frf_plot;
 pub mod loop_plot;
 pub mod modes;
 pub mod point_loops;
+pub mod style;
 pub mod svg;
 pub mod vtu;
 

@@ -4,6 +4,7 @@
 
 use plotters::prelude::*;
 
+use super::style::series;
 use crate::model::Problem;
 use crate::settings::units::frequency_unit;
 use crate::solve::sweep::SweepResult;
@@ -42,7 +43,7 @@ pub fn passes(path: &std::path::Path, r: &SweepResult) -> Res {
         .max(1) as f64;
     let mut chart = ChartBuilder::on(&root)
         .caption(
-            "frequencies per pass (outline: converged in it; green: final pass)",
+            "frequencies per pass (outline: converged in it; green: a final pass, every frequency)",
             ("sans-serif", 16),
         )
         .margin(15)
@@ -52,6 +53,10 @@ pub fn passes(path: &std::path::Path, r: &SweepResult) -> Res {
         .map_err(err)?;
     chart
         .configure_mesh()
+        // Passes are categories: no fine lines between them, one between frequency labels.
+        .x_max_light_lines(0)
+        .y_max_light_lines(1)
+        .disable_x_mesh()
         .x_desc("pass")
         .y_desc("frequencies")
         .x_label_formatter(&|v: &f64| format!("{v:.0}"))
@@ -62,7 +67,7 @@ pub fn passes(path: &std::path::Path, r: &SweepResult) -> Res {
     chart
         .draw_series(r.passes.iter().enumerate().map(|(i, p)| {
             let x = i as f64 + 1.0;
-            let color = if p.kind == "final" { GREEN } else { BLUE };
+            let color = series(if p.kind == "final" { 2 } else { 0 });
             Rectangle::new(
                 [(x - 0.35, 0.0), (x + 0.35, p.frequencies.len() as f64)],
                 color.mix(0.7).filled(),

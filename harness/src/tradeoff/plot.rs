@@ -1,11 +1,15 @@
 //! The Pareto plot: error vs wall time (log–log), amplitude error left, energy error
-//! right, one marker colour per family of rungs. Errors below 1e-12 (the reference
-//! itself) are left out.
+//! right, one colour per family of rungs, each rung a ring (rungs that coincide stay
+//! visible). Errors below 1e-12 (the reference itself) are left out. Both axes end at
+//! labelled ticks; the error axis reaches up far enough that the legend, top right,
+//! covers no rung.
 
 use plotters::prelude::*;
 
 use super::Tradeoff;
+use crate::report::style::series;
 use crate::report::svg::drawing_error as err;
+use crate::util::ticks::plotted_log_range;
 
 const FAMILIES: [(&str, &str); 8] = [
     ("linear", "linear stick"),
@@ -38,11 +42,12 @@ pub fn pareto(path: &std::path::Path, t: &Tradeoff) -> Result<(), String> {
         let (e0, e1) = pts
             .iter()
             .fold((f64::INFINITY, 0.0f64), |(a, b), &e| (a.min(e), b.max(e)));
-        let (e0, e1) = if e1 > 0.0 {
-            (e0 / 3.0, e1 * 3.0)
-        } else {
-            (1e-6, 1.0)
-        };
+        let (e0, e1) = if e1 > 0.0 { (e0, e1) } else { (1e-6, 1.0) };
+        // The legend's rows take about a third of the panel's height.
+        let rows = FAMILIES.len() as f64;
+        let room = (e1 / e0).max(10.0).powf(0.06 * rows);
+        let y = plotted_log_range(e0 / 1.5, e1 * 1.5 * room);
+        let x = plotted_log_range(t0 / 1.5, t1 * 1.5);
         let mut chart = ChartBuilder::on(panel)
             .caption(
                 if k == 0 {
@@ -55,10 +60,15 @@ pub fn pareto(path: &std::path::Path, t: &Tradeoff) -> Result<(), String> {
             .margin(15)
             .x_label_area_size(45)
             .y_label_area_size(70)
-            .build_cartesian_2d((t0 / 2.0..t1 * 2.0).log_scale(), (e0..e1).log_scale())
+            .build_cartesian_2d(x.clone().log_scale(), y.clone().log_scale())
             .map_err(err)?;
         chart
             .configure_mesh()
+            // Fine lines along log axes bunch into grey bands: the labelled ticks only.
+            .x_max_light_lines(0)
+            .y_max_light_lines(0)
+            .y_labels(if y.end <= 1e3 * y.start { 30 } else { 12 })
+            .x_labels(if x.end <= 1e3 * x.start { 30 } else { 12 })
             .x_desc("wall time [s]")
             .y_desc("relative error vs reference")
             .y_label_formatter(&|v| crate::util::ticks::log_tick(*v))
@@ -66,21 +76,25 @@ pub fn pareto(path: &std::path::Path, t: &Tradeoff) -> Result<(), String> {
             .draw()
             .map_err(err)?;
         for (i, (fam, name)) in FAMILIES.iter().enumerate() {
-            let color = Palette99::pick(i).to_rgba();
-            let series: Vec<(f64, f64)> = t
+            let color = series(i);
+            let rungs: Vec<(f64, f64)> = t
                 .rungs
                 .iter()
                 .filter(|r| r.family == *fam && value(r) > 1e-12)
                 .map(|r| (r.seconds, value(r)))
                 .collect();
-            if series.is_empty() {
+            if rungs.is_empty() {
                 continue;
             }
             chart
-                .draw_series(series.iter().map(|&p| Circle::new(p, 5, color.filled())))
+                .draw_series(
+                    rungs
+                        .iter()
+                        .map(|&p| Circle::new(p, 6, color.stroke_width(2))),
+                )
                 .map_err(err)?
                 .label(*name)
-                .legend(move |(x, y)| Circle::new((x + 10, y), 5, color.filled()));
+                .legend(move |(x, y)| Circle::new((x + 10, y), 6, color.stroke_width(2)));
         }
         chart
             .configure_series_labels()
