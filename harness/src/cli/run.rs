@@ -234,7 +234,7 @@ fn print_summary(s: &Scene, r: &RunResult) {
 }
 
 /// The run's closing warnings: failed, singular and unconverged frequencies, and
-/// amplitudes too large for linear kinematics ([`report::kinematics_note`]).
+/// amplitudes too large for linear kinematics ([`report::kinematics::note`]).
 fn print_warnings(s: &Scene, r: &RunResult, unconverged: usize) {
     let fu = frequency_unit(&s.spec.units);
     for (i, f) in r.main.freqs.iter().enumerate() {
@@ -259,7 +259,7 @@ fn print_warnings(s: &Scene, r: &RunResult, unconverged: usize) {
             unconverged - singular - failed
         );
     }
-    if let Some(note) = report::kinematics_note(&s.spec.units, r) {
+    if let Some(note) = report::kinematics::note(&s.spec.units, r) {
         eprintln!("warning: {note}");
     }
 }

@@ -4,6 +4,7 @@ pub mod contact_map;
 pub mod csv;
 pub mod field;
 pub mod frf_plot;
+pub mod kinematics;
 pub mod loop_plot;
 pub mod modes;
 pub mod point_loops;
@@ -110,58 +111,7 @@ fn run_body(scene: &Scene, r: &RunResult) -> serde_json::Value {
             "sweep_breakdown": m.timings,
         },
         "c_api_calls": r.calls,
-        "notes": kinematics_note(&scene.spec.units, r).into_iter().collect::<Vec<_>>(),
-    })
-}
-
-/// An output amplitude beyond this fraction of the model's thinnest extent is a large
-/// deflection: a plate bent by about its thickness stiffens by membrane action, which a
-/// linear (small-displacement) model leaves out.
-pub const LARGE_DEFLECTION: f64 = 0.5;
-
-/// A note when the largest output amplitude of the run (either sweep direction)
-/// exceeds [`LARGE_DEFLECTION`] of the thinnest extent of the elements' bounding box
-/// (nodes in no element, such as a far reference node, left out; FE models only). A
-/// coarse measure: a tilted thin part, or one inside a thick assembly, is not seen.
-pub fn kinematics_note(units: &crate::settings::Units, r: &RunResult) -> Option<String> {
-    let model = &r.problem.model;
-    let mut used = vec![false; model.nodes.len()];
-    for e in &model.elements {
-        for &n in &e.nodes {
-            used[n] = true;
-        }
-    }
-    let nodes: Vec<&[f64; 3]> = model
-        .nodes
-        .iter()
-        .zip(&used)
-        .filter_map(|(x, &u)| u.then_some(x))
-        .collect();
-    let extent = (0..3)
-        .map(|k| {
-            let (lo, hi) = nodes
-                .iter()
-                .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), x| {
-                    (lo.min(x[k]), hi.max(x[k]))
-                });
-            hi - lo
-        })
-        .filter(|e| e.is_finite() && *e > 0.0)
-        .fold(f64::INFINITY, f64::min);
-    let (amp, f) = std::iter::once(&r.main)
-        .chain(r.down.as_ref())
-        .flat_map(|sweep| sweep.outputs.iter().zip(&sweep.freqs))
-        .flat_map(|(o, f)| o.iter().map(move |u| (u.norm(), *f)))
-        .filter(|(a, _)| a.is_finite())
-        .fold((0.0, 0.0), |best, x| if x.0 > best.0 { x } else { best });
-    (extent.is_finite() && amp > LARGE_DEFLECTION * extent).then(|| {
-        let fu = frequency_unit(units);
-        format!(
-            "an output moves {amp:.3e} {l} at {:.6e} {}, more than {LARGE_DEFLECTION} × the thinnest extent of the model's bounding box ({extent:.3e} {l}): a deflection this large stiffens plates held at their edges by membrane action and turns sections; linear kinematics may no longer hold there",
-            fu.show(f),
-            fu.text,
-            l = units.length
-        )
+        "notes": kinematics::note(&scene.spec.units, r).into_iter().collect::<Vec<_>>(),
     })
 }
 
