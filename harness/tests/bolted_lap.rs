@@ -54,6 +54,14 @@ fn the_bolted_lap_sweeps_as_the_readme_states() {
     );
     let force = run["static_step"]["total_contact_force"].as_f64().unwrap();
     assert!((force - 11099.0).abs() < 0.5, "{force} N");
+    // The tip's 12.8 mm on a 5 mm plate: linear kinematics said not to hold.
+    let notes = run["notes"].as_array().unwrap();
+    assert!(
+        notes.len() == 1
+            && notes[0].as_str().unwrap().contains("the part it sits on (5.0")
+            && notes[0].as_str().unwrap().contains("linear kinematics may no longer hold"),
+        "{notes:?}"
+    );
     // 71 of 71 converged; the tip rises from 6.99 to 12.8 mm between 139.375 and
     // 139.425 Hz, the sweep's peak.
     let r = rows(&out.join("results.csv"));
