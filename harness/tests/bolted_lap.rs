@@ -58,8 +58,14 @@ fn the_bolted_lap_sweeps_as_the_readme_states() {
     let notes = run["notes"].as_array().unwrap();
     assert!(
         notes.len() == 1
-            && notes[0].as_str().unwrap().contains("the part it sits on (5.0")
-            && notes[0].as_str().unwrap().contains("linear kinematics may no longer hold"),
+            && notes[0]
+                .as_str()
+                .unwrap()
+                .contains("the part it sits on (5.0")
+            && notes[0]
+                .as_str()
+                .unwrap()
+                .contains("linear kinematics may no longer hold"),
         "{notes:?}"
     );
     // 71 of 71 converged; the tip rises from 6.99 to 12.8 mm between 139.375 and

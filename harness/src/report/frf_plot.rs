@@ -11,6 +11,7 @@ use super::svg::{drawing_error as err, freq_label};
 use crate::model::Problem;
 use crate::settings::units::{frequency_unit, FrequencyUnit};
 use crate::solve::sweep::SweepResult;
+use crate::util::number::sig;
 use crate::util::ticks::{log_tick, plotted_log_range};
 
 type Res = Result<(), String>;
@@ -59,7 +60,10 @@ pub struct FrfCurve {
     pub not_converged: Vec<usize>,
 }
 
-/// [`frf`] from plain data: `names` of the outputs, the curves' amplitudes.
+/// [`frf`] from plain data: `names` of the outputs, the curves' amplitudes. A sweep
+/// with refined bands ([`refined_bands`]: ranges sampled much more finely than the
+/// rest, such as a deck's second frequency range or a scene's `refine`) gets a row of
+/// panels below, one per band; the bands are shaded on the whole sweep's panel.
 pub fn frf_curves(
     path: &std::path::Path,
     title: &str,
@@ -67,13 +71,122 @@ pub fn frf_curves(
     names: &[String],
     curves: &[FrfCurve],
 ) -> Res {
-    let root = SVGBackend::new(path, (900, 560)).into_drawing_area();
-    root.fill(&WHITE).map_err(err)?;
-    curves.first().ok_or("no sweep")?;
+    let main = curves.first().ok_or("no sweep")?;
     let fu = frequency_unit(units);
+    let freqs: Vec<f64> = main.points.iter().map(|p| p.0).collect();
+    let bands = refined_bands(&freqs);
+    let size = (900, if bands.is_empty() { 560 } else { 900 });
+    let root = SVGBackend::new(path, size).into_drawing_area();
+    root.fill(&WHITE).map_err(err)?;
+    let (top, bottom) = root.split_vertically(560);
     let (x, y) = ranges(curves, &fu)?;
-    let mut chart = ChartBuilder::on(&root)
-        .caption(title, ("sans-serif", 20))
+    let shades: Vec<Range> = bands
+        .iter()
+        .map(|&(a, b)| (fu.show(a), fu.show(b)))
+        .collect();
+    panel(&top, title, units, names, curves, (x, y), &shades)?;
+    for (&(a, b), area) in bands
+        .iter()
+        .zip(bottom.split_evenly((1, bands.len().max(1))))
+    {
+        let inside: Vec<FrfCurve> = curves.iter().map(|c| c.within(a, b)).collect();
+        let count = inside[0].points.len();
+        let caption = format!(
+            "{} to {} {} ({count} frequencies)",
+            short(fu.show(a)),
+            short(fu.show(b)),
+            fu.text
+        );
+        let (x, y) = ranges(&inside, &fu)?;
+        panel(&area, &caption, units, &[], &inside, (x, y), &[])?;
+    }
+    root.present().map_err(err)
+}
+
+/// `v` with at most 7 significant digits, trailing zeros dropped (139, 7539.099).
+fn short(v: f64) -> String {
+    let s = sig(v);
+    if s.contains('.') && !s.contains('e') {
+        s.trim_end_matches('0').trim_end_matches('.').to_string()
+    } else {
+        s
+    }
+}
+
+impl FrfCurve {
+    /// The curve's frequencies from `a` to `b` (1/time).
+    fn within(&self, a: f64, b: f64) -> FrfCurve {
+        let keep: Vec<usize> = (0..self.points.len())
+            .filter(|&i| (a..=b).contains(&self.points[i].0))
+            .collect();
+        FrfCurve {
+            label: self.label.clone(),
+            points: keep.iter().map(|&i| self.points[i].clone()).collect(),
+            not_converged: (0..keep.len())
+                .filter(|k| self.not_converged.contains(&keep[*k]))
+                .collect(),
+        }
+    }
+}
+
+/// A band of at least [`BAND_POINTS`] frequencies (1/time) sampled much more finely
+/// than the rest (a deck's second range, a scene's `refine`): each spacing in it under a
+/// fifth of the sweep's widest, both as it is and relative to its frequency (so neither
+/// an even nor a logarithmic sweep has one), narrower than a fifth of the sweep, where
+/// the whole sweep's plot cannot show it. At most [`BANDS`] (the widest), ascending.
+fn refined_bands(freqs: &[f64]) -> Vec<(f64, f64)> {
+    let gaps: Vec<(f64, f64)> = freqs
+        .windows(2)
+        .map(|w| {
+            (
+                w[1] - w[0],
+                (w[1] - w[0]) / w[1].abs().max(f64::MIN_POSITIVE),
+            )
+        })
+        .collect();
+    let widest = gaps
+        .iter()
+        .fold((0.0f64, 0.0f64), |m, g| (m.0.max(g.0), m.1.max(g.1)));
+    let fine = |g: &(f64, f64)| g.0 >= 0.0 && g.0 < 0.2 * widest.0 && g.1 < 0.2 * widest.1;
+    let span = match (freqs.first(), freqs.last()) {
+        (Some(a), Some(b)) => b - a,
+        _ => return Vec::new(),
+    };
+    let mut bands = Vec::new();
+    let mut start = 0;
+    for i in 0..=gaps.len() {
+        if i < gaps.len() && fine(&gaps[i]) {
+            continue;
+        }
+        // gaps[start..i] are fine: the points start ..= i.
+        if i + 1 >= start + BAND_POINTS && freqs[i] - freqs[start] < 0.2 * span {
+            bands.push((freqs[start], freqs[i]));
+        }
+        start = i + 1;
+    }
+    bands.sort_by(|p, q| (q.1 - q.0).total_cmp(&(p.1 - p.0)));
+    bands.truncate(BANDS);
+    bands.sort_by(|p, q| p.0.total_cmp(&q.0));
+    bands
+}
+
+/// One FRF panel in `area`: its axes, the curves, the unconverged crosses, `shades`
+/// (frequency ranges in display units) and, where `names` are given, the legend.
+fn panel(
+    area: &DrawingArea<SVGBackend, plotters::coord::Shift>,
+    caption: &str,
+    units: &crate::settings::Units,
+    names: &[String],
+    curves: &[FrfCurve],
+    (x, y): (Range, Range),
+    shades: &[Range],
+) -> Res {
+    let fu = frequency_unit(units);
+    let mut chart = ChartBuilder::on(area)
+        .caption(
+            caption,
+            ("sans-serif", if names.is_empty() { 16 } else { 20 }),
+        )
         .margin(15)
         .x_label_area_size(45)
         .y_label_area_size(70)
@@ -92,20 +205,47 @@ pub fn frf_curves(
         .x_label_formatter(&|v: &f64| format!("{}", (v * 1e3).round() / 1e3))
         .draw()
         .map_err(err)?;
-    for (k, name) in names.iter().enumerate() {
+    if !shades.is_empty() {
+        chart
+            .draw_series(
+                shades
+                    .iter()
+                    .map(|&(a, b)| Rectangle::new([(a, y.0), (b, y.1)], BLACK.mix(0.08).filled())),
+            )
+            .map_err(err)?
+            .label(if shades.len() == 1 {
+                "finely sampled range (panel below)"
+            } else {
+                "finely sampled ranges (panels below)"
+            })
+            .legend(|(x, y)| {
+                Rectangle::new([(x, y - 5), (x + 24, y + 5)], BLACK.mix(0.15).filled())
+            });
+    }
+    let outputs = names.len().max(
+        curves
+            .first()
+            .map_or(0, |c| c.points.first().map_or(0, |p| p.1.len())),
+    );
+    for k in 0..outputs {
         for (c, curve) in curves.iter().enumerate() {
             let pts: Vec<(f64, f64)> = curve
                 .points
                 .iter()
                 .map(|(f, a)| (fu.show(*f), a[k].max(y.0)))
                 .collect();
-            let label = format!("{name} {}", curve.label).trim_end().to_string();
             // The legend names the first LEGEND_OUTPUTS outputs.
-            let label = (k < LEGEND_OUTPUTS).then_some(label);
+            let label = names
+                .get(k)
+                .filter(|_| k < LEGEND_OUTPUTS)
+                .map(|name| format!("{name} {}", curve.label).trim_end().to_string());
             draw_curve(&mut chart, pts, k, c, label, units, x)?;
         }
     }
-    mark_not_converged(&mut chart, curves, &fu, y.0)?;
+    mark_not_converged(&mut chart, curves, &fu, y.0, !names.is_empty())?;
+    if names.is_empty() {
+        return Ok(());
+    }
     if names.len() > LEGEND_OUTPUTS {
         chart
             .draw_series(std::iter::once(EmptyElement::at((x.0, y.0))))
@@ -122,8 +262,7 @@ pub fn frf_curves(
         .background_style(WHITE.mix(0.85))
         .border_style(BLACK)
         .draw()
-        .map_err(err)?;
-    root.present().map_err(err)
+        .map_err(err)
 }
 
 /// An axis range (from, to).
@@ -221,6 +360,7 @@ fn mark_not_converged<'a, 'b: 'a>(
     curves: &[FrfCurve],
     fu: &FrequencyUnit,
     ymin: f64,
+    legend: bool,
 ) -> Res {
     let count: usize = curves.iter().map(|c| c.not_converged.len()).sum();
     if count == 0 {
@@ -234,13 +374,17 @@ fn mark_not_converged<'a, 'b: 'a>(
             a.iter().map(move |&a| (f, a.max(ymin)))
         })
         .collect();
-    chart
+    let drawn = chart
         .draw_series(
             marks
                 .into_iter()
                 .map(|q| Cross::new(q, 5, RED.stroke_width(2))),
         )
-        .map_err(err)?
+        .map_err(err)?;
+    if !legend {
+        return Ok(());
+    }
+    drawn
         .label(if curves.len() == 1 {
             format!("not converged ({count} frequencies; status in results.csv)")
         } else {
@@ -256,9 +400,86 @@ const LEGEND_OUTPUTS: usize = 8;
 /// Curves of at most this many frequencies are drawn as markers, not lines.
 const MARKED_POINTS: usize = 3;
 
+/// Frequencies a refined band has at least to get its own panel.
+const BAND_POINTS: usize = 5;
+
+/// Refined bands with a panel of their own, at most.
+const BANDS: usize = 3;
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The bolted lap deck's sweep: 51 frequencies over 125–150 Hz and 20 over
+    /// 139.025–139.975 Hz, merged.
+    fn bolted_lap_grid() -> Vec<f64> {
+        let mut f: Vec<f64> = (0..51).map(|i| 125.0 + 0.5 * i as f64).collect();
+        f.extend((0..20).map(|i| 139.025 + 0.05 * i as f64));
+        f.sort_by(f64::total_cmp);
+        f.dedup_by(|a, b| (*a - *b).abs() < 1e-9);
+        f
+    }
+
+    #[test]
+    fn a_refined_band_is_found_and_even_or_logarithmic_sweeps_have_none() {
+        let [(a, b)] = refined_bands(&bolted_lap_grid())[..] else {
+            panic!("one band")
+        };
+        // The band's points and the coarse ones between them: 139.0 … 140.0.
+        assert!(
+            (a - 139.0).abs() < 1e-9 && (b - 140.0).abs() < 1e-9,
+            "{a} … {b}"
+        );
+        let even: Vec<f64> = (0..200).map(|i| 10.0 + 5.0 * i as f64).collect();
+        let log: Vec<f64> = (0..200)
+            .map(|i| 10f64.powf(1.0 + 3.0 * i as f64 / 199.0))
+            .collect();
+        assert!(refined_bands(&even).is_empty());
+        assert!(refined_bands(&log).is_empty());
+        // A band over a third of the sweep is seen well enough without a panel.
+        let mut wide: Vec<f64> = (0..20).map(|i| 100.0 + 5.0 * i as f64).collect();
+        wide.extend((1..100).map(|i| 130.0 + 0.3 * i as f64));
+        wide.sort_by(f64::total_cmp);
+        assert!(refined_bands(&wide).is_empty());
+        // Two bands on a logarithmic sweep (three-beams-coarse.toml), ascending.
+        let mut two = log.clone();
+        two.extend((0..30).map(|i| 1100.0 + 150.0 * i as f64 / 29.0));
+        two.extend((0..30).map(|i| 7000.0 + 500.0 * i as f64 / 29.0));
+        two.sort_by(f64::total_cmp);
+        let bands = refined_bands(&two);
+        assert_eq!(bands.len(), 2, "{bands:?}");
+        assert!(bands[0].0 <= 1100.0 && bands[0].1 >= 1250.0 && bands[1].0 <= 7000.0);
+    }
+
+    #[test]
+    fn the_band_gets_a_panel_of_its_own_and_is_shaded_above() {
+        let units = crate::settings::Units {
+            length: "mm".into(),
+            force: "N".into(),
+            time: "s".into(),
+            mass: "t".into(),
+            frequency: Some("Hz".into()),
+        };
+        let grid = bolted_lap_grid();
+        let curve = FrfCurve {
+            label: "with contact damping".into(),
+            not_converged: vec![],
+            points: grid
+                .iter()
+                .map(|&f| (f, vec![1.0 / (1.0 + (f - 139.4).powi(2))]))
+                .collect(),
+        };
+        let dir = std::env::temp_dir().join(format!("jointlin-svg-band-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("frf.svg");
+        frf_curves(&path, "band", &units, &["tip".into()], &[curve]).unwrap();
+        let svg = std::fs::read_to_string(&path).unwrap();
+        let _ = std::fs::remove_dir_all(&dir);
+        let has = |text: &str| svg.lines().any(|l| l.trim() == text);
+        assert!(has("139 to 140 Hz (23 frequencies)"), "{svg}");
+        assert!(has("finely sampled range (panel below)"));
+        assert!(svg.contains("height=\"900\""));
+    }
 
     #[test]
     fn many_outputs_keep_the_legend_short_and_both_axis_ends_labelled() {
