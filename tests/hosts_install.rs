@@ -179,10 +179,10 @@ fn installed_tree_validates_from_another_directory_with_its_man_pages() {
     assert!(!man1.join("jointlin-help.1").exists());
 }
 
-/// The README's first tutorial ("Using jointlin from Abaqus") from the installed tree
+/// The README's first tutorial (an Abaqus user's, docs/abaqus.md) from the installed tree
 /// alone, in a directory without a checkout: export the installed block scene as a job,
-/// copy the installed env file, user file and pass drivers beside it, check and run the
-/// job in the harness. Every installed scene checks from there too (the bolted lap's
+/// copy the installed env file, user file and pass drivers beside it, run the passes
+/// (a stand-in for Abaqus), check and run the job in the harness. Every installed scene checks from there too (the bolted lap's
 /// takes its model from the installed examples/deck).
 #[test]
 fn installed_tree_runs_the_abaqus_tutorial_from_another_directory() {
@@ -239,6 +239,23 @@ fn installed_tree_runs_the_abaqus_tutorial_from_another_directory() {
         "{results}"
     );
     assert_eq!(results.lines().count(), 15, "14 frequencies");
+    // The passes, by the installed driver in the exported job directory, with a stand-in
+    // for Abaqus (harness/fortran/abaqus_job: one job of a two-point sweep through the
+    // shim per call, reading this job's sweep.frq and jointlin.cfg).
+    let frq = std::fs::read_to_string(job.join("sweep.frq")).unwrap();
+    let passes = run_ok(
+        Command::new("bash")
+            .args(["passes.sh", "block.inp"])
+            .env("ABAQUS", stand_in_abaqus())
+            .current_dir(&job),
+    );
+    let answer = text(&passes);
+    let jobs: usize = answer.trim().trim_start_matches("pass").parse().unwrap();
+    assert!(
+        jobs >= 3 && job.join(format!("pass{jobs}.dat")).is_file(),
+        "{answer}"
+    );
+    assert_eq!(std::fs::read_to_string(job.join("sweep.frq")).unwrap(), frq);
 
     let mut scenes: Vec<PathBuf> = std::fs::read_dir(share.join("scenes"))
         .unwrap()
@@ -255,6 +272,22 @@ fn installed_tree_runs_the_abaqus_tutorial_from_another_directory() {
                 .current_dir(&elsewhere),
         );
     }
+}
+
+/// harness/fortran/abaqus_job built against this build's library (tests/pass_drivers.rs).
+fn stand_in_abaqus() -> PathBuf {
+    let dir = build_dir("install-stand-in");
+    let shim = build_shim(&dir);
+    let fortran = dir.join("fortran");
+    make(
+        "harness/fortran/Makefile",
+        &[
+            ("BUILD", &fortran),
+            ("SHIM", &shim),
+            ("JOINTLIN_LIBDIR", &lib_dir()),
+        ],
+    );
+    fortran.join("abaqus_job")
 }
 
 #[test]
