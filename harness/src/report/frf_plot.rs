@@ -11,7 +11,7 @@ use super::svg::{drawing_error as err, freq_label};
 use crate::model::Problem;
 use crate::settings::units::{frequency_unit, FrequencyUnit};
 use crate::solve::sweep::SweepResult;
-use crate::util::number::sig;
+use crate::util::number::{counted, sig};
 use crate::util::ticks::{log_tick, plotted_log_range};
 
 type Res = Result<(), String>;
@@ -386,9 +386,15 @@ fn mark_not_converged<'a, 'b: 'a>(
     }
     drawn
         .label(if curves.len() == 1 {
-            format!("not converged ({count} frequencies; status in results.csv)")
+            format!(
+                "not converged ({}; status in results.csv)",
+                counted(count, "frequency", "frequencies")
+            )
         } else {
-            format!("not converged ({count} frequencies of the curves; status in their CSVs)")
+            format!(
+                "not converged ({} of the curves; status in their CSVs)",
+                counted(count, "frequency", "frequencies")
+            )
         })
         .legend(|(x, y)| Cross::new((x + 12, y), 5, RED.stroke_width(2)));
     Ok(())
