@@ -2,7 +2,7 @@
 //! and in the energy per cycle (against a 64-point graded reference) over representative
 //! amplitudes, next to its measured cost per call, as a Markdown table.
 //!
-//! `cargo run --release --example accuracy_table` (the README's table comes from here).
+//! `cargo run --release --example accuracy_table` (the table in docs/c-fortran.md comes from here).
 
 use jointlin::hysteresis::Rule;
 use jointlin::law::TangentialLaw;

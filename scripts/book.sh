@@ -27,5 +27,11 @@ else
 fi
 cp docs/book/book.toml "$book/"
 cp docs/book/SUMMARY.md "$book/src/"
-"$venv/bin/mdbook" build "$book"
+# A warning of mdBook's (a chapter it cannot read, a broken include) fails the build.
+log=$("$venv/bin/mdbook" build "$book" 2>&1) || { echo "$log" >&2; exit 1; }
+echo "$log"
+if grep -qE "WARN|ERROR" <<< "$log"; then
+  echo "mdBook warned: fix the above" >&2
+  exit 1
+fi
 python3 scripts/check-links.py "$book/html"

@@ -48,6 +48,12 @@ def main(site):
     broken, external, checked = [], 0, 0
     for path, page in sorted(pages.items()):
         for link in page.links:
+            if not link.strip():
+                broken.append((path, repr(link), "an empty link"))
+                continue
+            if link.startswith("/") and not link.startswith("//"):
+                broken.append((path, link, "a path from the server's root: write it relative"))
+                continue
             parts = urlsplit(link)
             if parts.scheme or link.startswith("//"):
                 external += 1

@@ -168,9 +168,62 @@ fn check_driver(driver: &str) {
     assert!(!dir.join("frequencies.frq").exists());
 }
 
+/// SIGTERM to the driver's process group (a batch system's time limit) while a job runs:
+/// the driver stops with the full sweep back in sweep.frq.
+fn check_terminated(driver: &str) {
+    use std::os::unix::process::CommandExt;
+    let dir = job_dir(&format!("{driver}-terminated"));
+    let before = std::fs::read_to_string(dir.join("sweep.frq")).unwrap();
+    let slow = dir.join("slow-abaqus");
+    std::fs::write(&slow, "#!/bin/sh\nsleep 30\n").unwrap();
+    std::fs::set_permissions(&slow, std::os::unix::fs::PermissionsExt::from_mode(0o755)).unwrap();
+    let mut cmd = Command::new(if driver.ends_with(".py") {
+        "python3"
+    } else {
+        "bash"
+    });
+    let mut child = cmd
+        .arg(root().join("examples/abaqus").join(driver))
+        .arg("model.inp")
+        .current_dir(&dir)
+        .env("ABAQUS", &slow)
+        .env_remove("JOINTLIN_CONFIG")
+        .process_group(0)
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    let started = std::time::Instant::now();
+    while !dir.join("frequencies.frq").exists() {
+        assert!(
+            started.elapsed().as_secs() < 20,
+            "{driver} never started its passes"
+        );
+        std::thread::sleep(std::time::Duration::from_millis(50));
+    }
+    std::thread::sleep(std::time::Duration::from_millis(300));
+    let group = format!("-{}", child.id());
+    assert!(Command::new("kill")
+        .args(["-TERM", "--", &group])
+        .status()
+        .unwrap()
+        .success());
+    let status = child.wait().unwrap();
+    assert!(!status.success(), "{driver} went on after SIGTERM");
+    assert!(
+        started.elapsed().as_secs() < 25,
+        "{driver} waited for the job to end"
+    );
+    assert_eq!(
+        std::fs::read_to_string(dir.join("sweep.frq")).unwrap(),
+        before
+    );
+    assert!(!dir.join("frequencies.frq").exists());
+}
+
 #[test]
 fn bash_driver_runs_the_passes_to_the_rust_stores_answer() {
     check_driver("passes.sh");
+    check_terminated("passes.sh");
 }
 
 #[test]
@@ -180,4 +233,5 @@ fn python_driver_runs_the_passes_to_the_rust_stores_answer() {
         return;
     }
     check_driver("passes.py");
+    check_terminated("passes.py");
 }

@@ -6,25 +6,28 @@ From the job directory:
     abaqus python passes.py INPUT.inp [ABAQUS OPTIONS...]    (or: python3 passes.py ...)
 
 Pass n is the job pass<n>: `$ABAQUS job=pass<n> input=INPUT user=$USER_FILE OPTIONS
-interactive` (ABAQUS default `abaqus`, USER_FILE default `user.f`). After each job the
-action file (jointlin.cfg's action_file) says what comes next: RUN_PASS with the
-increments to re-run (their lines of the full sweep become sweep.frq), RUN_FINAL (every
+ask_delete=OFF interactive` (ABAQUS default `abaqus`, one command, USER_FILE default
+`user.f`). After each job the action file (jointlin.cfg's action_file) says what comes
+next: RUN_PASS with the increments to re-run (increment k is the k-th frequency line of
+the full sweep, blank and `**` comment lines not counted; they become sweep.frq),
+RUN_FINAL (every
 frequency once more with converged amplitudes: that job's results are the answer), DONE
 or FAILED. The full sweep is kept in frequencies.frq while the passes run and sweep.frq
-is restored when they stop, however they stop.
+is restored when they stop, however they stop (an error, Ctrl-C, SIGTERM or SIGHUP from
+a batch system).
 
 Exit status: 0 done (the last line on stdout names the job with the answer), 1 a job
 failed or the iteration did not converge (FAILED: the increments left), 2 the job
-directory is not ready (no sweep.frq, no jointlin.cfg with restart_file and action_file,
-or the files of an earlier run: delete them to start over).
+directory is not ready (no sweep.frq; no jointlin.cfg with restart_file, action_file and
+kinc_numbering = sequential, which a job per pass needs; the files of an earlier run:
+delete them to start over; no Abaqus command), 128 + N on signal N (130 on Ctrl-C).
 """
 from __future__ import print_function
 
 import glob
 import os
-import re
-import shlex
 import shutil
+import signal
 import subprocess
 import sys
 
@@ -38,14 +41,17 @@ class Stop(Exception):
 
 
 def setting(config, key):
-    """The value of `key = value` in the configuration (comments after # or !)."""
+    """The value of `key = value` in the configuration as the shim reads it: keys in any
+    case, comments from # or !, the value trimmed (the last one given)."""
     value = None
-    pattern = re.compile(r"^\s*" + key + r"\s*=\s*([^\s#!]*)")
     with open(config) as f:
         for line in f:
-            m = pattern.match(line)
-            if m:
-                value = m.group(1)
+            line = line.split("#")[0].split("!")[0]
+            if "=" not in line:
+                continue
+            k, v = line.split("=", 1)
+            if k.strip().lower() == key:
+                value = v.strip()
     return value or None
 
 
@@ -63,8 +69,10 @@ def read_action(path):
 
 
 def lines(path):
+    """The frequency lines of a .frq file (blank and `**` comment lines left out)."""
     with open(path) as f:
-        return [l for l in f.read().splitlines() if l.strip()]
+        return [l for l in f.read().splitlines()
+                if l.strip() and not l.lstrip().startswith("**")]
 
 
 def check_ready(input_file, config):
@@ -85,6 +93,9 @@ def check_ready(input_file, config):
     if not restart_file:
         raise Stop("%s sets no restart_file: every pass is a job of its own and needs it"
                    % config, 2)
+    if (setting(config, "kinc_numbering") or "").lower() != "sequential":
+        raise Stop("%s: kinc_numbering = sequential is needed (each pass is a new job "
+                   "numbering its increments 1..m)" % config, 2)
     if os.path.exists("frequencies.frq"):
         raise Stop("frequencies.frq exists: an earlier run stopped while its passes ran; "
                    "restore sweep.frq from it and delete it and %s* to start over"
@@ -97,7 +108,7 @@ def check_ready(input_file, config):
 
 def passes(input_file, options):
     """Runs the jobs; returns the name of the job with the answer."""
-    abaqus = shlex.split(os.environ.get("ABAQUS", "abaqus"))
+    abaqus = os.environ.get("ABAQUS", "abaqus")
     user_file = os.environ.get("USER_FILE", "user.f")
     config = os.environ.get("JOINTLIN_CONFIG", "jointlin.cfg")
     action_file, _ = check_ready(input_file, config)
@@ -113,9 +124,14 @@ def passes(input_file, options):
             print("passes.py: job %s (%d frequencies)" % (job, len(lines("sweep.frq"))),
                   file=sys.stderr)
             sys.stderr.flush()
-            command = abaqus + ["job=" + job, "input=" + input_file,
-                                "user=" + user_file] + options + ["interactive"]
-            if subprocess.call(command) != 0:
+            command = [abaqus, "job=" + job, "input=" + input_file,
+                       "user=" + user_file] + options + ["ask_delete=OFF", "interactive"]
+            try:
+                status = subprocess.call(command)
+            except OSError as e:
+                raise Stop("%s: cannot run it (%s); ABAQUS names the Abaqus command"
+                           % (abaqus, e), 2)
+            if status != 0:
                 raise Stop("job %s failed (its .log and .msg say why)" % job, 1)
             if not os.path.isfile(action_file):
                 raise Stop("job %s wrote no %s: is jointlin linked into the job "
@@ -133,7 +149,7 @@ def passes(input_file, options):
                       file=sys.stderr)
                 return job
             elif action == "FAILED":
-                raise Stop("not converged after %d jobs: increments %s of frequencies.frq "
+                raise Stop("not converged after %d jobs: increments %s (lines of sweep.frq) "
                            "are out of tolerance (max_passes in %s)"
                            % (n, " ".join(str(k) for k in increments), config), 1)
             else:
@@ -144,16 +160,27 @@ def passes(input_file, options):
             os.remove("frequencies.frq")
 
 
+def stopped_by(signum, frame):
+    """A batch system's SIGTERM or a lost terminal's SIGHUP: leave as after an error."""
+    raise Stop("stopped by signal %d" % signum, 128 + signum)
+
+
 def main(argv):
     if len(argv) < 2:
         print("usage: python passes.py INPUT.inp [ABAQUS OPTIONS...]", file=sys.stderr)
         return 2
+    for name in ("SIGTERM", "SIGHUP"):
+        if hasattr(signal, name):
+            signal.signal(getattr(signal, name), stopped_by)
     try:
         print(passes(argv[1], argv[2:]))
         return 0
     except Stop as e:
         print("passes.py: %s" % e, file=sys.stderr)
         return e.status
+    except KeyboardInterrupt:
+        print("passes.py: interrupted", file=sys.stderr)
+        return 130
 
 
 if __name__ == "__main__":

@@ -23,7 +23,7 @@ pub struct Args {
     #[command(flatten)]
     overrides: SceneOverrides,
     /// Print the deck keywords the reader implements, each with its parameters, as
-    /// the README's Markdown table, and exit.
+    /// the Markdown table of docs/own-model.md, and exit.
     #[arg(long)]
     keywords: bool,
     /// Also compute the stuck modes (joints closed and stuck after the static step)

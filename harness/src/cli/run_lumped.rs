@@ -284,6 +284,7 @@ fn sweep_pass(
     // Only converged frequencies carry amplitudes (a failed one leaves its fields empty).
     let mut curve = FrfCurve {
         label: label.to_string(),
+        grid: rows.iter().map(|r| r.0).collect(),
         points: Vec::new(),
         not_converged: Vec::new(),
     };

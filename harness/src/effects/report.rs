@@ -131,6 +131,7 @@ pub fn write(dir: &Path, t: &EffectsStudy) -> Result<Vec<PathBuf>, String> {
         .iter()
         .map(|v| FrfCurve {
             label: v.label.to_string(),
+            grid: v.sweep.freqs.clone(),
             points: (0..v.sweep.freqs.len())
                 .filter(|&i| v.sweep.converged[i] && v.sweep.failure(i).is_none())
                 .map(|i| (v.sweep.freqs[i], vec![v.sweep.outputs[i][0].norm()]))

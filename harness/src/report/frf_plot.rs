@@ -38,6 +38,7 @@ pub fn frf(
                 .collect();
             FrfCurve {
                 label: label.to_string(),
+                grid: r.freqs.clone(),
                 points: solved
                     .iter()
                     .map(|&i| (r.freqs[i], r.outputs[i].iter().map(|v| v.norm()).collect()))
@@ -55,6 +56,10 @@ pub fn frf(
 /// amplitude of every output (length).
 pub struct FrfCurve {
     pub label: String,
+    /// Every frequency the sweep ran (1/time, ascending), with or without a response:
+    /// where refined bands are looked for, so that frequencies left out of `points`
+    /// (failed, singular) do not pass for a coarser spacing.
+    pub grid: Vec<f64>,
     pub points: Vec<(f64, Vec<f64>)>,
     /// Indices into `points` of frequencies whose iteration did not converge: marked ×.
     pub not_converged: Vec<usize>,
@@ -73,8 +78,7 @@ pub fn frf_curves(
 ) -> Res {
     let main = curves.first().ok_or("no sweep")?;
     let fu = frequency_unit(units);
-    let freqs: Vec<f64> = main.points.iter().map(|p| p.0).collect();
-    let bands = refined_bands(&freqs);
+    let bands = refined_bands(&main.grid);
     let size = (900, if bands.is_empty() { 560 } else { 900 });
     let root = SVGBackend::new(path, size).into_drawing_area();
     root.fill(&WHITE).map_err(err)?;
@@ -121,6 +125,12 @@ impl FrfCurve {
             .collect();
         FrfCurve {
             label: self.label.clone(),
+            grid: self
+                .grid
+                .iter()
+                .copied()
+                .filter(|f| (a..=b).contains(f))
+                .collect(),
             points: keep.iter().map(|&i| self.points[i].clone()).collect(),
             not_converged: (0..keep.len())
                 .filter(|k| self.not_converged.contains(&keep[*k]))
@@ -159,7 +169,8 @@ fn refined_bands(freqs: &[f64]) -> Vec<(f64, f64)> {
             continue;
         }
         // gaps[start..i] are fine: the points start ..= i.
-        if i + 1 >= start + BAND_POINTS && freqs[i] - freqs[start] < 0.2 * span {
+        let width = freqs[i] - freqs[start];
+        if i + 1 >= start + BAND_POINTS && width > 0.0 && width < 0.2 * span {
             bands.push((freqs[start], freqs[i]));
         }
         start = i + 1;
@@ -182,6 +193,8 @@ fn panel(
     shades: &[Range],
 ) -> Res {
     let fu = frequency_unit(units);
+    // Enough decimals that about ten labels across the panel differ.
+    let decimals = (-((x.1 - x.0) / 10.0).log10().floor()).clamp(0.0, 12.0) as usize;
     let mut chart = ChartBuilder::on(area)
         .caption(
             caption,
@@ -202,7 +215,7 @@ fn panel(
         .x_desc(freq_label(units))
         .y_desc(format!("amplitude [{}]", units.length))
         .y_label_formatter(&|v: &f64| log_tick(*v))
-        .x_label_formatter(&|v: &f64| format!("{}", (v * 1e3).round() / 1e3))
+        .x_label_formatter(&|v: &f64| format!("{v:.decimals$}"))
         .draw()
         .map_err(err)?;
     if !shades.is_empty() {
@@ -239,7 +252,15 @@ fn panel(
                 .get(k)
                 .filter(|_| k < LEGEND_OUTPUTS)
                 .map(|name| format!("{name} {}", curve.label).trim_end().to_string());
-            draw_curve(&mut chart, pts, k, c, label, units, x)?;
+            // One output compared over several curves (point models, rungs): a solid
+            // line of its own colour per curve; else a colour per output, its curves
+            // told apart by dashes.
+            let (colour, dashed) = if outputs == 1 && curves.len() > 2 {
+                (c, 0)
+            } else {
+                (k, c)
+            };
+            draw_curve(&mut chart, pts, colour, dashed, label, units, x)?;
         }
     }
     mark_not_converged(&mut chart, curves, &fu, y.0, !names.is_empty())?;
@@ -301,20 +322,20 @@ fn ranges(curves: &[FrfCurve], fu: &FrequencyUnit) -> Result<(Range, Range), Str
     Ok((x, (y.start, y.end)))
 }
 
-/// Curve `c` of output `k`: one colour per output; its first curve solid and thick, the
-/// others (without contact damping, the sweep down) dashed in the same colour; a few
+/// Curve `c` of an output in series colour `colour`: the first curve solid and thick,
+/// the others (without contact damping, the sweep down) dashed and thin; a few
 /// frequencies as markers, the first curve's with their values. `label` names it in the
 /// legend with a sample drawn as the curve is (solid or dashed).
 fn draw_curve<'a, 'b: 'a>(
     chart: &mut FrfChart<'a, 'b>,
     pts: Vec<(f64, f64)>,
-    k: usize,
+    colour: usize,
     c: usize,
     label: Option<String>,
     units: &crate::settings::Units,
     x: Range,
 ) -> Res {
-    let color = crate::report::style::series(k);
+    let color = crate::report::style::series(colour);
     let style = color.stroke_width(if c == 0 { 2 } else { 1 });
     let drawn = if pts.len() <= MARKED_POINTS {
         let size = 6 - 2 * c.min(1) as i32;
@@ -469,6 +490,7 @@ mod tests {
         let grid = bolted_lap_grid();
         let curve = FrfCurve {
             label: "with contact damping".into(),
+            grid: grid.clone(),
             not_converged: vec![],
             points: grid
                 .iter()
@@ -485,6 +507,26 @@ mod tests {
         assert!(has("139 to 140 Hz (23 frequencies)"), "{svg}");
         assert!(has("finely sampled range (panel below)"));
         assert!(svg.contains("height=\"900\""));
+
+        // An even sweep with failed frequencies (no response, left out of the points):
+        // the gap they leave does not make the rest a refined band.
+        let grid: Vec<f64> = (0..200).map(|i| 100.0 + i as f64).collect();
+        let curve = FrfCurve {
+            label: String::new(),
+            grid: grid.clone(),
+            not_converged: vec![],
+            points: grid
+                .iter()
+                .filter(|f| !(120.0..125.0).contains(*f))
+                .map(|&f| (f, vec![1.0 / (1.0 + (f - 150.0).powi(2))]))
+                .collect(),
+        };
+        let path = dir.join("gap.svg");
+        std::fs::create_dir_all(&dir).unwrap();
+        frf_curves(&path, "gap", &units, &["tip".into()], &[curve]).unwrap();
+        let svg = std::fs::read_to_string(&path).unwrap();
+        let _ = std::fs::remove_dir_all(&dir);
+        assert!(svg.contains("height=\"560\"") && !svg.contains("finely sampled"));
     }
 
     #[test]
@@ -501,6 +543,7 @@ mod tests {
         let names: Vec<String> = (0..20).map(|i| format!("node_{i}")).collect();
         let curve = |label: &str, scale: f64| FrfCurve {
             label: label.into(),
+            grid: (0..50).map(|i| 100.0 + i as f64).collect(),
             not_converged: if scale == 1.0 { vec![3, 7] } else { vec![5] },
             points: (0..50)
                 .map(|i| {

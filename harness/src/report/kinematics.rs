@@ -78,12 +78,29 @@ pub fn part_thickness(nodes: &[[f64; 3]], elements: &[&[usize]]) -> Vec<Option<f
     }
     let mut out = vec![None; nodes.len()];
     for members in parts.values() {
-        let t = thinnest_extent(members.iter().map(|&n| Vector3::from(nodes[n])));
+        let points = members.iter().map(|&n| Vector3::from(nodes[n]));
+        let (t, size) = (thinnest_extent(points.clone()), widest_extent(points));
+        // A flat or broken part (coplanar or non-finite nodes) has no thickness to judge.
+        let t = (t.is_finite() && t > 1e-9 * size).then_some(t);
         for &n in members {
-            out[n] = Some(t);
+            out[n] = t;
         }
     }
     out
+}
+
+/// The largest extent of `points` along the coordinate axes.
+fn widest_extent(points: impl Iterator<Item = Vector3<f64>> + Clone) -> f64 {
+    (0..3)
+        .map(|k| {
+            let (lo, hi) = points
+                .clone()
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| {
+                    (lo.min(p[k]), hi.max(p[k]))
+                });
+            hi - lo
+        })
+        .fold(0.0, f64::max)
 }
 
 /// The smallest extent of `points` along the eigenvectors of their covariance.
@@ -161,5 +178,10 @@ mod tests {
             );
         }
         assert_eq!(t[16], None);
+        // A flat part (coplanar nodes, turned) and one with a NaN coordinate: not judged.
+        let (mut flat, element) = tilted_box([10.0, 10.0, 0.0], 0.3, [0.0; 3], 0);
+        assert_eq!(part_thickness(&flat, &[&element])[0], None);
+        flat[3][1] = f64::NAN;
+        assert_eq!(part_thickness(&flat, &[&element])[0], None);
     }
 }

@@ -1,6 +1,6 @@
 //! The keywords the reader implements, each with the parameters it implements: the one
 //! list the reader checks every card against (a parameter not listed is an error
-//! `file:line: *KEYWORD, PARAMETER=: …`, never skipped) and the README's keyword table
+//! `file:line: *KEYWORD, PARAMETER=: …`, never skipped) and the keyword table of docs/own-model.md
 //! prints (`jointlin check --keywords`).
 
 use super::error::{DeckError, DeckErrorKind};
@@ -21,7 +21,7 @@ pub struct Param {
     /// Upper case, single spaces.
     pub name: &'static str,
     pub form: Form,
-    /// What it means here (one line for the README's table).
+    /// What it means here (one line for the keyword table).
     pub reading: &'static str,
 }
 
@@ -426,7 +426,7 @@ pub fn check_fields(card: &Card, kw: &Keyword) -> Result<(), DeckError> {
     Ok(())
 }
 
-/// The README's keyword table: each keyword with the parameters it implements.
+/// The keyword table (docs/own-model.md): each keyword with the parameters it implements.
 pub fn markdown_table() -> String {
     let mut s = String::from("| keyword | parameters (what a run makes of them) |\n|---|---|\n");
     for k in KEYWORDS {
