@@ -4,8 +4,9 @@
 ! (examples/abaqus/passes.sh, passes.py) starts for every pass. As Abaqus does, the job
 ! calls UEXTERNALDB at the start of the analysis (LOP 0: the shim reads ./jointlin.cfg
 ! and restores the store from its restart file), runs step 1 (the preload: UINTER with
-! LINPER = 0 per point) and step 2, the steady-state sweep over the frequencies of
-! ./sweep.frq (one `f,` line each, cycles per time; increment k is line k), with
+! LINPER = 0 per point, UEXTERNALDB at the ends of its step and increment) and step 2,
+! the steady-state sweep over the frequencies of ./sweep.frq (one `f,` line each, cycles
+! per time; increment k is line k), with
 ! UINTER (LINPER = 1), the contact output of every increment in the stand-in results
 ! file read back by URDFIL, and UEXTERNALDB at the ends of increments, step and
 ! analysis (LOP 3 writes the action file). Its results, as *NODE PRINT would print
@@ -39,7 +40,10 @@ program abaqus_job
   call read_frequencies('sweep.frq', freq)
 
   call uexternaldb(0, 0, time, 0d0, 0, 0)
-  ! Step 1: the preload, every contact closed by its normal law.
+  ! Step 1: the preload, every contact closed by its normal law, in one increment with
+  ! UEXTERNALDB at the step's and the increment's start and end (LOP 5, 1, 2, 6).
+  call uexternaldb(5, 0, time, 0d0, 1, 0)
+  call uexternaldb(1, 0, time, 0d0, 1, 1)
   do j = 1, npoints
      props(:, j) = block_props(0d0)
      coords(1, j) = 10 * (j - 1)
@@ -47,6 +51,8 @@ program abaqus_job
      drdisp(1, j) = rdisp(1, j)
      call call_uinter(j, 0d0, 1, 1, 0)
   end do
+  call uexternaldb(2, 0, time, 0d0, 1, 1)
+  call uexternaldb(6, 0, time, 0d0, 1, 0)
   ! Step 2: the steady-state sweep, increment i at the frequency of line i.
   open (newunit=dat, file=trim(job)//'.dat', status='replace', action='write')
   call uexternaldb(5, 0, time, 0d0, 2, 0)
