@@ -48,16 +48,7 @@ fn programs() -> &'static Programs {
                 ("JOINTLIN_INCDIR", &root().join("include")),
             ],
         );
-        let shim = build_shim(&dir);
-        let fortran = dir.join("fortran");
-        make(
-            "harness/fortran/Makefile",
-            &[
-                ("BUILD", &fortran),
-                ("SHIM", &shim),
-                ("JOINTLIN_LIBDIR", &lib),
-            ],
-        );
+        let fortran = build_fortran_hosts(&dir);
         Programs { c, fortran }
     })
 }

@@ -276,18 +276,7 @@ fn installed_tree_runs_the_abaqus_tutorial_from_another_directory() {
 
 /// harness/fortran/abaqus_job built against this build's library (tests/pass_drivers.rs).
 fn stand_in_abaqus() -> PathBuf {
-    let dir = build_dir("install-stand-in");
-    let shim = build_shim(&dir);
-    let fortran = dir.join("fortran");
-    make(
-        "harness/fortran/Makefile",
-        &[
-            ("BUILD", &fortran),
-            ("SHIM", &shim),
-            ("JOINTLIN_LIBDIR", &lib_dir()),
-        ],
-    );
-    fortran.join("abaqus_job")
+    build_fortran_hosts(&build_dir("install-stand-in")).join("abaqus_job")
 }
 
 #[test]

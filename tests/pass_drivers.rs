@@ -25,20 +25,7 @@ use jointlin::store::KincNumbering;
 /// harness/fortran/abaqus_job, built once per test binary.
 fn abaqus_job() -> &'static PathBuf {
     static P: OnceLock<PathBuf> = OnceLock::new();
-    P.get_or_init(|| {
-        let dir = build_dir("drivers");
-        let shim = build_shim(&dir);
-        let fortran = dir.join("fortran");
-        make(
-            "harness/fortran/Makefile",
-            &[
-                ("BUILD", &fortran),
-                ("SHIM", &shim),
-                ("JOINTLIN_LIBDIR", &lib_dir()),
-            ],
-        );
-        fortran.join("abaqus_job")
-    })
+    P.get_or_init(|| build_fortran_hosts(&build_dir("drivers")).join("abaqus_job"))
 }
 
 /// A job directory as `jointlin export` leaves it for the sweep model: sweep.frq (one

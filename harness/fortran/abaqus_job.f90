@@ -69,7 +69,7 @@ program abaqus_job
      z12 = cmplx(-kc, 0d0, c_double_complex)
      det = z11 * z22 - z12 * z12
      x = [force * z22 / det, -z12 * force / det]
-     call write_results_file(i, x)
+     call write_results_file(i, x, .false.)
      call urdfil(lstop, lovrwrt, 2, i, 0d0, time)
      write (dat, '(a,i0,a,es25.17e3,a,2es25.17e3)') 'increment ', i, ' frequency ', &
           freq(i), ' amplitude', abs(x(1)), abs(x(2))
@@ -103,21 +103,6 @@ contains
          area, chrlngth, j, ndir, nstatv, npred, nprops, mcrd, kstep, kinc, 0, linper, &
          lopenclose(j), lstate, lsdi, lprint)
   end subroutine call_uinter
-
-  !> The stand-in results file of step 2, increment `kinc` (format: abaqus_standin.f):
-  !> per point (node j) its node header and CDISP record, real parts then imaginary.
-  subroutine write_results_file(kinc, x)
-    integer, intent(in) :: kinc
-    complex(c_double_complex), intent(in) :: x(:)
-    integer :: u, j
-    open (newunit=u, file='jointlin-standin.fil', status='replace', action='write')
-    write (u, '(a,i0)') '2000 2 2 ', kinc
-    do j = 1, size(x)
-       write (u, '(a,i0,a)') '1504 2 ', j, ' 3'
-       write (u, '(a,6es25.17)') '1521 0', 0d0, x(j)%re, 0d0, 0d0, x(j)%im, 0d0
-    end do
-    close (u)
-  end subroutine write_results_file
 
   !> The frequencies of a sweep.frq: the first field of every non-blank line.
   subroutine read_frequencies(path, freq)

@@ -128,27 +128,6 @@ contains
          lopenclose(j), lstate, lsdi, lprint)
   end subroutine call_uinter
 
-  !> The stand-in results file of step 2, increment `kinc` (format: abaqus_standin.f):
-  !> per point its node header (node j, 3 components) and CDISP record: separation 0,
-  !> slip x(j) in the local 1-direction, 0 in the 2-direction, real parts then imaginary.
-  subroutine write_results_file(kinc, x, corrupt)
-    integer, intent(in) :: kinc
-    complex(c_double_complex), intent(in) :: x(:)
-    logical, intent(in) :: corrupt
-    integer :: u, j
-    open (newunit=u, file='jointlin-standin.fil', status='replace', action='write')
-    write (u, '(a,i0)') '2000 2 2 ', kinc
-    do j = 1, size(x)
-       write (u, '(a,i0,a)') '1504 2 ', j, ' 3'
-       if (corrupt) then
-          write (u, '(a,5es25.17)') '1521 0', 0d0, x(j)%re, 0d0, 0d0, x(j)%im
-       else
-          write (u, '(a,6es25.17)') '1521 0', 0d0, x(j)%re, 0d0, 0d0, x(j)%im, 0d0
-       end if
-    end do
-    close (u)
-  end subroutine write_results_file
-
   !> Reads what UEXTERNALDB wrote at LOP 3: "action NAME", "pass N", "increments k...".
   subroutine read_action_file(path, action, pass, list, count)
     character(len=*), intent(in) :: path

@@ -147,6 +147,22 @@ pub fn build_shim(dir: &Path) -> PathBuf {
     shim
 }
 
+/// Builds the shim into `<dir>/shim` and the Fortran host programs
+/// (harness/fortran/Makefile) against it into `<dir>/fortran`; returns the latter.
+pub fn build_fortran_hosts(dir: &Path) -> PathBuf {
+    let shim = build_shim(dir);
+    let fortran = dir.join("fortran");
+    make(
+        "harness/fortran/Makefile",
+        &[
+            ("BUILD", &fortran),
+            ("SHIM", &shim),
+            ("JOINTLIN_LIBDIR", &lib_dir()),
+        ],
+    );
+    fortran
+}
+
 pub fn valgrind_available() -> bool {
     Command::new("valgrind")
         .arg("--version")
