@@ -11,6 +11,7 @@
 //! on the same deck gives CalculiX's six modes to 5e-6. The Gmsh and CalculiX parts fail on CI where the program is missing
 //! and are skipped elsewhere (tests/tools/mod.rs).
 
+mod common;
 #[path = "../../tests/tools/mod.rs"]
 mod tools;
 
@@ -188,10 +189,13 @@ fn fresh_gmsh_mesh_converts_and_pairs() {
     }
     // The command a user runs (the .geo's header): `jointlin deck from-gmsh`.
     let mesh = dir.join("bolted-lap-mesh.inp");
-    let log = jointlin_ok(
-        &["deck", "from-gmsh"],
-        &[&export, Path::new("--out"), &mesh],
-    );
+    let log = common::run_ok(&[
+        "deck".as_ref(),
+        "from-gmsh".as_ref(),
+        export.as_os_str(),
+        "--out".as_ref(),
+        mesh.as_os_str(),
+    ]);
     assert!(log.contains("surfaces)"), "{log}");
     assert_eq!(
         std::fs::read_to_string(&mesh).unwrap(),
@@ -202,18 +206,6 @@ fn fresh_gmsh_mesh_converts_and_pairs() {
     assert!(warnings.is_empty(), "{warnings:?}");
     check_lap(&d, "fresh bolted-lap.inp");
     let _ = std::fs::remove_dir_all(&dir);
-}
-
-/// `jointlin ARGS PATHS`, panicking with its stderr unless it succeeds; its stderr.
-fn jointlin_ok(args: &[&str], paths: &[&Path]) -> String {
-    let run = Command::new(env!("CARGO_BIN_EXE_jointlin"))
-        .args(args)
-        .args(paths)
-        .output()
-        .unwrap();
-    let log = String::from_utf8_lossy(&run.stderr).into_owned();
-    assert!(run.status.success(), "{log}");
-    log
 }
 
 /// A facet of a physical surface that is no face of a solid element: `jointlin deck
