@@ -305,7 +305,11 @@ fn field_output_of_a_scene_with_model_uses_the_deck_outputs() {
         "the plates' plane"
     );
     // Two interfaces of the three-layer stack: a panel each.
-    assert_eq!(map.matches("colour A/δ*").count(), 2);
+    assert_eq!(
+        map.matches("A/δ* (colour) and slip amplitude (area)")
+            .count(),
+        2
+    );
     let bare = d.join("bare.inp");
     std::fs::write(
         &bare,

@@ -251,8 +251,10 @@ fn contact_maps_at_the_field_frequencies() {
     let tag = &field["field_".len()..field.len() - ".vtu".len()];
     let energy = std::fs::read_to_string(out.join(format!("contact_energy_{tag}.svg"))).unwrap();
     let ratio = std::fs::read_to_string(out.join(format!("contact_ratio_{tag}.svg"))).unwrap();
-    assert_eq!(energy.matches("<circle").count(), points, "energy map");
-    let rings = ratio.matches("<circle").count() - points;
+    // A dot per point, and in the legend column two size keys and the open point's
+    // dot (the ratio map's also the sliding ring).
+    assert_eq!(energy.matches("<circle").count(), points + 3, "energy map");
+    let rings = ratio.matches("<circle").count() - points - 4;
     let sliding = arrays(&out.join(&field))["contact_amplitude_ratio"]
         .iter()
         .filter(|&&r| r > 1.0)
@@ -270,5 +272,15 @@ fn contact_maps_at_the_field_frequencies() {
             "the frequency in the title"
         );
     }
-    assert!(energy.contains("N·mm/mm²"), "the energy density unit");
+    assert!(
+        energy.contains("E/A [N/mm]"),
+        "the energy density's colour bar and unit"
+    );
+    assert!(
+        ratio.contains("≥ 10") && ratio.contains("≤ 0.001"),
+        "A/δ* on a log bar"
+    );
+    for svg in [&energy, &ratio] {
+        assert!(svg.contains("open (no pressure)"), "open points explained");
+    }
 }

@@ -8,7 +8,8 @@ use std::path::Path;
 
 use plotters::prelude::*;
 
-use super::svg::drawing_error as err;
+use super::legend::{colour_bar, keys, Symbol};
+use super::svg::{drawing_error as err, ratio_bar, ratio_color};
 use super::vtu::{unstructured_grid, CellType, PointField};
 use crate::fe::mesh::Face;
 use crate::model::Problem;
@@ -219,8 +220,79 @@ fn panel_bounds(
         .collect()
 }
 
+/// A point's dot radius (px) for its share `size` (0 … 1) of the panel's largest value:
+/// its area grows with the value.
+fn radius(size: f64) -> i32 {
+    (3.0 + 11.0 * size.clamp(0.0, 1.0).sqrt()) as i32
+}
+
+/// The energy map's colour for share `t` (0 … 1) of the largest energy density: blue to
+/// red.
+fn energy_colour(t: f64) -> RGBColor {
+    let t = t.clamp(0.0, 1.0);
+    RGBColor((255.0 * t) as u8, 40, (255.0 * (1.0 - t)) as u8)
+}
+
+/// The maps' legend column: the colour bar (A/δ* on the stick/slip map's log scale, or
+/// the energy density from 0 to its largest value `emax`), what the dot sizes mean
+/// (the largest slip amplitude `vmax` or `emax`), the sliding ring and the open points.
+fn legend(
+    area: &DrawingArea<SVGBackend, plotters::coord::Shift>,
+    kind: MapKind,
+    units: &Units,
+    vmax: f64,
+    emax: f64,
+) -> Result<(), String> {
+    let l = units.length.as_str();
+    let grey = RGBColor(190, 190, 190);
+    let mid = RGBColor(120, 40, 140);
+    match kind {
+        MapKind::Ratio => {
+            ratio_bar(area)?;
+            let largest = format!("slip {vmax:.2e} {l}");
+            let quarter = format!("slip {:.2e} {l}", vmax / 4.0);
+            keys(
+                area,
+                true,
+                &[
+                    (Symbol::Dot(radius(1.0), mid), largest.as_str()),
+                    (Symbol::Dot(radius(0.25), mid), quarter.as_str()),
+                    (Symbol::Ring(radius(0.25) + 1), "sliding (A/δ* > 1)"),
+                    (Symbol::Dot(2, grey), "open (no pressure)"),
+                ],
+            )
+        }
+        MapKind::EnergyDensity => {
+            let unit = format!("[{}/{l}]", units.force);
+            let ticks: Vec<(f64, String)> = [0.0, 0.25, 0.5, 0.75, 1.0]
+                .iter()
+                .map(|&t| (t, format!("{:.2e}", t * emax)))
+                .collect();
+            colour_bar(area, &format!("E/A {unit}"), &energy_colour, &ticks)?;
+            let largest = format!("{emax:.2e}");
+            let quarter = format!("{:.2e}", emax / 4.0);
+            keys(
+                area,
+                true,
+                &[
+                    (
+                        Symbol::Dot(radius(1.0), energy_colour(1.0)),
+                        largest.as_str(),
+                    ),
+                    (
+                        Symbol::Dot(radius(0.25), energy_colour(0.25)),
+                        quarter.as_str(),
+                    ),
+                    (Symbol::Dot(2, grey), "open (no pressure)"),
+                ],
+            )
+        }
+    }
+}
+
 /// SVG map: one panel per plane of interfaces ([`panel_groups`]; the two global axes
-/// across it), a circle per contact point; grey dots are open points.
+/// across it), a circle per contact point (grey dots: open points), and a legend column
+/// ([`legend`]).
 pub fn svg(
     path: &Path,
     title: &str,
@@ -239,10 +311,12 @@ pub fn svg(
         .map(|&(_, _, x0, x1, y0, y1)| (y1 - y0) / (x1 - x0))
         .fold(0.0, f64::max);
     let panel_h = (760.0 * aspect + 90.0).clamp(220.0, 800.0) as u32;
-    let root = SVGBackend::new(path, (900, 40 + panel_h * n as u32)).into_drawing_area();
+    let height = (40 + panel_h * n as u32).max(560);
+    let root = SVGBackend::new(path, (1060, height)).into_drawing_area();
     root.fill(&WHITE).map_err(err)?;
     let root = root.titled(title, ("sans-serif", 18)).map_err(err)?;
-    let areas = root.split_evenly((n, 1));
+    let (maps, legend_area) = root.split_horizontally(880);
+    let areas = maps.split_evenly((n, 1));
     let vmax = vals
         .iter()
         .map(|v| match kind {
@@ -256,24 +330,21 @@ pub fn svg(
         .map(|v| v.energy_density)
         .fold(0.0, f64::max)
         .max(f64::MIN_POSITIVE);
+    legend(&legend_area, kind, units, vmax, emax)?;
     for (k, area) in areas.iter().enumerate() {
         let (a, b, x0, x1, y0, y1) = panels[k];
         let ks = &groups[k].0;
         let name = panel_name(p, ks);
         let caption = match kind {
-            MapKind::Ratio => format!(
-                "{name}: colour A/δ* (blue 0 … red 1, black ring: sliding), area ∝ slip amplitude (max {:.3e} {length_unit})",
-                vmax
-            ),
-            MapKind::EnergyDensity => format!(
-                "{name}: dissipated energy density per cycle (max {:.3e} {}·{length_unit}/{length_unit}²)",
-                emax, units.force
-            ),
+            MapKind::Ratio => format!("{name}: A/δ* (colour) and slip amplitude (area)"),
+            MapKind::EnergyDensity => {
+                format!("{name}: energy dissipated per cycle and area (colour and area)")
+            }
         };
         let mut chart = ChartBuilder::on(area)
             .caption(caption, ("sans-serif", 13))
             .margin(10)
-            .x_label_area_size(30)
+            .x_label_area_size(40)
             .y_label_area_size(45)
             .build_cartesian_2d(x0..x1, y0..y1)
             .map_err(err)?;
@@ -301,20 +372,24 @@ pub fn svg(
             .map_err(err)?;
         chart
             .draw_series(pts.iter().filter(|(_, v)| v.pressure > 0.0).map(|(i, v)| {
-                let (t, size) = match kind {
-                    MapKind::Ratio => (v.ratio.min(1.0), v.amplitude / vmax),
-                    MapKind::EnergyDensity => (v.energy_density / emax, v.energy_density / emax),
+                let (color, size) = match kind {
+                    MapKind::Ratio => (ratio_color(v.ratio), v.amplitude / vmax),
+                    MapKind::EnergyDensity => {
+                        let t = v.energy_density / emax;
+                        (energy_colour(t), t)
+                    }
                 };
-                let r = (3.0 + 11.0 * size.max(0.0).sqrt()) as i32;
-                let color = RGBColor((255.0 * t) as u8, 40, (255.0 * (1.0 - t)) as u8);
-                Circle::new(at(*i), r, color.mix(0.85).filled())
+                Circle::new(at(*i), radius(size), color.mix(0.85).filled())
             }))
             .map_err(err)?;
         if kind == MapKind::Ratio {
             chart
                 .draw_series(pts.iter().filter(|(_, v)| v.ratio > 1.0).map(|(i, v)| {
-                    let r = (3.0 + 11.0 * (v.amplitude / vmax).sqrt()) as i32 + 1;
-                    Circle::new(at(*i), r, BLACK.stroke_width(2))
+                    Circle::new(
+                        at(*i),
+                        radius(v.amplitude / vmax) + 1,
+                        BLACK.stroke_width(2),
+                    )
                 }))
                 .map_err(err)?;
         }

@@ -5,6 +5,7 @@ pub mod csv;
 pub mod field;
 pub mod frf_plot;
 pub mod kinematics;
+pub mod legend;
 pub mod loop_plot;
 pub mod modes;
 pub mod point_loops;

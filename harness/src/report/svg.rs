@@ -4,6 +4,7 @@
 
 use plotters::prelude::*;
 
+use super::legend::{self, Symbol};
 use super::style::series;
 use crate::model::Problem;
 use crate::settings::units::frequency_unit;
@@ -181,7 +182,7 @@ const RATIO_SCALE: (f64, f64) = (-3.0, 1.0);
 
 /// Colour of A/δ* on the stick/slip map: blue (≤ 1e-3, stuck) through purple to red
 /// (≥ 10, beyond the slip limit A = δ*).
-fn ratio_color(ratio: f64) -> RGBColor {
+pub fn ratio_color(ratio: f64) -> RGBColor {
     let (lo, hi) = RATIO_SCALE;
     let t = ((ratio.max(1e-300).log10() - lo) / (hi - lo)).clamp(0.0, 1.0);
     RGBColor(
@@ -194,46 +195,23 @@ fn ratio_color(ratio: f64) -> RGBColor {
 /// The stick/slip map's colour bar (A/δ* on the log scale of [`ratio_color`]) and the
 /// sliding frame's key.
 fn ratio_legend<DB: DrawingBackend>(area: &DrawingArea<DB, plotters::coord::Shift>) -> Res {
+    ratio_bar(area)?;
+    legend::keys(area, true, &[(Symbol::Frame, "sliding")])
+}
+
+/// The colour bar of A/δ* on the log scale of [`ratio_color`] (also the contact maps').
+pub fn ratio_bar<DB: DrawingBackend>(area: &DrawingArea<DB, plotters::coord::Shift>) -> Res {
     let (lo, hi) = RATIO_SCALE;
-    let (x, top, bottom, width) = (20, 70, 400, 22);
-    let font = ("sans-serif", 13).into_font();
-    area.draw(&Text::new("A/δ*", (x, top - 25), font.clone()))
-        .map_err(err)?;
-    let steps = 80;
-    for k in 0..steps {
-        let y0 = bottom - (bottom - top) * (k + 1) / steps;
-        let y1 = bottom - (bottom - top) * k / steps;
-        let e = lo + (hi - lo) * (k as f64 + 0.5) / steps as f64;
-        area.draw(&Rectangle::new(
-            [(x, y0), (x + width, y1)],
-            ratio_color(10f64.powf(e)).filled(),
-        ))
-        .map_err(err)?;
-    }
-    area.draw(&Rectangle::new([(x, top), (x + width, bottom)], BLACK))
-        .map_err(err)?;
-    for e in lo as i32..=hi as i32 {
-        let y = bottom - ((e as f64 - lo) / (hi - lo) * (bottom - top) as f64) as i32;
-        let label = match e as f64 {
-            v if v == lo => format!("≤ {}", log_tick(10f64.powi(e))),
-            v if v == hi => format!("≥ {}", log_tick(10f64.powi(e))),
-            _ => log_tick(10f64.powi(e)),
-        };
-        area.draw(&PathElement::new(
-            vec![(x + width, y), (x + width + 5, y)],
-            BLACK,
-        ))
-        .map_err(err)?;
-        area.draw(&Text::new(label, (x + width + 8, y - 6), font.clone()))
-            .map_err(err)?;
-    }
-    let y = bottom + 30;
-    area.draw(&Rectangle::new(
-        [(x, y), (x + width, y + 14)],
-        BLACK.stroke_width(1),
-    ))
-    .map_err(err)?;
-    area.draw(&Text::new("sliding", (x + width + 8, y), font))
-        .map_err(err)?;
-    Ok(())
+    let ticks: Vec<(f64, String)> = (lo as i32..=hi as i32)
+        .map(|e| {
+            let label = match e as f64 {
+                v if v == lo => format!("≤ {}", log_tick(10f64.powi(e))),
+                v if v == hi => format!("≥ {}", log_tick(10f64.powi(e))),
+                _ => log_tick(10f64.powi(e)),
+            };
+            ((e as f64 - lo) / (hi - lo), label)
+        })
+        .collect();
+    let colour = |t: f64| ratio_color(10f64.powf(lo + (hi - lo) * t));
+    legend::colour_bar(area, "A/δ*", &colour, &ticks)
 }
