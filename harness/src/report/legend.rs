@@ -4,7 +4,7 @@
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
-use super::svg::drawing_error as err;
+use super::style::drawing_error as err;
 
 type Res = Result<(), String>;
 

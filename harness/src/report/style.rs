@@ -1,6 +1,6 @@
-//! What the plots share: the colours of their series. Okabe and Ito's colour-blind-safe
-//! set (*Color Universal Design*, 2008) without its yellow, which vanishes on white,
-//! and with a mid grey as the eighth.
+//! What the plots share: the error message of a drawing, and the colours of their
+//! series: Okabe and Ito's colour-blind-safe set (*Color Universal Design*, 2008)
+//! without its yellow, which vanishes on white, and with a mid grey as the eighth.
 
 use plotters::style::RGBColor;
 
@@ -15,6 +15,11 @@ pub const SERIES: [RGBColor; 8] = [
     RGBColor(0, 0, 0),       // black
     RGBColor(120, 120, 120), // grey
 ];
+
+/// A plotters error as the message the plot writers return.
+pub fn drawing_error<E: std::fmt::Display>(e: E) -> String {
+    e.to_string()
+}
 
 /// The colour of series `i` (the set repeats after eight).
 pub fn series(i: usize) -> RGBColor {

@@ -15,10 +15,7 @@ use drawing_error as err;
 
 type Res = Result<(), String>;
 
-/// A plotters error as the message the plot writers return.
-pub fn drawing_error<E: std::fmt::Display>(e: E) -> String {
-    e.to_string()
-}
+pub use super::style::drawing_error;
 
 /// `frequency [Hz]`, `frequency [1/<time>]` or `angular frequency [rad/<time>]`.
 pub(crate) fn freq_label(units: &crate::settings::Units) -> String {
