@@ -292,8 +292,29 @@ pub fn run(
         uexternaldb: c1.uexternaldb - calls0.uexternaldb,
         store: c1.store - calls0.store,
     };
+    let mut result = RunResult {
+        problem,
+        stat,
+        main,
+        down,
+        reference,
+        fields,
+        effects: Vec::new(),
+        calls,
+        seconds: [t_build, t_static, t_main, t_ref],
+    };
+    result.effects = effect_logs(&result, eff, steps3, t_fields);
+    Ok(result)
+}
+
+/// What each effect of `eff` did in the run `r` and what it cost (`steps3`: the
+/// three-direction point steps of the run; `t_fields`: seconds of the field pass).
+fn effect_logs(r: &RunResult, eff: Effects, steps3: u64, t_fields: f64) -> Vec<EffectLog> {
+    let (problem, stat, main, calls) = (&r.problem, &r.stat, &r.main, &r.calls);
+    let (down, reference, fields) = (&r.down, &r.reference, &r.fields);
+    let [_, t_static, _, t_ref] = r.seconds;
     let contact_iter = sum(
-        &main,
+        main,
         &[
             "linearization (C API)",
             "condensed iterations",
@@ -301,7 +322,7 @@ pub fn run(
             "store (C API)",
         ],
     );
-    let effects = vec![
+    vec![
         EffectLog {
             name: "normal_contact_nonlinearity",
             active: eff.normal_contact_nonlinearity,
@@ -344,12 +365,12 @@ pub fn run(
             name: "material_damping",
             active: eff.material_damping,
             seconds: 0.0,
-            work: material_damping_work(eff.material_damping, &problem),
+            work: material_damping_work(eff.material_damping, problem),
         },
         EffectLog {
             name: "cubic_springs",
             active: !problem.cubic_springs.is_empty(),
-            seconds: sum(&main, &[sweep::fast::CUBIC_TIMING])
+            seconds: sum(main, &[sweep::fast::CUBIC_TIMING])
                 + down.as_ref().map_or(0.0, |d| sum(d, &[sweep::fast::CUBIC_TIMING])),
             work: format!(
                 "k* = k + ¾αA² of {} cubic springs by {} jointlin_linearize_cubic calls (not an [effects] switch: on when a spring has `cubic`)",
@@ -372,7 +393,7 @@ pub fn run(
         EffectLog {
             name: "point_energy_output",
             active: eff.point_energy_output,
-            seconds: sum(&main, &["point outputs", "reporting and point outputs"]),
+            seconds: sum(main, &["point outputs", "reporting and point outputs"]),
             work: "per-point amplitude, k*, d*, energy, A/δ* (points.csv)".into(),
         },
         EffectLog {
@@ -393,18 +414,7 @@ pub fn run(
                 None => "none ([field_output] not in the scene)".into(),
             },
         },
-    ];
-    Ok(RunResult {
-        problem,
-        stat,
-        main,
-        down,
-        reference,
-        fields,
-        effects,
-        calls,
-        seconds: [t_build, t_static, t_main, t_ref],
-    })
+    ]
 }
 
 /// The frequencies of `[field_output]`: the `peaks` highest local maxima of the first
