@@ -32,25 +32,22 @@
 //! frequency-domain rungs are repeated until 0.2 s have passed and averaged.
 
 mod compare;
+mod frequency_rungs;
 pub mod lumped;
 mod plot;
 mod report;
+mod time_rungs;
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
-use std::time::Instant;
 
 use serde::Serialize;
 
-use crate::capi::{set_quadrature, Quadrature};
 use crate::input::scene::Scene;
-use crate::mhb::default_samples;
 use crate::run::{run, Extras};
 use crate::settings::units::{frequency_unit, ColumnUnits};
-use crate::settings::{Mode, Units};
-use crate::solve::sweep::harmonic_fe_point3d::{check_effects, PointModel};
-use crate::time::scene_run::{integrator_for, run_scene, FreqResult};
-use crate::time::{Integrator, Start, TimeSettings};
+use crate::settings::Units;
+use crate::solve::sweep::harmonic_fe_point3d::PointModel;
 use crate::util::atomic;
 use crate::util::csv_table::CsvTable;
 
@@ -123,39 +120,6 @@ pub fn peak_frequency(scene: &Scene) -> Result<f64, String> {
         .ok_or_else(|| "the scene has no frequencies".into())
 }
 
-/// (amplitude, energy, converged, seconds) of the frequency domain, repeated until 0.2 s.
-fn fd(scene: &Scene, q: Option<Quadrature>) -> Result<(f64, f64, bool, f64), String> {
-    let prev = set_quadrature(q);
-    let t = Instant::now();
-    let mut reps = 0;
-    let mut out = (0.0, 0.0, false);
-    let res = loop {
-        let r = match run(scene, Extras::default(), &|_, _, _| {}) {
-            Ok(r) => r,
-            Err(e) => break Err(e.to_string()),
-        };
-        out = (
-            r.main.outputs[0][0].norm(),
-            r.main.power[0] / r.main.freqs[0],
-            r.main.converged[0],
-        );
-        reps += 1;
-        if t.elapsed().as_secs_f64() >= 0.2 {
-            break Ok(());
-        }
-    };
-    set_quadrature(prev);
-    res?;
-    Ok((out.0, out.1, out.2, t.elapsed().as_secs_f64() / reps as f64))
-}
-
-fn td(scene: &Scene, s: &TimeSettings) -> Result<(FreqResult, f64), String> {
-    let t = Instant::now();
-    let r = run_scene(scene, s, &|_, _| {}).map_err(|e| e.to_string())?;
-    let secs = t.elapsed().as_secs_f64();
-    Ok((r.results.into_iter().next().expect("one frequency"), secs))
-}
-
 /// Runs the ladder of an FE scene or deck ([`lumped::study`] for lumped scenes). `freq`:
 /// the frequency (default: the scene's only one, else its peak).
 pub fn study(scene: &Scene, freq: Option<f64>, log: &dyn Fn(&str)) -> Result<Tradeoff, String> {
@@ -170,238 +134,9 @@ pub fn study(scene: &Scene, freq: Option<f64>, log: &dyn Fn(&str)) -> Result<Tra
     let base = at_frequency(scene, f);
     let problem = crate::model::build(&base).map_err(|e| e.to_string())?;
     let n_free = problem.sys.dofs.n_free();
-    // The first-order rungs: the thesis's point model.
-    let first_order = base.thesis_points();
     let scene_model = PointModel::from_effects(&base.spec.effects);
-    let mut rungs = Vec::new();
-    let mut push_fd = |family, label: String, s: &Scene, q| -> Result<(), String> {
-        log(&label);
-        let (a, e, c, secs) = fd(s, q)?;
-        rungs.push(Rung {
-            family,
-            label,
-            seconds: secs,
-            amplitude: a,
-            energy: e,
-            amplitude_error: 0.0,
-            energy_error: 0.0,
-            converged: c,
-            frequency_domain: true,
-        });
-        Ok(())
-    };
-    let mut lin = first_order.clone();
-    lin.spec.effects.tangential_microslip = false;
-    lin.spec.effects.contact_damping = false;
-    push_fd(
-        "linear",
-        "linear stick (k_T0, no contact damping)".into(),
-        &lin,
-        None,
-    )?;
-    for n in [4, 16, 64, 256, 1024] {
-        push_fd(
-            "simpson",
-            format!("HBM/EBM, Simpson {n} intervals"),
-            &first_order,
-            Some(Quadrature::Simpson(n)),
-        )?;
-    }
-    push_fd(
-        "default",
-        format!(
-            "default (graded Gauss, tolerance {:.0e})",
-            base.spec.iteration.tolerance
-        ),
-        &first_order,
-        None,
-    )?;
-    for tol in [1e-1, 1e-2, 1e-4, 1e-6, 1e-8] {
-        let mut s = first_order.clone();
-        s.spec.iteration.tolerance = tol;
-        s.spec.iteration.max_passes = s.spec.iteration.max_passes.max(200);
-        push_fd(
-            "tolerance",
-            format!("default quadrature, tolerance {tol:.0e}"),
-            &s,
-            None,
-        )?;
-    }
-    // The scene's point model, or `normal_load_variation` added to the thesis's.
-    let harmonic = |h: usize, normal_load_variation: bool| {
-        let mut s = base.clone();
-        let it = &mut s.spec.iteration;
-        it.mode = Mode::HarmonicBalance;
-        (it.harmonics, it.samples) = (Some(h), None);
-        it.tolerance = HB_TOLERANCE;
-        it.max_passes = it.max_passes.max(50);
-        s.spec.effects.normal_load_variation |= normal_load_variation;
-        s
-    };
-    let with = report::effects_label(scene_model.coupled_slip, scene_model.normal_load_variation);
-    for h in HARMONICS {
-        push_fd(
-            "harmonic",
-            format!(
-                "harmonic balance H = {h} (N = {}){with}, Newton to {HB_TOLERANCE:.0e}",
-                default_samples(h)
-            ),
-            &harmonic(h, false),
-            None,
-        )?;
-    }
-    if scene_model.coupled_slip {
-        // First order with the coupled element: the describing function of each point's
-        // ellipse (docs/contact3d.md §4), no harmonic balance.
-        let mut s = base.clone();
-        s.spec.iteration.mode = Mode::Fast;
-        s.spec.effects.normal_load_variation = false;
-        push_fd(
-            "coupled_first_order",
-            "first order with coupled_slip (describing function of the ellipse, tabulated)".into(),
-            &s,
-            None,
-        )?;
-    }
-    let normal = harmonic(1, true);
-    match check_effects(&problem, &normal.spec.effects, Mode::HarmonicBalance) {
-        _ if !scene_model.is_thesis() => {}
-        Ok(()) => {
-            for h in HARMONICS_NORMAL_LOAD {
-                push_fd(
-                    "normal_load",
-                    format!(
-                        "harmonic balance H = {h} (N = {}) with normal_load_variation, Newton to {HB_TOLERANCE:.0e}",
-                        default_samples(h)
-                    ),
-                    &harmonic(h, true),
-                    None,
-                )?;
-            }
-        }
-        Err(e) => log(&format!("no normal_load_variation rungs: {e}")),
-    }
-
-    // Time domain.
-    let small = integrator_for(&TimeSettings::default(), n_free) == Integrator::Rk4;
-    let (start, ramp) = if small {
-        (Start::Rest, 1.0)
-    } else {
-        (Start::Linear, 0.0)
-    };
-    let base_td = TimeSettings {
-        integrator: Integrator::Newmark,
-        start,
-        ramp_cycles: ramp,
-        tolerance: 1e-4,
-        min_cycles: 3,
-        max_cycles: 4000,
-        ..TimeSettings::default()
-    };
-    let mut td_rungs: Vec<(String, TimeSettings)> = Vec::new();
-    let steps: &[usize] = if small {
-        &[64, 256, 1024, 4096]
-    } else {
-        &[32, 64, 128, 256]
-    };
-    for &n in steps {
-        td_rungs.push((
-            format!("Newmark {n} steps/period, settled to 1e-4"),
-            TimeSettings {
-                steps_per_cycle: n,
-                ..base_td
-            },
-        ));
-    }
-    let mid = steps[2];
-    for cycles in [5usize, 20, 80] {
-        td_rungs.push((
-            format!("Newmark {mid} steps/period, {cycles} cycles"),
-            TimeSettings {
-                steps_per_cycle: mid,
-                tolerance: 0.0,
-                min_cycles: cycles.min(base_td.max_cycles),
-                max_cycles: cycles + ramp as usize,
-                ..base_td
-            },
-        ));
-    }
-    if small {
-        td_rungs.push((
-            "RK4 at its stability limit, settled to 1e-4".into(),
-            TimeSettings {
-                integrator: Integrator::Rk4,
-                steps_per_cycle: 8,
-                ..base_td
-            },
-        ));
-    }
-    // The reference resolves the contact's kinks in time as well: 4 × the finest rung's
-    // steps (RK4 at its stability limit, 17 steps per period on the sliding point mass,
-    // was 1 % off the converged periodic state there).
-    let reference = if small {
-        TimeSettings {
-            integrator: Integrator::Rk4,
-            steps_per_cycle: 4 * steps[3],
-            tolerance: 1e-8,
-            max_cycles: 200,
-            ..base_td
-        }
-    } else {
-        TimeSettings {
-            steps_per_cycle: 4 * steps[3],
-            tolerance: 1e-6,
-            max_cycles: 20000,
-            ..base_td
-        }
-    };
-    let mut all = td_rungs;
-    all.push((
-        format!(
-            "reference: {} settled to {:.0e}",
-            if small {
-                format!(
-                    "RK4 at max({}, its stability limit) steps/period",
-                    reference.steps_per_cycle
-                )
-            } else {
-                format!("Newmark {} steps/period", reference.steps_per_cycle)
-            },
-            reference.tolerance
-        ),
-        reference,
-    ));
-    let nref = all.len() - 1;
-    // A time-domain rung that stops (e.g. Newton at a coarse step) is reported as such,
-    // not as a number; only the reference must reach the periodic state.
-    let mut stopped = Vec::new();
-    for (k, (label, s)) in all.into_iter().enumerate() {
-        log(&label);
-        let (r, secs) = match td(&base, &s) {
-            Ok(v) => v,
-            Err(e) if k != nref => {
-                log(&format!("{label}: stopped: {e}"));
-                stopped.push(format!("{label}: stopped ({e})"));
-                continue;
-            }
-            Err(e) => return Err(e),
-        };
-        let label = format!(
-            "{label} ({} cycles × {} steps)",
-            r.cycles, r.steps_per_cycle
-        );
-        rungs.push(Rung {
-            family: if k == nref { "reference" } else { "time" },
-            label,
-            seconds: secs,
-            amplitude: r.last.outputs[0].amplitude,
-            energy: r.last.energy,
-            amplitude_error: 0.0,
-            energy_error: 0.0,
-            converged: r.steady || s.tolerance == 0.0,
-            frequency_domain: false,
-        });
-    }
+    let mut rungs = frequency_rungs::run(&base, &problem, scene_model, log)?;
+    let stopped = time_rungs::run(&base, time_rungs::ladder(n_free), log, &mut rungs)?;
     against_reference(&mut rungs);
     let mut summary = ratios(&rungs);
     summary.extend(stopped);
