@@ -15,19 +15,18 @@
 mod held;
 mod loads;
 mod mesh;
-
-use std::collections::HashMap;
+mod pairs;
+mod ties;
 
 use nalgebra::{Complex, Matrix3};
 
 use super::damping::material_damping;
-use super::{BuildError, ContactPoint, Interface, Output, Problem};
-use crate::fe::assembly::assemble_couplings;
+use super::{BuildError, Output, Problem};
+use crate::fe::assembly::{assemble_couplings, System};
 use crate::fe::pair_blocks::Coupling;
 use crate::fe::pairing::{PairedNode, Pairing};
 use crate::input::deck::error::DeckWarning;
 use crate::input::deck::job::DeckJob;
-use crate::input::deck::summary::{self, pair_surfaces, pair_tolerance};
 use crate::input::deck::Deck;
 use crate::input::deck::DeckErrorKind;
 use crate::input::scene::Scene;
@@ -139,126 +138,9 @@ pub fn build(scene: &Scene, job: &DeckJob) -> Result<Problem, BuildError> {
     } = mesh::mesh(job)?;
     let (notes, mut warnings) = findings(job, &orphans);
     let length = &scene.spec.units.length;
-    let e_max = model
-        .materials
-        .iter()
-        .map(|m| m.youngs_modulus)
-        .fold(0.0, f64::max);
+    let (mut couplings, tie_springs) = ties::ties(job, &mut model, length, &mut warnings)?;
 
-    // Ties: a conforming tie merges each slave node with its coincident master node
-    // (one set of DOFs, exact, as Abaqus eliminates a tie's slave DOFs); any other tie
-    // becomes penalty couplings, added to K after assembly.
-    let mut couplings: Vec<Coupling> = Vec::new();
-    let mut tie_springs = Vec::new();
-    for t in &deck.ties {
-        let tol = pair_tolerance(deck, &t.master, t.position_tolerance);
-        let at = format!("{}:{}: *TIE {}", t.origin.file, t.origin.line, t.name);
-        // Paired within the face size, so that a node beyond the position tolerance is
-        // named rather than left out.
-        let wide = tol.search.max(tol.round_off / summary::ROUND_OFF);
-        let p = pair_surfaces(deck, &t.slave, &t.master, wide, &t.origin, "*TIE")?;
-        if let Some(n) = p.nodes.iter().find(|n| n.gap.abs() > tol.search) {
-            return Err(t.origin.error(
-                DeckErrorKind::BadValue,
-                "*TIE",
-                format!(
-                    "slave node {} lies {:e} {length} from master {}, beyond the position tolerance {:e} {length} ({}): Abaqus would leave it untied",
-                    deck.nodes[n.slave].id,
-                    n.gap.abs(),
-                    t.master,
-                    tol.search,
-                    if t.position_tolerance.is_some() { "POSITION TOLERANCE=" } else { "the default, 5 % of the master's typical face diagonal" },
-                ),
-            )
-            .into());
-        }
-        if let Some(merged) = coincident(&model.nodes, &p, tol.round_off) {
-            model.ties.extend(merged);
-            continue;
-        }
-        if t.surface_to_surface {
-            return Err(t.origin.error(
-                DeckErrorKind::Unsupported,
-                "*TIE, TYPE=",
-                format!("TYPE=SURFACE TO SURFACE on the non-conforming tie {}: this reader ties node to surface (TYPE=NODE TO SURFACE); the two agree only where the meshes conform", t.name),
-            )
-            .into());
-        }
-        if let Some(w) = unmatched(deck, &at, &p) {
-            warnings.push(w);
-        }
-        if let Some(w) = gaps(deck, &at, &p, tol.round_off, length, "tied across the gap") {
-            warnings.push(w);
-        }
-        for n in &p.nodes {
-            tie_springs.push((couplings.len(), TIE_PENALTY * e_max * n.area.sqrt()));
-            couplings.push(coupling(n));
-        }
-    }
-
-    // Contact pairs: interfaces and their points.
-    let mut interfaces = Vec::new();
-    let mut raw = Vec::new(); // (paired node, interface)
-    let mut slave_of: HashMap<usize, usize> = HashMap::new(); // slave node → contact pair
-    for (ci, (c, l)) in deck.contact_pairs.iter().zip(&job.laws).enumerate() {
-        interfaces.push(Interface {
-            name: format!("{}/{}", c.slave, c.master),
-            contact: *l,
-            initial_gap: 0.0,
-        });
-        let tol = pair_tolerance(deck, &c.master, None);
-        let p = pair_surfaces(
-            deck,
-            &c.slave,
-            &c.master,
-            tol.search,
-            &c.origin,
-            "*CONTACT PAIR",
-        )?;
-        let at = format!(
-            "{}:{}: *CONTACT PAIR {}/{}",
-            c.origin.file, c.origin.line, c.slave, c.master
-        );
-        for n in &p.nodes {
-            if let Some(&other) = slave_of.get(&n.slave) {
-                let o = &deck.contact_pairs[other];
-                return Err(c.origin.error(
-                    DeckErrorKind::Duplicate,
-                    "*CONTACT PAIR",
-                    format!(
-                        "slave node {} is in {}/{} and in {}/{} (line {}): it would get two contact points",
-                        deck.nodes[n.slave].id, c.slave, c.master, o.slave, o.master, o.origin.line
-                    ),
-                )
-                .into());
-            }
-        }
-        slave_of.extend(p.nodes.iter().map(|n| (n.slave, ci)));
-        if let Some(w) = unmatched(deck, &at, &p) {
-            warnings.push(w);
-        }
-        if let Some(w) = gaps(
-            deck,
-            &at,
-            &p,
-            tol.round_off,
-            length,
-            "the run takes the surfaces as touching (gap 0)",
-        ) {
-            warnings.push(w);
-        }
-        let all_fixed = |n: &PairedNode| {
-            coupling(n)
-                .iter()
-                .all(|&(node, _)| (0..3).all(|g| model.fixed[3 * node + g]))
-        };
-        raw.extend(
-            p.nodes
-                .into_iter()
-                .filter(|n| !all_fixed(n))
-                .map(|n| (n, interfaces.len() - 1)),
-        );
-    }
+    let (interfaces, raw) = pairs::contact_pairs(job, &model, length, &mut warnings)?;
     let first_contact = couplings.len();
     couplings.extend(raw.iter().map(|(n, _)| coupling(n)));
     let groups: Vec<Vec<usize>> = (couplings.iter())
@@ -305,43 +187,7 @@ pub fn build(scene: &Scene, job: &DeckJob) -> Result<Problem, BuildError> {
         (None, None)
     };
 
-    let contacts = raw
-        .iter()
-        .enumerate()
-        .map(|(k, (n, interface))| {
-            let q = frame(n);
-            let cpl = coupling(n);
-            let rows = std::array::from_fn(|c| {
-                let mut r = Vec::new();
-                for &(node, w) in &cpl {
-                    for g in 0..3 {
-                        let v = w * q[(g, c)];
-                        if let Some(f) = sys.dofs.free(3 * node + g) {
-                            if v != 0.0 {
-                                r.push((f, v));
-                            }
-                        }
-                    }
-                }
-                r
-            });
-            let master = n
-                .weights
-                .iter()
-                .max_by(|a, b| a.1.total_cmp(&b.1))
-                .map_or(n.slave, |w| w.0);
-            ContactPoint {
-                pair: first_contact + k,
-                nodes: [master, n.slave],
-                frame: q,
-                area: n.area,
-                interface: *interface,
-                position: model.nodes[n.slave],
-                rows,
-                samples: Vec::new(),
-            }
-        })
-        .collect();
+    let contacts = pairs::contact_points(&raw, &sys, &model, first_contact);
 
     // Preload (the static step) and excitation (the steady-state step's loads).
     let n = model.n_dofs();
@@ -361,7 +207,30 @@ pub fn build(scene: &Scene, job: &DeckJob) -> Result<Problem, BuildError> {
         .map(|(re, im)| Complex::new(re, im))
         .collect();
 
-    let outputs = scene
+    let outputs = outputs(scene, job, &sys)?;
+
+    Ok(Problem {
+        model,
+        sys,
+        damping,
+        structural,
+        modal_damping: scene.spec.sweep.modal_damping.clone(),
+        interfaces,
+        contacts,
+        cubic_springs: Vec::new(),
+        preload,
+        excitation,
+        outputs,
+        screws: Vec::new(),
+        warnings,
+        notes,
+    })
+}
+
+/// The scene's outputs on `job`'s sets: the node of each (the nearest its `at`) and its
+/// direction's weights on the free DOFs of `sys`.
+fn outputs(scene: &Scene, job: &DeckJob, sys: &System) -> Result<Vec<Output>, BuildError> {
+    scene
         .spec
         .outputs
         .iter()
@@ -387,24 +256,7 @@ pub fn build(scene: &Scene, job: &DeckJob) -> Result<Problem, BuildError> {
                 dofs,
             })
         })
-        .collect::<Result<Vec<_>, BuildError>>()?;
-
-    Ok(Problem {
-        model,
-        sys,
-        damping,
-        structural,
-        modal_damping: scene.spec.sweep.modal_damping.clone(),
-        interfaces,
-        contacts,
-        cubic_springs: Vec::new(),
-        preload,
-        excitation,
-        outputs,
-        screws: Vec::new(),
-        warnings,
-        notes,
-    })
+        .collect()
 }
 
 /// The node of set `set` (a node set, else an element set's nodes) nearest `at` (its
