@@ -4,14 +4,16 @@
 
 use std::fmt::Write as _;
 
+use plotters::coord::combinators::BindKeyPoints;
 use plotters::prelude::*;
 
 use super::BackbonePoint;
+use crate::report::style;
 use crate::report::svg::drawing_error as err;
 use crate::settings::units::frequency_unit;
 use crate::settings::Units;
 use crate::util::number::exact;
-use crate::util::ticks::{log_tick, plotted_log_range};
+use crate::util::ticks::{log_tick, log_ticks, plotted_log_range};
 
 /// One row of the report: the point and its outputs' first-harmonic amplitudes.
 #[derive(Debug, Clone)]
@@ -131,21 +133,19 @@ pub fn svg(
     ];
     // The amplitude axis out to labelled ticks at both ends, as the FRF plots.
     let x = plotted_log_range(x0 * 0.9, x1 * 1.1);
-    let (xl, xh) = (x.start, x.end);
     for (area, (lo, hi, label, col)) in panels.iter().zip(series) {
         let mut chart = ChartBuilder::on(area)
             .margin(12)
             .x_label_area_size(40)
             .y_label_area_size(80)
-            .build_cartesian_2d(x.clone().log_scale(), lo..hi)
+            .build_cartesian_2d(x.clone().log_scale().with_key_points(log_ticks(&x)), lo..hi)
             .map_err(err)?;
         chart
             .configure_mesh()
-            // Fine lines along a log axis bunch into grey bands: the labelled ticks only;
-            // over up to three decades ticks at 1, 2 and 5, else at the decades.
+            // Fine lines along a log axis bunch into grey bands: the ticks of
+            // `util::ticks::log_ticks` only.
             .x_max_light_lines(1)
             .y_max_light_lines(1)
-            .x_labels(if xh <= 1e3 * xl { 30 } else { 10 })
             .x_desc(x_label)
             .y_desc(label)
             .x_label_formatter(&|v: &f64| log_tick(*v))
@@ -155,11 +155,8 @@ pub fn svg(
             .iter()
             .map(|p| (p.0, if col == 1 { p.1 } else { p.2 }))
             .collect();
-        let color = if col == 1 {
-            RGBColor(0, 90, 180)
-        } else {
-            RGBColor(190, 60, 0)
-        };
+        // The shared series colours: blue for frequency, vermillion for damping.
+        let color = style::series(col - 1);
         chart
             .draw_series(LineSeries::new(line.clone(), color.stroke_width(2)))
             .map_err(err)?;

@@ -3,7 +3,7 @@
 //! the output's colour, unconverged frequencies crossed, a legend of at most
 //! [`LEGEND_OUTPUTS`] outputs.
 
-use plotters::coord::combinators::LogCoord;
+use plotters::coord::combinators::{BindKeyPoints, LogCoord, WithKeyPoints};
 use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
 
@@ -12,7 +12,7 @@ use crate::model::Problem;
 use crate::settings::units::{frequency_unit, FrequencyUnit};
 use crate::solve::sweep::SweepResult;
 use crate::util::number::{counted, sig};
-use crate::util::ticks::{log_tick, plotted_log_range};
+use crate::util::ticks::{log_tick, log_ticks, plotted_log_range};
 
 type Res = Result<(), String>;
 
@@ -203,15 +203,19 @@ fn panel(
         .margin(15)
         .x_label_area_size(45)
         .y_label_area_size(70)
-        .build_cartesian_2d(x.0..x.1, (y.0..y.1).log_scale())
+        .build_cartesian_2d(
+            x.0..x.1,
+            (y.0..y.1)
+                .log_scale()
+                .with_key_points(log_ticks(&(y.0..y.1))),
+        )
         .map_err(err)?;
     chart
         .configure_mesh()
-        // Fine lines along a log axis bunch into grey bands: the labelled ticks only;
-        // over up to three decades ticks at 1, 2 and 5, else at the decades.
+        // Fine lines along a log axis bunch into grey bands: the ticks of
+        // `util::ticks::log_ticks` only (each labelled 1, 2 or 5 × 10^k once).
         .y_max_light_lines(0)
         .x_max_light_lines(1)
-        .y_labels(if y.1 <= 1e3 * y.0 { 30 } else { 10 })
         .x_desc(freq_label(units))
         .y_desc(format!("amplitude [{}]", units.length))
         .y_label_formatter(&|v: &f64| log_tick(*v))
@@ -291,7 +295,7 @@ type Range = (f64, f64);
 
 /// The chart of an FRF: frequency (linear) against amplitude (log).
 type FrfChart<'a, 'b> =
-    ChartContext<'a, SVGBackend<'b>, Cartesian2d<RangedCoordf64, LogCoord<f64>>>;
+    ChartContext<'a, SVGBackend<'b>, Cartesian2d<RangedCoordf64, WithKeyPoints<LogCoord<f64>>>>;
 
 /// The frequency range (the curves' first and last frequency; markers get room at both
 /// ends for themselves and their values) and the amplitude range (at least a decade,

@@ -9,7 +9,8 @@ use plotters::prelude::*;
 use super::Tradeoff;
 use crate::report::style::series;
 use crate::report::svg::drawing_error as err;
-use crate::util::ticks::plotted_log_range;
+use crate::util::ticks::{log_tick, log_ticks, plotted_log_range};
+use plotters::coord::combinators::BindKeyPoints;
 
 const FAMILIES: [(&str, &str); 8] = [
     ("linear", "linear stick"),
@@ -60,19 +61,21 @@ pub fn pareto(path: &std::path::Path, t: &Tradeoff) -> Result<(), String> {
             .margin(15)
             .x_label_area_size(45)
             .y_label_area_size(70)
-            .build_cartesian_2d(x.clone().log_scale(), y.clone().log_scale())
+            .build_cartesian_2d(
+                x.clone().log_scale().with_key_points(log_ticks(&x)),
+                y.clone().log_scale().with_key_points(log_ticks(&y)),
+            )
             .map_err(err)?;
         chart
             .configure_mesh()
-            // Fine lines along log axes bunch into grey bands: the labelled ticks only.
+            // Fine lines along log axes bunch into grey bands: the ticks of
+            // `util::ticks::log_ticks` only.
             .x_max_light_lines(0)
             .y_max_light_lines(0)
-            .y_labels(if y.end <= 1e3 * y.start { 30 } else { 12 })
-            .x_labels(if x.end <= 1e3 * x.start { 30 } else { 12 })
             .x_desc("wall time [s]")
             .y_desc("relative error vs reference")
-            .y_label_formatter(&|v| crate::util::ticks::log_tick(*v))
-            .x_label_formatter(&|v| crate::util::ticks::log_tick(*v))
+            .y_label_formatter(&|v| log_tick(*v))
+            .x_label_formatter(&|v| log_tick(*v))
             .draw()
             .map_err(err)?;
         for (i, (fam, name)) in FAMILIES.iter().enumerate() {

@@ -40,6 +40,37 @@ pub fn plotted_log_range(lo: f64, hi: f64) -> std::ops::Range<f64> {
     lo * (1.0 - 1e-9)..hi * (1.0 + 1e-9)
 }
 
+/// Decades a log axis may span and still carry a tick at every 1…9 times a power of
+/// ten; wider ones carry the powers of ten only.
+const FINE_DECADES: f64 = 3.0;
+/// Most powers of ten a log axis carries (wider axes take every second, third, …).
+const MAX_DECADE_TICKS: usize = 12;
+
+/// The ticks of a log axis over `range` (from [`plotted_log_range`]): each 1…9 times a
+/// power of ten inside it where it spans at most [`FINE_DECADES`], else the powers of ten
+/// (at most [`MAX_DECADE_TICKS`]); each computed as m·10^k and present once. Given to
+/// plotters as the axis's key points, because its own log key points may hold two values
+/// within round-off of each other, and both were labelled (a bold double "0.1").
+pub fn log_ticks(range: &std::ops::Range<f64>) -> Vec<f64> {
+    let (lo, hi) = (range.start, range.end);
+    if !(lo > 0.0 && hi > lo && hi.is_finite()) {
+        return Vec::new();
+    }
+    let (k0, k1) = (lo.log10().floor() as i32, hi.log10().ceil() as i32);
+    let fine = hi <= lo * 10f64.powf(FINE_DECADES) * (1.0 + 1e-9);
+    let every = ((k1 - k0) as usize).div_ceil(MAX_DECADE_TICKS).max(1);
+    let mantissas: &[f64] = if fine {
+        &[1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0, 9.0]
+    } else {
+        &[1.0]
+    };
+    (k0..=k1)
+        .filter(|k| fine || ((k - k0) as usize).is_multiple_of(every))
+        .flat_map(|k| mantissas.iter().map(move |m| m * 10f64.powi(k)))
+        .filter(|v| (lo..=hi).contains(v))
+        .collect()
+}
+
 /// Label of a log-axis tick at `v`: only 1, 2 and 5 times a power of ten are labelled
 /// (plain digits from 0.001 to 9999, else `2e-5`); the other ticks get no label, so no
 /// label is printed twice and none crowds its neighbour.
@@ -109,6 +140,46 @@ mod tests {
             let near = |x: f64| keys.iter().any(|k| (k / x - 1.0).abs() < 1e-6);
             assert!(near(a) && near(b), "{lo} {hi}: ends {a} {b}, keys {keys:?}");
         }
+    }
+
+    /// No label is drawn twice: plotters' own key points of a plotted range hold two
+    /// values within round-off of each other (both labelled "0.1" draw a bold label);
+    /// [`log_ticks`] holds each once, both ends included.
+    #[test]
+    fn plotted_log_ranges_label_each_tick_once() {
+        use plotters::coord::combinators::{IntoLogRange, LogCoord};
+        use plotters::coord::ranged1d::Ranged;
+        let mut twice = false;
+        for (lo, hi) in [
+            (1.8e-3, 0.088),
+            (1.2e-3, 0.09),
+            (1e-3, 1.0),
+            (2.53e-3, 0.047),
+        ] {
+            for n in [10, 30] {
+                let coord = LogCoord::from(plotted_log_range(lo, hi).log_scale());
+                let plotters_own: Vec<String> = (coord.key_points(n).into_iter())
+                    .map(log_tick)
+                    .filter(|l| !l.is_empty())
+                    .collect();
+                twice |= plotters_own.windows(2).any(|w| w[0] == w[1]);
+                let labels: Vec<String> = (log_ticks(&plotted_log_range(lo, hi)).into_iter())
+                    .map(log_tick)
+                    .filter(|l| !l.is_empty())
+                    .collect();
+                let mut once = labels.clone();
+                once.dedup();
+                assert_eq!(labels, once, "{lo} {hi} ({n} labels)");
+                let (a, b) = labelled_log_range(lo, hi);
+                assert_eq!(labels.first(), Some(&log_tick(a)), "{lo} {hi}");
+                assert_eq!(labels.last(), Some(&log_tick(b)), "{lo} {hi}");
+            }
+        }
+        assert!(twice, "plotters' own key points no longer repeat a label");
+        // Wide ranges: powers of ten, at most a dozen.
+        let wide = log_ticks(&plotted_log_range(1e-300, 1e300));
+        assert!(wide.len() <= 13 && wide.len() >= 10, "{wide:?}");
+        assert_eq!(log_ticks(&plotted_log_range(1e-5, 1.0)).len(), 6);
     }
 
     #[test]
