@@ -131,10 +131,9 @@ fn only_capi_names_the_library() {
 }
 
 /// Files and functions over the size limits, at most this many lines: what is left to
-/// split. A listed item that grows, a new one, or one that no longer needs listing fails.
-const OVERSIZED: &[(&str, usize)] = &[
-    ("solve/sweep/harmonic_fe.rs", 658),
-];
+/// split (nothing now; the planted-violation test keeps the rule honest). A listed item
+/// that grows, a new one, or one that no longer needs listing fails.
+const OVERSIZED: &[(&str, usize)] = &[];
 
 /// What breaks the size rule in `found` against `listed`.
 fn size_violations(found: &[(String, usize)], listed: &[(&str, usize)]) -> Vec<String> {
