@@ -43,12 +43,13 @@ pub fn plotted_log_range(lo: f64, hi: f64) -> std::ops::Range<f64> {
 /// Decades a log axis may span and still carry a tick at every 1…9 times a power of
 /// ten; wider ones carry the powers of ten only.
 const FINE_DECADES: f64 = 3.0;
-/// Most powers of ten a log axis carries (wider axes take every second, third, …).
+/// Most powers of ten a log axis carries besides its top one (wider axes take every
+/// second, third, …).
 const MAX_DECADE_TICKS: usize = 12;
 
 /// The ticks of a log axis over `range` (from [`plotted_log_range`]): each 1…9 times a
 /// power of ten inside it where it spans at most [`FINE_DECADES`], else the powers of ten
-/// (at most [`MAX_DECADE_TICKS`]); each computed as m·10^k and present once. Given to
+/// (at most [`MAX_DECADE_TICKS`] and the top one); each computed as m·10^k and present once. Given to
 /// plotters as the axis's key points, because its own log key points may hold two values
 /// within round-off of each other, and both were labelled (a bold double "0.1").
 pub fn log_ticks(range: &std::ops::Range<f64>) -> Vec<f64> {
@@ -58,17 +59,24 @@ pub fn log_ticks(range: &std::ops::Range<f64>) -> Vec<f64> {
     }
     let (k0, k1) = (lo.log10().floor() as i32, hi.log10().ceil() as i32);
     let fine = hi <= lo * 10f64.powf(FINE_DECADES) * (1.0 + 1e-9);
-    let every = ((k1 - k0) as usize).div_ceil(MAX_DECADE_TICKS).max(1);
     let mantissas: &[f64] = if fine {
         &[1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0, 9.0]
     } else {
         &[1.0]
     };
-    (k0..=k1)
-        .filter(|k| fine || ((k - k0) as usize).is_multiple_of(every))
+    let inside: Vec<f64> = (k0..=k1)
         .flat_map(|k| mantissas.iter().map(move |m| m * 10f64.powi(k)))
         .filter(|v| (lo..=hi).contains(v))
-        .collect()
+        .collect();
+    // Wide axes: every `every`-th power of ten counted from the first inside the range,
+    // and the last one, so both ends of the axis keep a labelled tick.
+    let every = inside.len().saturating_sub(1).div_ceil(MAX_DECADE_TICKS).max(1);
+    let last = inside.last().copied();
+    let mut ticks: Vec<f64> = inside.into_iter().step_by(every).collect();
+    if ticks.last().copied() != last {
+        ticks.extend(last);
+    }
+    ticks
 }
 
 /// Label of a log-axis tick at `v`: only 1, 2 and 5 times a power of ten are labelled
@@ -179,6 +187,11 @@ mod tests {
         // Wide ranges: powers of ten, at most a dozen.
         let wide = log_ticks(&plotted_log_range(1e-300, 1e300));
         assert!(wide.len() <= 13 && wide.len() >= 10, "{wide:?}");
+        // Both ends of a 13-decade axis (the block-stick ladder's errors) are ticks.
+        let range = plotted_log_range(1e-13, 1.0);
+        let ends = log_ticks(&range);
+        assert_eq!(ends.len(), 8, "{ends:?}");
+        assert!((ends[0] / 1e-13 - 1.0).abs() < 1e-12 && ends[7] == 1.0, "{ends:?}");
         assert_eq!(log_ticks(&plotted_log_range(1e-5, 1.0)).len(), 6);
     }
 
