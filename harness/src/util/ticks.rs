@@ -70,7 +70,11 @@ pub fn log_ticks(range: &std::ops::Range<f64>) -> Vec<f64> {
         .collect();
     // Wide axes: every `every`-th power of ten counted from the first inside the range,
     // and the last one, so both ends of the axis keep a labelled tick.
-    let every = inside.len().saturating_sub(1).div_ceil(MAX_DECADE_TICKS).max(1);
+    let every = if fine {
+        1
+    } else {
+        inside.len().saturating_sub(1).div_ceil(MAX_DECADE_TICKS).max(1)
+    };
     let last = inside.last().copied();
     let mut ticks: Vec<f64> = inside.into_iter().step_by(every).collect();
     if ticks.last().copied() != last {
@@ -193,6 +197,8 @@ mod tests {
         assert_eq!(ends.len(), 8, "{ends:?}");
         assert!((ends[0] / 1e-13 - 1.0).abs() < 1e-12 && ends[7] == 1.0, "{ends:?}");
         assert_eq!(log_ticks(&plotted_log_range(1e-5, 1.0)).len(), 6);
+        // Up to three decades: every 1…9 × 10^k (1e-4 … 0.01: 19 ticks).
+        assert_eq!(log_ticks(&plotted_log_range(1e-4, 1e-2)).len(), 19);
     }
 
     #[test]
