@@ -9,9 +9,10 @@ use serde::Serialize;
 use thiserror::Error;
 
 use crate::capi::{self, CallCounts};
-use crate::input::scene::Scene;
-use crate::model::{build, BuildError, Problem};
-use crate::settings::{Direction, Effects, FieldOutputSpec, Interval, Mode, SweepMethod};
+use crate::model::{BuildError, Job, Problem};
+use crate::settings::{
+    Direction, Effects, FieldOutputSpec, Interval, Mode, RunSettings, SweepMethod,
+};
 use crate::solve::modal::{lowest_modes, ModalOptions};
 use crate::solve::modal_band::modes_below;
 use crate::solve::modal_stuck::stuck_stiffness_after;
@@ -82,13 +83,13 @@ fn sum(r: &SweepResult, keys: &[&str]) -> f64 {
         .sum()
 }
 
-/// The scene's route for the linear part of each frequency (`[sweep] method`): modal
+/// The run's route for the linear part of each frequency (`[sweep] method`): modal
 /// with `modes` modes, or by default every mode below [`BAND_FACTOR`] × the highest
 /// frequency the sweep solves at: the highest of `freqs` (1/time) times the harmonic
 /// balance's H.
-pub fn linear_route(scene: &Scene, freqs: &[f64]) -> LinearRoute {
-    let sweep = &scene.spec.sweep;
-    let it = &scene.spec.iteration;
+pub fn linear_route(settings: &RunSettings, freqs: &[f64]) -> LinearRoute {
+    let sweep = &settings.sweep;
+    let it = &settings.iteration;
     let top_harmonic = match it.mode {
         Mode::HarmonicBalance => it.harmonics.unwrap_or(1).max(1) as f64,
         _ => 1.0,
@@ -107,20 +108,20 @@ pub fn linear_route(scene: &Scene, freqs: &[f64]) -> LinearRoute {
     }
 }
 
-/// The frequencies of the scene's sweep: with `interval = "eigenfrequency"` divided at
+/// The frequencies of the run's sweep: with `interval = "eigenfrequency"` divided at
 /// the stuck structure's eigenfrequencies (as many modes as the modal route keeps, or
 /// every mode below [`BAND_FACTOR`] × f_max), else the range's own.
 pub fn sweep_frequencies(
-    scene: &Scene,
+    settings: &RunSettings,
     problem: &Problem,
     stat: &StaticState,
 ) -> Result<Vec<f64>, RunError> {
-    let sw = &scene.spec.sweep;
+    let sw = &settings.sweep;
     if sw.interval == Interval::Range {
-        return Ok(scene.frequencies());
+        return Ok(sw.frequencies());
     }
     let err = |e: String| RunError::Intervals(e);
-    let k = stuck_stiffness_after(problem, stat, &scene.spec.effects).map_err(err)?;
+    let k = stuck_stiffness_after(problem, stat, &settings.effects).map_err(err)?;
     let opts = ModalOptions::default();
     let modes = match sw.modes {
         Some(n) => lowest_modes(
@@ -132,7 +133,7 @@ pub fn sweep_frequencies(
             },
         ),
         None => {
-            let top = scene.frequencies().into_iter().fold(0.0, f64::max);
+            let top = sw.frequencies().into_iter().fold(0.0, f64::max);
             modes_below(
                 &k,
                 &problem.sys.m,
@@ -145,24 +146,24 @@ pub fn sweep_frequencies(
         }
     }
     .map_err(|e| err(e.to_string()))?;
-    Ok(scene.frequencies_between(&modes.frequencies_hz()))
+    Ok(sw.frequencies_between(&modes.frequencies_hz()))
 }
 
 /// The sweep's frequencies and, when the fast modal route's eigenfrequencies divide the
 /// range, its basis (built first, so the modes are computed once) with its cost in
 /// seconds; `opts.linear` set for the basis.
 fn frequencies_and_basis(
-    scene: &Scene,
+    settings: &RunSettings,
     problem: &Problem,
     stat: &StaticState,
     opts: &mut Options,
 ) -> Result<(Vec<f64>, Option<ModalRoute>, f64), RunError> {
-    if !divides_by_fast_modal_route(scene) {
-        return Ok((sweep_frequencies(scene, problem, stat)?, None, 0.0));
+    if !divides_by_fast_modal_route(settings) {
+        return Ok((sweep_frequencies(settings, problem, stat)?, None, 0.0));
     }
     let t = Instant::now();
-    let range = scene.frequencies();
-    opts.linear = linear_route(scene, &range);
+    let range = settings.frequencies();
+    opts.linear = linear_route(settings, &range);
     // The sweep's first frequency, as the sweep will run them.
     let f0 = if opts.descending {
         range[range.len() - 1]
@@ -170,13 +171,12 @@ fn frequencies_and_basis(
         range[0]
     };
     let route = sweep::fast::modal_basis(problem, stat, opts, f0)?;
-    let freqs = scene.frequencies_between(&route.frequencies());
+    let freqs = settings.sweep.frequencies_between(&route.frequencies());
     Ok((freqs, Some(route), t.elapsed().as_secs_f64()))
 }
 
-/// The main sweep's options: the scene's iteration and effects, the run's extras.
-fn sweep_options(scene: &Scene, extras: Extras) -> Options {
-    let spec = &scene.spec;
+/// The main sweep's options: the settings' iteration and effects, the run's extras.
+fn sweep_options(spec: &RunSettings, extras: Extras) -> Options {
     let mut opts = Options::from_scene(spec.iteration, spec.effects);
     if let Some(c) = extras.condense_max {
         opts.condense_max = c;
@@ -185,40 +185,40 @@ fn sweep_options(scene: &Scene, extras: Extras) -> Options {
     opts
 }
 
-/// Whether the scene's range is divided at the stuck eigenfrequencies and swept in mode
+/// Whether the run's range is divided at the stuck eigenfrequencies and swept in mode
 /// fast by the modal route: then the route's own basis gives the eigenfrequencies.
-fn divides_by_fast_modal_route(scene: &Scene) -> bool {
-    let s = &scene.spec;
+fn divides_by_fast_modal_route(s: &RunSettings) -> bool {
     s.sweep.interval == Interval::Eigenfrequency
         && s.sweep.method == SweepMethod::Modal
         && s.iteration.mode == Mode::Fast
 }
 
-/// Runs a scene. `progress(label, done, total)` is called per frequency of each pass,
+/// Runs an input (a scene, a deck or a [`Job`]). `progress(label, done, total)` is called per frequency of each pass,
 /// and with total 0 when the build, the static step and the basis begin.
 pub fn run(
-    scene: &Scene,
+    job: impl Into<Job>,
     extras: Extras,
     progress: &dyn Fn(&str, usize, usize),
 ) -> Result<RunResult, RunError> {
     let calls0 = capi::counts();
     let steps3_0 = capi::point3d_steps();
-    let spec = &scene.spec;
+    let job: Job = job.into();
+    let spec = &job.settings;
     let eff: Effects = spec.effects;
     let t = Instant::now();
     progress("building the model", 0, 0);
-    let problem = build(scene)?;
+    let problem = job.build()?;
     let t_build = t.elapsed().as_secs_f64();
     let t = Instant::now();
     progress("static preload step", 0, 0);
     let stat = static_step::solve(&problem, eff.normal_contact_nonlinearity)?;
     let t_static = t.elapsed().as_secs_f64();
-    let mut opts = sweep_options(scene, extras);
+    let mut opts = sweep_options(spec, extras);
     // One modal basis for every sweep of the run (they share the problem).
     let t = Instant::now();
     progress("frequencies and the modal basis", 0, 0);
-    let (freqs, mut cache, t_basis) = frequencies_and_basis(scene, &problem, &stat, &mut opts)?;
-    opts.linear = linear_route(scene, &freqs);
+    let (freqs, mut cache, t_basis) = frequencies_and_basis(spec, &problem, &stat, &mut opts)?;
+    opts.linear = linear_route(spec, &freqs);
     let mut main = sweep::run_cached(&problem, &stat, &freqs, &opts, progress, &mut cache)?;
     // A basis built before the sweep (its eigenfrequencies divided the range): its cost.
     main.add_seconds("modal basis (modes, residual)", t_basis);
@@ -486,6 +486,8 @@ fn point3d_work(on: bool, steps: u64, what: &str) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::input::scene::Scene;
+    use crate::model::build;
 
     /// With `interval = "eigenfrequency"` the fast modal route's own basis divides the
     /// range (its modes computed once): at the very frequencies the stuck modes give.
@@ -500,15 +502,16 @@ mod tests {
             "[sweep]\nmethod = \"modal\"\ninterval = \"eigenfrequency\"\nbias = 3.0\n",
         );
         let scene = Scene::parse(&path, &text).unwrap();
-        assert!(divides_by_fast_modal_route(&scene));
+        let job = Job::from(&scene);
+        assert!(divides_by_fast_modal_route(&job.settings));
         let p = build(&scene).unwrap();
         let stat = static_step::solve(&p, true).unwrap();
         let mut opts = Options::from_scene(scene.spec.iteration, scene.spec.effects);
         let range = scene.frequencies();
-        opts.linear = linear_route(&scene, &range);
+        opts.linear = linear_route(&job.settings, &range);
         let route = sweep::fast::modal_basis(&p, &stat, &opts, range[0]).unwrap();
         let by_route = scene.frequencies_between(&route.frequencies());
-        let by_modes = sweep_frequencies(&scene, &p, &stat).unwrap();
+        let by_modes = sweep_frequencies(&job.settings, &p, &stat).unwrap();
         assert!(
             by_route.len() > range.len(),
             "{} ≤ {}",

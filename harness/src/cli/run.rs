@@ -8,7 +8,7 @@ use std::process::ExitCode;
 use clap::ValueEnum;
 
 use jointlin_harness::input::scene::{validate, Scene};
-use jointlin_harness::model::BuildError;
+use jointlin_harness::model::{BuildError, Job};
 use jointlin_harness::report::{self, ReportOptions};
 use jointlin_harness::run::{run, Extras, RunError, RunResult};
 use jointlin_harness::settings::units::frequency_unit;
@@ -321,7 +321,9 @@ fn time_domain_run(s: &Scene, out: &Path, plots: bool, quiet: bool) -> ExitCode 
             }
         }
     }
-    report_written(tables::write(out, s, &r).map(|f| written.into_iter().chain(f).collect()))
+    report_written(
+        tables::write(out, &Job::from(s), &r).map(|f| written.into_iter().chain(f).collect()),
+    )
 }
 
 /// loops_time.svg: the loops of the (at most four) contact points that dissipate most,

@@ -8,6 +8,7 @@ use std::process::ExitCode;
 
 use jointlin_harness::input::scene::Scene;
 use jointlin_harness::model::lumped::Lumped;
+use jointlin_harness::model::Job;
 use jointlin_harness::report::loop_plot::{self, JointLoop};
 use jointlin_harness::settings::units::frequency_unit;
 use jointlin_harness::time::lumped::LoopSample;
@@ -72,7 +73,8 @@ pub fn main(s: &Scene, settings: &TimeSettings, out: &Path, plots: bool, quiet: 
             }
         }
     }
-    let files = lumped_tables::write(out, s, &r).map(|f| written.into_iter().chain(f).collect());
+    let files = lumped_tables::write(out, &Job::from(s), &r)
+        .map(|f| written.into_iter().chain(f).collect());
     let failed = r.results.iter().filter(|x| x.result.is_err()).count();
     match super::report_written(files) {
         ExitCode::SUCCESS if failed > 0 => {

@@ -100,7 +100,7 @@ impl Operating {
             .ok_or_else(|| LossError::Spec(format!("no output named `{output}`")))?;
         let mut opts = Options::from_scene(scene.spec.iteration, scene.spec.effects);
         opts.point_results = true;
-        opts.linear = crate::run::linear_route(scene, &scene.frequencies());
+        opts.linear = crate::run::linear_route(&scene.settings(), &scene.frequencies());
         Ok(Operating {
             modal: None,
             base_excitation: problem.excitation.clone(),

@@ -10,6 +10,7 @@ mod build;
 pub mod craig_bampton;
 mod damping;
 pub mod deck;
+pub mod job;
 mod locate;
 pub mod lumped;
 mod lumped_ends;
@@ -20,6 +21,7 @@ pub mod screw_load;
 pub mod subgrid;
 
 pub use build::{mesh_face, PAIR_TOL};
+pub use job::Job;
 pub use locate::locate;
 
 /// The problem of a scene or deck ([`build::build`]), its warnings joined by a note on

@@ -26,8 +26,7 @@ use super::contact_map::{self, MapKind};
 use super::modes::cells;
 use super::vtu::{unstructured_grid, PointField};
 use crate::capi::JOINTLIN_REGIME_OPEN;
-use crate::input::scene::Scene;
-use crate::model::Problem;
+use crate::model::{Job, Problem};
 use crate::run::RunResult;
 use crate::settings::units::{frequency_unit, ColumnUnits};
 use crate::settings::Units;
@@ -167,7 +166,7 @@ fn vtu(p: &Problem, x: &[C64], points: &[PointFreq], ctx: &FieldContext, units: 
 /// for a model without contact points. Returns the files written.
 pub fn contact_maps(
     dir: &Path,
-    scene: &Scene,
+    job: &Job,
     r: &RunResult,
     fields: &SweepResult,
 ) -> Result<Vec<PathBuf>, String> {
@@ -176,7 +175,7 @@ pub fn contact_maps(
     if p.contacts.is_empty() {
         return Ok(out);
     }
-    let units = &scene.spec.units;
+    let units = &job.settings.units;
     let fu = frequency_unit(units);
     for (f, _) in &fields.fields {
         let Some(points) = fields

@@ -17,7 +17,7 @@ use std::path::{Path, PathBuf};
 
 use serde_json::json;
 
-use crate::input::scene::Scene;
+use crate::model::Job;
 use crate::run::RunResult;
 use crate::settings::units::frequency_unit;
 use crate::util::{atomic, provenance};
@@ -37,24 +37,24 @@ fn write(dir: &Path, name: &str, text: &str, out: &mut Vec<PathBuf>) -> Result<(
 
 /// run.json: the provenance head ([`provenance::head`]), scene echo, effects (with
 /// costs), passes, timings, calls, static step.
-pub fn run_json(scene: &Scene, r: &RunResult) -> serde_json::Value {
-    let head = provenance::head("run", &crate::capi::abi_version(), &scene.sources);
-    provenance::with_head(head, run_body(scene, r))
+pub fn run_json(job: &Job, r: &RunResult) -> serde_json::Value {
+    let head = provenance::head("run", &crate::capi::abi_version(), job.sources());
+    provenance::with_head(head, run_body(job, r))
 }
 
-fn run_body(scene: &Scene, r: &RunResult) -> serde_json::Value {
+fn run_body(job: &Job, r: &RunResult) -> serde_json::Value {
     let m = &r.main;
     // Every frequency as the outputs show it ([units] frequency: cycles or angular).
-    let fu = frequency_unit(&scene.spec.units);
+    let fu = frequency_unit(&job.settings.units);
     let shown = |f: f64| fu.show(f);
     let closed = r.stat.closed.iter().filter(|&&c| c).count();
     json!({
         "scene": {
-            "file": scene.file,
-            "spec": scene.spec,
-            "text": scene.text,
+            "file": job.file(),
+            "spec": job.spec_json(),
+            "text": job.text(),
         },
-        "units": scene.spec.units,
+        "units": job.settings.units,
         "effects": r.effects,
         "model": {
             "nodes": r.problem.model.nodes.len(),
@@ -70,7 +70,7 @@ fn run_body(scene: &Scene, r: &RunResult) -> serde_json::Value {
             "stopped_by": r.stat.stopped_by,
             "total_contact_force": r.problem.contacts.iter().zip(&r.stat.pressure).map(|(c, p)| c.area * p).sum::<f64>(),
         },
-        "mode": scene.spec.iteration.mode,
+        "mode": job.settings.iteration.mode,
         // The unit of every frequency below (frequencies, checks, field output).
         "frequency_unit": fu.text,
         "passes": m.passes,
@@ -87,13 +87,13 @@ fn run_body(scene: &Scene, r: &RunResult) -> serde_json::Value {
         "modal_route": m.modal,
         "gmres_solves": m.gmres_solves,
         "macroslip_caps": m.macroslip_caps,
-        "sweep_direction": scene.spec.sweep.direction,
+        "sweep_direction": job.settings.sweep.direction,
         // [field_output]: each asked frequency, its file, or why there is none.
         "field_output": r.fields.as_ref().map(|f| f.freqs.iter().enumerate().map(|(i, &fr)| {
             let kept = f.fields.iter().any(|(k, _)| *k == fr);
             json!({
                 "frequency": shown(fr),
-                "file": kept.then(|| field::file_name(fr, &scene.spec.units)),
+                "file": kept.then(|| field::file_name(fr, &job.settings.units)),
                 "converged": f.converged.get(i).copied().unwrap_or(false),
             })
         }).collect::<Vec<_>>()),
@@ -112,7 +112,7 @@ fn run_body(scene: &Scene, r: &RunResult) -> serde_json::Value {
             "sweep_breakdown": m.timings,
         },
         "c_api_calls": r.calls,
-        "notes": kinematics::note(&scene.spec.units, r).into_iter().collect::<Vec<_>>(),
+        "notes": kinematics::note(&job.settings.units, r).into_iter().collect::<Vec<_>>(),
     })
 }
 
@@ -174,21 +174,23 @@ pub fn clear_earlier_run(dir: &Path) -> Result<(), String> {
     Ok(())
 }
 
-/// Writes every report into `dir` (created if missing); returns the files written. Each
+/// Writes every report of the run `r` of `job` (a scene, a deck or a [`Job`]) into `dir`
+/// (created if missing); returns the files written. Each
 /// file appears under its name only when complete ([`atomic`]); run.json, last, marks
 /// the set complete, and an earlier run's is removed first, with the earlier run's
 /// other outputs ([`clear_earlier_run`]).
 pub fn write_all(
     dir: &Path,
-    scene: &Scene,
+    job: impl Into<Job>,
     r: &RunResult,
     opts: ReportOptions,
 ) -> Result<Vec<PathBuf>, String> {
+    let job: &Job = &job.into();
     let mut out = Vec::new();
     atomic::prepare(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
     clear_earlier_run(dir)?;
-    let eff = scene.spec.effects;
-    let units = &scene.spec.units;
+    let eff = job.settings.effects;
+    let units = &job.settings.units;
     write(
         dir,
         "results.csv",
@@ -215,7 +217,7 @@ pub fn write_all(
             &r.stat.pressure,
             eff.stick_slip_map,
             units,
-            &crate::model::node_ids(scene, &r.problem),
+            &job.node_ids(&r.problem),
         );
         write(dir, "points.csv", &text, &mut out)?;
     }
@@ -228,7 +230,7 @@ pub fn write_all(
         )?;
     }
     if let Some(fields) = &r.fields {
-        let node_ids = crate::model::node_ids(scene, &r.problem);
+        let node_ids = job.node_ids(&r.problem);
         let ctx = field::FieldContext {
             closed: &r.stat.closed,
             pressure: &r.stat.pressure,
@@ -238,9 +240,9 @@ pub fn write_all(
             write(dir, &name, &text, &mut out)?;
         }
     }
-    out.extend(point_loops::balance_files(dir, scene, r, opts.plots)?);
+    out.extend(point_loops::balance_files(dir, job, r, opts.plots)?);
     if opts.plots {
-        let title = scene.title();
+        let title = job.title();
         let main_label = match (&r.down, &r.reference) {
             (Some(_), _) => "sweep up",
             (None, Some(_)) => "with contact damping",
@@ -251,7 +253,7 @@ pub fn write_all(
         curves.extend(r.reference.as_ref().map(|d| (d, "without contact damping")));
         let p = dir.join("frf.svg");
         atomic::with_temp(&p, |t| {
-            frf_plot::frf(t, title, &scene.spec.units, &r.problem, &curves)
+            frf_plot::frf(t, title, &job.settings.units, &r.problem, &curves)
         })?;
         out.push(p);
         // Frequencies per pass: a picture only where there are passes (thesis mode's
@@ -262,20 +264,20 @@ pub fn write_all(
             out.push(p);
         }
         if let Some(fields) = &r.fields {
-            for p in field::contact_maps(dir, scene, r, fields)? {
+            for p in field::contact_maps(dir, job, r, fields)? {
                 out.push(p);
             }
         }
         if eff.stick_slip_map {
             let p = dir.join("stick_slip.svg");
             atomic::with_temp(&p, |t| {
-                svg::stick_slip(t, &scene.spec.units, &r.problem, &r.main, &r.stat.closed)
+                svg::stick_slip(t, &job.settings.units, &r.problem, &r.main, &r.stat.closed)
             })?;
             out.push(p);
         }
     }
     // Last: the marker of a complete run.
-    let json = serde_json::to_string_pretty(&run_json(scene, r)).map_err(|e| e.to_string())?;
+    let json = serde_json::to_string_pretty(&run_json(job, r)).map_err(|e| e.to_string())?;
     out.push(atomic::write_marker(dir, &json)?);
     Ok(out)
 }

@@ -5,9 +5,8 @@
 use std::path::{Path, PathBuf};
 
 use super::loop_plot::{self, JointLoop, MAX_PANELS};
-use crate::input::scene::Scene;
 use crate::mhb::loops::LoopSample;
-use crate::model::Problem;
+use crate::model::{Job, Problem};
 use crate::run::RunResult;
 use crate::settings::units::frequency_unit;
 use crate::time::tables::{point_loops_csv, PointLoops};
@@ -63,15 +62,15 @@ pub fn most_dissipating(
 /// converged response; nothing without one.
 pub fn balance_files(
     dir: &Path,
-    scene: &Scene,
+    job: &Job,
     r: &RunResult,
     plots: bool,
 ) -> Result<Vec<PathBuf>, String> {
     let Some(l) = &r.main.loops else {
         return Ok(Vec::new());
     };
-    let units = &scene.spec.units;
-    let node_ids = crate::model::node_ids(scene, &r.problem);
+    let units = &job.settings.units;
+    let node_ids = job.node_ids(&r.problem);
     let table = PointLoops {
         freq: l.freq,
         samples: &l.samples,
@@ -86,7 +85,7 @@ pub fn balance_files(
         let fu = frequency_unit(units);
         let title = format!(
             "{}: harmonic balance, the {} points dissipating most, one period at {:.4} {}",
-            scene.title(),
+            job.title(),
             loops.len(),
             fu.show(l.freq),
             fu.text

@@ -5,11 +5,14 @@
 //! deck reader fills them; solvers, the time domain and reports read them here, never
 //! from an input reader.
 
+pub mod frequencies;
+pub mod run;
 pub mod studies;
 pub mod study;
 pub mod unit_names;
 pub mod units;
 
+pub use run::RunSettings;
 pub use studies::*;
 pub use study::*;
 pub use units::Units;

@@ -4,8 +4,7 @@
 //! points hold nothing. These are the resonances a sweep should cover.
 
 use crate::fe::csc::Csc;
-use crate::input::scene::Scene;
-use crate::model::{build, Problem};
+use crate::model::{Job, Problem};
 use crate::settings::Effects;
 use crate::solve::modal::ModalOptions;
 use crate::solve::modal_band::{modes_below, BandModes};
@@ -41,14 +40,14 @@ pub struct StuckModes {
 }
 
 /// K with every closed joint stuck (k_T0 tangential, static normal stiffness), on the
-/// problem's pattern, after the static step.
-pub fn stuck_stiffness(scene: &Scene, p: &Problem) -> Result<Csc<f64>, String> {
-    let stat = static_step::solve(p, scene.spec.effects.normal_contact_nonlinearity)
-        .map_err(|e| e.to_string())?;
-    stuck_stiffness_after(p, &stat, &scene.spec.effects)
+/// problem's pattern, after the static step with `effects`.
+pub fn stuck_stiffness(effects: &Effects, p: &Problem) -> Result<Csc<f64>, String> {
+    let stat =
+        static_step::solve(p, effects.normal_contact_nonlinearity).map_err(|e| e.to_string())?;
+    stuck_stiffness_after(p, &stat, effects)
 }
 
-/// [`stuck_stiffness`] after the static step `stat`, with the scene's `effects`.
+/// [`stuck_stiffness`] after the static step `stat`, with the run's `effects`.
 pub fn stuck_stiffness_after(
     p: &Problem,
     stat: &StaticState,
@@ -63,16 +62,18 @@ pub fn stuck_stiffness_after(
     })
 }
 
-/// The stuck modes of `scene`, as many as `count` asks.
-pub fn stuck_modes(scene: &Scene, count: ModeCount) -> Result<StuckModes, String> {
-    let problem = build(scene).map_err(|e| e.to_string())?;
-    let k = stuck_stiffness(scene, &problem)?;
+/// The stuck modes of a run's model (a scene, a deck or a [`Job`]), as many as `count`
+/// asks.
+pub fn stuck_modes(job: impl Into<Job>, count: ModeCount) -> Result<StuckModes, String> {
+    let job: Job = job.into();
+    let problem = job.build().map_err(|e| e.to_string())?;
+    let k = stuck_stiffness(&job.settings.effects, &problem)?;
     let m = &problem.sys.m;
     let opts = ModalOptions::default();
     let (limit, min, max) = match count {
         ModeCount::Exactly(n) => (None, n, n),
         ModeCount::Band { factor, min, max } => {
-            let top = scene.frequencies().into_iter().fold(0.0, f64::max);
+            let top = job.settings.frequencies().into_iter().fold(0.0, f64::max);
             (Some(factor * top), min, max)
         }
     };

@@ -12,11 +12,11 @@ use std::time::Instant;
 use super::lumped::{settle, Integration, LumpedState, Settled};
 use super::rk4::stable_steps_per_cycle;
 use super::{Integrator, Start, TimeError, TimeSettings};
-use crate::input::scene::Scene;
 use crate::mhb::contact3d::System3;
 use crate::mhb::{linear_coefficients, state_at_zero};
-use crate::model::lumped::{self, Lumped};
+use crate::model::lumped::Lumped;
 use crate::model::lumped_static;
+use crate::model::Job;
 use crate::settings::MAX_STEPS_PER_CYCLE;
 
 /// One frequency of a lumped time-domain sweep.
@@ -43,20 +43,21 @@ pub struct LumpedTimeRun {
     pub seconds: f64,
 }
 
-/// Runs the lumped scene's sweep in the time domain; `progress(done, total)` per
-/// frequency.
+/// Runs a lumped input's sweep in the time domain (a scene or a [`Job`]);
+/// `progress(done, total)` per frequency.
 pub fn run_lumped(
-    scene: &Scene,
+    job: impl Into<Job>,
     settings: &TimeSettings,
     progress: &dyn Fn(usize, usize),
 ) -> Result<LumpedTimeRun, TimeError> {
     let clock = Instant::now();
+    let job: Job = job.into();
     if settings.integrator == Integrator::Newmark {
         return Err(TimeError::Settings(
             "a lumped system is integrated by RK4 (time_domain.integrator = \"rk4\" or \"auto\"), its step kept below the stability limit of its stiffest mode".into(),
         ));
     }
-    let l = lumped::build(scene).map_err(TimeError::Lumped)?;
+    let l = job.lumped().map_err(TimeError::Lumped)?;
     let sys = l.system3();
     let names: Vec<String> = l.joints.iter().map(|j| j.name.clone()).collect();
     let static_x = lumped_static::solve(&sys, &names)
@@ -69,7 +70,7 @@ pub fn run_lumped(
         .copied()
         .unwrap_or(0.0);
     let outputs: Vec<Vec<f64>> = l.outputs.iter().map(|(_, w)| w.clone()).collect();
-    let freqs = scene.frequencies();
+    let freqs = job.settings.frequencies();
     let mut results = Vec::with_capacity(freqs.len());
     let mut state: Option<LumpedState> = None;
     for (i, &freq) in freqs.iter().enumerate() {

@@ -7,8 +7,8 @@ use super::lumped::{LoopSample, Settled};
 use super::lumped_sweep::{LumpedFreq, LumpedTimeRun};
 use super::tables::{put_file, run_columns};
 use crate::capi;
-use crate::input::scene::Scene;
 use crate::model::lumped::Lumped;
+use crate::model::Job;
 use crate::settings::units::{frequency_unit, ColumnUnits};
 use crate::settings::Units;
 use crate::util::csv_table::CsvTable;
@@ -171,11 +171,11 @@ pub fn loops_csv(l: &Lumped, loops: &[(f64, &[Vec<LoopSample>])], units: &Units)
 }
 
 /// Writes results_time.csv, loops_time.csv and, last, run.json into `dir`.
-pub fn write(dir: &Path, scene: &Scene, run: &LumpedTimeRun) -> std::io::Result<Vec<PathBuf>> {
+pub fn write(dir: &Path, job: &Job, run: &LumpedTimeRun) -> std::io::Result<Vec<PathBuf>> {
     std::fs::create_dir_all(dir)?;
     let mut files = Vec::new();
     let mut put = |name: &str, text: String| put_file(dir, &mut files, name, &text);
-    let units = &scene.spec.units;
+    let units = &job.settings.units;
     let l = &run.lumped;
     put("results_time.csv", results_csv(l, &run.results, units))?;
     if !l.joints.is_empty() {
@@ -208,12 +208,12 @@ pub fn write(dir: &Path, scene: &Scene, run: &LumpedTimeRun) -> std::io::Result<
             }),
         })
         .collect();
-    let head = provenance::head("run --time-domain", &capi::abi_version(), &scene.sources);
+    let head = provenance::head("run --time-domain", &capi::abi_version(), job.sources());
     let json = provenance::with_head(
         head,
         serde_json::json!({
-            "scene": scene.file,
-            "title": scene.spec.title,
+            "scene": job.file(),
+            "title": job.settings.title,
             "units": units,
             "frequency_unit": fu.text,
             "method": "time domain, RK4 (the library's points through jointlin_point_step and jointlin_point3d_step), lumped system",

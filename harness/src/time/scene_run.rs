@@ -17,9 +17,8 @@ use super::settings::AUTO_RK4_MAX_DOFS;
 use super::step_control::{per_level, ControlledNewmark};
 use super::{Forcing, Integrator, Start, State, Stepper, TimeError, TimeSettings, C64};
 use crate::fe::csc::Csc;
-use crate::input::scene::Scene;
 use crate::mhb::loops::LoopSample;
-use crate::model::{build, Problem};
+use crate::model::{Job, Problem};
 use crate::solve::static_step::{self, StaticState};
 use crate::solve::sweep::harmonic_fe_point3d::{check_laws, PointModel};
 use crate::solve::umfpack::{to_complex, Numeric, Symbolic};
@@ -336,16 +335,18 @@ pub struct TimeRun {
     pub seconds: f64,
 }
 
-/// Runs the scene's sweep in the time domain. `progress(done, total)` per frequency.
+/// Runs an input's sweep in the time domain (a scene, a deck or a [`Job`]).
+/// `progress(done, total)` per frequency.
 pub fn run_scene(
-    scene: &Scene,
+    job: impl Into<Job>,
     settings: &TimeSettings,
     progress: &dyn Fn(usize, usize),
 ) -> Result<TimeRun, TimeError> {
     let clock = Instant::now();
-    let problem = build(scene)?;
-    let stat = static_step::solve(&problem, scene.spec.effects.normal_contact_nonlinearity)?;
-    let model = PointModel::from_effects(&scene.spec.effects);
+    let job: Job = job.into();
+    let problem = job.build()?;
+    let stat = static_step::solve(&problem, job.settings.effects.normal_contact_nonlinearity)?;
+    let model = PointModel::from_effects(&job.settings.effects);
     if !model.is_thesis() {
         check_laws(&problem, model).map_err(|e| TimeError::Settings(e.to_string()))?;
     }
@@ -353,7 +354,7 @@ pub fn run_scene(
         &problem,
         &stat,
         model,
-        &scene.frequencies(),
+        &job.settings.frequencies(),
         settings,
         progress,
     )?;

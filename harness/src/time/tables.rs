@@ -5,8 +5,8 @@ use std::path::{Path, PathBuf};
 
 use super::scene_run::{FreqResult, TimeRun};
 use crate::capi;
-use crate::input::scene::Scene;
 use crate::mhb::loops::LoopSample;
+use crate::model::Job;
 use crate::model::Problem;
 use crate::settings::units::{frequency_unit, ColumnUnits};
 use crate::settings::Units;
@@ -227,16 +227,16 @@ pub fn put_file(
 
 /// Writes results_time.csv, points_time.csv, loops_time.csv and, last, run.json into
 /// `dir`.
-pub fn write(dir: &Path, scene: &Scene, run: &TimeRun) -> std::io::Result<Vec<PathBuf>> {
+pub fn write(dir: &Path, job: &Job, run: &TimeRun) -> std::io::Result<Vec<PathBuf>> {
     std::fs::create_dir_all(dir)?;
     let mut files = Vec::new();
     let mut put = |name: &str, text: String| put_file(dir, &mut files, name, &text);
-    let units = &scene.spec.units;
+    let units = &job.settings.units;
     put(
         "results_time.csv",
         results_csv(&run.problem, &run.results, units),
     )?;
-    let node_ids = crate::model::node_ids(scene, &run.problem);
+    let node_ids = job.node_ids(&run.problem);
     put(
         "points_time.csv",
         points_csv(&run.problem, &run.results, units, &node_ids),
@@ -244,12 +244,12 @@ pub fn write(dir: &Path, scene: &Scene, run: &TimeRun) -> std::io::Result<Vec<Pa
     if let Some(text) = loops_csv(&run.problem, &run.results, units, &node_ids) {
         put("loops_time.csv", text)?;
     }
-    let head = provenance::head("run --time-domain", &capi::abi_version(), &scene.sources);
+    let head = provenance::head("run --time-domain", &capi::abi_version(), job.sources());
     let json = provenance::with_head(
         head,
         serde_json::json!({
-            "scene": scene.file,
-            "title": scene.spec.title,
+            "scene": job.file(),
+            "title": job.settings.title,
             // The frequencies below are cycles per time unit.
             "frequency_unit": format!("1/{}", units.time),
             "settings": run.settings,

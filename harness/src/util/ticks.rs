@@ -73,7 +73,11 @@ pub fn log_ticks(range: &std::ops::Range<f64>) -> Vec<f64> {
     let every = if fine {
         1
     } else {
-        inside.len().saturating_sub(1).div_ceil(MAX_DECADE_TICKS).max(1)
+        inside
+            .len()
+            .saturating_sub(1)
+            .div_ceil(MAX_DECADE_TICKS)
+            .max(1)
     };
     let last = inside.last().copied();
     let mut ticks: Vec<f64> = inside.into_iter().step_by(every).collect();
@@ -195,7 +199,10 @@ mod tests {
         let range = plotted_log_range(1e-13, 1.0);
         let ends = log_ticks(&range);
         assert_eq!(ends.len(), 8, "{ends:?}");
-        assert!((ends[0] / 1e-13 - 1.0).abs() < 1e-12 && ends[7] == 1.0, "{ends:?}");
+        assert!(
+            (ends[0] / 1e-13 - 1.0).abs() < 1e-12 && ends[7] == 1.0,
+            "{ends:?}"
+        );
         assert_eq!(log_ticks(&plotted_log_range(1e-5, 1.0)).len(), 6);
         // Up to three decades: every 1…9 × 10^k (1e-4 … 0.01: 19 ticks).
         assert_eq!(log_ticks(&plotted_log_range(1e-4, 1e-2)).len(), 19);
