@@ -3,7 +3,8 @@
 (scripts/readme-tables.sh --check), ignoring what a machine's speed changes:
 
 - in a Markdown table, the cells of a column whose header names a time ("time",
-  "wall", "CPU", "seconds", "[s]", "s per", "ns", "ms", "µs", "speed");
+  "wall", "CPU", "seconds", "[s]", "(s)", "s per", "ns", "ms", "µs", "speed") or a
+  ratio of times ("jointlin / ccx", "fast / linear", "modal / direct");
 - elsewhere, a number followed by " s", " ms", " µs" or " ns" (a duration) or directly
   by "×" (a speed ratio).
 
@@ -21,7 +22,9 @@ import sys
 NUMBER = re.compile(r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?")
 DURATION = re.compile(r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?(?= (?:s|ms|µs|ns)\b| (?:s|ms|µs|ns)$|×)")
 TIMING_HEADER = re.compile(
-    r"time|wall|cpu|seconds|\[s\]|\[ms\]|\bs per|\bns\b|\bms\b|µs|speed", re.IGNORECASE
+    r"time|wall|cpu|seconds|\[s\]|\(s\)|\[ms\]|\bs per|\bns\b|\bms\b|µs|speed"
+    r"|\w / (?:ccx|linear|direct)\b",
+    re.IGNORECASE,
 )
 
 

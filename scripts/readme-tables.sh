@@ -17,6 +17,7 @@ declare -A commands=(
   [knife_graded_mesh]="cargo run --release -q -p jointlin-harness --bin jointlin -- loss scenes/knife.toml --mesh-study 1,2 --refine x:jaw_,blade_in --refine x:bar_ --refine y --refine z --sampled-only --out harness/assets/knife-graded-mesh --quiet"
   [knife_effects]="cargo run --release -q -p jointlin-harness --bin jointlin -- loss scenes/knife-coarse.toml --effects 12,15 --set iteration.mode=harmonic_balance --set iteration.harmonics=3 --set 'interfaces.*.rule=masing' --out harness/assets/knife-effects --quiet"
   [knife_graded_effects]="cargo run --release -q -p jointlin-harness --bin jointlin -- loss scenes/knife.toml --effects 12,15 --set 'interfaces.*.rule=masing' --out harness/assets/knife-graded-effects --quiet"
+  [knife_modal]="cargo run --release -q -p jointlin-harness --example loss_bench"
   [knife_mesh]="cargo run --release -q -p jointlin-harness --bin jointlin -- loss scenes/knife-coarse.toml --mesh-study 1,2,3 --out harness/assets/knife-mesh --quiet"
   [tradeoff_beams]="cargo run --release -q -p jointlin-harness --bin jointlin -- tradeoff scenes/three-beams-coarse.toml --out out/tradeoff-beams"
   [tradeoff_block]="cargo run --release -q -p jointlin-harness --bin jointlin -- tradeoff scenes/block-stick.toml --out out/tradeoff-block"
@@ -63,7 +64,7 @@ declare -A plots=(
 # written): the block shows the message and the exit status instead of ending the script.
 may_stop=" backbone_fe_h7 "
 # Blocks whose command prints Markdown (the others are shown as terminal output).
-markdown=" python_cost contact_effects accuracy_table knife knife_graded_mesh knife_effects knife_graded_effects knife_mesh tradeoff_beams tradeoff_block tradeoff_oblique tradeoff_oblique_coupled tradeoff_oblique_normal tradeoff_oblique_both tradeoff_mass_on_plane backbone_cost deck_stack deck_bench modes_bench sweep_bench modal_deck_bench reduce_bench deck_keywords "
+markdown=" python_cost contact_effects accuracy_table knife knife_modal knife_graded_mesh knife_effects knife_graded_effects knife_mesh tradeoff_beams tradeoff_block tradeoff_oblique tradeoff_oblique_coupled tradeoff_oblique_normal tradeoff_oblique_both tradeoff_mass_on_plane backbone_cost deck_stack deck_bench modes_bench sweep_bench modal_deck_bench reduce_bench deck_keywords "
 files=(README.md docs/abaqus.md docs/c-fortran.md docs/harness.md docs/own-model.md
   docs/thesis-cases.md docs/balance-and-backbones.md docs/cost.md docs/accuracy.md docs/python.md)
 # Copies each "from to" pair of a plots entry; a glob must match exactly one file.

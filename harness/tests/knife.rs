@@ -371,10 +371,7 @@ fn mesh_study_row_one_is_the_scene_itself() {
     assert!(sampled_only[0].node.is_none());
     assert_eq!(sampled_only[0].sampled, r.sampled);
     assert_eq!(sampled_only[0].freq, r.freq);
-    assert_eq!(
-        mesh::refined(&s, 3).spec.bodies[0].divisions,
-        Some([18, 6, 6])
-    );
+    assert_eq!(mesh::refined(&s, 3).divisions()[0], Some([18, 6, 6]));
 }
 
 /// The graded scene (knife-graded.toml, for the mesh study) meshes the same part: its

@@ -26,7 +26,8 @@ fn check(blocks: &[&str]) {
     );
 }
 
-/// The knife's loss table, mesh studies and effects (hours: `knife` alone about 70 min).
+/// The knife's loss table (direct, and against the modal route: `knife_modal`), mesh
+/// studies and effects (hours: `knife` alone about 70 min).
 /// Stand-ins:
 /// `knife.rs` (`lower_torque_dissipates_more_at_every_torque_and_amplitude`: knife-fast's
 /// predictions against §5.5 at the README's digits, the torque trend) and the other
@@ -36,6 +37,7 @@ fn check(blocks: &[&str]) {
 fn knife_blocks() {
     check(&[
         "knife",
+        "knife_modal",
         "knife_graded_mesh",
         "knife_effects",
         "knife_graded_effects",

@@ -6,6 +6,7 @@ use std::process::ExitCode;
 
 use jointlin_harness::input::scene::Scene;
 use jointlin_harness::loss::{self, effects as loss_effects, mesh, LossError};
+use jointlin_harness::model::Job;
 use jointlin_harness::settings::{CalibratedParameter, LossStudySpec};
 use jointlin_harness::util::atomic;
 
@@ -91,9 +92,10 @@ pub fn main(a: Args) -> ExitCode {
         Ok(r) => r,
         Err(code) => return code,
     };
-    print!("{}", loss::report::markdown(&s, &st, &r));
+    let job = Job::from(&s);
+    print!("{}", loss::report::markdown(&job, &st, &r));
     eprintln!("{:.1} s", t.elapsed().as_secs_f64());
-    study_written("loss", &s, &a.out, t, loss::report::write(&a.out, &s, &r))
+    study_written("loss", &s, &a.out, t, loss::report::write(&a.out, &job, &r))
 }
 
 /// `jointlin loss --mesh-study`.
@@ -131,7 +133,7 @@ fn mesh_study(
         Ok(r) => r,
         Err(code) => return code,
     };
-    let md = mesh::markdown(s, &rows);
+    let md = mesh::markdown(&Job::from(s), &rows);
     print!("{md}");
     eprintln!("{:.1} s", t.elapsed().as_secs_f64());
     write_table(
@@ -192,7 +194,7 @@ fn effects(s: &Scene, st: &LossStudySpec, out: &Path, amplitudes: &[f64], quiet:
         Ok(r) => r,
         Err(code) => return code,
     };
-    let md = loss_effects::markdown(s, &rows);
+    let md = loss_effects::markdown(&Job::from(s), &rows);
     print!("{md}");
     eprintln!("{:.1} s", t.elapsed().as_secs_f64());
     write_table(
@@ -202,7 +204,7 @@ fn effects(s: &Scene, st: &LossStudySpec, out: &Path, amplitudes: &[f64], quiet:
         t,
         "effects",
         &md,
-        &loss_effects::csv(s, &rows),
+        &loss_effects::csv(&Job::from(s), &rows),
     )
 }
 
@@ -211,15 +213,16 @@ fn effects(s: &Scene, st: &LossStudySpec, out: &Path, amplitudes: &[f64], quiet:
 fn calibrate(s: &Scene, st: &LossStudySpec) -> Result<(), LossError> {
     let cal = loss::calibrate::calibrate(s, &|l| eprintln!("{l}"))?;
     let fitted = loss::calibrate::scaled(s, &cal.factors);
-    for (i, f) in s.spec.interfaces.iter().zip(&fitted.spec.interfaces) {
+    for i in &s.spec.interfaces {
         let values: Vec<String> = cal
             .factors
             .iter()
             .map(|&(p, factor)| {
-                let (was, is) = match p {
-                    CalibratedParameter::KT0 => (i.k_t0_per_area, f.k_t0_per_area),
-                    CalibratedParameter::Mu => (i.mu, f.mu),
+                let was = match p {
+                    CalibratedParameter::KT0 => i.k_t0_per_area,
+                    CalibratedParameter::Mu => i.mu,
                 };
+                let is = was * factor;
                 format!("{} = {is:.6e} (× {factor:.5} of {was:.6e})", p.key())
             })
             .collect();
@@ -247,7 +250,7 @@ fn calibrate(s: &Scene, st: &LossStudySpec) -> Result<(), LossError> {
         println!(
             "torque {} [{}], {:.1} {au}: reference {:.4} {pu}, model {power:.4} {pu} ({dev:+.1} %), {role}",
             r.torque,
-            loss::report::torque_unit(s),
+            loss::report::torque_unit(&Job::from(s)),
             r.amplitude / st.amplitude_factor,
             r.power
         );

@@ -8,7 +8,8 @@ use std::process::ExitCode;
 use serde_json::json;
 
 use jointlin_harness::capi;
-use jointlin_harness::reduce::{self, scene, Interior, Reduction};
+use jointlin_harness::export::reduced;
+use jointlin_harness::reduce::{self, Interior, Reduction};
 use jointlin_harness::settings::units::frequency_unit;
 use jointlin_harness::util::progress::progress_bar;
 use jointlin_harness::util::{atomic, provenance};
@@ -91,7 +92,7 @@ pub fn main(a: Args) -> ExitCode {
         return ExitCode::from(1);
     }
     let origin = format!("jointlin reduce {}", a.model.display());
-    report_written(scene::write(&r, &scene.spec, &a.out, &origin).and_then(|mut files| {
+    report_written(reduced::write(&r, &scene.spec, &a.out, &origin).and_then(|mut files| {
         let largest = largest_difference(&r);
         let head = provenance::head("reduce", &capi::abi_version(), &scene.sources);
         let run = provenance::with_head(

@@ -16,9 +16,9 @@ pub use report::{csv, markdown, write};
 use std::time::Instant;
 
 use crate::capi;
-use crate::input::scene::Scene;
+use crate::model::Job;
 use crate::run::{run, Extras, RunError};
-use crate::settings::{Effects, Mode, Units};
+use crate::settings::{Effects, Mode, RunSettings, Units};
 use crate::solve::sweep::SweepResult;
 
 /// One variant of the point model and what it gave.
@@ -80,16 +80,23 @@ pub const VARIANTS: [(&str, bool, bool, bool); 6] = [
     ("coupled slip, first order", false, true, true),
 ];
 
-/// Runs the scene's sweep with each variant (the scene's own `[effects]` choice of the
-/// two switches is replaced; everything else is the scene's). `progress` gets a line per
-/// variant.
-pub fn study(scene: &Scene, progress: &dyn Fn(&str)) -> Result<EffectsStudy, EffectsError> {
-    let chosen = variants_for(scene.spec.iteration.mode).ok_or(EffectsError::NotHarmonicBalance)?;
+/// Runs the sweep of `job` (a scene, a deck or a [`Job`]) with each variant (its own
+/// `[effects]` choice of the two switches is replaced; everything else is its own).
+/// `progress` gets a line per variant.
+pub fn study(job: impl Into<Job>, progress: &dyn Fn(&str)) -> Result<EffectsStudy, EffectsError> {
+    let job: Job = job.into();
+    let chosen =
+        variants_for(job.settings.iteration.mode).ok_or(EffectsError::NotHarmonicBalance)?;
     let mut output = None;
     let mut variants = Vec::with_capacity(chosen.len());
     for (label, normal, coupled, first_order) in chosen {
         progress(&format!("{label} …"));
-        let s = with_point_model(scene, normal, coupled, first_order);
+        let s = job.with_settings(with_point_model(
+            &job.settings,
+            normal,
+            coupled,
+            first_order,
+        ));
         let (r, steps, seconds) = measured(|| run(&s, Extras::default(), &|_, _, _| {}));
         let r = r.map_err(|source| EffectsError::Run { label, source })?;
         let first = r.problem.outputs.first().ok_or(EffectsError::NoOutput)?;
@@ -98,8 +105,8 @@ pub fn study(scene: &Scene, progress: &dyn Fn(&str)) -> Result<EffectsStudy, Eff
         variants.push(variant(label, flags, r.main, seconds, steps));
     }
     Ok(EffectsStudy {
-        scene: scene.file.clone(),
-        units: scene.spec.units.clone(),
+        scene: job.file().to_string(),
+        units: job.settings.units.clone(),
         output: output.unwrap_or_default(),
         variants,
     })
@@ -124,22 +131,22 @@ pub fn solved_by(mode: Mode) -> &'static str {
     }
 }
 
-/// `scene` with the point model (normal_load_variation, coupled_slip) in place of its own,
-/// solved first order (mode fast) when `first_order`.
+/// `settings` with the point model (normal_load_variation, coupled_slip) in place of
+/// their own, solved first order (mode fast) when `first_order`.
 pub fn with_point_model(
-    scene: &Scene,
+    settings: &RunSettings,
     normal_load_variation: bool,
     coupled_slip: bool,
     first_order: bool,
-) -> Scene {
-    let mut s = scene.clone();
+) -> RunSettings {
+    let mut s = settings.clone();
     if first_order {
-        s.spec.iteration.mode = Mode::Fast;
+        s.iteration.mode = Mode::Fast;
     }
-    s.spec.effects = Effects {
+    s.effects = Effects {
         normal_load_variation,
         coupled_slip,
-        ..s.spec.effects
+        ..s.effects
     };
     s
 }

@@ -19,6 +19,7 @@ mod check;
 mod config;
 mod mesh;
 mod names;
+pub mod reduced;
 mod steps;
 
 use std::path::{Path, PathBuf};

@@ -9,7 +9,7 @@
 use nalgebra::{DMatrix, DVector};
 
 use super::{power_at, LossError};
-use crate::input::scene::Scene;
+use crate::model::Job;
 use crate::settings::CalibratedParameter;
 
 /// Most Newton–Broyden steps (the knife's k_T0 alone took 6 secant steps to 0.2 %).
@@ -35,23 +35,22 @@ pub struct Calibration {
     pub powers: Vec<f64>,
 }
 
-/// The scene with each parameter scaled by its factor on every interface.
-pub fn scaled(scene: &Scene, factors: &[(CalibratedParameter, f64)]) -> Scene {
-    let mut sc = scene.clone();
-    for i in &mut sc.spec.interfaces {
-        for &(p, f) in factors {
-            match p {
-                CalibratedParameter::KT0 => i.k_t0_per_area *= f,
-                CalibratedParameter::Mu => i.mu *= f,
-            }
+/// The job (or scene) with each parameter scaled by its factor on every interface.
+pub fn scaled(job: impl Into<Job>, factors: &[(CalibratedParameter, f64)]) -> Job {
+    let (mut k_t0, mut mu) = (1.0, 1.0);
+    for &(p, f) in factors {
+        match p {
+            CalibratedParameter::KT0 => k_t0 *= f,
+            CalibratedParameter::Mu => mu *= f,
         }
     }
-    sc
+    job.into().with_interfaces_scaled(k_t0, mu)
 }
 
 /// Fits the study's calibration; `progress` gets one line per evaluation.
-pub fn calibrate(scene: &Scene, progress: &dyn Fn(&str)) -> Result<Calibration, LossError> {
-    let st = scene.spec.loss_study.as_ref().ok_or(LossError::NoStudy)?;
+pub fn calibrate(job: impl Into<Job>, progress: &dyn Fn(&str)) -> Result<Calibration, LossError> {
+    let job: &Job = &job.into();
+    let st = job.settings.loss_study.as_ref().ok_or(LossError::NoStudy)?;
     let (params, points) = match &st.calibration {
         Some(c) => (c.parameters.clone(), c.points.clone()),
         None => (vec![CalibratedParameter::KT0], vec![0]),
@@ -71,7 +70,7 @@ pub fn calibrate(scene: &Scene, progress: &dyn Fn(&str)) -> Result<Calibration, 
     };
     // ln(P/P_ref) at each point and the powers, for ln factors x.
     let eval = |x: &DVector<f64>| -> Result<(DVector<f64>, Vec<f64>), LossError> {
-        let sc = scaled(scene, &factors(x));
+        let sc = scaled(job, &factors(x));
         let mut powers = Vec::with_capacity(n);
         for r in &refs {
             let (s, _) = power_at(&sc, r.torque, r.amplitude)?;

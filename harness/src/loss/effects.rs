@@ -10,7 +10,7 @@ use std::fmt::Write as _;
 
 use super::{powers_at, report::torque_unit, LossError};
 use crate::effects::{measured, solved_by, variants_for, with_point_model};
-use crate::input::scene::Scene;
+use crate::model::Job;
 use crate::settings::units::frequency_unit;
 use crate::settings::Mode;
 use crate::util::csv_table::CsvTable;
@@ -41,12 +41,13 @@ pub struct EffectsRow {
 /// Solves every point model at `amplitudes` (length) at the first reference torque.
 /// `progress` gets a line per model.
 pub fn study(
-    scene: &Scene,
+    job: impl Into<Job>,
     amplitudes: &[f64],
     progress: &dyn Fn(&str),
 ) -> Result<Vec<EffectsRow>, LossError> {
-    let st = scene.spec.loss_study.as_ref().ok_or(LossError::NoStudy)?;
-    let Some(chosen) = variants_for(scene.spec.iteration.mode) else {
+    let job: &Job = &job.into();
+    let st = job.settings.loss_study.as_ref().ok_or(LossError::NoStudy)?;
+    let Some(chosen) = variants_for(job.settings.iteration.mode) else {
         return Err(LossError::Spec(
             "--effects: the effects are computed by the harmonic balance, coupled slip also first order: set [iteration] mode = \"harmonic_balance\" (all point models) or \"fast\" (the first-order ones)".into(),
         ));
@@ -59,7 +60,12 @@ pub fn study(
     let mut rows = Vec::with_capacity(chosen.len() * amplitudes.len());
     for (label, normal, coupled, first_order) in chosen {
         progress(&format!("{label} …"));
-        let s = with_point_model(scene, normal, coupled, first_order);
+        let s = job.with_settings(with_point_model(
+            &job.settings,
+            normal,
+            coupled,
+            first_order,
+        ));
         let (got, point3d_steps, seconds) = measured(|| powers_at(&s, torque, amplitudes));
         let (got, _) = got?;
         rows.extend(got.iter().zip(amplitudes).map(|(g, &target)| EffectsRow {
@@ -77,21 +83,21 @@ pub fn study(
 
 /// Markdown table: per amplitude and model the resonance and the loss, each against the
 /// thesis's model (the first) at that amplitude.
-pub fn markdown(scene: &Scene, rows: &[EffectsRow]) -> String {
-    let Some(st) = scene.spec.loss_study.as_ref() else {
+pub fn markdown(job: &Job, rows: &[EffectsRow]) -> String {
+    let Some(st) = job.settings.loss_study.as_ref() else {
         return String::new();
     };
     let torque = st.reference.first().map_or(0.0, |r| r.torque);
-    let fu = frequency_unit(&scene.spec.units);
+    let fu = frequency_unit(&job.settings.units);
     let (au, af, pu) = (&st.amplitude_unit, st.amplitude_factor, &st.power_unit);
     let mut s = format!(
         "Contact effects in the loss study, `{}` ({}), {}, torque {torque} {}: \
          resonance and joint power loss per point model, changes against the thesis's model \
          at the same amplitude.\n\n",
-        scene.spec.title,
-        scene.file,
-        solved_by(scene.spec.iteration.mode),
-        torque_unit(scene)
+        job.settings.title,
+        job.file(),
+        solved_by(job.settings.iteration.mode),
+        torque_unit(job)
     );
     let _ = writeln!(
         s,
@@ -124,15 +130,19 @@ pub fn markdown(scene: &Scene, rows: &[EffectsRow]) -> String {
 }
 
 /// CSV of the rows (scene units in the headers).
-pub fn csv(scene: &Scene, rows: &[EffectsRow]) -> String {
-    let fu = frequency_unit(&scene.spec.units);
-    let (au, af, pu) = scene.spec.loss_study.as_ref().map_or(("", 1.0, ""), |st| {
-        (
-            st.amplitude_unit.as_str(),
-            st.amplitude_factor,
-            st.power_unit.as_str(),
-        )
-    });
+pub fn csv(job: &Job, rows: &[EffectsRow]) -> String {
+    let fu = frequency_unit(&job.settings.units);
+    let (au, af, pu) = job
+        .settings
+        .loss_study
+        .as_ref()
+        .map_or(("", 1.0, ""), |st| {
+            (
+                st.amplitude_unit.as_str(),
+                st.amplitude_factor,
+                st.power_unit.as_str(),
+            )
+        });
     let mut t = CsvTable::new([
         "point_model".to_string(),
         format!("amplitude_{au}"),
@@ -158,6 +168,7 @@ pub fn csv(scene: &Scene, rows: &[EffectsRow]) -> String {
 mod tests {
     use super::*;
     use crate::effects::VARIANTS;
+    use crate::input::scene::Scene;
 
     #[test]
     fn each_amplitude_compares_its_models_with_the_thesis_model() {
@@ -168,7 +179,7 @@ mod tests {
             "/../scenes/knife-coarse.toml"
         ))
         .unwrap();
-        let scene = Scene::parse("knife-coarse.toml", &text).unwrap();
+        let scene = Job::from(&Scene::parse("knife-coarse.toml", &text).unwrap());
         let row = |k: usize, target: f64, power: f64| EffectsRow {
             label: VARIANTS[k].0,
             target,

@@ -9,7 +9,7 @@
 use std::fmt::Write as _;
 
 use super::{powers_at, LossError};
-use crate::input::scene::Scene;
+use crate::model::Job;
 use crate::util::number::exact;
 use crate::util::parallel::{in_parallel, threads};
 
@@ -129,27 +129,14 @@ fn low_pressure_share(pressure: &[f64], sample: &super::Sample) -> f64 {
     }
 }
 
-/// The scene with every box's divisions multiplied by `factor`.
-pub fn refined(scene: &Scene, factor: usize) -> Scene {
-    refined_by(scene, factor, &Refinement::everything())
+/// The job with every box's divisions multiplied by `factor`.
+pub fn refined(job: impl Into<Job>, factor: usize) -> Job {
+    refined_by(&job.into(), factor, &Refinement::everything())
 }
 
-/// The scene with the divisions `r` selects multiplied by `factor`.
-pub fn refined_by(scene: &Scene, factor: usize, r: &Refinement) -> Scene {
-    let mut s = scene.clone();
-    for b in &mut s.spec.bodies {
-        if !r.applies_to(&b.name) {
-            continue;
-        }
-        if let Some(d) = &mut b.divisions {
-            for (n, on) in d.iter_mut().zip(r.axes) {
-                if on {
-                    *n *= factor;
-                }
-            }
-        }
-    }
-    s
+/// The job with the divisions `r` selects multiplied by `factor`.
+pub fn refined_by(job: &Job, factor: usize, r: &Refinement) -> Job {
+    job.refined(factor, |name| r.applies_to(name), r.axes)
 }
 
 /// The meshes a study computes for `factors` and `refinements`: (factor, refinement
@@ -189,13 +176,14 @@ pub fn laws(node_based: bool) -> &'static [Option<usize>] {
 /// too when `node_based`; the meshes on as many threads as the machine has cores (each
 /// mesh is independent); `progress(message)` before each model (one per law and mesh).
 pub fn study(
-    scene: &Scene,
+    job: impl Into<Job>,
     factors: &[usize],
     refinements: &[Refinement],
     node_based: bool,
     progress: &(dyn Fn(&str) + Sync),
 ) -> Result<Vec<MeshRow>, LossError> {
-    let st = scene.spec.loss_study.as_ref().ok_or(LossError::NoStudy)?;
+    let job: &Job = &job.into();
+    let st = job.settings.loss_study.as_ref().ok_or(LossError::NoStudy)?;
     let reference = st
         .reference
         .first()
@@ -205,7 +193,7 @@ pub fn study(
     let mesh_row = |&(factor, r, compared_to): &(usize, usize, Option<usize>)| {
         let refinement = &refinements[r];
         let refined = if factor == 1 {
-            "none (the scene)".to_string()
+            "none (the job)".to_string()
         } else {
             refinement.label()
         };
@@ -225,11 +213,7 @@ pub fn study(
                 "divisions × {factor} ({refined}), {}",
                 samples.map_or("node-based".into(), |s| format!("{s} × {s} area samples"))
             ));
-            let mut sc = refined_by(scene, factor, refinement);
-            sc.spec
-                .interfaces
-                .iter_mut()
-                .for_each(|i| i.area_samples = samples);
+            let sc = refined_by(job, factor, refinement).with_area_samples(samples);
             // Each amplitude at its own resonance, as `power_at` (the trend tests') does.
             let (got, op) = powers_at(&sc, reference.torque, &amplitudes)?;
             let power = [0, 1].map(|k| got[k].power * st.power_factor);
@@ -261,8 +245,8 @@ fn change(before: Option<f64>, now: f64) -> String {
 
 /// Markdown table of the study (power in the study's unit, change to the coarser mesh);
 /// node-based columns when the study ran that law.
-pub fn markdown(scene: &Scene, rows: &[MeshRow]) -> String {
-    let Some(st) = scene.spec.loss_study.as_ref() else {
+pub fn markdown(job: &Job, rows: &[MeshRow]) -> String {
+    let Some(st) = job.settings.loss_study.as_ref() else {
         return String::new();
     };
     let (pu, au, af) = (&st.power_unit, &st.amplitude_unit, st.amplitude_factor);
@@ -271,8 +255,8 @@ pub fn markdown(scene: &Scene, rows: &[MeshRow]) -> String {
         "Mesh study, `{}` ({}): power loss at resonance with the divisions named under \
          \"refined\" × factor, each change against the next coarser mesh of its kind (the \
          scene itself for the first){}.\n\n",
-        scene.spec.title,
-        scene.file,
+        job.settings.title,
+        job.file(),
         if node_based {
             format!(
                 "; low-p share: part of the node-based loss from points below {:.0} % of \
@@ -383,22 +367,13 @@ mod tests {
         }
     }
 
-    /// Only the selected axes of the selected boxes change; the scene itself once, first.
+    /// The scene itself once, first (which divisions a refinement multiplies:
+    /// `model::variants`' test).
     #[test]
-    fn refined_by_multiplies_only_the_selected_divisions() {
-        let path =
-            std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes/knife-coarse.toml");
-        let s = Scene::load(&path).unwrap();
-        let r = refined_by(&s, 3, &Refinement::parse("xz:jaw_").unwrap());
-        for (a, b) in s.spec.bodies.iter().zip(&r.spec.bodies) {
-            let (da, db) = (a.divisions.unwrap(), b.divisions.unwrap());
-            let want = if a.name.starts_with("jaw_") {
-                [3 * da[0], da[1], 3 * da[2]]
-            } else {
-                da
-            };
-            assert_eq!(db, want, "{}", a.name);
-        }
+    fn the_plan_computes_the_scene_itself_once_first() {
+        let r = Refinement::parse("xz:jaw_").unwrap();
+        assert!(r.applies_to("jaw_left") && !r.applies_to("blade"));
+        assert_eq!(r.axes, [true, false, true]);
         assert_eq!(
             plan(&[1, 2, 3], 2),
             vec![

@@ -19,8 +19,8 @@ pub mod report;
 
 use thiserror::Error;
 
-use crate::input::scene::Scene;
-use crate::model::{build, BuildError, Problem};
+use crate::model::Job;
+use crate::model::{BuildError, Problem};
 pub use crate::settings::{LossStudySpec, ReferencePoint};
 use crate::solve::static_step::{self, StaticError, StaticState};
 use crate::solve::sweep::modal_route::ModalRoute;
@@ -90,17 +90,17 @@ pub struct Operating {
 impl Operating {
     /// Builds the scene's model and runs its static step; `output` names the output
     /// whose amplitude is studied, `share` the modelled fraction of the structure.
-    pub fn new(scene: &Scene, output: &str, share: f64) -> Result<Self, LossError> {
-        let problem = build(scene)?;
-        let stat = static_step::solve(&problem, scene.spec.effects.normal_contact_nonlinearity)?;
+    pub fn new(job: &Job, output: &str, share: f64) -> Result<Self, LossError> {
+        let problem = job.build()?;
+        let stat = static_step::solve(&problem, job.settings.effects.normal_contact_nonlinearity)?;
         let output = problem
             .outputs
             .iter()
             .position(|o| o.name == output)
             .ok_or_else(|| LossError::Spec(format!("no output named `{output}`")))?;
-        let mut opts = Options::from_scene(scene.spec.iteration, scene.spec.effects);
+        let mut opts = Options::from_scene(job.settings.iteration, job.settings.effects);
         opts.point_results = true;
-        opts.linear = crate::run::linear_route(&scene.settings(), &scene.frequencies());
+        opts.linear = crate::run::linear_route(&job.settings, &job.settings.frequencies());
         Ok(Operating {
             modal: None,
             base_excitation: problem.excitation.clone(),
@@ -201,17 +201,10 @@ pub struct CurvePoint {
     pub sample: Sample,
 }
 
-/// The scene with the torque of screw `screw` set to `torque`.
-pub fn with_torque(scene: &Scene, screw: &str, torque: f64) -> Result<Scene, LossError> {
-    let mut s = scene.clone();
-    let sc = s
-        .spec
-        .screws
-        .iter_mut()
-        .find(|x| x.name == screw)
-        .ok_or_else(|| LossError::Spec(format!("no screw named `{screw}`")))?;
-    sc.torque = torque;
-    Ok(s)
+/// The job with the torque of screw `screw` set to `torque` (force·length).
+pub fn with_torque(job: &Job, screw: &str, torque: f64) -> Result<Job, LossError> {
+    job.with_screw_torque(screw, torque)
+        .ok_or_else(|| LossError::Spec(format!("no screw named `{screw}`")))
 }
 
 /// The grid's peak of the output at the scene's excitation: its index and amplitude
@@ -308,22 +301,19 @@ pub struct StudyResult {
     pub maps: Option<(Operating, Sample)>,
 }
 
-/// Runs the scene's `[loss_study]`. `progress(message)` reports each torque.
-pub fn run_study(scene: &Scene, progress: &dyn Fn(&str)) -> Result<StudyResult, LossError> {
-    let st = scene.spec.loss_study.as_ref().ok_or(LossError::NoStudy)?;
-    let grid = scene.frequencies();
-    let own = scene
-        .spec
-        .screws
-        .iter()
-        .find(|x| x.name == st.screw)
-        .map(|x| x.torque);
+/// Runs the `[loss_study]` of a scene (or a [`Job`]). `progress(message)` reports each
+/// torque.
+pub fn run_study(job: impl Into<Job>, progress: &dyn Fn(&str)) -> Result<StudyResult, LossError> {
+    let job: &Job = &job.into();
+    let st = job.settings.loss_study.as_ref().ok_or(LossError::NoStudy)?;
+    let grid = job.settings.frequencies();
+    let own = job.screw_torque(&st.screw);
     let mut curves = Vec::new();
     let mut solves = 0;
     let mut maps = None;
     for &t in &st.torques {
         progress(&format!("torque {t}"));
-        let sc = with_torque(scene, &st.screw, t)?;
+        let sc = with_torque(job, &st.screw, t)?;
         let mut op = Operating::new(&sc, &st.output, st.model_share)?;
         let samples = curve(&mut op, &grid, &st.amplitudes)?;
         solves += op.solves;
@@ -345,23 +335,24 @@ pub fn run_study(scene: &Scene, progress: &dyn Fn(&str)) -> Result<StudyResult, 
 /// The sample of one model at one torque and amplitude, at resonance (power in scene
 /// units for the whole structure), with the model.
 pub fn power_at(
-    scene: &Scene,
+    job: impl Into<Job>,
     torque: f64,
     amplitude: f64,
 ) -> Result<(Sample, Operating), LossError> {
-    let (mut s, op) = powers_at(scene, torque, &[amplitude])?;
+    let (mut s, op) = powers_at(job, torque, &[amplitude])?;
     Ok((s.pop().expect("one amplitude"), op))
 }
 
 /// [`power_at`] for several amplitudes, each at its own resonance, on one model.
 pub fn powers_at(
-    scene: &Scene,
+    job: impl Into<Job>,
     torque: f64,
     amplitudes: &[f64],
 ) -> Result<(Vec<Sample>, Operating), LossError> {
-    let st = scene.spec.loss_study.as_ref().ok_or(LossError::NoStudy)?;
-    let sc = with_torque(scene, &st.screw, torque)?;
+    let job: &Job = &job.into();
+    let st = job.settings.loss_study.as_ref().ok_or(LossError::NoStudy)?;
+    let sc = with_torque(job, &st.screw, torque)?;
     let mut op = Operating::new(&sc, &st.output, st.model_share)?;
-    let s = each_at_resonance(&mut op, &scene.frequencies(), amplitudes)?;
+    let s = each_at_resonance(&mut op, &job.settings.frequencies(), amplitudes)?;
     Ok((s, op))
 }

@@ -6,7 +6,7 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 use super::{plot, LossStudySpec, Sample, StudyResult};
-use crate::input::scene::Scene;
+use crate::model::Job;
 use crate::report::contact_map::{self as maps, MapKind};
 use crate::settings::units::{frequency_unit, ColumnUnits};
 use crate::util::csv_table::CsvTable;
@@ -34,15 +34,15 @@ pub fn interpolate(samples: &[Sample], amplitude: f64, power_factor: f64) -> Opt
 }
 
 /// Unit of a torque in the scene's units (force·length, e.g. N·mm).
-pub fn torque_unit(scene: &Scene) -> String {
-    format!("{}·{}", scene.spec.units.force, scene.spec.units.length)
+pub fn torque_unit(job: &Job) -> String {
+    format!("{}·{}", job.settings.units.force, job.settings.units.length)
 }
 
 /// loss.csv text: torque (force·length), amplitude of the output at resonance (length),
 /// resonance frequency, power (the study's power unit), excitation scale, max A/δ*.
-pub fn csv(scene: &Scene, st: &LossStudySpec, r: &StudyResult) -> String {
-    let u = ColumnUnits::new(&scene.spec.units);
-    let fu = frequency_unit(&scene.spec.units);
+pub fn csv(job: &Job, st: &LossStudySpec, r: &StudyResult) -> String {
+    let u = ColumnUnits::new(&job.settings.units);
+    let fu = frequency_unit(&job.settings.units);
     let mut t = CsvTable::new([
         format!("torque_{}", u.energy),
         format!("amplitude_{}", u.length),
@@ -70,16 +70,18 @@ pub fn csv(scene: &Scene, st: &LossStudySpec, r: &StudyResult) -> String {
 }
 
 /// loss.md text: the curves and the comparison with the reference points.
-pub fn markdown(scene: &Scene, st: &LossStudySpec, r: &StudyResult) -> String {
+pub fn markdown(job: &Job, st: &LossStudySpec, r: &StudyResult) -> String {
     let au = &st.amplitude_unit;
     let pu = &st.power_unit;
-    let tu = torque_unit(scene);
-    let fu = frequency_unit(&scene.spec.units);
+    let tu = torque_unit(job);
+    let fu = frequency_unit(&job.settings.units);
     let mut s = String::new();
     let _ = writeln!(
         s,
         "Joint power loss at resonance, `{}` ({}); output `{}`.\n",
-        scene.spec.title, scene.file, st.output
+        job.settings.title,
+        job.file(),
+        st.output
     );
     let _ = writeln!(
         s,
@@ -134,9 +136,9 @@ pub fn markdown(scene: &Scene, st: &LossStudySpec, r: &StudyResult) -> String {
 }
 
 /// Writes every file into `dir`; returns the paths.
-pub fn write(dir: &Path, scene: &Scene, r: &StudyResult) -> Result<Vec<PathBuf>, String> {
-    let st = scene
-        .spec
+pub fn write(dir: &Path, job: &Job, r: &StudyResult) -> Result<Vec<PathBuf>, String> {
+    let st = job
+        .settings
         .loss_study
         .as_ref()
         .ok_or("the scene has no [loss_study]")?;
@@ -149,11 +151,11 @@ pub fn write(dir: &Path, scene: &Scene, r: &StudyResult) -> Result<Vec<PathBuf>,
         out.push(p);
         Ok(())
     };
-    put("loss.csv", csv(scene, st, r))?;
-    put("loss.md", markdown(scene, st, r))?;
+    put("loss.csv", csv(job, st, r))?;
+    put("loss.md", markdown(job, st, r))?;
     let p = dir.join("loss.svg");
     crate::util::atomic::with_temp(&p, |t| {
-        plot::curves(t, scene.title(), &torque_unit(scene), st, r)
+        plot::curves(t, job.title(), &torque_unit(job), st, r)
     })?;
     out.push(p);
     if let Some((op, sample)) = &r.maps {
@@ -183,7 +185,7 @@ pub fn write(dir: &Path, scene: &Scene, r: &StudyResult) -> Result<Vec<PathBuf>,
                 maps::svg(
                     t,
                     &format!("{title}, {what}"),
-                    &scene.spec.units,
+                    &job.settings.units,
                     &op.problem,
                     &vals,
                     kind,
@@ -198,13 +200,14 @@ pub fn write(dir: &Path, scene: &Scene, r: &StudyResult) -> Result<Vec<PathBuf>,
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::input::scene::Scene;
 
     /// loss.csv and loss.md carry the scene's units (knife-coarse: N, mm, s; W, µm).
     #[test]
     fn tables_carry_the_scene_units() {
         let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes/knife-coarse.toml");
-        let scene = Scene::load(&path).unwrap();
-        let st = scene.spec.loss_study.clone().unwrap();
+        let scene = Job::from(&Scene::load(&path).unwrap());
+        let st = scene.settings.loss_study.clone().unwrap();
         let sample = Sample {
             freq: 31700.0,
             scale: 1.0,

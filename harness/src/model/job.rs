@@ -19,7 +19,7 @@ pub struct Job {
     pub settings: RunSettings,
     /// The input as read (scene or deck); its own settings are replaced by
     /// [`Job::settings`] wherever the model is built from it.
-    source: Arc<Scene>,
+    pub(super) source: Arc<Scene>,
 }
 
 impl From<&Scene> for Job {
@@ -38,27 +38,24 @@ impl From<&Job> for Job {
 }
 
 impl Job {
+    /// The same input with `settings`.
+    pub fn with_settings(&self, settings: RunSettings) -> Job {
+        Job {
+            settings,
+            source: self.source.clone(),
+        }
+    }
+
     /// The input with this job's settings in place of its own.
     fn scene(&self) -> Cow<'_, Scene> {
         let own = self.source.settings();
         if own == self.settings {
             return Cow::Borrowed(self.source.as_ref());
         }
-        let mut scene = self.source.as_ref().clone();
-        let (s, r) = (&mut scene.spec, &self.settings);
-        s.title = r.title.clone();
-        s.units = r.units.clone();
-        s.sweep = r.sweep.clone();
-        s.iteration = r.iteration;
-        s.outputs = r.outputs.clone();
-        s.effects = r.effects;
-        s.loss_study = r.loss_study.clone();
-        s.time_domain = r.time_domain.clone();
-        s.field_output = r.field_output.clone();
-        Cow::Owned(scene)
+        Cow::Owned(self.source.with_settings(&self.settings))
     }
 
-    /// The FE (or lumped-as-FE) problem: [`super::build`].
+    /// The FE (or lumped-as-FE) problem: [`super::build()`].
     pub fn build(&self) -> Result<Problem, BuildError> {
         super::build(&self.scene())
     }

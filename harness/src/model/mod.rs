@@ -19,6 +19,7 @@ pub mod lumped_static;
 pub mod lumped_system;
 pub mod screw_load;
 pub mod subgrid;
+mod variants;
 
 pub use build::{mesh_face, PAIR_TOL};
 pub use job::Job;

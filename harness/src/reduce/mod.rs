@@ -7,10 +7,10 @@
 //! Each contact direction becomes a `[[joints]]` entry to the ground on its coordinate
 //! with the point's law in force form (normal force p·A from the preload, k_T0·A;
 //! docs/model.md §3), so the reduced scene's joints with every one stuck give the full
-//! model's stuck modes: the kept ones exactly (span [Ψ, Θ] holds them).
+//! model's stuck modes: the kept ones exactly (span [Ψ, Θ] holds them). The files are
+//! written by `export::reduced`.
 
 pub mod retained;
-pub mod scene;
 
 use nalgebra::DMatrix;
 

@@ -6,9 +6,8 @@ use std::time::Instant;
 
 use super::{report, Rung, HARMONICS, HARMONICS_NORMAL_LOAD, HB_TOLERANCE};
 use crate::capi::{set_quadrature, Quadrature};
-use crate::input::scene::Scene;
 use crate::mhb::default_samples;
-use crate::model::Problem;
+use crate::model::{Job, Problem};
 use crate::run::{run as run_scene, Extras};
 use crate::settings::Mode;
 use crate::solve::sweep::harmonic_fe_point3d::{check_effects, PointModel};
@@ -17,15 +16,15 @@ use crate::solve::sweep::harmonic_fe_point3d::{check_effects, PointModel};
 /// `scene_model` the point model its `[effects]` choose), each named in `log` as it
 /// starts.
 pub(super) fn run(
-    base: &Scene,
+    base: &Job,
     problem: &Problem,
     scene_model: PointModel,
     log: &dyn Fn(&str),
 ) -> Result<Vec<Rung>, String> {
     // The first-order rungs: the thesis's point model.
-    let first_order = base.thesis_points();
+    let first_order = base.with_settings(base.settings.thesis_points());
     let mut rungs = Vec::new();
-    let mut push_fd = |family, label: String, s: &Scene, q| -> Result<(), String> {
+    let mut push_fd = |family, label: String, s: &Job, q| -> Result<(), String> {
         log(&label);
         let (a, e, c, secs) = fd(s, q)?;
         rungs.push(Rung {
@@ -41,9 +40,10 @@ pub(super) fn run(
         });
         Ok(())
     };
-    let mut lin = first_order.clone();
-    lin.spec.effects.tangential_microslip = false;
-    lin.spec.effects.contact_damping = false;
+    let mut lin_settings = first_order.settings.clone();
+    lin_settings.effects.tangential_microslip = false;
+    lin_settings.effects.contact_damping = false;
+    let lin = first_order.with_settings(lin_settings);
     push_fd(
         "linear",
         "linear stick (k_T0, no contact damping)".into(),
@@ -62,32 +62,32 @@ pub(super) fn run(
         "default",
         format!(
             "default (graded Gauss, tolerance {:.0e})",
-            base.spec.iteration.tolerance
+            base.settings.iteration.tolerance
         ),
         &first_order,
         None,
     )?;
     for tol in [1e-1, 1e-2, 1e-4, 1e-6, 1e-8] {
-        let mut s = first_order.clone();
-        s.spec.iteration.tolerance = tol;
-        s.spec.iteration.max_passes = s.spec.iteration.max_passes.max(200);
+        let mut s = first_order.settings.clone();
+        s.iteration.tolerance = tol;
+        s.iteration.max_passes = s.iteration.max_passes.max(200);
         push_fd(
             "tolerance",
             format!("default quadrature, tolerance {tol:.0e}"),
-            &s,
+            &first_order.with_settings(s),
             None,
         )?;
     }
     // The scene's point model, or `normal_load_variation` added to the thesis's.
     let harmonic = |h: usize, normal_load_variation: bool| {
-        let mut s = base.clone();
-        let it = &mut s.spec.iteration;
+        let mut s = base.settings.clone();
+        let it = &mut s.iteration;
         it.mode = Mode::HarmonicBalance;
         (it.harmonics, it.samples) = (Some(h), None);
         it.tolerance = HB_TOLERANCE;
         it.max_passes = it.max_passes.max(50);
-        s.spec.effects.normal_load_variation |= normal_load_variation;
-        s
+        s.effects.normal_load_variation |= normal_load_variation;
+        base.with_settings(s)
     };
     let with = report::effects_label(scene_model.coupled_slip, scene_model.normal_load_variation);
     for h in HARMONICS {
@@ -104,18 +104,18 @@ pub(super) fn run(
     if scene_model.coupled_slip {
         // First order with the coupled element: the describing function of each point's
         // ellipse (docs/contact3d.md §4), no harmonic balance.
-        let mut s = base.clone();
-        s.spec.iteration.mode = Mode::Fast;
-        s.spec.effects.normal_load_variation = false;
+        let mut s = base.settings.clone();
+        s.iteration.mode = Mode::Fast;
+        s.effects.normal_load_variation = false;
         push_fd(
             "coupled_first_order",
             "first order with coupled_slip (describing function of the ellipse, tabulated)".into(),
-            &s,
+            &base.with_settings(s),
             None,
         )?;
     }
     let normal = harmonic(1, true);
-    match check_effects(problem, &normal.spec.effects, Mode::HarmonicBalance) {
+    match check_effects(problem, &normal.settings.effects, Mode::HarmonicBalance) {
         _ if !scene_model.is_thesis() => {}
         Ok(()) => {
             for h in HARMONICS_NORMAL_LOAD {
@@ -137,7 +137,7 @@ pub(super) fn run(
 }
 
 /// (amplitude, energy, converged, seconds) of the frequency domain, repeated until 0.2 s.
-fn fd(scene: &Scene, q: Option<Quadrature>) -> Result<(f64, f64, bool, f64), String> {
+fn fd(scene: &Job, q: Option<Quadrature>) -> Result<(f64, f64, bool, f64), String> {
     let prev = set_quadrature(q);
     let t = Instant::now();
     let mut reps = 0;

@@ -23,10 +23,10 @@ use super::{
     against_reference, at_frequency, ratios, Rung, Tradeoff, HARMONICS, HARMONICS_NORMAL_LOAD,
 };
 use crate::capi::{set_quadrature, Quadrature};
-use crate::input::scene::Scene;
 use crate::mhb::default_samples;
 use crate::mhb::lumped_sweep::Sweep;
-use crate::model::lumped::{self, Lumped};
+use crate::model::lumped::Lumped;
+use crate::model::Job;
 use crate::settings::Mode;
 use crate::time::lumped_sweep::run_lumped;
 use crate::time::{Integrator, Start, TimeSettings};
@@ -72,7 +72,7 @@ fn stuck(l: &Lumped, omega: f64) -> Result<(f64, f64), String> {
 /// A frequency-domain rung of `scene` at ω, repeated until 0.2 s: (amplitude, energy,
 /// converged, seconds per run). A solve that fails is a rung that did not converge.
 fn fd(
-    scene: &Scene,
+    scene: &Job,
     omega: f64,
     q: Option<Quadrature>,
     how: &Solver,
@@ -81,7 +81,7 @@ fn fd(
     let t = Instant::now();
     let mut reps = 0;
     let res = loop {
-        let out = lumped::build(scene).map(|l| how(&l, omega));
+        let out = scene.lumped().map(|l| how(&l, omega));
         reps += 1;
         if t.elapsed().as_secs_f64() >= 0.2 || !matches!(out, Ok(Ok(_))) {
             break out;
@@ -95,12 +95,12 @@ fn fd(
     })
 }
 
-/// The frequency of the largest first-output response in the scene's own sweep (its
+/// The frequency of the largest first-output response in the job's own sweep (its
 /// mode, each frequency continued from the last).
-pub fn peak_frequency(scene: &Scene) -> Result<f64, String> {
-    let l = lumped::build(scene)?;
+pub fn peak_frequency(job: &Job) -> Result<f64, String> {
+    let l = job.lumped()?;
     let sys = l.system3();
-    let it = &scene.spec.iteration;
+    let it = &job.settings.iteration;
     let harmonic = (it.mode == Mode::HarmonicBalance).then(|| {
         let h = it.harmonics.unwrap_or(1);
         (h, it.samples.unwrap_or_else(|| default_samples(h)))
@@ -108,7 +108,7 @@ pub fn peak_frequency(scene: &Scene) -> Result<f64, String> {
     let w = &l.outputs.first().ok_or("the scene has no [[outputs]]")?.1;
     let mut sweep = Sweep::new(&l, &sys, harmonic);
     let mut best: Option<(f64, f64)> = None;
-    for f in scene.frequencies() {
+    for f in job.settings.frequencies() {
         let Ok(s) = sweep.solve(std::f64::consts::TAU * f) else {
             continue;
         };
@@ -126,30 +126,35 @@ pub fn peak_frequency(scene: &Scene) -> Result<f64, String> {
         .ok_or_else(|| "no frequency of the scene's sweep converged".into())
 }
 
-/// Runs the ladder of a lumped scene at `freq` (default: the scene's only frequency, else
-/// its peak).
-pub fn study(scene: &Scene, freq: Option<f64>, log: &dyn Fn(&str)) -> Result<Tradeoff, String> {
+/// Runs the ladder of a lumped scene (or a [`Job`] of one) at `freq` (default: the
+/// sweep's only frequency, else its peak).
+pub fn study(
+    job: impl Into<Job>,
+    freq: Option<f64>,
+    log: &dyn Fn(&str),
+) -> Result<Tradeoff, String> {
+    let job: Job = job.into();
     let f = match freq {
         Some(f) => f,
-        None if scene.frequencies().len() == 1 => scene.frequencies()[0],
+        None if job.settings.frequencies().len() == 1 => job.settings.frequencies()[0],
         None => {
             log("finding the response peak of the scene's sweep");
-            peak_frequency(scene)?
+            peak_frequency(&job)?
         }
     };
-    let base = at_frequency(scene, f);
+    let base = at_frequency(&job, f);
     let (mut rungs, failed) = frequency_rungs(&base, std::f64::consts::TAU * f, log)?;
     rungs.extend(time_rungs(&base, log)?);
     against_reference(&mut rungs);
     Ok(Tradeoff {
-        scene: scene.file.clone(),
+        scene: job.file().to_string(),
         freq: f,
         output: base
-            .spec
+            .settings
             .outputs
             .first()
             .map_or_else(String::new, |o| o.name.clone()),
-        units: base.spec.units.clone(),
+        units: base.settings.units.clone(),
         summary: ratios(&rungs).into_iter().chain(failed).collect(),
         rungs,
     })
@@ -157,15 +162,15 @@ pub fn study(scene: &Scene, freq: Option<f64>, log: &dyn Fn(&str)) -> Result<Tra
 
 /// The frequency-domain rungs of `base` at ω, and the labels of those that failed.
 fn frequency_rungs(
-    base: &Scene,
+    base: &Job,
     omega: f64,
     log: &dyn Fn(&str),
 ) -> Result<(Vec<Rung>, Vec<String>), String> {
-    let effects = &base.spec.effects;
-    let thesis = base.thesis_points();
+    let effects = &base.settings.effects;
+    let thesis = base.with_settings(base.settings.thesis_points());
     let mut rungs = Vec::new();
     let mut failed = Vec::new();
-    let mut push = |family, label: String, s: &Scene, q, how: &Solver| -> Result<(), String> {
+    let mut push = |family, label: String, s: &Job, q, how: &Solver| -> Result<(), String> {
         log(&label);
         let (amplitude, energy, converged, seconds) = fd(s, omega, q, how)?;
         if !converged {
@@ -222,10 +227,11 @@ fn frequency_rungs(
             &move |l: &Lumped, w| solve(l, Some((h, n)), w),
         )?;
     }
-    let has_normal = base.spec.joints.iter().any(|j| j.normal.is_some());
+    let has_normal = (base.lumped()?.joints.iter()).any(|j| j.static_normal.is_some());
     if !effects.normal_load_variation && !effects.coupled_slip && has_normal {
-        let mut normal = base.clone();
-        normal.spec.effects.normal_load_variation = true;
+        let mut with_normal = base.settings.clone();
+        with_normal.effects.normal_load_variation = true;
+        let normal = base.with_settings(with_normal);
         for h in HARMONICS_NORMAL_LOAD {
             let n = default_samples(h);
             push(
@@ -242,7 +248,7 @@ fn frequency_rungs(
 
 /// The time-domain rungs, the reference last (it must reach the periodic state; another
 /// rung that stops is left out with the reason logged).
-fn time_rungs(base: &Scene, log: &dyn Fn(&str)) -> Result<Vec<Rung>, String> {
+fn time_rungs(base: &Job, log: &dyn Fn(&str)) -> Result<Vec<Rung>, String> {
     let settled = TimeSettings {
         integrator: Integrator::Rk4,
         start: Start::Rest,

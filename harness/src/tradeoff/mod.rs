@@ -43,7 +43,7 @@ use std::path::{Path, PathBuf};
 
 use serde::Serialize;
 
-use crate::input::scene::Scene;
+use crate::model::Job;
 use crate::run::{run, Extras};
 use crate::settings::units::{frequency_unit, ColumnUnits};
 use crate::settings::Units;
@@ -97,19 +97,19 @@ pub struct Tradeoff {
     pub summary: Vec<String>,
 }
 
-/// The scene at one frequency.
-pub fn at_frequency(scene: &Scene, f: f64) -> Scene {
-    let mut s = scene.clone();
-    s.spec.sweep.f_min = f;
-    s.spec.sweep.f_max = f;
-    s.spec.sweep.count = 1;
-    s.spec.sweep.refine.clear();
-    s
+/// The job at one frequency.
+pub fn at_frequency(job: &Job, f: f64) -> Job {
+    let mut s = job.settings.clone();
+    s.sweep.f_min = f;
+    s.sweep.f_max = f;
+    s.sweep.count = 1;
+    s.sweep.refine.clear();
+    job.with_settings(s)
 }
 
-/// The frequency of the largest response at the first output in the scene's own sweep.
-pub fn peak_frequency(scene: &Scene) -> Result<f64, String> {
-    let r = run(scene, Extras::default(), &|_, _, _| {}).map_err(|e| e.to_string())?;
+/// The frequency of the largest response at the first output in the job's own sweep.
+pub fn peak_frequency(job: &Job) -> Result<f64, String> {
+    let r = run(job, Extras::default(), &|_, _, _| {}).map_err(|e| e.to_string())?;
     (0..r.main.freqs.len())
         .max_by(|&a, &b| {
             r.main.outputs[a][0]
@@ -120,31 +120,36 @@ pub fn peak_frequency(scene: &Scene) -> Result<f64, String> {
         .ok_or_else(|| "the scene has no frequencies".into())
 }
 
-/// Runs the ladder of an FE scene or deck ([`lumped::study`] for lumped scenes). `freq`:
-/// the frequency (default: the scene's only one, else its peak).
-pub fn study(scene: &Scene, freq: Option<f64>, log: &dyn Fn(&str)) -> Result<Tradeoff, String> {
+/// Runs the ladder of an FE scene or deck, or a [`Job`] of one ([`lumped::study`] for
+/// lumped scenes). `freq`: the frequency (default: the sweep's only one, else its peak).
+pub fn study(
+    job: impl Into<Job>,
+    freq: Option<f64>,
+    log: &dyn Fn(&str),
+) -> Result<Tradeoff, String> {
+    let job: Job = job.into();
     let f = match freq {
         Some(f) => f,
-        None if scene.frequencies().len() == 1 => scene.frequencies()[0],
+        None if job.settings.frequencies().len() == 1 => job.settings.frequencies()[0],
         None => {
             log("finding the response peak of the scene's sweep");
-            peak_frequency(scene)?
+            peak_frequency(&job)?
         }
     };
-    let base = at_frequency(scene, f);
-    let problem = crate::model::build(&base).map_err(|e| e.to_string())?;
+    let base = at_frequency(&job, f);
+    let problem = base.build().map_err(|e| e.to_string())?;
     let n_free = problem.sys.dofs.n_free();
-    let scene_model = PointModel::from_effects(&base.spec.effects);
+    let scene_model = PointModel::from_effects(&base.settings.effects);
     let mut rungs = frequency_rungs::run(&base, &problem, scene_model, log)?;
     let stopped = time_rungs::run(&base, time_rungs::ladder(n_free), log, &mut rungs)?;
     against_reference(&mut rungs);
     let mut summary = ratios(&rungs);
     summary.extend(stopped);
     Ok(Tradeoff {
-        scene: scene.file.clone(),
+        scene: job.file().to_string(),
         freq: f,
-        output: base.spec.outputs[0].name.clone(),
-        units: base.spec.units.clone(),
+        output: base.settings.outputs[0].name.clone(),
+        units: base.settings.units.clone(),
         rungs,
         summary,
     })

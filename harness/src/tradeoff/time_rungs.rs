@@ -4,7 +4,7 @@
 use std::time::Instant;
 
 use super::Rung;
-use crate::input::scene::Scene;
+use crate::model::Job;
 use crate::time::scene_run::{integrator_for, run_scene, FreqResult};
 use crate::time::{Integrator, Start, TimeSettings};
 
@@ -107,7 +107,7 @@ pub(super) fn ladder(n_free: usize) -> Vec<(String, TimeSettings)> {
 /// a coarse step, is reported as such, not as a number; only the reference, the last,
 /// must reach the periodic state).
 pub(super) fn run(
-    base: &Scene,
+    base: &Job,
     ladder: Vec<(String, TimeSettings)>,
     log: &dyn Fn(&str),
     rungs: &mut Vec<Rung>,
@@ -144,7 +144,7 @@ pub(super) fn run(
     Ok(stopped)
 }
 
-fn td(scene: &Scene, s: &TimeSettings) -> Result<(FreqResult, f64), String> {
+fn td(scene: &Job, s: &TimeSettings) -> Result<(FreqResult, f64), String> {
     let t = Instant::now();
     let r = run_scene(scene, s, &|_, _| {}).map_err(|e| e.to_string())?;
     let secs = t.elapsed().as_secs_f64();

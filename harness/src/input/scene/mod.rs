@@ -97,9 +97,25 @@ impl Scene {
             outputs: s.outputs.clone(),
             effects: s.effects,
             loss_study: s.loss_study.clone(),
-            time_domain: s.time_domain.clone(),
+            time_domain: s.time_domain,
             field_output: s.field_output.clone(),
         }
+    }
+
+    /// This scene with `settings` in place of its own.
+    pub fn with_settings(&self, settings: &RunSettings) -> Scene {
+        let mut scene = self.clone();
+        let (s, r) = (&mut scene.spec, settings);
+        s.title = r.title.clone();
+        s.units = r.units.clone();
+        s.sweep = r.sweep.clone();
+        s.iteration = r.iteration;
+        s.outputs = r.outputs.clone();
+        s.effects = r.effects;
+        s.loss_study = r.loss_study.clone();
+        s.time_domain = r.time_domain;
+        s.field_output = r.field_output.clone();
+        scene
     }
 
     /// The scene's title, or its file's name without extension when it has none (for

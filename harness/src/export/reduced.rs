@@ -12,7 +12,7 @@ use crate::input::scene::schema::{ExcitationKind, ExcitationSpec, JointSpec, Mat
 use crate::settings::{Effects, Mode, OutputSpec, SweepMethod, SweepSpec};
 use crate::util::atomic;
 
-use super::Reduction;
+use crate::reduce::Reduction;
 
 /// The name of the `[[matrices]]` model, the prefix of its points.
 pub const MODEL: &str = "reduced";
