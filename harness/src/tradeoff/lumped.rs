@@ -20,7 +20,7 @@
 use std::time::Instant;
 
 use super::{
-    against_reference, at_frequency, ratios, Rung, Tradeoff, HARMONICS, HARMONICS_NORMAL_LOAD,
+    against_reference, ladder_base, ratios, Rung, Tradeoff, HARMONICS, HARMONICS_NORMAL_LOAD,
 };
 use crate::capi::{set_quadrature, Quadrature};
 use crate::mhb::default_samples;
@@ -134,15 +134,7 @@ pub fn study(
     log: &dyn Fn(&str),
 ) -> Result<Tradeoff, String> {
     let job: Job = job.into();
-    let f = match freq {
-        Some(f) => f,
-        None if job.settings.frequencies().len() == 1 => job.settings.frequencies()[0],
-        None => {
-            log("finding the response peak of the scene's sweep");
-            peak_frequency(&job)?
-        }
-    };
-    let base = at_frequency(&job, f);
+    let (f, base) = ladder_base(&job, freq, log, peak_frequency)?;
     let (mut rungs, failed) = frequency_rungs(&base, std::f64::consts::TAU * f, log)?;
     rungs.extend(time_rungs(&base, log)?);
     against_reference(&mut rungs);

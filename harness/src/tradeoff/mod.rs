@@ -120,6 +120,26 @@ pub fn peak_frequency(job: &Job) -> Result<f64, String> {
         .ok_or_else(|| "the scene has no frequencies".into())
 }
 
+/// The ladder's frequency (1/time) and the job at it: `freq`, else the sweep's only
+/// one, else the peak of the first output that `peak` finds in the sweep.
+pub fn ladder_base(
+    job: &Job,
+    freq: Option<f64>,
+    log: &dyn Fn(&str),
+    peak: fn(&Job) -> Result<f64, String>,
+) -> Result<(f64, Job), String> {
+    let freqs = job.settings.frequencies();
+    let f = match freq {
+        Some(f) => f,
+        None if freqs.len() == 1 => freqs[0],
+        None => {
+            log("finding the response peak of the scene's sweep");
+            peak(job)?
+        }
+    };
+    Ok((f, at_frequency(job, f)))
+}
+
 /// Runs the ladder of an FE scene or deck, or a [`Job`] of one ([`lumped::study`] for
 /// lumped scenes). `freq`: the frequency (default: the sweep's only one, else its peak).
 pub fn study(
@@ -128,15 +148,7 @@ pub fn study(
     log: &dyn Fn(&str),
 ) -> Result<Tradeoff, String> {
     let job: Job = job.into();
-    let f = match freq {
-        Some(f) => f,
-        None if job.settings.frequencies().len() == 1 => job.settings.frequencies()[0],
-        None => {
-            log("finding the response peak of the scene's sweep");
-            peak_frequency(&job)?
-        }
-    };
-    let base = at_frequency(&job, f);
+    let (f, base) = ladder_base(&job, freq, log, peak_frequency)?;
     let problem = base.build().map_err(|e| e.to_string())?;
     let n_free = problem.sys.dofs.n_free();
     let scene_model = PointModel::from_effects(&base.settings.effects);
