@@ -4,7 +4,8 @@
 
 - in a Markdown table, the cells of a column whose header names a time ("time",
   "wall", "CPU", "seconds", "[s]", "(s)", "s per", "ns", "ms", "µs", "speed") or a
-  ratio of times ("jointlin / ccx", "fast / linear", "modal / direct");
+  ratio of times ("jointlin / ccx", "fast / linear", "modal / direct"), or a process's
+  memory ("RSS", "memory": the allocator's and the BLAS threads' share varies by machine);
 - elsewhere, a number followed by " s", " ms", " µs" or " ns" (a duration) or directly
   by "×" (a speed ratio).
 
@@ -23,7 +24,7 @@ NUMBER = re.compile(r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?")
 DURATION = re.compile(r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?(?= (?:s|ms|µs|ns)\b| (?:s|ms|µs|ns)$|×)")
 TIMING_HEADER = re.compile(
     r"time|wall|cpu|seconds|\[s\]|\(s\)|\[ms\]|\bs per|\bns\b|\bms\b|µs|speed"
-    r"|\w / (?:ccx|linear|direct)\b",
+    r"|\w / (?:ccx|linear|direct)\b|\bRSS\b|memory",
     re.IGNORECASE,
 )
 

@@ -41,6 +41,7 @@ declare -A commands=(
   [modes_bench]="cargo run --release -q -p jointlin-harness --example modes_bench"
   [sweep_bench]="cargo run --release -q -p jointlin-harness --example sweep_bench"
   [modal_deck_bench]="cargo run --release -q -p jointlin-harness --example modal_deck_bench"
+  [box_bench]="OPENBLAS_NUM_THREADS=1 cargo run --release -q -p jointlin-harness --bin jointlin -- bench --modal-box --dofs 100000 --freqs 100"
   [reduce_bench]="cargo run --release -q -p jointlin-harness --example reduce_bench"
   [deck_keywords]="cargo run --release -q -p jointlin-harness --bin jointlin -- check --keywords"
   [python_cost]="bash scripts/python-bench.sh"
@@ -64,7 +65,7 @@ declare -A plots=(
 # written): the block shows the message and the exit status instead of ending the script.
 may_stop=" backbone_fe_h7 "
 # Blocks whose command prints Markdown (the others are shown as terminal output).
-markdown=" python_cost contact_effects accuracy_table knife knife_modal knife_graded_mesh knife_effects knife_graded_effects knife_mesh tradeoff_beams tradeoff_block tradeoff_oblique tradeoff_oblique_coupled tradeoff_oblique_normal tradeoff_oblique_both tradeoff_mass_on_plane backbone_cost deck_stack deck_bench modes_bench sweep_bench modal_deck_bench reduce_bench deck_keywords "
+markdown=" python_cost contact_effects accuracy_table knife knife_modal knife_graded_mesh knife_effects knife_graded_effects knife_mesh tradeoff_beams tradeoff_block tradeoff_oblique tradeoff_oblique_coupled tradeoff_oblique_normal tradeoff_oblique_both tradeoff_mass_on_plane backbone_cost deck_stack deck_bench modes_bench sweep_bench modal_deck_bench box_bench reduce_bench deck_keywords "
 files=(README.md docs/abaqus.md docs/c-fortran.md docs/harness.md docs/own-model.md
   docs/thesis-cases.md docs/balance-and-backbones.md docs/cost.md docs/accuracy.md docs/python.md)
 # Copies each "from to" pair of a plots entry; a glob must match exactly one file.

@@ -38,6 +38,7 @@ pub mod cli;
 pub mod effects;
 pub mod export;
 pub mod fe;
+pub mod formats;
 pub mod input;
 pub mod linalg;
 pub mod loss;

@@ -127,7 +127,7 @@ fn craig_bampton_with_joint_against_full_with_spring() {
     let full = full_model(&dir).unwrap();
     let tip = beam::tip_node();
     // Full matrices with the stiff spring at the tip.
-    let imp = jointlin_harness::input::matrices::ccx::import(&dir.join("beam_k")).unwrap();
+    let imp = jointlin_harness::formats::ccx::import(&dir.join("beam_k")).unwrap();
     std::fs::write(dir.join("K.mtx"), &imp.stiffness).unwrap();
     std::fs::write(dir.join("M.mtx"), &imp.mass).unwrap();
     std::fs::write(dir.join("dofs.csv"), &imp.dofs).unwrap();
@@ -208,7 +208,7 @@ fn unreduced_matrices_have_the_reduced_backbone() {
     }
     let dir = tmp("matrices-backbone");
     let _ = full_model(&dir).unwrap();
-    let imp = jointlin_harness::input::matrices::ccx::import(&dir.join("beam_k")).unwrap();
+    let imp = jointlin_harness::formats::ccx::import(&dir.join("beam_k")).unwrap();
     std::fs::write(dir.join("K.mtx"), &imp.stiffness).unwrap();
     std::fs::write(dir.join("M.mtx"), &imp.mass).unwrap();
     std::fs::write(dir.join("dofs.csv"), &imp.dofs).unwrap();

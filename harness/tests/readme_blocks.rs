@@ -72,8 +72,8 @@ fn backbone_blocks() {
 }
 
 /// The benchmark tables: their sizes, iteration counts and errors (their timings are
-/// left out). Stand-ins: the tests each bench's rows come from (`modes_ccx.rs`,
-/// `modal_ccx.rs`, `reduce_cli.rs`, `deck_gmsh.rs`).
+/// left out, and their memory). Stand-ins: the tests each bench's rows come from
+/// (`modes_ccx.rs`, `modal_ccx.rs`, `reduce_cli.rs`, `deck_gmsh.rs`).
 #[test]
 #[ignore = "the benchmarks take minutes each"]
 fn bench_blocks() {
@@ -82,6 +82,7 @@ fn bench_blocks() {
         "modes_bench",
         "sweep_bench",
         "modal_deck_bench",
+        "box_bench",
         "reduce_bench",
         "python_cost",
     ]);

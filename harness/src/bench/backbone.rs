@@ -7,9 +7,8 @@ use std::time::Instant;
 
 use crate::backbone::{epmc, fe, first_order, log_space};
 use crate::capi;
-use crate::input::scene::Scene;
 use crate::mhb::default_samples;
-use crate::model;
+use crate::model::Job;
 
 use super::mhb_chain::jenkins_chain;
 
@@ -51,10 +50,11 @@ pub fn table() -> String {
 /// Cost of the first-order backbone of an FE scene's mode 1 (`backbone::fe`): the
 /// static step and reduction, then 100 modal amplitudes over the default range
 /// ([`first_order::slip_range`]); one Markdown row.
-pub fn fe_row(scene: &Scene) -> Result<String, String> {
+pub fn fe_row(job: impl Into<Job>) -> Result<String, String> {
+    let job: Job = job.into();
     let t = Instant::now();
-    let p = model::build(scene).map_err(|e| e.to_string())?;
-    let r = fe::reduce(&p, &scene.spec.effects, 1)?;
+    let p = job.build().map_err(|e| e.to_string())?;
+    let r = fe::reduce(&p, &job.settings.effects, 1)?;
     let t_reduce = t.elapsed().as_secs_f64();
     let sys = &r.lumped.system;
     let (from, to) = first_order::slip_range(sys, 1).map_err(|e| e.to_string())?;
@@ -65,7 +65,7 @@ pub fn fe_row(scene: &Scene) -> Result<String, String> {
     let t_backbone = t.elapsed().as_secs_f64();
     Ok(format!(
         "| {} | {} | {} | {} | {} | {:.3e} | {:.3e} | {reached} | {} |\n",
-        scene.file,
+        job.file(),
         p.sys.dofs.n_free(),
         sys.elements.len(),
         r.modes,

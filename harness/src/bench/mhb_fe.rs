@@ -11,8 +11,8 @@
 use std::fmt::Write as _;
 
 use crate::capi;
-use crate::input::scene::Scene;
 use crate::mhb::default_samples;
+use crate::model::Job;
 use crate::run::{run, Extras};
 use crate::settings::{Mode, Spacing};
 use crate::util::rusage::cpu_seconds;
@@ -55,20 +55,21 @@ pub struct FeBench {
 
 /// Runs the table. `band`: default the scene's first refine band, else its sweep range.
 pub fn table(
-    scene: &Scene,
+    scene: impl Into<Job>,
     band: Option<(f64, f64)>,
     count: usize,
     hs: &[usize],
     log: &dyn Fn(&str),
 ) -> Result<FeBench, String> {
-    let sw = &scene.spec.sweep;
+    let scene: Job = scene.into();
+    let sw = &scene.settings.sweep;
     let band = band.unwrap_or_else(|| {
         sw.refine
             .first()
             .map_or((sw.f_min, sw.f_max), |b| (b.f_min, b.f_max))
     });
     let mut base = scene.clone();
-    let s = &mut base.spec.sweep;
+    let s = &mut base.settings.sweep;
     (s.f_min, s.f_max, s.count, s.spacing) = (band.0, band.1, count.max(1), Spacing::Linear);
     if count <= 1 {
         s.f_max = s.f_min;
@@ -84,11 +85,11 @@ pub fn table(
         let mut sc = base.clone();
         let label = match h {
             None => {
-                sc.spec.iteration.mode = Mode::Fast;
+                sc.settings.iteration.mode = Mode::Fast;
                 "first order (fast mode, jointlin_linearize)".to_string()
             }
             Some(h) => {
-                let it = &mut sc.spec.iteration;
+                let it = &mut sc.settings.iteration;
                 (it.mode, it.harmonics, it.samples) = (Mode::HarmonicBalance, Some(h), None);
                 format!("H = {h} (N = {})", default_samples(h))
             }
@@ -147,7 +148,7 @@ pub fn table(
             / peak_last;
     }
     Ok(FeBench {
-        scene: scene.file.clone(),
+        scene: scene.file().to_string(),
         free_dofs,
         directions,
         band,

@@ -9,14 +9,14 @@
 //! grows: the value after each row is the peak so far).
 
 pub mod backbone;
+pub mod column;
 pub mod mhb_chain;
 pub mod mhb_fe;
 
 use std::io::Write;
 use std::time::Instant;
 
-use crate::input::scene::Scene;
-use crate::model::build;
+use crate::model::Job;
 use crate::settings::Mode;
 use crate::solve::modal_stuck::{self, ModeCount};
 use crate::solve::static_step;
@@ -25,8 +25,8 @@ use crate::util::rusage::peak_rss_bytes;
 
 /// Eigenfrequencies (1/time) of the model with every closed joint stuck (k_T0 tangential,
 /// static normal stiffness), after the static step.
-pub fn stuck_modes(scene: &Scene, count: usize) -> Result<Vec<f64>, String> {
-    let s = modal_stuck::stuck_modes(scene, ModeCount::Exactly(count))?;
+pub fn stuck_modes(job: impl Into<Job>, count: usize) -> Result<Vec<f64>, String> {
+    let s = modal_stuck::stuck_modes(job, ModeCount::Exactly(count))?;
     Ok(s.band.modes.frequencies_hz())
 }
 
@@ -37,7 +37,7 @@ pub fn beam_scene(
     nz_per_mm: usize,
     freqs: (f64, f64, usize),
     mode: Mode,
-) -> Scene {
+) -> Job {
     let nz = |t: usize| (t * nz_per_mm).max(1);
     let text = format!(
         r#"
@@ -139,7 +139,7 @@ direction = [0.0, 0.0, 1.0]
             Mode::HarmonicBalance => "mode = \"harmonic_balance\"\nharmonics = 7",
         },
     );
-    Scene::parse("bench", &text).expect("the bench scene is valid")
+    Job::parse("bench", &text).expect("the bench scene is valid")
 }
 
 /// Mesh divisions for about `dofs` DOFs: (nx, ny = nx/6, 1 element per mm of thickness),
@@ -191,13 +191,19 @@ pub fn row_with(
     let time =
         |mode: Mode, linear: bool| -> Result<(f64, sweep::SweepResult, usize, usize), String> {
             let s = beam_scene(nx, ny, z, band, mode);
-            let p = build(&s).map_err(|e| e.to_string())?;
+            let p = s.build().map_err(|e| e.to_string())?;
             let stat = static_step::solve(&p, true).map_err(|e| e.to_string())?;
-            let mut opts = Options::from_scene(s.spec.iteration, s.spec.effects);
+            let mut opts = Options::from_scene(s.settings.iteration, s.settings.effects);
             opts.effects.tangential_microslip = !linear;
             let t = Instant::now();
-            let r = sweep::run(&p, &stat, &s.frequencies(), &opts, &|_, _, _| {})
-                .map_err(|e| e.to_string())?;
+            let r = sweep::run(
+                &p,
+                &stat,
+                &s.settings.sweep.frequencies(),
+                &opts,
+                &|_, _, _| {},
+            )
+            .map_err(|e| e.to_string())?;
             Ok((
                 t.elapsed().as_secs_f64(),
                 r,

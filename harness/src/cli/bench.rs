@@ -2,7 +2,7 @@
 
 use std::process::ExitCode;
 
-use jointlin_harness::bench::{contact_table, table};
+use jointlin_harness::bench::{column, contact_table, table};
 
 // The command's help is the doc comment of `Command::Bench`.
 #[derive(clap::Args)]
@@ -21,11 +21,21 @@ pub struct Args {
     /// count (1, 2, 4 elements per mm of thickness), fast mode only.
     #[arg(long)]
     contact_scan: bool,
+    /// Instead: the first-order sweep of a box column of about the first DOF count
+    /// (two boxes, one 289-point joint) by the modal route, and by the direct route at
+    /// every `--direct-stride`-th of its frequencies (time and difference).
+    #[arg(long, conflicts_with = "contact_scan")]
+    modal_box: bool,
+    /// With --modal-box: the direct route runs every this many frequencies.
+    #[arg(long, default_value_t = 10, value_parser = clap::value_parser!(u64).range(1..))]
+    direct_stride: u64,
 }
 
 pub fn main(a: Args) -> ExitCode {
     let out = &mut std::io::stdout();
-    let r = if a.contact_scan {
+    let r = if a.modal_box {
+        column::modal_table(a.dofs[0], a.freqs, a.direct_stride as usize, out)
+    } else if a.contact_scan {
         contact_table(a.dofs[0], a.freqs, out)
     } else {
         table(&a.dofs, a.freqs, a.thesis_max_dofs, out)

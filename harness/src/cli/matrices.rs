@@ -5,7 +5,7 @@
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use jointlin_harness::input::matrices::ccx;
+use jointlin_harness::formats::ccx;
 use jointlin_harness::util::atomic;
 
 // The command's help is the doc comment of `Command::Matrices`.

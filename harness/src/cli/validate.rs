@@ -3,7 +3,7 @@
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use jointlin_harness::input::scene::Scene;
+use jointlin_harness::model::Job;
 use jointlin_harness::validate::{markdown, run, write, CaseScenes, Cases};
 
 use super::report_written;
@@ -63,14 +63,12 @@ pub fn main(a: Args) -> ExitCode {
         }
     };
     // The scenes the selected cases start from, read through the input path.
-    let load = |wanted: bool, file: &str| -> Result<Option<Scene>, String> {
+    let load = |wanted: bool, file: &str| -> Result<Option<Job>, String> {
         if !wanted {
             return Ok(None);
         }
         let path = scenes_dir.join(file);
-        jointlin_harness::input::load(&path)
-            .map(|i| Some(i.into_scene()))
-            .map_err(|e| e.to_string())
+        Job::load(&path).map(Some).map_err(|e| e.to_string())
     };
     let scenes = (|| {
         Ok::<_, String>(CaseScenes {

@@ -6,7 +6,7 @@
 
 use std::path::{Path, PathBuf};
 
-use crate::input::matrices::mtx::write_symmetric;
+use crate::formats::mtx::write_symmetric;
 use crate::input::scene::schema::{DofsSpec, SceneFile};
 use crate::input::scene::schema::{ExcitationKind, ExcitationSpec, JointSpec, MatricesSpec};
 use crate::settings::{Effects, Mode, OutputSpec, SweepMethod, SweepSpec};

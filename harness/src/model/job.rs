@@ -38,6 +38,17 @@ impl From<&Job> for Job {
 }
 
 impl Job {
+    /// A scene's TOML `text` (no model file, no `[[matrices]]` files) as a job, its
+    /// errors named by `file`: the benches' generated scenes.
+    pub fn parse(file: &str, text: &str) -> Result<Job, crate::input::scene::SceneError> {
+        Ok(Job::from(&Scene::parse(file, text)?))
+    }
+
+    /// Reads a scene or deck through the input path (`input::load`) as a job.
+    pub fn load(path: &Path) -> Result<Job, crate::input::InputError> {
+        Ok(Job::from(&crate::input::load(path)?.into_scene()))
+    }
+
     /// The same input with `settings`.
     pub fn with_settings(&self, settings: RunSettings) -> Job {
         Job {

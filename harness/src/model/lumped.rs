@@ -15,7 +15,8 @@ use nalgebra::{DMatrix, Vector3};
 use super::lumped_ends::{axis, component, renumbered, Along, End, Ends, Loads, GROUND};
 use super::lumped_joints::{self, JointInfo, Planned, Site};
 use super::lumped_system::{Element, Element3, Law, System, System3};
-use crate::input::matrices::{self, MatrixModel};
+use crate::formats::MatrixModel;
+use crate::input::matrices;
 use crate::input::scene::schema::{BodyKind, SceneFile, SpringSpec};
 use crate::input::scene::Scene;
 

@@ -1,7 +1,8 @@
 //! The model variations the studies make, each a new [`Job`] on the changed input with
 //! the same settings: a screw's tightening torque (the loss study's torques), the mesh
 //! refined and the contact law sampled over the areas or not (its mesh study), the
-//! interfaces' tangential parameters scaled (its calibration).
+//! interfaces' tangential parameters scaled (its calibration), an excitation's amplitude
+//! and every box's mesh (the validation's cases).
 
 use std::sync::Arc;
 
@@ -59,6 +60,22 @@ impl Job {
                         }
                     }
                 }
+            }
+        })
+    }
+
+    /// This job with excitation `index` (input order) at `amplitude` (force); `None` if
+    /// the input has no such excitation.
+    pub fn with_excitation_amplitude(&self, index: usize, amplitude: f64) -> Option<Job> {
+        self.source.spec.excitation.get(index)?;
+        Some(self.changed(|s| s.excitation[index].amplitude = amplitude))
+    }
+
+    /// This job with every box meshed by `divisions` (x, y, z).
+    pub fn with_box_divisions(&self, divisions: [usize; 3]) -> Job {
+        self.changed(|s| {
+            for b in s.bodies.iter_mut().filter(|b| b.divisions.is_some()) {
+                b.divisions = Some(divisions);
             }
         })
     }

@@ -1,6 +1,8 @@
 //! In-place dense complex LU with partial pivoting for the condensed contact system
 //! (m × m, m = 2 × contact points), on caller-owned scratch so that the contact
-//! iterations allocate nothing.
+//! iterations allocate nothing. Right-looking and unblocked, its updates run down the
+//! columns. (LAPACK's `zgetrf` from OpenBLAS was tried: its threaded version overflows a
+//! 2 MB thread stack, as in the test harness's threads or a host code's.)
 
 use nalgebra::Complex;
 
@@ -33,17 +35,27 @@ pub fn lu_solve_in_place(a: &mut [C64], n: usize, b: &mut [C64]) -> bool {
             }
             b.swap(k, p);
         }
+        // Multipliers in column k, then the trailing columns one by one: each update is a
+        // contiguous axpy down a column (column-major), the same products and
+        // differences per entry as a row-by-row update.
         let inv = a[at(k, k)].inv();
         for i in k + 1..n {
-            let l = a[at(i, k)] * inv;
-            a[at(i, k)] = l;
-            if l != C64::new(0.0, 0.0) {
-                for c in k + 1..n {
-                    let u = a[at(k, c)];
-                    a[at(i, c)] -= l * u;
+            a[at(i, k)] *= inv;
+        }
+        let (head, tail) = a.split_at_mut(n * (k + 1));
+        let l = &head[at(k + 1, k)..];
+        for col in tail.chunks_exact_mut(n) {
+            let u = col[k];
+            if u != C64::new(0.0, 0.0) {
+                for (x, li) in col[k + 1..].iter_mut().zip(l) {
+                    *x -= li * u;
                 }
-                let bk = b[k];
-                b[i] -= l * bk;
+            }
+        }
+        let bk = b[k];
+        if bk != C64::new(0.0, 0.0) {
+            for (x, li) in b[k + 1..].iter_mut().zip(l) {
+                *x -= li * bk;
             }
         }
     }
@@ -66,7 +78,7 @@ mod tests {
     #[test]
     fn matches_nalgebra_lu_on_random_systems() {
         let mut rng = Rng::new(11);
-        for n in [1, 2, 5, 40] {
+        for n in [1, 2, 5, 40, 300] {
             let a: Vec<C64> = (0..n * n)
                 .map(|_| C64::new(rng.uniform(-1.0, 1.0), rng.uniform(-1.0, 1.0)))
                 .collect();

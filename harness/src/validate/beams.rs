@@ -3,9 +3,9 @@
 //! amplitude and joint energy per cycle against Newmark.
 
 use super::{Report, Row};
-use crate::input::scene::Scene;
-use crate::model::build;
+use crate::model::Job;
 use crate::run::{run, Extras};
+use crate::settings::{BandSpec, Spacing, SweepSpec};
 use crate::solve::static_step;
 use crate::solve::sweep::harmonic_fe_point3d::PointModel;
 use crate::time::scene_run::sweep as time_sweep;
@@ -16,25 +16,22 @@ pub const COARSE: [usize; 3] = [6, 2, 1];
 
 /// `three_beams` (scenes/three-beams.toml) with the coarse mesh and the given
 /// frequencies.
-pub fn coarse_scene(three_beams: &Scene, freqs: &[f64]) -> Result<Scene, String> {
-    let mut s = three_beams.clone();
-    for b in &mut s.spec.bodies {
-        b.divisions = Some(COARSE);
-    }
-    set_freqs(&mut s, freqs);
-    Ok(s)
+pub fn coarse_scene(three_beams: &Job, freqs: &[f64]) -> Result<Job, String> {
+    let mut job = three_beams.with_box_divisions(COARSE);
+    set_freqs(&mut job.settings.sweep, freqs);
+    Ok(job)
 }
 
 /// Replaces the sweep by explicit frequencies (a band of count 1 each).
-pub fn set_freqs(s: &mut Scene, freqs: &[f64]) {
+pub fn set_freqs(sweep: &mut SweepSpec, freqs: &[f64]) {
     let f0 = freqs[0];
-    s.spec.sweep.f_min = f0;
-    s.spec.sweep.f_max = f0;
-    s.spec.sweep.count = 1;
-    s.spec.sweep.spacing = crate::input::scene::Spacing::Linear;
-    s.spec.sweep.refine = freqs[1..]
+    sweep.f_min = f0;
+    sweep.f_max = f0;
+    sweep.count = 1;
+    sweep.spacing = Spacing::Linear;
+    sweep.refine = freqs[1..]
         .iter()
-        .map(|&f| crate::settings::BandSpec {
+        .map(|&f| BandSpec {
             bias: 1.0,
             f_min: f,
             f_max: f,
@@ -58,7 +55,7 @@ pub fn settings() -> TimeSettings {
 
 /// The two resonance frequencies of the coarse model's frequency-domain response at the
 /// first output (a log sweep, then a fine band around each of the two largest peaks).
-pub fn peaks(three_beams: &Scene) -> Result<[f64; 2], String> {
+pub fn peaks(three_beams: &Job) -> Result<[f64; 2], String> {
     let coarse: Vec<f64> = (0..=100)
         .map(|i| 600.0 * (15000.0f64 / 600.0).powf(i as f64 / 100.0))
         .collect();
@@ -92,7 +89,7 @@ pub fn peaks(three_beams: &Scene) -> Result<[f64; 2], String> {
 }
 
 /// The case.
-pub fn coarse(three_beams: &Scene, rep: &mut Report, log: &dyn Fn(&str)) -> Result<(), String> {
+pub fn coarse(three_beams: &Job, rep: &mut Report, log: &dyn Fn(&str)) -> Result<(), String> {
     let case = "three beams (coarse)";
     log(&format!("{case}: locating the peaks"));
     let [f1, f2] = peaks(three_beams)?;
@@ -101,8 +98,8 @@ pub fn coarse(three_beams: &Scene, rep: &mut Report, log: &dyn Fn(&str)) -> Resu
     let t = std::time::Instant::now();
     let fd = run(&scene, Extras::default(), &|_, _, _| {}).map_err(|e| e.to_string())?;
     let fd_seconds = t.elapsed().as_secs_f64();
-    let p = build(&scene).map_err(|e| e.to_string())?;
-    let stat = static_step::solve(&p, scene.spec.effects.normal_contact_nonlinearity)
+    let p = scene.build().map_err(|e| e.to_string())?;
+    let stat = static_step::solve(&p, scene.settings.effects.normal_contact_nonlinearity)
         .map_err(|e| e.to_string())?;
     let settings = settings();
     for (i, &f) in fd.main.freqs.iter().enumerate() {

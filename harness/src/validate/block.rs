@@ -1,7 +1,7 @@
 //! The block on a plane (thesis 4.2, Appendix C, model.md §8): stick and slip.
 
 use super::{Report, Row};
-use crate::input::scene::Scene;
+use crate::model::Job;
 use crate::run::{run, Extras};
 use crate::time::scene_run::{run_scene, FreqResult};
 use crate::time::{Integrator, TimeSettings};
@@ -21,16 +21,19 @@ pub fn settings() -> TimeSettings {
     }
 }
 
-/// The scene at force amplitude `force` (N) and ω (rad/s).
-pub fn at(base: &Scene, force: f64, omega: f64) -> Scene {
-    let mut s = base.clone();
-    s.spec.excitation[0].amplitude = force;
+/// The block's job at force amplitude `force` (N) of its excitation and ω (rad/s).
+pub fn at(base: impl Into<Job>, force: f64, omega: f64) -> Job {
+    let base: Job = base.into();
+    let mut job = base
+        .with_excitation_amplitude(0, force)
+        .expect("the block is driven by one excitation");
+    let sweep = &mut job.settings.sweep;
     let f = omega / (2.0 * std::f64::consts::PI);
-    s.spec.sweep.f_min = f;
-    s.spec.sweep.f_max = f;
-    s.spec.sweep.count = 1;
-    s.spec.sweep.refine.clear();
-    s
+    sweep.f_min = f;
+    sweep.f_max = f;
+    sweep.count = 1;
+    sweep.refine.clear();
+    job
 }
 
 /// Frequency-domain amplitude (mm), energy per cycle (N·mm), converged.
@@ -42,16 +45,16 @@ pub struct Fd {
 }
 
 /// Runs one point in both domains.
-pub fn both(scene: &Scene) -> Result<(Fd, FreqResult), String> {
+pub fn both(job: &Job) -> Result<(Fd, FreqResult), String> {
     let t = std::time::Instant::now();
-    let r = run(scene, Extras::default(), &|_, _, _| {}).map_err(|e| e.to_string())?;
+    let r = run(job, Extras::default(), &|_, _, _| {}).map_err(|e| e.to_string())?;
     let fd = Fd {
         amplitude: r.main.outputs[0][0].norm(),
         energy: r.main.power[0] / r.main.freqs[0],
         converged: r.main.converged[0],
         seconds: t.elapsed().as_secs_f64(),
     };
-    let td = run_scene(scene, &settings(), &|_, _| {}).map_err(|e| e.to_string())?;
+    let td = run_scene(job, &settings(), &|_, _| {}).map_err(|e| e.to_string())?;
     Ok((fd, td.results.into_iter().next().expect("one frequency")))
 }
 
@@ -83,7 +86,7 @@ fn rows(case: &str, param: String, fd: &Fd, td: &FreqResult, note: String, rep: 
 
 /// Block stick: F̂ 0.40–0.55 N at ω = 1.3 rad/s, ω 0.1–20 rad/s at F̂ = 0.5 N.
 /// `base` is scenes/block-stick.toml.
-pub fn stick(base: &Scene, rep: &mut Report, log: &dyn Fn(&str)) -> Result<(), String> {
+pub fn stick(base: &Job, rep: &mut Report, log: &dyn Fn(&str)) -> Result<(), String> {
     let case = "block stick";
     for force in [0.40, 0.45, 0.50, 0.55] {
         log(&format!("{case}: F = {force} N"));
@@ -132,7 +135,7 @@ pub fn stick(base: &Scene, rep: &mut Report, log: &dyn Fn(&str)) -> Result<(), S
 
 /// Block slip: F̂ 0.70–0.82 N at ω = 1.3 rad/s.
 /// `base` is scenes/block-slip.toml.
-pub fn slip(base: &Scene, rep: &mut Report, log: &dyn Fn(&str)) -> Result<(), String> {
+pub fn slip(base: &Job, rep: &mut Report, log: &dyn Fn(&str)) -> Result<(), String> {
     let case = "block slip";
     let sliding_limit = 4.0 * FRICTION_LIMIT / std::f64::consts::PI;
     for force in [0.70, 0.73, 0.76, 0.79, 0.82] {

@@ -18,7 +18,7 @@ use super::ccx::{
     CcxError, CASE_MODES,
 };
 use crate::fe::elements::ElementKind;
-use crate::input::matrices::{ccx, dofs, mtx};
+use crate::formats::{ccx, dofs, mtx};
 
 /// The element case's C3D8I frequencies (Hz), [`CASE_MODES`] of them: jointlin's,
 /// ccx's own eigenvalue run, and ccx's K and M with the bubble DOFs condensed massless.

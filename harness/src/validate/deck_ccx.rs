@@ -2,15 +2,15 @@
 //! ([`super::stack_deck`]): ccx's `*FREQUENCY` on the `*TIE` deck and on one layer
 //! alone (the free-sliding bound: identical layers sliding freely bend as one layer
 //! does), against the modes with every joint stuck (`jointlin modes`) of the same decks
-//! read through `input::load`: with `*TIE` (penalty), with `*CONTACT PAIR` stuck (μ and
-//! k_T0 large) and with k_T0 → 0 (sliding).
+//! read through the input path (`Job::load`): with `*TIE` (penalty), with `*CONTACT
+//! PAIR` stuck (μ and k_T0 large) and with k_T0 → 0 (sliding).
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 use super::ccx::run_frequencies;
 use super::stack_deck::{stack_deck, Joining};
-use crate::input;
+use crate::model::Job;
 use crate::solve::modal_stuck::{stuck_modes, ModeCount};
 
 /// Modes compared.
@@ -65,8 +65,8 @@ pub fn write_decks(dir: &Path) -> Result<Vec<PathBuf>, String> {
 
 /// The lowest `MODES` stuck-joint frequencies (Hz) of deck `path`, as `jointlin modes`.
 pub fn deck_modes(path: &Path) -> Result<Vec<f64>, String> {
-    let scene = input::load(path).map_err(|e| e.to_string())?.into_scene();
-    let m = stuck_modes(&scene, ModeCount::Exactly(MODES))?;
+    let job = Job::load(path).map_err(|e| e.to_string())?;
+    let m = stuck_modes(job, ModeCount::Exactly(MODES))?;
     Ok(m.band.modes.frequencies_hz())
 }
 

@@ -13,7 +13,7 @@ use nalgebra::DMatrix;
 use super::mesh_cards::mesh_cards;
 use crate::fe::elements::box_mesh::box_mesh;
 use crate::fe::elements::ElementKind;
-use crate::input::matrices::{ccx, dofs, mtx, MatrixModel};
+use crate::formats::{ccx, dofs, mtx, MatrixModel};
 use crate::model::craig_bampton;
 
 /// Elements along x, y, z and the beam's size (mm).

@@ -34,7 +34,7 @@ use std::path::{Path, PathBuf};
 
 use serde::Serialize;
 
-use crate::input::scene::Scene;
+use crate::model::Job;
 use crate::util::atomic;
 use crate::util::csv_table::CsvTable;
 use crate::util::number::exact;
@@ -149,22 +149,22 @@ pub struct Report {
 }
 
 /// The shipped scenes the cases start from, each read by the caller through the input
-/// path (`input::load`); a case whose scene is `None` is not run.
+/// path (`Job::load`); a case whose scene is `None` is not run.
 #[derive(Debug, Default)]
 pub struct CaseScenes {
     /// scenes/block-stick.toml.
-    pub block_stick: Option<Scene>,
+    pub block_stick: Option<Job>,
     /// scenes/block-slip.toml.
-    pub block_slip: Option<Scene>,
+    pub block_slip: Option<Job>,
     /// scenes/three-beams.toml.
-    pub three_beams: Option<Scene>,
+    pub three_beams: Option<Job>,
 }
 
 /// Runs the selected cases (those that need a scene: with it in `scenes`). `log`
 /// receives progress lines.
 pub fn run(scenes: &CaseScenes, cases: Cases, log: &dyn Fn(&str)) -> Result<Report, String> {
     let mut rep = Report::default();
-    fn need<'a>(s: &'a Option<Scene>, file: &str) -> Result<&'a Scene, String> {
+    fn need<'a>(s: &'a Option<Job>, file: &str) -> Result<&'a Job, String> {
         s.as_ref()
             .ok_or_else(|| format!("the case needs scenes/{file}, which was not given"))
     }

@@ -1,13 +1,8 @@
 //! Reduced or full models from any FE code (`[[matrices]]` of a scene): Matrix Market
 //! files for M, K and optionally D ([`mtx`]) and the DOF list that names each row by a
-//! point and a direction ([`dofs`]), read and checked into a [`MatrixModel`]; the
-//! converter of CalculiX's matrix storage files is [`ccx`]. Values are in the scene's
-//! `[units]` (M in mass, K in force/length, D in force·time/length; a generalized
+//! point and a direction ([`dofs`]), read by the readers of `formats/` and checked into a
+//! [`MatrixModel`]. Values are in the scene's `[units]` (M in mass, K in force/length, D in force·time/length; a generalized
 //! coordinate's rows in whatever units its mode shape normalization gives).
-
-pub mod ccx;
-pub mod dofs;
-pub mod mtx;
 
 #[cfg(test)]
 mod tests;
@@ -15,49 +10,19 @@ mod tests;
 use std::path::Path;
 
 use nalgebra::DMatrix;
-use thiserror::Error;
 
-pub use dofs::Dof;
+pub use crate::formats::dofs::Dof;
+pub use crate::formats::{MatrixError, MatrixModel};
 
+use crate::formats::{dofs, mtx};
 use crate::input::scene::schema::{DofsSpec, MatricesSpec};
 use crate::util::provenance::SourceFile;
-
-/// A matrix file or DOF list that cannot be used: `file:line: message` (line 0: the
-/// file as a whole).
-#[derive(Debug, Clone, Error, PartialEq)]
-#[error("{file}{}: {message}", if *.line > 0 { format!(":{}", .line) } else { String::new() })]
-pub struct MatrixError {
-    pub file: String,
-    pub line: usize,
-    pub message: String,
-}
-
-impl MatrixError {
-    pub fn at(file: &str, line: usize, message: String) -> Self {
-        MatrixError {
-            file: file.to_string(),
-            line,
-            message,
-        }
-    }
-}
 
 /// Relative asymmetry |a_ij − a_ji| / max|a| above which a `general` file is refused.
 pub const SYMMETRY_TOL: f64 = 1e-9;
 /// Smallest pivot² / diagonal of M's Cholesky factor: below it M is not positive
 /// definite enough to be a mass matrix (a row without mass, or a singular combination).
 pub const MASS_PIVOT_TOL: f64 = 1e-12;
-
-/// One `[[matrices]]` model, read and checked.
-#[derive(Debug, Clone)]
-pub struct MatrixModel {
-    pub name: String,
-    pub dofs: Vec<Dof>,
-    /// Mass (mass), stiffness (force/length), damping (force·time/length), n × n.
-    pub m: DMatrix<f64>,
-    pub k: DMatrix<f64>,
-    pub d: Option<DMatrix<f64>>,
-}
 
 fn read_text(path: &Path) -> Result<String, MatrixError> {
     std::fs::read_to_string(path)

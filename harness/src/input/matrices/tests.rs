@@ -3,6 +3,7 @@
 use std::path::Path;
 
 use super::*;
+use crate::formats::ccx;
 use crate::input::scene::schema::{DofsSpec, MatricesSpec};
 
 const M2: &str = "%%MatrixMarket matrix coordinate real symmetric\n2 2 2\n1 1 1.0\n2 2 2.0\n";

@@ -1,4 +1,4 @@
-//! The DOF list of a `[[matrices]]` model: which named point and direction each row of
+//! The DOF list of a matrices model (a scene's `[[matrices]]`): which named point and direction each row of
 //! M, K (and D) is. One row per line, `point,direction`: `tip,x` is the translation of
 //! point `tip` along x (`x`, `y`, `z`); any other direction label (`modal,1`, `q,3`) makes
 //! the row a generalized coordinate (a modal amplitude of a Craig–Bampton or modal
