@@ -21,7 +21,7 @@ use crate::solve::static_step;
 use crate::solve::sweep::{self, Options, SweepResult};
 use crate::util::rusage::peak_rss_bytes;
 
-use super::stuck_modes;
+use super::{mindlin_interface, steel_head, stuck_modes};
 
 /// Elements across the 10 mm section (each way).
 const SECTION_DIVISIONS: usize = 16;
@@ -38,18 +38,7 @@ pub fn column_scene(layers: usize, freqs: (f64, f64, usize), method: SweepMethod
         SweepMethod::Modal => "modal",
     };
     let text = format!(
-        r#"
-title = "bench column"
-[units]
-length = "mm"
-force = "N"
-time = "s"
-mass = "t"
-[materials.steel]
-E = 210000.0
-nu = 0.3
-rho = 7.85e-9
-rayleigh_alpha = 146.0
+        r#"{head}
 [[bodies]]
 name = "lower"
 kind = "box"
@@ -64,14 +53,7 @@ origin = [0.0, 0.0, {h}]
 size = [10.0, 10.0, {h}]
 divisions = [{n}, {n}, {layers}]
 material = "steel"
-[[interfaces]]
-name = "joint"
-between = ["lower", "upper"]
-law = "mindlin"
-mu = 0.2
-k_t0_per_area = 2e4
-normal_law = "linear"
-normal_stiffness_per_area = 1e6
+{joint}
 [[preload]]
 kind = "pressure"
 body = "upper"
@@ -101,6 +83,8 @@ body = "upper"
 at = [5.0, 5.0, {top}]
 direction = [1.0, 0.0, 0.0]
 "#,
+        head = steel_head("bench column"),
+        joint = mindlin_interface("joint", ["lower", "upper"]),
         f0 = freqs.0,
         f1 = freqs.1,
         count = freqs.2,
@@ -156,22 +140,21 @@ fn measure(job: &Job, freqs: &[f64]) -> Result<Measured, String> {
 }
 
 /// Largest relative differences (head amplitude, joint power) of the modal sweep `a`
-/// from the direct one `b` at b's frequencies.
-fn differences(a: &SweepResult, b: &SweepResult) -> (f64, f64) {
+/// from the direct one `b` at b's frequencies where both converged; `None` where none
+/// did.
+fn differences(a: &SweepResult, b: &SweepResult) -> Option<(f64, f64)> {
     let rel = |x: f64, y: f64| (x - y).abs() / y.abs().max(f64::MIN_POSITIVE);
-    b.freqs
-        .iter()
-        .enumerate()
-        .fold((0.0f64, 0.0f64), |acc, (j, f)| {
-            let Some(i) = a.freqs.iter().position(|g| g == f) else {
-                return acc;
-            };
-            (
-                acc.0
-                    .max(rel(a.outputs[i][0].norm(), b.outputs[j][0].norm())),
-                acc.1.max(rel(a.power[i], b.power[j])),
-            )
-        })
+    let both = b.freqs.iter().enumerate().filter_map(|(j, f)| {
+        let i = a.freqs.iter().position(|g| g == f)?;
+        (a.converged[i] && b.converged[j]).then_some((i, j))
+    });
+    both.fold(None, |acc, (i, j)| {
+        let (amp, pow) = acc.unwrap_or((0.0f64, 0.0f64));
+        Some((
+            amp.max(rel(a.outputs[i][0].norm(), b.outputs[j][0].norm())),
+            pow.max(rel(a.power[i], b.power[j])),
+        ))
+    })
 }
 
 /// Prints the table (Markdown): the modal route over `nfreq` frequencies, then the direct
@@ -193,7 +176,10 @@ pub fn modal_table(
     let direct_freqs: Vec<f64> = freqs.iter().step_by(stride.max(1)).copied().collect();
     let direct_scene = column_scene(layers, band, SweepMethod::Direct);
     let direct = measure(&direct_scene, &direct_freqs)?;
-    let (amp, pow) = differences(&modal.result, &direct.result);
+    let diffs = match differences(&modal.result, &direct.result) {
+        Some((amp, pow)) => format!("{amp:.1e} | {pow:.1e}"),
+        None => "none converged in both | –".to_string(),
+    };
     writeln!(
         out,
         "| route | free DOFs | contact points | frequencies | modes | build and static step (s) | modal basis (s) | sweep (s) | per frequency (s) | total (s) | converged | peak RSS so far (MB) | largest difference from direct, head amplitude | largest difference, joint power |"
@@ -205,12 +191,17 @@ pub fn modal_table(
     )
     .map_err(io)?;
     for (route, m, diffs) in [
-        ("modal", &modal, format!("{amp:.1e} | {pow:.1e}")),
+        ("modal", &modal, diffs),
         ("direct", &direct, "– | –".to_string()),
     ] {
         let r = &m.result;
         let n = r.freqs.len();
         let per_frequency = (m.sweep_s - m.basis_s) / n.max(1) as f64;
+        let converged = r.converged.iter().filter(|&&c| c).count();
+        let status = match r.singular.iter().filter(|&&s| s).count() {
+            0 => format!("{converged}/{n}"),
+            s => format!("{converged}/{n} ({s} singular)"),
+        };
         let modes = r.modal.as_ref().map_or("–".into(), |s| s.modes.to_string());
         let basis = if r.modal.is_some() {
             format!("{:.1}", m.basis_s)
@@ -219,13 +210,12 @@ pub fn modal_table(
         };
         writeln!(
             out,
-            "| {route} | {} | {} | {n} | {modes} | {:.1} | {basis} | {:.1} | {per_frequency:.2} | {:.1} | {}/{n} | {:.0} | {diffs} |",
+            "| {route} | {} | {} | {n} | {modes} | {:.1} | {basis} | {:.1} | {per_frequency:.2} | {:.1} | {status} | {:.0} | {diffs} |",
             m.dofs,
             m.points,
             m.static_s,
             m.sweep_s,
             m.static_s + m.sweep_s,
-            r.converged.iter().filter(|&&c| c).count(),
             m.peak_mb,
         )
         .map_err(io)?;

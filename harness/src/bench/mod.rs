@@ -30,6 +30,41 @@ pub fn stuck_modes(job: impl Into<Job>, count: usize) -> Result<Vec<f64>, String
     Ok(s.band.modes.frequencies_hz())
 }
 
+/// The benches' scenes' head: `title`, units mm, N, s, t and steel (E = 210 000 N/mm²,
+/// ν = 0.3, ρ = 7.85e-9 t/mm³, mass-proportional Rayleigh damping α = 146 /s).
+fn steel_head(title: &str) -> String {
+    format!(
+        r#"
+title = "{title}"
+[units]
+length = "mm"
+force = "N"
+time = "s"
+mass = "t"
+[materials.steel]
+E = 210000.0
+nu = 0.3
+rho = 7.85e-9
+rayleigh_alpha = 146.0"#
+    )
+}
+
+/// A joint of the benches between two bodies: the three-beams scene's Mindlin law
+/// (μ = 0.2, k_T0 = 2e4 N/mm³ per area) with a linear normal law (1e6 N/mm³).
+fn mindlin_interface(name: &str, between: [&str; 2]) -> String {
+    let [a, b] = between;
+    format!(
+        r#"[[interfaces]]
+name = "{name}"
+between = ["{a}", "{b}"]
+law = "mindlin"
+mu = 0.2
+k_t0_per_area = 2e4
+normal_law = "linear"
+normal_stiffness_per_area = 1e6"#
+    )
+}
+
 /// A three-beam scene with in-plane divisions (nx, ny) and nz per 1 mm of thickness.
 pub fn beam_scene(
     nx: usize,
@@ -40,18 +75,7 @@ pub fn beam_scene(
 ) -> Job {
     let nz = |t: usize| (t * nz_per_mm).max(1);
     let text = format!(
-        r#"
-title = "bench"
-[units]
-length = "mm"
-force = "N"
-time = "s"
-mass = "t"
-[materials.steel]
-E = 210000.0
-nu = 0.3
-rho = 7.85e-9
-rayleigh_alpha = 146.0
+        r#"{head}
 [[bodies]]
 name = "bottom"
 kind = "box"
@@ -73,22 +97,8 @@ origin = [0.0, 0.0, 3.0]
 size = [60.0, 10.0, 2.0]
 divisions = [{nx}, {ny}, {n2}]
 material = "steel"
-[[interfaces]]
-name = "lower"
-between = ["bottom", "middle"]
-law = "mindlin"
-mu = 0.2
-k_t0_per_area = 2e4
-normal_law = "linear"
-normal_stiffness_per_area = 1e6
-[[interfaces]]
-name = "upper"
-between = ["middle", "top"]
-law = "mindlin"
-mu = 0.2
-k_t0_per_area = 2e4
-normal_law = "linear"
-normal_stiffness_per_area = 1e6
+{lower}
+{upper}
 [[preload]]
 kind = "pressure"
 body = "top"
@@ -128,6 +138,9 @@ body = "middle"
 at = [60.0, 5.0, 3.0]
 direction = [0.0, 0.0, 1.0]
 "#,
+        head = steel_head("bench"),
+        lower = mindlin_interface("lower", ["bottom", "middle"]),
+        upper = mindlin_interface("upper", ["middle", "top"]),
         n2 = nz(2),
         n1 = nz(1),
         f0 = freqs.0,
