@@ -43,12 +43,14 @@ pub trait Entry: Copy + Default + Send + Sync + private::Sealed + 'static {
         control: *const f64,
         info: *mut f64,
     ) -> i64;
-    /// umfpack_*_solve of A x = b.
+    /// umfpack_*_solve of the system `sys` (`ffi::UMFPACK_A`: A x = b,
+    /// `ffi::UMFPACK_AT`: Aᴴ x = b).
     ///
     /// # Safety
     /// As [`Entry::numeric`]; `x` and `b` hold n entries; `numeric` from this family.
     #[allow(clippy::too_many_arguments)]
     unsafe fn solve(
+        sys: i64,
         ap: *const i64,
         ai: *const i64,
         ax: *const Self,
@@ -110,6 +112,7 @@ impl Entry for f64 {
         ffi::umfpack_dl_numeric(ap, ai, ax, symbolic, out, control, info)
     }
     unsafe fn solve(
+        sys: i64,
         ap: *const i64,
         ai: *const i64,
         ax: *const Self,
@@ -119,7 +122,7 @@ impl Entry for f64 {
         control: *const f64,
         info: *mut f64,
     ) -> i64 {
-        ffi::umfpack_dl_solve(ffi::UMFPACK_A, ap, ai, ax, x, b, numeric, control, info)
+        ffi::umfpack_dl_solve(sys, ap, ai, ax, x, b, numeric, control, info)
     }
     unsafe fn free_symbolic(p: *mut *mut c_void) {
         ffi::umfpack_dl_free_symbolic(p)
@@ -169,6 +172,7 @@ impl Entry for Complex<f64> {
         )
     }
     unsafe fn solve(
+        sys: i64,
         ap: *const i64,
         ai: *const i64,
         ax: *const Self,
@@ -179,7 +183,7 @@ impl Entry for Complex<f64> {
         info: *mut f64,
     ) -> i64 {
         ffi::umfpack_zl_solve(
-            ffi::UMFPACK_A,
+            sys,
             ap,
             ai,
             ax as *const f64,

@@ -16,6 +16,8 @@ pub const UMFPACK_STRATEGY_USED: usize = 18;
 pub const UMFPACK_RCOND: usize = 67;
 /// Solve A x = b.
 pub const UMFPACK_A: i64 = 0;
+/// Solve Aᴴ x = b (the conjugate transpose; Aᵀ for a real matrix).
+pub const UMFPACK_AT: i64 = 1;
 /// Control index: maximum iterative-refinement steps per solve (default 2).
 pub const UMFPACK_IRSTEP: usize = 7;
 

@@ -31,6 +31,7 @@ use crate::fe::csc::{Csc, CscPattern};
 
 type C64 = Complex<f64>;
 
+mod condition;
 mod entry;
 mod ffi;
 
@@ -292,6 +293,15 @@ impl<T: Entry> Numeric<'_, T> {
 
     /// Solves A x = b for one right-hand side into `x` (both length n).
     pub fn solve_into(&self, b: &[T], x: &mut [T]) -> Result<(), UmfpackError> {
+        self.solve_system(ffi::UMFPACK_A, b, x)
+    }
+
+    /// Solves Aᴴ x = b (the conjugate transpose) into `x` with the same factors.
+    pub fn solve_adjoint_into(&self, b: &[T], x: &mut [T]) -> Result<(), UmfpackError> {
+        self.solve_system(ffi::UMFPACK_AT, b, x)
+    }
+
+    fn solve_system(&self, sys: i64, b: &[T], x: &mut [T]) -> Result<(), UmfpackError> {
         let n = self.a.n();
         for len in [b.len(), x.len()] {
             if len != n {
@@ -304,6 +314,7 @@ impl<T: Entry> Numeric<'_, T> {
         // entries of x and b); the Numeric object (T's family) is valid while self lives.
         let code = unsafe {
             T::solve(
+                sys,
                 p.col_ptr.as_ptr(),
                 p.row_idx.as_ptr(),
                 self.a.values.as_ptr(),
