@@ -239,14 +239,17 @@ fn open_joint_at_undamped_eigenfrequencies_is_named_singular() {
         refine: Vec::new(),
         ..Default::default()
     };
-    // UMFPACK's rcond at f₁ and near it, as the sweep sees it (printed for the docs).
+    // UMFPACK's pivot ratio and the 1-norm condition estimate at f₁ and near it, as
+    // the sweep sees them (printed for the docs).
     let p = build(&s).unwrap();
     let stat = static_step::solve(&p, true).unwrap();
     let mut setup = Setup::new(&p, &stat, &s.spec.effects).unwrap();
     for rel in [0.0, 1e-10, 1e-6] {
         setup.fill(2.0 * PI * modes[0] * (1.0 - rel), &[], &[]);
-        let rcond = setup.symbolic.factor(&setup.s).map(|n| n.rcond());
-        eprintln!("open joint, {rel:e} below f1: rcond {rcond:?}");
+        let num = setup.symbolic.factor(&setup.s);
+        let ratio = num.as_ref().map(|n| n.rcond());
+        let estimate = num.as_ref().map(|n| n.rcond1_estimate());
+        eprintln!("open joint, {rel:e} below f1: pivot ratio {ratio:?}, estimate {estimate:?}");
     }
     for method in [SweepMethod::Direct, SweepMethod::Modal] {
         near.spec.sweep.method = method;

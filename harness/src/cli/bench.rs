@@ -27,7 +27,7 @@ pub struct Args {
     #[arg(long, conflicts_with = "contact_scan")]
     modal_box: bool,
     /// With --modal-box: the direct route runs every this many frequencies.
-    #[arg(long, default_value_t = 25, value_parser = clap::value_parser!(u64).range(1..))]
+    #[arg(long, default_value_t = 10, value_parser = clap::value_parser!(u64).range(1..))]
     direct_stride: u64,
 }
 

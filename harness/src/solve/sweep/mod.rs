@@ -30,6 +30,7 @@ mod modal_residual;
 pub mod modal_route;
 pub mod posteriori;
 pub mod receptance;
+mod regular;
 pub mod scale;
 pub mod thesis;
 
@@ -47,10 +48,12 @@ use crate::model::Problem;
 use crate::settings::{Effects, IterationSpec};
 use crate::solve::contact::normal_stiffness;
 use crate::solve::static_step::StaticState;
-use crate::solve::umfpack::{Numeric, Symbolic, UmfpackError};
+use crate::solve::umfpack::{Symbolic, UmfpackError};
 use crate::util::number::sig;
 
 pub type C64 = Complex<f64>;
+
+pub use regular::{PIVOT_RATIO_SCREEN, SINGULAR_RCOND};
 
 /// Absolute amplitude tolerance relative to the problem's own amplitude scale (never to
 /// the user's start estimate `initial_amplitude`): both modes accept
@@ -62,22 +65,6 @@ pub type C64 = Complex<f64>;
 /// accepted any amplitude below it: the block of scenes/block-stick.toml with
 /// k_T0 = 1e12 N/mm³ converged at 1.40e-11 mm instead of 5.49e-13 mm.
 pub const ATOL_REL: f64 = 1e-6;
-
-/// A frequency whose dynamic stiffness factorizes with UMFPACK's pivot ratio
-/// min|Uᵢᵢ|/max|Uᵢᵢ| below this and with the estimated reciprocal 1-norm condition
-/// number (`Numeric::rcond1_estimate`, as LAPACK's zgecon) below it too (or with UMFPACK
-/// status 1, an exactly zero pivot) is reported singular: no response is computed there,
-/// the sweep goes on. The pivot ratio alone misfired on a regular matrix: a damped
-/// steel column of two 10 × 10 × 36 mm boxes in 0.625 mm cubes (101 439 DOFs, 1500 Hz,
-/// 6 % below its first mode) has a pivot ratio below 1e-14; with 30 layers per box
-/// (51k DOFs) 3.7e-12, where one solve bounds the condition by 2.6e-5.
-/// The same threshold applies to the bound of one solve ([`Setup::rcond_bound`]).
-/// Measured on scenes/hard: healthy matrices 1.5e-9 (joint stiffness ratio
-/// k_T0·L/(E·A) = 1e6) to 3e-3; the undamped open joint of open-resonance.toml 6.9e-17
-/// exactly at its eigenfrequency, 9.2e-16 1e-10 below it (the response there has at
-/// most one correct digit), 1.0e-11 1e-6 below. The threshold keeps five decades from the
-/// stiffest healthy case.
-pub const SINGULAR_RCOND: f64 = 1e-14;
 
 /// Errors of a sweep.
 #[derive(Debug, Error)]
@@ -297,7 +284,7 @@ impl<'a> Setup<'a> {
         stat: &StaticState,
         effects: &Effects,
     ) -> Result<Self, UmfpackError> {
-        let mut symbolic = Symbolic::new(problem.sys.pattern.clone())?;
+        let mut symbolic = Symbolic::symmetric_best(problem.sys.pattern.clone())?;
         // Refinement would triple the cost of the m receptance solves; the amplitude
         // tolerance (≥ 1e-6 relative) is far above the unrefined solve's error.
         symbolic.set_refinement_steps(0);
@@ -390,49 +377,6 @@ impl<'a> Setup<'a> {
                 .pairs
                 .add(&mut self.s.values, sp.pair, &blk);
         }
-    }
-
-    /// Factorizes `self.s` (filled by [`Setup::fill`]) for frequency `f`: `None` when it
-    /// is singular (UMFPACK status 1, or both the pivot ratio and the estimated
-    /// reciprocal 1-norm condition below [`SINGULAR_RCOND`]).
-    pub fn factor(&self, f: f64) -> Result<Option<Numeric<'_>>, SweepError> {
-        let umf = |source| SweepError::Umfpack { freq: f, source };
-        match self.symbolic.factor(&self.s) {
-            Ok(num) if num.rcond() >= SINGULAR_RCOND => Ok(Some(num)),
-            // A low pivot ratio is confirmed by the 1-norm estimate before the matrix
-            // is called singular.
-            Ok(num) => match num.rcond1_estimate() {
-                Ok(r) if r >= SINGULAR_RCOND => Ok(Some(num)),
-                Ok(_) | Err(UmfpackError::NonFinite) => Ok(None),
-                Err(source) => Err(umf(source)),
-            },
-            Err(UmfpackError::Singular { .. }) => Ok(None),
-            Err(source) => Err(umf(source)),
-        }
-    }
-
-    /// An upper bound of the reciprocal 2-norm condition number of `self.s` from one
-    /// solve x = S⁻¹ f: ‖S⁻¹‖₂ ≥ ‖x‖₂/‖f‖₂ and ‖S‖₂ ≥ c, the largest column 2-norm, so
-    /// rcond₂ ≤ ‖f‖₂/(c‖x‖₂). Below [`SINGULAR_RCOND`] the matrix is singular by the
-    /// same rule as UMFPACK's pivot estimate, which misses a near-zero eigenvalue that no
-    /// single pivot shows: the undamped stuck joint of three-beams-coarse at its
-    /// `jointlin modes` frequency 1174.498 Hz had a pivot ratio above 1e-14 and a
-    /// response of 1.38e6 mm (bound 1e-15 from that solve).
-    pub fn rcond_bound(&self, f: &[C64], x: &[C64]) -> f64 {
-        let p = &self.s.pattern;
-        let c = (0..p.n)
-            .map(|j| {
-                let k = p.col_ptr[j] as usize..p.col_ptr[j + 1] as usize;
-                self.s.values[k].iter().map(|v| v.norm_sqr()).sum::<f64>()
-            })
-            .fold(0.0f64, f64::max)
-            .sqrt();
-        let norm = |v: &[C64]| v.iter().map(|z| z.norm_sqr()).sum::<f64>().sqrt();
-        let (nf, nx) = (norm(f), norm(x));
-        if nx == 0.0 {
-            return 1.0;
-        }
-        nf / (c * nx)
     }
 
     /// Tangential relative displacement amplitudes (complex) of active point j.

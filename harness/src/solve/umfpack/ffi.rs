@@ -12,6 +12,10 @@ pub const UMFPACK_STRATEGY: usize = 5;
 pub const UMFPACK_STRATEGY_SYMMETRIC: f64 = 3.0;
 /// Info index of the strategy the symbolic analysis used.
 pub const UMFPACK_STRATEGY_USED: usize = 18;
+/// Control index of the fill-reducing ordering, and its value "try AMD, METIS and
+/// nested dissection, keep the one with the least fill".
+pub const UMFPACK_ORDERING: usize = 10;
+pub const UMFPACK_ORDERING_BEST: f64 = 4.0;
 /// Info index of the estimated reciprocal condition number.
 pub const UMFPACK_RCOND: usize = 67;
 /// Solve A x = b.

@@ -40,7 +40,7 @@ use crate::mhb::MhbError;
 use crate::solve::contact::tangential;
 use crate::solve::sweep::modal_route::{ModalRoute, ModalRouteError, ModeChoice};
 use crate::solve::sweep::receptance::Receptance;
-use crate::solve::sweep::{Setup, C64, SINGULAR_RCOND};
+use crate::solve::sweep::{Setup, C64};
 use crate::solve::umfpack::UmfpackError;
 use crate::util::rusage::cpu_seconds;
 
@@ -255,8 +255,8 @@ impl<'s, 'a> FeBalance<'s, 'a> {
     }
 
     /// The per-harmonic factorizations and receptances at ω (rad/time). `Ok(false)` when
-    /// a harmonic's dynamic stiffness (stuck joint) is singular (UMFPACK status 1 or rcond
-    /// below [`SINGULAR_RCOND`], as in the other modes): no balance at this ω.
+    /// a harmonic's dynamic stiffness (stuck joint) is singular ([`Setup::factor_regular`],
+    /// as in the other modes): no balance at this ω.
     pub fn condense(&mut self, omega: f64) -> Result<bool, UmfpackError> {
         let (t, cpu) = (Instant::now(), cpu_seconds());
         self.omega = omega;
@@ -277,14 +277,13 @@ impl<'s, 'a> FeBalance<'s, 'a> {
             // No cubic springs here: sweep::run refuses them in this mode.
             self.setup.fill(h as f64 * omega, &kref, &[]);
             self.stats.factorizations += 1;
-            let num = match self.setup.symbolic.factor(&self.setup.s) {
-                Ok(num) if num.rcond() >= SINGULAR_RCOND => num,
-                Ok(_) | Err(UmfpackError::Singular { .. }) => {
+            let num = match self.setup.factor_regular()? {
+                Some(num) => num,
+                None => {
                     self.stats.receptance_seconds += t.elapsed().as_secs_f64();
                     self.stats.receptance_cpu += cpu_seconds() - cpu;
                     return Ok(false);
                 }
-                Err(e) => return Err(e),
             };
             if h == 1 {
                 rec.load(&num, &p.excitation, &row, &p.outputs)?;
