@@ -43,7 +43,7 @@ const FGMRES_SOLVES: [f64; 2] = [1.0, 40.0];
 /// solve with the excitation.
 pub fn measure(p: &Problem, omega: f64) -> Result<Measured, UmfpackError> {
     let t = Instant::now();
-    let symbolic = Symbolic::new(p.sys.pattern.clone())?;
+    let symbolic = Symbolic::symmetric_best(p.sys.pattern.clone())?;
     let analysis = t.elapsed().as_secs_f64();
     let mut base = p.sys.k.values.clone();
     for c in &p.contacts {

@@ -100,7 +100,7 @@ pub fn initial_state(
                 x.im += omega * dv;
             }
         }
-        let sym = Symbolic::new(p.sys.pattern.clone())?;
+        let sym = Symbolic::symmetric_best(p.sys.pattern.clone())?;
         let uhat = sym.factor(&s)?.solve(&p.excitation)?;
         for i in 0..n {
             st.u[i] += uhat[i].re;
