@@ -81,6 +81,7 @@ fn run_body(job: &Job, r: &RunResult) -> serde_json::Value {
         "failed_frequencies": m.freqs.iter().enumerate().filter_map(|(i, f)| m.failure(i).map(|e| json!({"frequency": shown(*f), "error": e}))).collect::<Vec<_>>(),
         "a_posteriori_checks": checks_at(&m.freqs.iter().map(|&f| shown(f)).collect::<Vec<_>>(), &m.checks),
         "singular_rcond_threshold": crate::solve::sweep::SINGULAR_RCOND,
+        "singular_rcond_estimate_threshold": crate::solve::sweep::SINGULAR_RCOND_ESTIMATE,
         "factorizations": m.factorizations,
         // The modal route's basis (null for the direct route); its a-posteriori checks'
         // relative_residual is then the truncation error in the full equations.

@@ -35,6 +35,7 @@ pub mod scale;
 pub mod thesis;
 
 use std::collections::BTreeMap;
+use std::sync::OnceLock;
 use std::time::Instant;
 
 use nalgebra::{Complex, Matrix3, Vector3};
@@ -53,7 +54,7 @@ use crate::util::number::sig;
 
 pub type C64 = Complex<f64>;
 
-pub use regular::{PIVOT_RATIO_SCREEN, SINGULAR_RCOND};
+pub use regular::{PIVOT_RATIO_SCREEN, SINGULAR_RCOND, SINGULAR_RCOND_ESTIMATE};
 
 /// Absolute amplitude tolerance relative to the problem's own amplitude scale (never to
 /// the user's start estimate `initial_amplitude`): both modes accept
@@ -253,7 +254,9 @@ impl SweepResult {
 /// Shared per-sweep data.
 pub struct Setup<'a> {
     pub problem: &'a Problem,
-    pub symbolic: Symbolic,
+    /// The symbolic analysis of S(ω)'s pattern, made at the first factorization
+    /// ([`Setup::symbolic`]; the modal route never needs it).
+    symbolic: OnceLock<Symbolic>,
     /// K + normal springs (+ stick springs k_T0 when microslip is off), on the pattern.
     pub base: Vec<f64>,
     /// Contact indices with varying tangential springs (closed, microslip on).
@@ -284,10 +287,6 @@ impl<'a> Setup<'a> {
         stat: &StaticState,
         effects: &Effects,
     ) -> Result<Self, UmfpackError> {
-        let mut symbolic = Symbolic::symmetric_best(problem.sys.pattern.clone())?;
-        // Refinement would triple the cost of the m receptance solves; the amplitude
-        // tolerance (≥ 1e-6 relative) is far above the unrefined solve's error.
-        symbolic.set_refinement_steps(0);
         let mut base = problem.sys.k.values.clone();
         let mut active = Vec::new();
         let mut unit_blocks = Vec::new();
@@ -329,7 +328,7 @@ impl<'a> Setup<'a> {
         };
         Ok(Setup {
             problem,
-            symbolic,
+            symbolic: OnceLock::new(),
             base,
             active,
             friction_samples: stat.friction_samples.clone(),
@@ -341,6 +340,19 @@ impl<'a> Setup<'a> {
             structural,
             s: problem.sys.complex_zeros(),
         })
+    }
+
+    /// The symbolic analysis of S(ω)'s pattern (UMFPACK's symmetric strategy, the
+    /// least-fill ordering: [`Symbolic::symmetric_best`]), made once per sweep.
+    pub fn symbolic(&self) -> Result<&Symbolic, UmfpackError> {
+        if let Some(s) = self.symbolic.get() {
+            return Ok(s);
+        }
+        let mut s = Symbolic::symmetric_best(self.problem.sys.pattern.clone())?;
+        // Refinement would triple the cost of the m receptance solves; the amplitude
+        // tolerance (≥ 1e-6 relative) is far above the unrefined solve's error.
+        s.set_refinement_steps(0);
+        Ok(self.symbolic.get_or_init(|| s))
     }
 
     /// Writes S(ω) with tangential κ (per area) for every active point and k* for every

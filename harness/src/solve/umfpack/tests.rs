@@ -354,3 +354,51 @@ fn the_condition_estimate_holds_on_a_long_chain() {
     let estimate = num.rcond1_estimate().unwrap();
     assert!(estimate >= exact * (1.0 - 1e-10) && estimate <= 3.0 * exact);
 }
+
+#[test]
+fn the_row_equilibrated_estimate_matches_the_dense_one_and_ignores_row_scales() {
+    // κ₁(DA)⁻¹ with D = diag(1/Σⱼ|aᵢⱼ|): within 3 of the exact value (an upper
+    // estimate), and the same after every row of A is multiplied by 10^(±8): a
+    // stiff equation is not a near-singular one.
+    let mut rng = Rng::new(91);
+    let norm1 = |m: &DMatrix<C64>| {
+        (0..m.ncols())
+            .map(|j| m.column(j).iter().map(|v| v.norm()).sum::<f64>())
+            .fold(0.0f64, f64::max)
+    };
+    for (n, per_col) in [(1, 0), (12, 2), (60, 3)] {
+        let a = random_matrix(&mut rng, n, per_col);
+        let mut scaled = a.clone();
+        let p = a.pattern.clone();
+        for j in 0..n {
+            for k in p.col_ptr[j] as usize..p.col_ptr[j + 1] as usize {
+                let i = p.row_idx[k] as usize;
+                scaled.values[k] *= if i % 2 == 0 { 1e8 } else { 1e-8 };
+            }
+        }
+        let sym = Symbolic::new(p).unwrap();
+        let (num, num_scaled) = (sym.factor(&a).unwrap(), sym.factor(&scaled).unwrap());
+        let mut da = a.to_dense();
+        for mut row in da.row_iter_mut() {
+            let sum: f64 = row.iter().map(|v| v.norm()).sum();
+            row /= C64::new(sum, 0.0);
+        }
+        let exact = 1.0 / (norm1(&da) * norm1(&da.clone().try_inverse().unwrap()));
+        let (e, e_scaled) = (
+            num.rcond1_row_equilibrated_estimate().unwrap(),
+            num_scaled.rcond1_row_equilibrated_estimate().unwrap(),
+        );
+        assert!(
+            e >= exact * (1.0 - 1e-10) && e <= 3.0 * exact,
+            "n={n}: {e:e} vs {exact:e}"
+        );
+        assert!(
+            (e_scaled / e - 1.0).abs() < 1e-6,
+            "n={n}: {e_scaled:e} vs {e:e}"
+        );
+        // The unscaled 1-norm estimate sees the 1e16 between the rows.
+        if n > 1 {
+            assert!(num_scaled.rcond1_estimate().unwrap() < 1e-10 * e);
+        }
+    }
+}
