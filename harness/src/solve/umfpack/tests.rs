@@ -373,7 +373,7 @@ fn the_row_equilibrated_estimate_matches_the_dense_one_and_ignores_row_scales() 
         for j in 0..n {
             for k in p.col_ptr[j] as usize..p.col_ptr[j + 1] as usize {
                 let i = p.row_idx[k] as usize;
-                scaled.values[k] *= if i % 2 == 0 { 1e8 } else { 1e-8 };
+                scaled.values[k] *= if i.is_multiple_of(2) { 1e8 } else { 1e-8 };
             }
         }
         let sym = Symbolic::new(p).unwrap();
