@@ -261,6 +261,27 @@ fn open_joint_at_undamped_eigenfrequencies_is_named_singular() {
 }
 
 #[test]
+fn a_sweep_of_only_singular_frequencies_still_writes_every_report() {
+    // The undamped open joint swept at its first eigenfrequency alone: the one row is
+    // singular, and results.csv, run.json and the (empty) FRF plot are all written
+    // (the plot's frequency range once came from the responses only, so the reports
+    // stopped at frf.svg with "no frequencies" and run.json was missing).
+    let mut s = scene("open-resonance.toml");
+    let f1 = s.spec.sweep.refine[0].f_min;
+    s.spec.sweep = jointlin_harness::input::scene::SweepSpec {
+        f_min: f1,
+        f_max: f1,
+        count: 1,
+        refine: Vec::new(),
+        ..s.spec.sweep.clone()
+    };
+    let (r, csv, json) = run_cli_path(&s, "open-only-singular");
+    assert!(r.main.is_singular(0));
+    assert!(csv.lines().nth(1).unwrap().ends_with(",singular"), "{csv}");
+    assert_eq!(json["singular_frequencies"].as_array().unwrap().len(), 1);
+}
+
+#[test]
 fn near_zero_damping_at_resonance_is_bounded_by_the_joint() {
     // ζ ≈ 4e-14 of material damping, the sweep through the stuck resonance (in the
     // sweep exactly): only the joint's friction bounds the response. Every frequency

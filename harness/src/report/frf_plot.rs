@@ -89,6 +89,11 @@ pub fn frf_curves(
         .map(|&(a, b)| (fu.show(a), fu.show(b)))
         .collect();
     panel(&top, title, units, names, curves, (x, y), &shades)?;
+    if curves.iter().all(|c| c.points.is_empty()) {
+        let note = "no response at any frequency: each one singular or failed (results.csv)";
+        top.draw(&Text::new(note, (150, 270), ("sans-serif", 18)))
+            .map_err(err)?;
+    }
     for (&(a, b), area) in bands
         .iter()
         .zip(bottom.split_evenly((1, bands.len().max(1))))
@@ -302,8 +307,16 @@ type FrfChart<'a, 'b> =
 /// ending on labelled ticks).
 fn ranges(curves: &[FrfCurve], fu: &FrequencyUnit) -> Result<(Range, Range), String> {
     let main = curves.first().ok_or("no sweep")?;
-    let f0 = fu.show(main.points.first().ok_or("no frequencies")?.0);
-    let f1 = fu.show(main.points.last().ok_or("no frequencies")?.0);
+    // The frequencies the sweep ran, with or without a response: a sweep whose every
+    // frequency is singular still gets its (empty) chart.
+    let ran = main.grid.iter().chain(main.points.iter().map(|(f, _)| f));
+    let (f0, f1) = ran.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &f| {
+        (a.min(f), b.max(f))
+    });
+    if f0 > f1 {
+        return Err("no frequencies".into());
+    }
+    let (f0, f1) = (fu.show(f0), fu.show(f1));
     let positive = curves
         .iter()
         .flat_map(|c| c.points.iter().flat_map(|(_, row)| row.iter().copied()))
