@@ -152,8 +152,9 @@ pub fn march(law: &Law, delta: &[f64]) -> Result<Period, AftError> {
 
 /// [`march`] from a point's `start` state, e.g. the closed loop of a nearby δ: a
 /// perturbed loop then closes in two or three periods where a virgin start takes up to
-/// eleven. The closed loop is the same (the loop an element settles on does not depend
-/// on where it started; the closure test is unchanged).
+/// eleven. Jenkins and Masing loops are the same from any start; a thesis-rule loop
+/// under a δ with minor reversals may close on another loop than from a virgin start
+/// (6e-3 μF_N apart in `mhb::tests::thesis_loops`; docs/backbone-fe.md).
 pub fn march_from(
     law: &Law,
     delta: &[f64],

@@ -57,4 +57,5 @@ fn initial(hb: &Hb, u: &[f64], omega: f64) -> (Vec<f64>, Vec<f64>) {
 mod basics;
 mod duffing;
 mod friction;
+mod thesis_loops;
 mod time_domain;

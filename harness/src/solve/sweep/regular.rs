@@ -57,10 +57,11 @@ impl Setup<'_> {
 
     /// An upper bound of the reciprocal 2-norm condition number of `self.s` from one
     /// solve x = S⁻¹ f: ‖S⁻¹‖₂ ≥ ‖x‖₂/‖f‖₂ and ‖S‖₂ ≥ c, the largest column 2-norm, so
-    /// rcond₂ ≤ ‖f‖₂/(c‖x‖₂). Below [`SINGULAR_RCOND`] the frequency is singular for this load. It
-    /// catches a near-zero eigenvalue that no single pivot shows: the undamped stuck joint of three-beams-coarse at its
-    /// `jointlin modes` frequency 1174.498 Hz had a pivot ratio above 1e-14 and a
-    /// response of 1.38e6 mm (bound 1e-15 from that solve).
+    /// rcond₂ ≤ ‖f‖₂/(c‖x‖₂). Below [`SINGULAR_RCOND`] the frequency is singular for
+    /// this load. It catches a near-zero eigenvalue that no single pivot shows: the
+    /// undamped stuck joint of three-beams-coarse at its `jointlin modes` frequency
+    /// 1174.498 Hz had a pivot ratio above 1e-14 and a response of 1.38e6 mm (bound
+    /// 1e-15 from that solve).
     pub fn rcond_bound(&self, f: &[C64], x: &[C64]) -> f64 {
         let p = &self.s.pattern;
         let c = (0..p.n)
