@@ -373,10 +373,12 @@ fn all_points_at_the_slip_limit_at_once() {
     // A stiff block on 9 points of uniform pressure, driven with the force that makes the
     // consistent amplitude exactly δ* (the scene's traction is that force / 50 mm²,
     // checked to 1e-12): A/δ* = 1 on all 9 points within 1e-5 (pressure and slip are
-    // uniform to ~2e-6 with E = 2.1e11; iteration tolerance 1e-6), in fast and thesis
-    // mode, converged. Straddling the kink by ±1e-9 in force moves the response by less
-    // than 3e-6 (measured 1.1e-6: amplitudes each converged to 1e-6): no jump where
-    // microslip turns into sliding.
+    // uniform to ~2e-6 with E = 2.1e11), in fast and thesis mode, converged. Straddling
+    // the kink by ±1e-9 in force moves the response by less than 1e-7 (measured 1.9e-8):
+    // no jump where microslip turns into sliding. The runs iterate to 1e-8, not the
+    // scene's 1e-6: at 1e-6 each amplitude stops anywhere within the tolerance (the
+    // spread measured 1.1e-6 and 3.2e-6 on two machines), which says nothing about a
+    // jump.
     let s = scene("slip-limit.toml");
     let t = Tangential {
         law: s.spec.interfaces[0].law,
@@ -398,6 +400,7 @@ fn all_points_at_the_slip_limit_at_once() {
     ] {
         let mut s = s.clone();
         s.spec.iteration.mode = mode;
+        s.spec.iteration.tolerance = 1e-8;
         s.spec.excitation[0].amplitude = traction * scale;
         let (r, _, _) = run_cli_path(&s, &format!("slip-{mode:?}-{scale}"));
         assert!(r.main.converged[0], "{mode:?} {scale}");
@@ -414,7 +417,7 @@ fn all_points_at_the_slip_limit_at_once() {
     let spread = amps[1..]
         .iter()
         .fold(0.0f64, |m, a| m.max((a / amps[0] - 1.0).abs()));
-    assert!(spread < 3e-6, "{amps:?}");
+    assert!(spread < 1e-7, "{amps:?} {spread:e}");
     eprintln!("slip limit: thesis and F(1 ± 1e-9) within {spread:.2e} of fast");
 }
 
