@@ -267,6 +267,45 @@ pub fn stick_limit(sys: &System, shape: &[C64]) -> Result<f64, BackboneError> {
     Ok(q)
 }
 
+/// ω (rad/time) and the damping ξ = φᴴ D* φ/φᴴMφ (1/time) of the Rayleigh quotients of
+/// the system linearized at the motion q·φ: each contact's k*, d* (`jointlin_linearize`)
+/// at its amplitude q|P_e φ|, D* = D + Σ d* PᵀP, ω² = φᴴ(K + Σ k* PᵀP)φ/φᴴMφ (d*
+/// depends on ω, so ω is iterated from `omega` three times). The first-order estimate of
+/// the mode at modal amplitude q with shape φ: the EPMC's start.
+pub fn rayleigh(
+    sys: &System,
+    shape: &[C64],
+    q: f64,
+    omega: f64,
+) -> Result<(f64, f64), BackboneError> {
+    let amp: Vec<f64> = relative(sys, shape).iter().map(|r| q * r).collect();
+    let quadratic = |a: &DMatrix<f64>| {
+        let mut v = C64::new(0.0, 0.0);
+        for (i, x) in shape.iter().enumerate() {
+            for (j, y) in shape.iter().enumerate() {
+                v += x.conj() * y * a[(i, j)];
+            }
+        }
+        v.re
+    };
+    let mass = quadratic(&sys.m);
+    let (mut w, mut xi) = (omega, 0.0);
+    for _ in 0..3 {
+        let lin = linearized(sys, &amp, w)?;
+        let mut k = sys.k.clone();
+        add_elements(sys, &mut k, |i| lin[i].0);
+        let mut d = sys.d.clone();
+        add_elements(sys, &mut d, |i| lin[i].1);
+        let w2 = quadratic(&k) / mass;
+        if !(w2 > 0.0 && w2.is_finite()) {
+            break;
+        }
+        w = w2.sqrt();
+        xi = quadratic(&d) / mass;
+    }
+    Ok((w, xi))
+}
+
 /// Contacts that move less than this fraction of the one moving most are left out of
 /// [`slip_range`]: a reduced FE model's lateral directions of a bending mode move at
 /// round-off level, and their "onsets" would stretch the range by ten decades.

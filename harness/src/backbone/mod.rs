@@ -15,6 +15,7 @@
 //! - [`ringdown`]: a free decay integrated in time through the C API, the reference
 //!   the backbones are checked against.
 
+pub mod degenerate;
 pub mod epmc;
 pub mod fe;
 pub mod first_order;

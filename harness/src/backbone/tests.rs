@@ -476,3 +476,125 @@ fn amplitude_stepping_follows_the_arclength_path_where_it_does_not_turn() {
         }
     }
 }
+
+/// A thesis-rule Mindlin point to ground (μF_N = 0.1, k_T0 = 2) on each DOF in `on`.
+fn thesis_points(on: &[usize]) -> Vec<Element> {
+    let law = Law::Point(Tangential {
+        law: LawName::Mindlin,
+        rule: RuleName::Thesis,
+        mu: 1.0,
+        normal: 0.1,
+        k_t0: 2.0,
+    });
+    on.iter().map(|&i| Element { i, j: None, law }).collect()
+}
+
+/// Unit masses with stiffness `k`, no damping, no load, and the thesis points `on`.
+fn undamped(k: DMatrix<f64>, on: &[usize]) -> System {
+    let n = k.nrows();
+    System {
+        m: DMatrix::identity(n, n),
+        d: DMatrix::zeros(n, n),
+        k,
+        f0: vec![0.0; n],
+        f1: vec![C64::new(0.0, 0.0); n],
+        elements: thesis_points(on),
+    }
+}
+
+#[test]
+fn a_structure_held_only_by_friction_has_a_multi_harmonic_backbone() {
+    // m₁ –1– m₂ with the point on m₁ and nothing else to ground: K is singular (the pair
+    // translates freely) and the thesis rule's closed loop is the same for every mean
+    // offset, so the mean rows of the balance vanish and the Jacobian was singular at the
+    // first amplitude ("Newton did not converge"). The gauge spring on the free mean
+    // picks the motion without offset: the backbone converges (H = 1 and 3 under the
+    // thesis rule, 3 and 7 under Masing's; the thesis rule at H ≥ 5 crawls over its
+    // loop's jumps, docs/backbone-fe.md), the mean stays zero, and H = 1 is the
+    // first-order backbone up to the O(ζ²) of contact-only damping (3(b)).
+    let sys = undamped(DMatrix::from_row_slice(2, 2, &[1.0, -1.0, -1.0, 1.0]), &[0]);
+    let qs = q_stick(&sys);
+    let q = log_space(0.3 * qs, 30.0 * qs, 9);
+    for (h, rule) in [
+        (1, RuleName::Thesis),
+        (3, RuleName::Thesis),
+        (3, RuleName::Masing),
+        (7, RuleName::Masing),
+    ] {
+        let mut sys = sys.clone();
+        for e in &mut sys.elements {
+            if let Law::Point(t) = &mut e.law {
+                t.rule = rule;
+            }
+        }
+        let ep =
+            epmc::backbone(&sys, 1, h, &q).unwrap_or_else(|e| panic!("H = {h}, {rule:?}: {e}"));
+        let m = 2 * h + 1;
+        let mean = ep
+            .iter()
+            .map(|p| (p.u[0].abs().max(p.u[m].abs())) / p.point.modal_amplitude)
+            .fold(0.0, f64::max);
+        eprintln!("free pair H = {h}, {rule:?}: largest mean / q = {mean:.1e}");
+        assert!(mean < 1e-9, "H = {h}, {rule:?}: mean {mean:e}");
+    }
+    // The first-order backbone ends where the sliding pair nears critical damping
+    // (ζ = 0.95 at 0.59); compared below it.
+    let q = log_space(0.3 * qs, 0.5, 9);
+    let fo = first_order::backbone(&sys, 1, &q).unwrap();
+    let ep = epmc::backbone_sampled(&sys, 1, 1, 1024, &q).unwrap();
+    let (mut ew, mut ez) = (0.0f64, 0.0f64);
+    for (a, b) in fo.iter().zip(&ep) {
+        let z2 = a.damping_ratio.powi(2).max(1e-6);
+        ew = ew.max((b.point.omega / a.omega - 1.0).abs() / z2);
+        ez = ez.max((b.point.damping_ratio - a.damping_ratio).abs() / z2);
+    }
+    eprintln!("free pair H = 1 against first order: |Δω/ω| ≤ {ew:.2} ζ², |Δζ| ≤ {ez:.2} ζ²");
+    assert!(ew < 1.0 && ez < 1.5, "ω {ew} ζ {ez}");
+}
+
+#[test]
+fn a_pair_of_modes_at_one_frequency_starts_each_on_its_own_branch() {
+    // Three unit masses in a ring of unit springs, each on a thesis point to ground: the
+    // modes 2 and 3 share ω² = k_T0 + 3 and the eigen solver returns any two of their
+    // plane. The nonlinear modes start where Σ|a|³ is stationary. Its largest is one mass
+    // at rest and the other two in antiphase, (1, −1, 0)/√2 up to symmetry: a single DOF
+    // on its point with the spring 3 (the mass at rest feels no force), so mode 2 equals
+    // that system's backbone at the same mass amplitude. Mode 3 starts M-orthogonal to
+    // it, at (2, −1, −1)/√6, the branch symmetric in the two moving alike: it keeps
+    // their amplitudes equal. (Started from the eigen solver's vector instead, mode 2
+    // followed the (2, −1, −1) branch; the block on the plane's modes 1 and 2 both
+    // followed its diagonal.)
+    let ring = DMatrix::from_row_slice(3, 3, &[2.0, -1.0, -1.0, -1.0, 2.0, -1.0, -1.0, -1.0, 2.0]);
+    let sys = undamped(ring, &[0, 1, 2]);
+    let single = undamped(DMatrix::from_element(1, 1, 3.0), &[0]);
+    let qs = q_stick(&single);
+    let q = log_space(0.3 * qs, 30.0 * qs, 7);
+    let reference = epmc::backbone(&single, 1, 3, &q).unwrap();
+    let q_ring: Vec<f64> = q.iter().map(|v| v * 2f64.sqrt()).collect();
+    let amp = |p: &epmc::EpmcPoint, d: usize| p.u[d * 7 + 1].hypot(p.u[d * 7 + 2]);
+    let order = |p: &epmc::EpmcPoint| {
+        let mut d = [0, 1, 2];
+        d.sort_by(|&a, &b| amp(p, a).total_cmp(&amp(p, b)));
+        d
+    };
+    let two = epmc::backbone(&sys, 2, 3, &q_ring).unwrap();
+    let still = order(&two[0])[0];
+    let (mut rest, mut worst) = (0.0f64, 0.0f64);
+    for (p, r) in two.iter().zip(&reference) {
+        rest = rest.max(amp(p, still) / p.point.modal_amplitude);
+        worst = worst
+            .max((p.point.omega / r.point.omega - 1.0).abs())
+            .max((p.point.damping_ratio / r.point.damping_ratio - 1.0).abs());
+    }
+    eprintln!("ring mode 2: mass {still} at rest ({rest:.1e} of q), ω and ζ within {worst:.1e} of the single DOF");
+    assert!(rest < 1e-9 && worst < 1e-7, "mode 2: {rest:e} {worst:e}");
+    let three = epmc::backbone(&sys, 3, 3, &q_ring).unwrap();
+    let [lo, mid, hi] = order(&three[0]);
+    let alike = three
+        .iter()
+        .map(|p| (amp(p, mid) - amp(p, lo)).abs() / p.point.modal_amplitude)
+        .fold(0.0, f64::max);
+    eprintln!("ring mode 3: masses {lo} and {mid} alike to {alike:.1e} of q, mass {hi} largest");
+    assert!(alike < 1e-9, "mode 3: {alike:e}");
+    assert!(amp(&three[0], hi) > 1.5 * amp(&three[0], mid));
+}

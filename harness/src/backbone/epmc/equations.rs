@@ -7,6 +7,18 @@
 //!   ψ₁ᴴMψ₁ − 1 = 0 (normalization of the first harmonic),
 //!   φ_rᵀM b₁ = 0 (phase: sine part of the first harmonic orthogonal to the stuck mode),
 //!
+//! plus, on the mean rows, a gauge spring s·Z Zᵀ ψ₀ (ψ₀ the mean coefficients, Z an
+//! orthonormal basis of the mean motions the structure does not resist: the null space of
+//! the linear stiffness with the points' normal springs, a block held tangentially only
+//! by friction). The mean of such a motion is not set by the periodic balance: the thesis
+//! rule's closed loop is the same for every constant offset of δ (it drifts to the loop
+//! about zero force), and so is a sliding Jenkins or Masing point's, so those mean rows
+//! are zero and their columns a null space of the Jacobian (the block on the plane: the
+//! backbone stopped at its first amplitude). The spring picks the solution without a
+//! mean offset; it acts on mean coefficients only, so no harmonic changes, and where a
+//! stuck point does resist the offset the solution stays the one without it (the free
+//! system's mean is zero).
+//!
 //! with R the residual of the free harmonic balance, one-direction elements and
 //! three-direction points ([`crate::mhb::contact3d::Hb3::eval`]; R(x_s) = 0). The
 //! derivative in ln q, for continuation through turning points, is exact:
@@ -56,6 +68,9 @@ pub struct Epmc<'a> {
     pub m_ref: Vec<f64>,
     /// Residual scale ω₀² (ψ is mass-normalized).
     pub scale: f64,
+    /// The gauge spring s·Z Zᵀ on the mean coefficients (module docs; n × n, zero where
+    /// the structure resists every mean motion).
+    pub gauge: DMatrix<f64>,
     /// Told every modal amplitude a solution is found at (progress of long backbones).
     pub on_point: Option<&'a dyn Fn(f64)>,
 }
@@ -112,6 +127,16 @@ impl Epmc<'_> {
                     jac[(sa, dim)] += hh * xi * mab * pc;
                     jac[(ca, dim + 1)] -= hh * w * mab * ps;
                     jac[(sa, dim + 1)] += hh * w * mab * pc;
+                }
+            }
+        }
+        // The gauge spring on the mean coefficients (module docs).
+        for a in 0..n {
+            for b in 0..n {
+                let g = self.gauge[(a, b)];
+                if g != 0.0 {
+                    f[a * m] += g * st.psi[b * m];
+                    jac[(a * m, b * m)] += g;
                 }
             }
         }
@@ -192,6 +217,33 @@ impl Epmc<'_> {
             Err(res)
         }
     }
+}
+
+/// Eigenvalues of the stiffness below this fraction of its largest count as free mean
+/// motions ([`gauge_spring`]; a rigid block's are round-off, ~1e-16 of the largest).
+const FREE_MEAN: f64 = 1e-10;
+
+/// The gauge spring s·Z Zᵀ of the module docs for the stiffness `k` (symmetric, with
+/// the normal springs; without the tangential joints): Z the eigenvectors of `k` with
+/// |λ| ≤ [`FREE_MEAN`]·max|λ|, s the largest diagonal entry of `k` (so the spring is as
+/// stiff as the stiffest DOF and the Jacobian's scale does not grow). Zero without free
+/// mean motions.
+pub fn gauge_spring(k: &DMatrix<f64>) -> DMatrix<f64> {
+    let n = k.nrows();
+    let mut g = DMatrix::zeros(n, n);
+    let eig = nalgebra::SymmetricEigen::new(k.clone());
+    let top = eig.eigenvalues.amax();
+    let s = k.diagonal().max();
+    if !(top > 0.0 && s > 0.0) {
+        return g;
+    }
+    for (i, l) in eig.eigenvalues.iter().enumerate() {
+        if l.abs() <= FREE_MEAN * top {
+            let z = eig.eigenvectors.column(i);
+            g += s * z * z.transpose();
+        }
+    }
+    g
 }
 
 /// Halvings of a Newton step in [`damped_step`].

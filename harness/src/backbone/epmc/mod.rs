@@ -19,6 +19,11 @@
 //! the same system linearized at x_s: each point as the thesis's model at its static
 //! normal force (two tangential 1D elements and the closed contact's normal spring).
 //!
+//! The start is the stuck mode (within a pair at one frequency, turned to a branch's
+//! start: [`super::degenerate`]) with ω and ξ of the system linearized at the start's
+//! motion ([`rayleigh`]); a mean nothing but friction resists is held by the gauge
+//! spring of [`equations`] (docs/backbone-fe.md "Where the EPMC starts").
+//!
 //! The backbone starts where every contact sticks and is followed in ln q by
 //! pseudo-arclength continuation ([`arclength`]) through turning points; each requested
 //! amplitude is solved where the path crosses it, so past a turning point it appears
@@ -29,7 +34,10 @@ mod arclength;
 mod equations;
 mod stepping;
 
-use super::first_order::{stick_limit, stuck_mode};
+use nalgebra::DMatrix;
+
+use super::degenerate::start_mode;
+use super::first_order::{rayleigh, stick_limit};
 use super::{BackboneError, BackbonePoint, C64};
 use crate::mhb::aft::Jacobian;
 use crate::mhb::contact3d::{Hb3, System3};
@@ -173,6 +181,7 @@ pub fn trace_points(
     let lq0 = first
         .min(lq_stuck)
         .max(lq_stuck - STUCK_DECADES * std::f64::consts::LN_10);
+    let guess = at_amplitude(sys, guess, lq0.exp(), ep.hb.ncoef())?;
     let (st, dissipated) = match ep.solve(guess, lq0.exp()) {
         Ok(s) => s,
         Err(residual) => {
@@ -231,6 +240,22 @@ pub fn trace_points(
     Ok(out)
 }
 
+/// The stuck guess with ω and ξ of the first-order estimate at modal amplitude q
+/// ([`rayleigh`]): Mindlin points soften from the first micrometre, and at the stuck
+/// ω a pair partner the motion leaves stuck (the block's other sliding direction) is
+/// exactly resonant, a singular Jacobian at the start.
+fn at_amplitude(sys: &System, mut guess: State, q: f64, m: usize) -> Result<State, BackboneError> {
+    let shape: Vec<C64> = (0..sys.n())
+        .map(|d| C64::new(guess.psi[d * m + 1], -guess.psi[d * m + 2]))
+        .collect();
+    let (omega, xi) = rayleigh(sys, &shape, q, guess.omega)?;
+    if omega.is_finite() && omega > 0.0 && xi.is_finite() {
+        guess.omega = omega;
+        guess.xi = xi;
+    }
+    Ok(guess)
+}
+
 /// The system without its harmonic load (the EPMC motion is free); without points its
 /// static load too (one-direction joints at a fixed normal force: the motion is about
 /// x = 0), with them the static load stays (it sets their normal forces).
@@ -273,7 +298,7 @@ fn setup<'a>(
     samples: usize,
 ) -> Result<(Epmc<'a>, State, f64, f64), BackboneError> {
     let n = sys.n();
-    let stuck = stuck_mode(sys, mode)?;
+    let stuck = start_mode(sys, mode)?;
     let h = h.max(1);
     let samples = samples.max(2 * h + 2);
     let m = 2 * h + 1;
@@ -292,6 +317,7 @@ fn setup<'a>(
         rest: static_state(free, m)?,
         m_ref,
         scale: (w0 * w0).max(f64::MIN_POSITIVE),
+        gauge: equations::gauge_spring(&resisting(free, sys)),
         on_point: None,
     };
     let guess = State {
@@ -301,6 +327,21 @@ fn setup<'a>(
     };
     let lq_stuck = (0.5 * stick_limit(sys, &stuck.shape)?).ln();
     Ok((ep, guess, w0, lq_stuck))
+}
+
+/// The stiffness that resists a mean motion whatever the joints do: the linearized
+/// system's `sys` (its 1D joints apart) with the normal springs k_N of `free`'s
+/// three-direction points (their normal mean is set by the contact, not a gauge).
+fn resisting(free: &System3, sys: &System) -> DMatrix<f64> {
+    let mut k = sys.k.clone();
+    for e in &free.elements {
+        for &(p, wp) in &e.rows[2] {
+            for &(q, wq) in &e.rows[2] {
+                k[(p, q)] += e.contact.k_n * wp * wq;
+            }
+        }
+    }
+    k
 }
 
 /// The backbone at `q` (ascending) by [`stepping`] alone from the stuck start, to
