@@ -598,7 +598,11 @@ impl Store {
         Ok(())
     }
 
-    /// LOP 1: opens increment `kinc` of the running pass.
+    /// LOP 1: opens increment `kinc` of the running pass. LOP 1 again for the open
+    /// increment is a new attempt at it: Abaqus calls LOP 1 at the start of every attempt
+    /// and LOP 2 only after one converged, so an increment it cuts back (no convergence,
+    /// or PNEWDT < 1) is entered again with the same KINC. The failed attempt's queries
+    /// are dropped; the new attempt's reports replace its reports.
     pub fn begin_increment(&self, kinc: i32) -> Result<(), StoreError> {
         let numbering = self.config.numbering;
         let mut state = self.state()?;
@@ -606,9 +610,11 @@ impl Store {
             return Err(seq("LOP 1 without a running pass (LOP 0 missing)"));
         };
         if let Some((open, _, _)) = &run.open {
-            return Err(seq(format!(
-                "LOP 1 for {kinc} while increment {open} is open (LOP 2 missing)"
-            )));
+            if *open != kinc {
+                return Err(seq(format!(
+                    "LOP 1 for {kinc} while increment {open} is open (LOP 2 missing)"
+                )));
+            }
         }
         let sweep = match (&run.schedule, numbering) {
             (None, _) => kinc,

@@ -195,6 +195,32 @@ fn sequence_errors_are_named_not_panics() {
 }
 
 #[test]
+fn an_increment_cut_back_is_entered_again() {
+    // Abaqus re-enters an increment it cuts back with LOP 1 and the same KINC, and calls
+    // LOP 2 only for the attempt that converged (with the default sweep_step = 0 every
+    // step counts, a contact preload's cutbacks too). The first attempt's report is
+    // replaced by the second's; another KINC while one is open is still an error.
+    let store = Store::new(StoreConfig::new(1e-3)).unwrap();
+    let id = store.register(key("C", 1, 0.0)).unwrap();
+    store.external_db(0, 0, 1, 0).unwrap();
+    store.external_db(1, 0, 1, 1).unwrap();
+    let first = store.estimate(id, 1, 1).unwrap();
+    store.report(id, 1, [5.0, 0.0]).unwrap();
+    store.external_db(1, 0, 1, 1).unwrap();
+    assert_eq!(store.estimate(id, 1, 1).unwrap(), first);
+    store.report(id, 1, first).unwrap();
+    assert!(matches!(
+        store.external_db(1, 0, 1, 2),
+        Err(StoreError::Sequence(_))
+    ));
+    store.external_db(2, 0, 1, 1).unwrap();
+    store.external_db(3, 0, 1, 0).unwrap();
+    let st = store.point_status(id, 1).unwrap().unwrap();
+    assert_eq!((st.converged, st.reason), (true, Reason::None));
+    assert_eq!(store.pass_stats(1).unwrap().unwrap().increments_run, 1);
+}
+
+#[test]
 fn increments_outside_the_sweep_step_are_ignored() {
     let mut cfg = StoreConfig::new(1.0);
     cfg.sweep_step = 2;
