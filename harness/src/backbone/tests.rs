@@ -134,16 +134,23 @@ fn epmc_at_one_harmonic_is_the_first_order_backbone() {
     let sys = chain();
     let qs = q_stick(&sys);
     let q = log_space(0.3 * qs, 300.0 * qs, 25);
-    let fo = first_order::backbone(&sys, 1, &q).unwrap();
-    let ep = epmc::backbone_sampled(&sys, 1, 1, 1024, &q).unwrap();
+    let (ew, ez) = h1_against_first_order(&sys, &q);
+    eprintln!("3b: 3 DOF: |Δω/ω| ≤ {ew:.2} ζ², |Δζ| ≤ {ez:.2} ζ²");
+    assert!(ew < 1.0 && ez < 1.5, "ω {ew} ζ {ez}");
+}
+
+/// The largest |Δω/ω| and |Δζ| of mode 1's H = 1 EPMC (N = 1024) from its first-order
+/// backbone at `q`, in units of ζ² (at least 1e-6).
+fn h1_against_first_order(sys: &System, q: &[f64]) -> (f64, f64) {
+    let fo = first_order::backbone(sys, 1, q).unwrap();
+    let ep = epmc::backbone_sampled(sys, 1, 1, 1024, q).unwrap();
     let (mut ew, mut ez) = (0.0f64, 0.0f64);
     for (a, b) in fo.iter().zip(&ep) {
         let z2 = a.damping_ratio.powi(2).max(1e-6);
         ew = ew.max((b.point.omega / a.omega - 1.0).abs() / z2);
         ez = ez.max((b.point.damping_ratio - a.damping_ratio).abs() / z2);
     }
-    eprintln!("3b: 3 DOF: |Δω/ω| ≤ {ew:.2} ζ², |Δζ| ≤ {ez:.2} ζ²");
-    assert!(ew < 1.0 && ez < 1.5, "ω {ew} ζ {ez}");
+    (ew, ez)
 }
 
 /// Backbone ω_d and ζ at the DOF-`dof` first-harmonic amplitude `a` (log interpolation).
@@ -540,14 +547,7 @@ fn a_structure_held_only_by_friction_has_a_multi_harmonic_backbone() {
     // The first-order backbone ends where the sliding pair nears critical damping
     // (ζ = 0.95 at 0.59); compared below it.
     let q = log_space(0.3 * qs, 0.5, 9);
-    let fo = first_order::backbone(&sys, 1, &q).unwrap();
-    let ep = epmc::backbone_sampled(&sys, 1, 1, 1024, &q).unwrap();
-    let (mut ew, mut ez) = (0.0f64, 0.0f64);
-    for (a, b) in fo.iter().zip(&ep) {
-        let z2 = a.damping_ratio.powi(2).max(1e-6);
-        ew = ew.max((b.point.omega / a.omega - 1.0).abs() / z2);
-        ez = ez.max((b.point.damping_ratio - a.damping_ratio).abs() / z2);
-    }
+    let (ew, ez) = h1_against_first_order(&sys, &q);
     eprintln!("free pair H = 1 against first order: |Δω/ω| ≤ {ew:.2} ζ², |Δζ| ≤ {ez:.2} ζ²");
     assert!(ew < 1.0 && ez < 1.5, "ω {ew} ζ {ez}");
 }
