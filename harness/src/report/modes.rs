@@ -195,15 +195,9 @@ fn nodal_shape(full: &[f64]) -> Vec<f64> {
     full.iter().map(|v| v * scale).collect()
 }
 
-/// The VTK cell of an element type: the Abaqus node orders of C3D4, C3D10, C3D8 and
-/// C3D20 are VTK's (corners, then the edges' mid-nodes in the same edge order).
+/// The VTK cell of an element type (its node order is VTK's).
 fn cell_type(kind: ElementKind) -> CellType {
-    match kind {
-        ElementKind::C3D4 => CellType::Tetra,
-        ElementKind::C3D10 => CellType::QuadraticTetra,
-        ElementKind::C3D8 | ElementKind::C3D8I => CellType::Hexahedron,
-        ElementKind::C3D20 | ElementKind::C3D20R => CellType::QuadraticHexahedron,
-    }
+    CellType::Solid(kind.element().vtk_cell())
 }
 
 /// The model's elements, and a vertex per node outside every element.

@@ -14,14 +14,10 @@ pub enum CellType {
     Vertex,
     /// Four nodes around a face (VTK_QUAD = 9): a contact face's element face.
     Quad,
-    /// Four nodes in C3D4 order, which is VTK's (VTK_TETRA = 10).
-    Tetra,
-    /// Eight nodes in C3D8 order, which is VTK's (VTK_HEXAHEDRON = 12).
-    Hexahedron,
-    /// Ten nodes in C3D10 order, which is VTK's (VTK_QUADRATIC_TETRA = 24).
-    QuadraticTetra,
-    /// Twenty nodes in C3D20 order, which is VTK's (VTK_QUADRATIC_HEXAHEDRON = 25).
-    QuadraticHexahedron,
+    /// A solid element of this VTK cell type, its nodes in the element's Abaqus order,
+    /// which is VTK's (`SolidElement::vtk_cell`: VTK_TETRA = 10, VTK_HEXAHEDRON = 12,
+    /// VTK_QUADRATIC_TETRA = 24, VTK_QUADRATIC_HEXAHEDRON = 25).
+    Solid(u8),
 }
 
 impl CellType {
@@ -29,10 +25,7 @@ impl CellType {
         match self {
             CellType::Vertex => 1,
             CellType::Quad => 9,
-            CellType::Tetra => 10,
-            CellType::Hexahedron => 12,
-            CellType::QuadraticTetra => 24,
-            CellType::QuadraticHexahedron => 25,
+            CellType::Solid(code) => code,
         }
     }
 }
@@ -151,7 +144,7 @@ mod tests {
         let text = unstructured_grid(
             &points,
             &[
-                (CellType::Hexahedron, vec![0, 1, 3, 2, 4, 5, 7, 6]),
+                (CellType::Solid(12), vec![0, 1, 3, 2, 4, 5, 7, 6]),
                 (CellType::Vertex, vec![8]),
             ],
             &[PointField {

@@ -27,14 +27,8 @@ fn meshes(r: usize) -> (SolidMesh, SolidMesh) {
 fn faces_at_height(m: &SolidMesh, z: f64, elem_base: usize) -> String {
     let mut s = String::new();
     for (e, conn) in m.elements.iter().enumerate() {
-        for face in 0..m.kind.face_count() {
-            let nodes = m.kind.face_nodes(face).expect("face of the kind");
-            let corners = if m.kind.is_quadratic() {
-                &nodes[..nodes.len() / 2]
-            } else {
-                nodes
-            };
-            if corners.iter().all(|&k| m.nodes[conn[k]][2] == z) {
+        for (face, def) in m.kind.element().faces().iter().enumerate() {
+            if def.corners().iter().all(|&k| m.nodes[conn[k]][2] == z) {
                 let _ = writeln!(s, "{}, S{}", elem_base + e + 1, face + 1);
             }
         }

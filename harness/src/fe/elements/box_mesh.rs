@@ -37,6 +37,7 @@ pub fn box_mesh(
     jitter: f64,
     seed: u64,
 ) -> SolidMesh {
+    let element = kind.element();
     let [nx, ny, nz] = cells.map(|c| c.max(1));
     let h = [
         size[0] / nx as f64,
@@ -76,7 +77,7 @@ pub fn box_mesh(
                     id(i + 1, j + 1, k + 1),
                     id(i, j + 1, k + 1),
                 ];
-                if kind.is_tet() {
+                if element.corner_count() == 4 {
                     for t in KUHN {
                         let mut tet: Vec<usize> = t.iter().map(|&a| hex[a]).collect();
                         if signed_volume(&nodes, &tet) < 0.0 {
@@ -98,44 +99,20 @@ pub fn box_mesh(
     let mut mids: HashMap<(usize, usize), usize> = HashMap::new();
     for corners in corner_sets {
         let mut conn = corners.clone();
-        if kind.is_quadratic() {
-            for &(a, b) in edge_list(kind) {
-                let key = (corners[a].min(corners[b]), corners[a].max(corners[b]));
-                let next = mesh.nodes.len();
-                let m = *mids.entry(key).or_insert(next);
-                if m == next {
-                    let (p, q) = (mesh.nodes[key.0], mesh.nodes[key.1]);
-                    mesh.nodes
-                        .push(std::array::from_fn(|c| 0.5 * (p[c] + q[c])));
-                }
-                conn.push(m);
+        for &(a, b) in element.edges() {
+            let key = (corners[a].min(corners[b]), corners[a].max(corners[b]));
+            let next = mesh.nodes.len();
+            let m = *mids.entry(key).or_insert(next);
+            if m == next {
+                let (p, q) = (mesh.nodes[key.0], mesh.nodes[key.1]);
+                mesh.nodes
+                    .push(std::array::from_fn(|c| 0.5 * (p[c] + q[c])));
             }
+            conn.push(m);
         }
         mesh.elements.push(conn);
     }
     mesh
-}
-
-/// Corner pairs of the mid-edge nodes, in the element's node order.
-fn edge_list(kind: ElementKind) -> &'static [(usize, usize)] {
-    if kind.is_tet() {
-        &[(0, 1), (1, 2), (2, 0), (0, 3), (1, 3), (2, 3)]
-    } else {
-        &[
-            (0, 1),
-            (1, 2),
-            (2, 3),
-            (3, 0),
-            (4, 5),
-            (5, 6),
-            (6, 7),
-            (7, 4),
-            (0, 4),
-            (1, 5),
-            (2, 6),
-            (3, 7),
-        ]
-    }
 }
 
 /// Six times the signed volume of the tetrahedron of the first 4 nodes of `t`.

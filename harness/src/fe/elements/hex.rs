@@ -4,6 +4,8 @@
 //! 9–12 (bottom edges 1-2, 2-3, 3-4, 4-1), 13–16 (top edges 5-6, 6-7, 7-8, 8-5) and
 //! 17–20 (vertical edges 1-5, 2-6, 3-7, 4-8).
 
+use super::face_shape::{FaceDef, FaceShape};
+
 /// Natural coordinates of the 20 nodes (the first 8 are the 8-node element's).
 pub const NODES20: [[f64; 3]; 20] = [
     [-1.0, -1.0, -1.0],
@@ -28,17 +30,44 @@ pub const NODES20: [[f64; 3]; 20] = [
     [-1.0, 1.0, 0.0],
 ];
 
-/// Faces S1…S6 (local node indices, 0-based; corners then edge midpoints), as Abaqus
-/// lists them: S1 = 1-2-3-4, S2 = 5-8-7-6, S3 = 1-5-6-2, S4 = 2-6-7-3, S5 = 3-7-8-4,
+/// Faces S1…S6 of the 8-node hexahedron (local node indices, 0-based), as Abaqus lists
+/// them: S1 = 1-2-3-4, S2 = 5-8-7-6, S3 = 1-5-6-2, S4 = 2-6-7-3, S5 = 3-7-8-4,
 /// S6 = 4-8-5-1. In this order (ξ₁ × ξ₂ of the face map) the normal points into the
 /// element.
-pub const FACES20: [[usize; 8]; 6] = [
-    [0, 1, 2, 3, 8, 9, 10, 11],
-    [4, 7, 6, 5, 15, 14, 13, 12],
-    [0, 4, 5, 1, 16, 12, 17, 8],
-    [1, 5, 6, 2, 17, 13, 18, 9],
-    [2, 6, 7, 3, 18, 14, 19, 10],
-    [3, 7, 4, 0, 19, 15, 16, 11],
+pub const FACES8: [FaceDef; 6] = [
+    FaceDef::new(&[0, 1, 2, 3], FaceShape::Quad4),
+    FaceDef::new(&[4, 7, 6, 5], FaceShape::Quad4),
+    FaceDef::new(&[0, 4, 5, 1], FaceShape::Quad4),
+    FaceDef::new(&[1, 5, 6, 2], FaceShape::Quad4),
+    FaceDef::new(&[2, 6, 7, 3], FaceShape::Quad4),
+    FaceDef::new(&[3, 7, 4, 0], FaceShape::Quad4),
+];
+
+/// Faces S1…S6 of the 20-node hexahedron: [`FACES8`]'s corners, then their edge
+/// midpoints.
+pub const FACES20: [FaceDef; 6] = [
+    FaceDef::new(&[0, 1, 2, 3, 8, 9, 10, 11], FaceShape::Quad8),
+    FaceDef::new(&[4, 7, 6, 5, 15, 14, 13, 12], FaceShape::Quad8),
+    FaceDef::new(&[0, 4, 5, 1, 16, 12, 17, 8], FaceShape::Quad8),
+    FaceDef::new(&[1, 5, 6, 2, 17, 13, 18, 9], FaceShape::Quad8),
+    FaceDef::new(&[2, 6, 7, 3, 18, 14, 19, 10], FaceShape::Quad8),
+    FaceDef::new(&[3, 7, 4, 0, 19, 15, 16, 11], FaceShape::Quad8),
+];
+
+/// The corner pairs of the edge midpoints 9…20.
+pub const EDGES: [(usize, usize); 12] = [
+    (0, 1),
+    (1, 2),
+    (2, 3),
+    (3, 0),
+    (4, 5),
+    (5, 6),
+    (6, 7),
+    (7, 4),
+    (0, 4),
+    (1, 5),
+    (2, 6),
+    (3, 7),
 ];
 
 /// Trilinear shape functions Nᵢ = ⅛(1+ξᵢξ)(1+ηᵢη)(1+ζᵢζ) and ∂Nᵢ/∂(ξ, η, ζ).

@@ -234,10 +234,8 @@ fn element(
         }
         let member = match (solid, facet) {
             (Some(kind), _) => {
-                let corners = if kind.is_tet() { 3 } else { 4 };
-                for s in 0..kind.face_count() {
-                    let local = kind.face_nodes(s).unwrap_or(&[]);
-                    let mut key: Vec<u64> = local[..corners].iter().map(|&i| nodes[i]).collect();
+                for (s, face) in kind.element().faces().iter().enumerate() {
+                    let mut key: Vec<u64> = face.corners().iter().map(|&i| nodes[i]).collect();
                     key.sort_unstable();
                     faces.entry(key).or_default().push((id, s));
                 }
