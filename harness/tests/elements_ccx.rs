@@ -9,17 +9,26 @@
 //! | C3D20R | −2.8e-5 … −5.7e-3 | same reduced stiffness; ccx's mass integration differs from our 3×3×3 |
 //! | C3D8I | −3.9e-3 … +1.6e-1 | the same stiffness and nodal mass, but ccx gives its incompatible-mode (bubble) DOFs mass; with them massless, ccx's own K and M give ours to 1e-8 (`c3d8i_is_ccxs_element_with_massless_incompatible_modes`) |
 //! | C3D4 | −1.0e-1 … −4.5e-3 | ccx does not use the consistent mass for C3D4 |
+//! | C3D15 | −1.8e-5 … −4.0e-3 | ccx integrates the mass with the stiffness's 9 points; ours is exact. With that rule ours equals ccx's to 1.1e-7 |
+//! | C3D6 | −1.3e-1 … −5.3e-3 | ccx integrates the mass with the stiffness's 2 points; ours is exact. With that rule ours equals ccx's to 1.0e-7 |
 //!
 //! Skipped where ccx is missing, except under CI=true (scripts/deps.sh installs it).
 
 #[path = "../../tests/tools/mod.rs"]
 mod tools;
 
-use jointlin_harness::fe::elements::ElementKind;
+use jointlin_harness::fe::elements::isoparametric::Isoparametric;
+use jointlin_harness::fe::elements::{c3d15, c3d6, ElementKind, SolidElement};
 use jointlin_harness::validate::c3d8i_ccx::c3d8i_frequencies;
-use jointlin_harness::validate::ccx::{ccx_missing, element_case};
+use jointlin_harness::validate::ccx::{ccx_missing, element_case_of};
 
 fn differences(kind: ElementKind) -> Option<Vec<f64>> {
+    differences_of(kind.element())
+}
+
+/// ours/ccx − 1 per mode with the element routines `element` for ours.
+fn differences_of(element: &dyn SolidElement) -> Option<Vec<f64>> {
+    let kind = element.kind();
     if let Some(why) = ccx_missing() {
         tools::missing(&format!("elements_ccx_{kind:?}"), "ccx", &why);
         return None;
@@ -29,7 +38,7 @@ fn differences(kind: ElementKind) -> Option<Vec<f64>> {
         std::process::id(),
         kind
     ));
-    let (ours, ccx) = element_case(kind, &dir).unwrap();
+    let (ours, ccx) = element_case_of(element, &dir).unwrap();
     let _ = std::fs::remove_dir_all(&dir);
     assert_eq!(ours.len(), ccx.len());
     let d: Vec<f64> = ours.iter().zip(&ccx).map(|(a, b)| a / b - 1.0).collect();
@@ -54,6 +63,34 @@ fn quadratic_tet_and_reduced_hex_agree_in_the_first_modes() {
         assert!(d[..2].iter().all(|x| x.abs() < 1e-4), "{kind}: {d:?}");
         assert!(d[..6].iter().all(|x| x.abs() < 1e-3), "{kind}: {d:?}");
         assert!(d.iter().all(|x| x.abs() < 1e-2), "{kind}: {d:?}");
+    }
+}
+
+#[test]
+fn wedges_are_ccxs_elements_and_differ_by_the_exact_mass() {
+    for wedge in [&*c3d6::C3D6, &*c3d15::C3D15] {
+        let kind = wedge.kind;
+        // With ccx's mass rule (the stiffness's points) the matrices are ccx's.
+        let ccx_rule = Isoparametric {
+            mass_rule: wedge.stiffness_rule.clone(),
+            ..wedge.clone()
+        };
+        let Some(d) = differences_of(&ccx_rule) else {
+            return;
+        };
+        assert!(
+            d.iter().all(|x| x.abs() < 1e-6),
+            "{kind} with ccx's mass rule: {d:?}"
+        );
+        // Ours: the exact consistent mass, heavier in the higher modes.
+        let Some(d) = differences(kind) else { return };
+        assert!(d.iter().all(|&x| x < 0.0), "{kind}: {d:?}");
+        let band = if kind == ElementKind::C3D6 {
+            0.15
+        } else {
+            1e-2
+        };
+        assert!(d.iter().all(|&x| x > -band), "{kind}: {d:?}");
     }
 }
 

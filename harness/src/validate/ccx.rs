@@ -185,6 +185,18 @@ pub fn dense_frequencies(
     modes: usize,
 ) -> Result<Vec<f64>, CcxError> {
     let (k, m) = mesh.dense_matrices(mat)?;
+    held_frequencies(mesh, k, m, fixed, modes)
+}
+
+/// The lowest `modes` eigenfrequencies (Hz) of the dense (K, M) of `mesh` with the nodes
+/// `fixed` held.
+fn held_frequencies(
+    mesh: &SolidMesh,
+    k: DMatrix<f64>,
+    m: DMatrix<f64>,
+    fixed: &[usize],
+    modes: usize,
+) -> Result<Vec<f64>, CcxError> {
     let mut held = vec![false; mesh.nodes.len()];
     fixed.iter().for_each(|&n| held[n] = true);
     let free: Vec<usize> = (0..k.nrows()).filter(|r| !held[r / 3]).collect();
@@ -214,15 +226,26 @@ pub fn generalized_frequencies(
 }
 
 /// The element comparison case: a steel cantilever 40 × 10 × 10 mm of 4 × 2 × 2 cells
-/// (tetrahedral types: 6 tetrahedra per cell), interior corner nodes moved by up to
-/// ±0.15 cell, clamped at x = 0; its lowest [`CASE_MODES`] eigenfrequencies (Hz) by
-/// this crate's elements and by ccx, on the same mesh, in directory `dir`.
+/// (tetrahedral types: 6 tetrahedra per cell, wedges: 2), interior corner nodes moved by
+/// up to ±0.15 cell, clamped at x = 0; its lowest [`CASE_MODES`] eigenfrequencies (Hz)
+/// by this crate's elements and by ccx, on the same mesh, in directory `dir`.
 pub fn element_case(
     kind: crate::fe::elements::ElementKind,
     dir: &Path,
 ) -> Result<(Vec<f64>, Vec<f64>), CcxError> {
+    element_case_of(kind.element(), dir)
+}
+
+/// [`element_case`] with the element routines `element` for ours (e.g. another
+/// quadrature rule for the type), ccx with the type's own.
+pub fn element_case_of(
+    element: &dyn crate::fe::elements::SolidElement,
+    dir: &Path,
+) -> Result<(Vec<f64>, Vec<f64>), CcxError> {
+    let kind = element.kind();
     let (mesh, mat, fixed) = case_model(kind, 0.15)?;
-    let ours = dense_frequencies(&mesh, &mat, &fixed, CASE_MODES)?;
+    let (k, m) = mesh.dense_matrices_of(element, &mat)?;
+    let ours = held_frequencies(&mesh, k, m, &fixed, CASE_MODES)?;
     let deck = frequency_deck(&mesh, &mat, &fixed, CASE_MODES);
     let theirs = run_frequencies(&deck, dir, &kind.name().to_lowercase())?;
     Ok((ours, theirs))

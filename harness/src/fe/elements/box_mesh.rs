@@ -26,8 +26,13 @@ const KUHN: [[usize; 4]; 6] = [
     [0, 5, 1, 6],
 ];
 
+/// The 2 wedges of a cube split by the vertical plane through corners 0, 2, 4, 6 (C3D8
+/// local numbering), their triangles counter-clockwise seen from +z; every cube is split
+/// alike, so the wedges conform.
+const PRISMS: [[usize; 6]; 2] = [[0, 1, 2, 4, 5, 6], [0, 2, 3, 4, 6, 7]];
+
 /// Box [0, size] divided into `cells` hexahedral cells (tetrahedral types: 6 tets per
-/// cell). `jitter` moves every corner node not on the boundary by up to ±jitter × cell
+/// cell, wedges: 2 per cell). `jitter` moves every corner node not on the boundary by up to ±jitter × cell
 /// size per component (random, seed `seed`); mid-edge nodes sit at the middle of their
 /// straight edge.
 pub fn box_mesh(
@@ -77,16 +82,22 @@ pub fn box_mesh(
                     id(i + 1, j + 1, k + 1),
                     id(i, j + 1, k + 1),
                 ];
-                if element.corner_count() == 4 {
-                    for t in KUHN {
-                        let mut tet: Vec<usize> = t.iter().map(|&a| hex[a]).collect();
-                        if signed_volume(&nodes, &tet) < 0.0 {
-                            tet.swap(1, 2);
+                match element.corner_count() {
+                    4 => {
+                        for t in KUHN {
+                            let mut tet: Vec<usize> = t.iter().map(|&a| hex[a]).collect();
+                            if signed_volume(&nodes, &tet) < 0.0 {
+                                tet.swap(1, 2);
+                            }
+                            corner_sets.push(tet);
                         }
-                        corner_sets.push(tet);
                     }
-                } else {
-                    corner_sets.push(hex.to_vec());
+                    6 => {
+                        for w in PRISMS {
+                            corner_sets.push(w.iter().map(|&a| hex[a]).collect());
+                        }
+                    }
+                    _ => corner_sets.push(hex.to_vec()),
                 }
             }
         }
@@ -130,10 +141,18 @@ impl SolidMesh {
         &self,
         mat: &crate::fe::material::Material,
     ) -> Result<(nalgebra::DMatrix<f64>, nalgebra::DMatrix<f64>), super::ElementError> {
+        self.dense_matrices_of(self.kind.element(), mat)
+    }
+
+    /// [`Self::dense_matrices`] with the element routines `e` (of this mesh's type).
+    pub fn dense_matrices_of(
+        &self,
+        e: &dyn super::SolidElement,
+        mat: &crate::fe::material::Material,
+    ) -> Result<(nalgebra::DMatrix<f64>, nalgebra::DMatrix<f64>), super::ElementError> {
         let ndof = 3 * self.nodes.len();
         let mut k = nalgebra::DMatrix::zeros(ndof, ndof);
         let mut m = nalgebra::DMatrix::zeros(ndof, ndof);
-        let e = self.kind.element();
         for conn in &self.elements {
             let x: Vec<[f64; 3]> = conn.iter().map(|&n| self.nodes[n]).collect();
             let ke = e.stiffness(&x, mat)?;

@@ -7,7 +7,7 @@
 //! In the Abaqus node order of a face, ∂x/∂s₁ × ∂x/∂s₂ points into the element, so
 //! the outward normal is its negative.
 
-use super::rules::gauss_legendre;
+use super::rules::{gauss_legendre, tri_collapsed_3};
 
 /// One face of an element type: its local nodes (0-based; corners, then edge midpoints,
 /// in the Abaqus order, normal into the element) and its shape.
@@ -143,17 +143,14 @@ impl FaceShape {
     /// Quadrature rule (points, weights): exact for degree ≤ 5 per direction on
     /// quadrilaterals (3×3 Gauss) and degree ≤ 4 on triangles (collapsed 3×3 Gauss).
     pub fn rule(self) -> Vec<([f64; 2], f64)> {
+        if self.is_tri() {
+            return tri_collapsed_3();
+        }
         let g = gauss_legendre(3);
         let mut out = Vec::with_capacity(9);
         for &(x, wx) in &g {
             for &(y, wy) in &g {
-                if self.is_tri() {
-                    // s₁ = u, s₂ = v(1 − u), Jacobian (1 − u); u, v ∈ [0, 1].
-                    let (u, v) = (0.5 * (x + 1.0), 0.5 * (y + 1.0));
-                    out.push(([u, v * (1.0 - u)], 0.25 * wx * wy * (1.0 - u)));
-                } else {
-                    out.push(([x, y], wx * wy));
-                }
+                out.push(([x, y], wx * wy));
             }
         }
         out

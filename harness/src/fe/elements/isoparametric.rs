@@ -15,6 +15,7 @@ pub type ShapeFn = fn([f64; 3], &mut [f64], &mut [[f64; 3]]);
 
 /// A type's data: node layout, faces, shape functions and quadrature rules. Its element
 /// matrices are the integrated ones.
+#[derive(Clone)]
 pub struct Isoparametric {
     pub kind: ElementKind,
     pub corner_count: usize,

@@ -1,6 +1,7 @@
 //! Isoparametric solid elements for linear isotropic elasticity, in the Abaqus/CalculiX
-//! node order and with their face numbering S1…S6: C3D4, C3D10 (tetrahedra), C3D8,
-//! C3D8I, C3D20, C3D20R (hexahedra), all behind [`SolidElement`]: one file per type
+//! node order and with their face numbering S1…S6: C3D4, C3D10 (tetrahedra), C3D6, C3D15
+//! (wedges), C3D8, C3D8I, C3D20, C3D20R (hexahedra), all behind [`SolidElement`]: one
+//! file per type
 //! (`c3d4.rs`, …) with its node layout, faces (each with its own shape), shape functions
 //! and quadrature, registered in [`ElementKind::element`].
 //!
@@ -13,23 +14,28 @@
 //! |---|---:|---|---|
 //! | C3D4 | 4 | 1 point | 4 points (exact) |
 //! | C3D10 | 10 | 4 points | collapsed 4×4×4 (exact for straight edges) |
+//! | C3D6 | 6 | 2 points (centroid × 2) | 3-point triangle × 2 (exact for straight prisms) |
+//! | C3D15 | 15 | 9 points (3-point triangle × 3) | collapsed 3×3 triangle × 3 (exact for straight prisms) |
 //! | C3D8 | 8 | 2×2×2 | 2×2×2 |
 //! | C3D8I | 8 | 2×2×2 + 9 incompatible modes ([`crate::fe::hex8`]) | 2×2×2 |
 //! | C3D20 | 20 | 3×3×3 | 3×3×3 |
 //! | C3D20R | 20 | 2×2×2 (reduced) | 3×3×3 |
 
 pub mod box_mesh;
-mod c3d10;
-mod c3d20;
-mod c3d20r;
-mod c3d4;
-mod c3d8;
+pub mod c3d10;
+pub mod c3d15;
+pub mod c3d20;
+pub mod c3d20r;
+pub mod c3d4;
+pub mod c3d6;
+pub mod c3d8;
 pub mod face;
 pub mod face_shape;
 pub mod hex;
-mod isoparametric;
+pub mod isoparametric;
 pub mod rules;
 pub mod tet;
+pub mod wedge;
 
 #[cfg(test)]
 mod tests;
@@ -67,6 +73,8 @@ pub enum ElementError {
 pub enum ElementKind {
     C3D4,
     C3D10,
+    C3D6,
+    C3D15,
     C3D8,
     C3D8I,
     C3D20,
@@ -75,9 +83,11 @@ pub enum ElementKind {
 
 impl ElementKind {
     /// All supported types.
-    pub const ALL: [ElementKind; 6] = [
+    pub const ALL: [ElementKind; 8] = [
         ElementKind::C3D4,
         ElementKind::C3D10,
+        ElementKind::C3D6,
+        ElementKind::C3D15,
         ElementKind::C3D8,
         ElementKind::C3D8I,
         ElementKind::C3D20,
@@ -96,6 +106,8 @@ impl ElementKind {
         match self {
             ElementKind::C3D4 => "C3D4",
             ElementKind::C3D10 => "C3D10",
+            ElementKind::C3D6 => "C3D6",
+            ElementKind::C3D15 => "C3D15",
             ElementKind::C3D8 => "C3D8",
             ElementKind::C3D8I => "C3D8I",
             ElementKind::C3D20 => "C3D20",
@@ -108,6 +120,8 @@ impl ElementKind {
         match self {
             ElementKind::C3D4 => &*c3d4::C3D4,
             ElementKind::C3D10 => &*c3d10::C3D10,
+            ElementKind::C3D6 => &*c3d6::C3D6,
+            ElementKind::C3D15 => &*c3d15::C3D15,
             ElementKind::C3D8 => &*c3d8::C3D8,
             ElementKind::C3D8I => &*c3d8::C3D8I,
             ElementKind::C3D20 => &*c3d20::C3D20,
@@ -120,7 +134,7 @@ impl ElementKind {
         self.element().node_count()
     }
 
-    /// Number of faces (S1…S4 for tetrahedra, S1…S6 for hexahedra).
+    /// Number of faces (S1…S4 for tetrahedra, S1…S5 for wedges, S1…S6 for hexahedra).
     pub fn face_count(self) -> usize {
         self.element().faces().len()
     }

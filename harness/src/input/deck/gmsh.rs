@@ -210,8 +210,8 @@ fn element(
         return Err(card.error(
             K::Unsupported,
             format!(
-                "element type {ty}: solids C3D4, C3D10, C3D8, C3D20, facets CPS3/6, CPS4/8, \
-                 lines T3D2/3"
+                "element type {ty}: solids C3D4, C3D10, C3D6, C3D15, C3D8, C3D20, facets \
+                 CPS3/6, CPS4/8, lines T3D2/3"
             ),
         ));
     };

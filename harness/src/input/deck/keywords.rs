@@ -80,7 +80,7 @@ pub const KEYWORDS: &[Keyword] = &[
     Keyword {
         name: "ELEMENT",
         params: &[
-            value("TYPE", "C3D4, C3D10, C3D8, C3D8I, C3D20, C3D20R"),
+            value("TYPE", "C3D4, C3D10, C3D6, C3D15, C3D8, C3D8I, C3D20, C3D20R"),
             value("ELSET", "the elements also form this set"),
             value("INPUT", "the data lines from this file"),
         ],
