@@ -318,3 +318,117 @@ fn calculix_modes_of_the_tied_variant_are_the_readmes_and_the_sweep_covers_the_f
     assert!(f[1] > f_high, "{f:?}");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// A rectangle 10 × 4 mm triangulated by Gmsh and extruded 3 mm in 3 layers: wedges, with
+/// the bottom and top (triangles) and the front y = 0 (quadrilaterals) as physical
+/// surfaces.
+const WEDGE_GEO: &str = "\
+Point(1) = {0, 0, 0, 2.5};
+Point(2) = {10, 0, 0, 2.5};
+Point(3) = {10, 4, 0, 2.5};
+Point(4) = {0, 4, 0, 2.5};
+Line(1) = {1, 2};
+Line(2) = {2, 3};
+Line(3) = {3, 4};
+Line(4) = {4, 1};
+Curve Loop(1) = {1, 2, 3, 4};
+Plane Surface(1) = {1};
+out[] = Extrude {0, 0, 3} { Surface{1}; Layers{3}; Recombine; };
+Physical Surface(\"BOTTOM\") = {1};
+Physical Surface(\"TOP\") = {out[0]};
+Physical Surface(\"FRONT\") = {out[2]};
+Physical Volume(\"SOLID\") = {out[1]};
+";
+
+/// Gmsh's wedge meshes (C3D6, and C3D15 with Mesh.SecondOrderIncomplete) convert; each
+/// surface keeps its faces' shapes (triangles on the ends, quadrilaterals on the sides):
+/// areas and volume are the geometry's. Gmsh's 18-node prism (written as C3D6) is
+/// refused at its line instead of being read as several elements.
+#[test]
+fn gmsh_wedges_convert_with_triangle_and_quadrilateral_faces() {
+    let dir = temp_dir("gmsh-wedge");
+    let geo = dir.join("wedge.geo");
+    std::fs::write(&geo, WEDGE_GEO).unwrap();
+    // Without its physical surfaces (their 9-node quadrilaterals are refused first).
+    let solid_only: String = WEDGE_GEO
+        .lines()
+        .filter(|l| !l.starts_with("Physical Surface"))
+        .map(|l| format!("{l}\n"))
+        .collect();
+    std::fs::write(dir.join("solid.geo"), solid_only).unwrap();
+    let export = |name: &str, args: &[&str], geo: &Path| {
+        let path = dir.join(name);
+        let run = Command::new("gmsh")
+            .args(["-3", "-format", "inp", "-o"])
+            .arg(&path)
+            .args(args)
+            .arg(geo)
+            .output();
+        match run {
+            Err(e) => {
+                tools::missing("deck_gmsh_wedges", "gmsh", &e.to_string());
+                None
+            }
+            Ok(o) => {
+                assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+                Some(path)
+            }
+        }
+    };
+    let cases = [
+        ("linear.inp", vec![], "C3D6"),
+        (
+            "quadratic.inp",
+            vec![
+                "-order",
+                "2",
+                "-setnumber",
+                "Mesh.SecondOrderIncomplete",
+                "1",
+            ],
+            "C3D15",
+        ),
+    ];
+    for (name, args, kind) in cases {
+        let Some(path) = export(name, &args, &geo) else {
+            return;
+        };
+        let mesh = format!("mesh-{name}");
+        std::fs::write(dir.join(&mesh), deck_mesh_from_gmsh(&path).unwrap()).unwrap();
+        let main = dir.join(format!("main-{name}"));
+        std::fs::write(
+            &main,
+            format!(
+                "*INCLUDE, INPUT={mesh}\n*MATERIAL, NAME=STEEL\n*ELASTIC\n210000., 0.3\n\
+                 *DENSITY\n7.85e-9\n*SOLID SECTION, ELSET=Volume1, MATERIAL=STEEL\n"
+            ),
+        )
+        .unwrap();
+        let (d, _) = deck::read(&main).unwrap();
+        assert!(d.elements.iter().all(|e| e.kind.name() == kind), "{name}");
+        let x: Vec<[f64; 3]> = d.nodes.iter().map(|n| n.x).collect();
+        let volume: f64 = d
+            .elements
+            .iter()
+            .map(|e| {
+                let ex: Vec<[f64; 3]> = e.nodes.iter().map(|n| x[d.node_index[n]]).collect();
+                e.kind.element().volume(&ex).unwrap()
+            })
+            .sum();
+        approx::assert_relative_eq!(volume, 120.0, max_relative = 1e-12);
+        for (surface, area) in [("BOTTOM", 40.0), ("TOP", 40.0), ("FRONT", 30.0)] {
+            let got = surface_area(&d, surface);
+            approx::assert_relative_eq!(got, area, max_relative = 1e-12);
+        }
+    }
+    // The full second order: 18-node prisms, written with TYPE=C3D6.
+    let Some(path) = export("full.inp", &["-order", "2"], &dir.join("solid.geo")) else {
+        return;
+    };
+    let err = deck_mesh_from_gmsh(&path).unwrap_err().to_string();
+    assert!(
+        err.contains("full.inp:") && err.contains("more than the 6 nodes"),
+        "{err}"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}

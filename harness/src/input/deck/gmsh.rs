@@ -51,11 +51,13 @@ enum Member {
     Line,
 }
 
-/// Ids of a card's data lines (empty fields skipped), each checked to be an id.
-fn ids(card: &Card) -> Result<Vec<(u64, usize)>, DeckError> {
+/// Ids of a card's data lines (empty fields skipped), each checked to be an id, with
+/// its line and whether it is the line's last.
+fn ids(card: &Card) -> Result<Vec<(u64, usize, bool)>, DeckError> {
     let mut out = Vec::new();
     for l in &card.data {
-        for f in l.fields.iter().filter(|f| !f.is_empty()) {
+        let fields: Vec<&String> = l.fields.iter().filter(|f| !f.is_empty()).collect();
+        for (k, f) in fields.iter().enumerate() {
             let id = parse_id(f).ok_or_else(|| {
                 card.error_at(
                     l.line,
@@ -63,7 +65,7 @@ fn ids(card: &Card) -> Result<Vec<(u64, usize)>, DeckError> {
                     format!("{:?} is not a positive integer", truncate(f)),
                 )
             })?;
-            out.push((id, l.line));
+            out.push((id, l.line, k + 1 == fields.len()));
         }
     }
     Ok(out)
@@ -117,7 +119,7 @@ pub fn convert(cards: &[Card], name: &str) -> Result<String, DeckError> {
                 let set = card.required("ELSET")?.trim().to_ascii_uppercase();
                 let list = ids(card)?;
                 let (mut solid, mut facet) = (Vec::new(), Vec::new());
-                for &(id, line) in &list {
+                for &(id, line, _) in &list {
                     match members.get(&id) {
                         Some(Member::Solid) => solid.push(id),
                         Some(Member::Facet(c)) => facet.push((id, c, line)),
@@ -171,7 +173,7 @@ pub fn convert(cards: &[Card], name: &str) -> Result<String, DeckError> {
             }
             "NSET" => {
                 let set = card.required("NSET")?.trim().to_ascii_uppercase();
-                let list: Vec<u64> = ids(card)?.into_iter().map(|(id, _)| id).collect();
+                let list: Vec<u64> = ids(card)?.into_iter().map(|(id, _, _)| id).collect();
                 let _ = writeln!(sets, "*NSET, NSET={set}");
                 write_ids(&mut sets, &list);
             }
@@ -223,10 +225,22 @@ fn element(
         let _ = writeln!(out, "*ELEMENT, TYPE={kind}{set}");
     }
     let mut v: Vec<u64> = Vec::with_capacity(need + 1);
-    for (id, line) in ids(card)? {
+    for (id, line, last_on_line) in ids(card)? {
         v.push(id);
         if v.len() < need + 1 {
             continue;
+        }
+        if !last_on_line {
+            // Gmsh writes its 18-node prism as C3D6: read on, it would be misread.
+            return Err(card.error_at(
+                line,
+                K::Syntax,
+                format!(
+                    "element {} lists more than the {need} nodes of a {ty} (a second-order \
+                     Gmsh mesh: export with Mesh.SecondOrderIncomplete = 1)",
+                    v[0]
+                ),
+            ));
         }
         let (id, nodes) = (v[0], &v[1..]);
         if members.contains_key(&id) {
