@@ -13,7 +13,7 @@
 //! The first member of a pair starts at the largest V (the block: sliding along x or y),
 //! the second at the stationary direction nearest the one M-orthogonal to it.
 
-use super::first_order::{relative, stuck_mode};
+use super::first_order::{relative, stuck_mode, stuck_modes};
 use super::modes::Mode;
 use super::{BackboneError, C64};
 use crate::capi;
@@ -30,11 +30,16 @@ const EQUAL: f64 = 1e-9;
 /// (module docs) if it is one of a pair; as [`stuck_mode`] gives it otherwise (also in
 /// a triple or where no joint slips below its limit: V is then constant).
 pub fn start_mode(sys: &System, mode: usize) -> Result<Mode, BackboneError> {
-    let own = stuck_mode(sys, mode)?;
+    // This mode and its neighbours up to two above, by one eigen solve.
+    let modes = stuck_modes(sys, mode.saturating_add(2))?;
+    let Some(Some(own)) = modes.get(mode.wrapping_sub(1)).cloned() else {
+        return stuck_mode(sys, mode); // its error: no such mode, or overdamped
+    };
     let w = own.omega();
     let near = |k: usize| {
-        (k >= 1)
-            .then(|| stuck_mode(sys, k).ok())
+        modes
+            .get(k.wrapping_sub(1))
+            .cloned()
             .flatten()
             .filter(|m| (m.omega() / w - 1.0).abs() <= PAIR)
     };
@@ -57,7 +62,7 @@ pub fn start_mode(sys: &System, mode: usize) -> Result<Mode, BackboneError> {
     let step = std::f64::consts::PI / SAMPLES as f64;
     let values: Vec<f64> = (0..SAMPLES).map(|j| v(j as f64 * step)).collect();
     let top = values.iter().copied().fold(0.0, f64::max);
-    let flat = values.iter().all(|x| (x - top).abs() <= 1e-9 * top);
+    let flat = values.iter().all(|x| (x - top).abs() <= EQUAL * top);
     if top <= 0.0 || flat {
         return Ok(own);
     }
@@ -80,14 +85,18 @@ pub fn start_mode(sys: &System, mode: usize) -> Result<Mode, BackboneError> {
             (theta, v(theta))
         })
         .collect();
-    // The largest V; among equal ones (symmetry: x and y) the nearest to φ_a, so the
-    // choice follows the eigen solver's vector, not round-off.
+    // The largest V; among equal ones (symmetry: x and y) the one that a rule of the
+    // shapes alone picks, not the eigen solver's basis of the pair, which may differ
+    // from run to run: so `--mode 1` and `--mode 2` start on different branches.
     let best = stationary.iter().fold(0.0f64, |m, s| m.max(s.1));
     let Some(first) = stationary
         .iter()
         .filter(|s| s.1 >= (1.0 - EQUAL) * best)
         .map(|s| s.0)
-        .min_by(|x, y| angle(*x, 0.0).total_cmp(&angle(*y, 0.0)))
+        .max_by(|x, y| {
+            let score = |t: f64| tie_break(&combined(&a, &b, t));
+            score(*x).total_cmp(&score(*y))
+        })
     else {
         return Ok(own);
     };
@@ -105,6 +114,16 @@ pub fn start_mode(sys: &System, mode: usize) -> Result<Mode, BackboneError> {
         lambda: own.lambda,
         shape: combined(&a, &b, theta),
     })
+}
+
+/// A number of a shape that tells apart directions of equal V, independent of the basis
+/// the pair is given in: |Σᵢ (i + 1) φᵢ|, the shape weighted by its DOF numbers.
+fn tie_break(phi: &[C64]) -> f64 {
+    phi.iter()
+        .enumerate()
+        .map(|(i, v)| v * (i + 1) as f64)
+        .sum::<C64>()
+        .norm()
 }
 
 /// The angle between the directions θ and φ of the pair's plane (period π).

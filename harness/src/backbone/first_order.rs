@@ -128,24 +128,37 @@ pub fn relative(sys: &System, phi: &[C64]) -> Vec<f64> {
 /// The stuck linear mode `mode` (1-based, by frequency): every contact at zero
 /// amplitude (k* = k_T0, d* = 0).
 pub fn stuck_mode(sys: &System, mode: usize) -> Result<Mode, BackboneError> {
+    let modes = stuck_modes(sys, mode.max(1))?;
+    let count = modes.len();
+    match modes.into_iter().nth(mode.wrapping_sub(1)) {
+        Some(Some(m)) => Ok(m),
+        Some(None) => Err(BackboneError::Overdamped {
+            modal_amplitude: 0.0,
+        }),
+        None => Err(BackboneError::NoMode { mode, count }),
+    }
+}
+
+/// The stuck linear modes 1…`count` (fewer if the system has fewer) by one eigen solve;
+/// None for a mode of a large system that does not continue to the damped system
+/// ([`track`]).
+pub fn stuck_modes(sys: &System, count: usize) -> Result<Vec<Option<Mode>>, BackboneError> {
     let zeros = vec![0.0; sys.elements.len()];
     if sys.n() > ALL_MODES_MAX {
-        return stuck_mode_refined(sys, mode, &zeros);
+        return stuck_modes_refined(sys, count, &zeros);
     }
     // ω only scales d*, which is 0 at zero amplitude.
     let modes = linearized_modes(sys, &zeros, 1.0)?;
-    modes
-        .get(mode.wrapping_sub(1))
-        .cloned()
-        .ok_or(BackboneError::NoMode {
-            mode,
-            count: modes.len(),
-        })
+    Ok(modes.into_iter().take(count).map(Some).collect())
 }
 
-/// [`stuck_mode`] of a large system: the undamped mode `mode` of (K_s, M) (symmetric,
-/// K_s φ = ω² M φ as (L⁻¹K_sL⁻ᵀ) y = ω² y with M = LLᵀ), continued to D ([`track`]).
-fn stuck_mode_refined(sys: &System, mode: usize, zeros: &[f64]) -> Result<Mode, BackboneError> {
+/// [`stuck_modes`] of a large system: the undamped modes of (K_s, M) (symmetric,
+/// K_s φ = ω² M φ as (L⁻¹K_sL⁻ᵀ) y = ω² y with M = LLᵀ), each continued to D ([`track`]).
+fn stuck_modes_refined(
+    sys: &System,
+    count: usize,
+    zeros: &[f64],
+) -> Result<Vec<Option<Mode>>, BackboneError> {
     let lin = linearized(sys, zeros, 1.0)?;
     let mut k = sys.k.clone();
     add_elements(sys, &mut k, |i| lin[i].0);
@@ -162,21 +175,16 @@ fn stuck_mode_refined(sys: &System, mode: usize, zeros: &[f64]) -> Result<Mode, 
     let eig = ((&a + a.transpose()) * 0.5).symmetric_eigen();
     let mut order: Vec<usize> = (0..sys.n()).filter(|&i| eig.eigenvalues[i] > 0.0).collect();
     order.sort_by(|&x, &y| eig.eigenvalues[x].total_cmp(&eig.eigenvalues[y]));
-    let &o = order
-        .get(mode.wrapping_sub(1))
-        .ok_or(BackboneError::NoMode {
-            mode,
-            count: order.len(),
-        })?;
-    let y = eig.eigenvectors.column(o);
-    let phi: Vec<C64> = (li.transpose() * y)
-        .iter()
-        .map(|&v| C64::new(v, 0.0))
-        .collect();
-    let w = eig.eigenvalues[o].sqrt();
-    track(&sys.m, &sys.d, &k, C64::new(0.0, w), &phi).ok_or(BackboneError::Overdamped {
-        modal_amplitude: 0.0,
-    })
+    let tracked = |o: usize| {
+        let y = eig.eigenvectors.column(o);
+        let phi: Vec<C64> = (li.transpose() * y)
+            .iter()
+            .map(|&v| C64::new(v, 0.0))
+            .collect();
+        let w = eig.eigenvalues[o].sqrt();
+        track(&sys.m, &sys.d, &k, C64::new(0.0, w), &phi)
+    };
+    Ok(order.into_iter().take(count).map(tracked).collect())
 }
 
 /// The amplitudes a = g(a) of many elements (and ω, the last entry) by Anderson
