@@ -362,22 +362,8 @@ mod tests {
             [1., 1., 1.],
             [0., 1., 1.],
         ];
-        let edges = [
-            (0, 1),
-            (1, 2),
-            (2, 3),
-            (3, 0),
-            (4, 5),
-            (5, 6),
-            (6, 7),
-            (7, 4),
-            (0, 4),
-            (1, 5),
-            (2, 6),
-            (3, 7),
-        ];
         let mut x: Vec<[f64; 3]> = corners.to_vec();
-        for (a, b) in edges {
+        for (a, b) in crate::fe::elements::hex::EDGES {
             x.push([0, 1, 2].map(|c| (corners[a][c] + corners[b][c]) / 2.0));
         }
         for (i, p) in x.iter().enumerate() {
