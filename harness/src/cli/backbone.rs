@@ -14,10 +14,10 @@ use jointlin_harness::backbone::{
     epmc, fe, first_order, log_space, BackboneError, BackbonePoint, C64,
 };
 use jointlin_harness::capi;
-use jointlin_harness::input::scene::schema::BodyKind;
 use jointlin_harness::input::scene::{Reading, Scene};
 use jointlin_harness::mhb::{default_samples, Law, System};
 use jointlin_harness::model::lumped::{self, Lumped};
+use jointlin_harness::model::{self, Kind};
 use jointlin_harness::names::{LawName, RuleName};
 use jointlin_harness::settings::units::frequency_unit;
 use jointlin_harness::util::progress::progress_bar;
@@ -91,10 +91,8 @@ fn point_names(l: &Lumped) -> Vec<String> {
 
 fn build(scene: &Scene, mode: usize, epmc: bool) -> Result<Built, String> {
     let s = &scene.spec;
-    let fe_scene = scene.deck.is_some()
-        || !s.interfaces.is_empty()
-        || s.bodies.iter().any(|b| b.kind != BodyKind::Mass);
-    if !fe_scene {
+    // A masses-only scene is read as the lumped system (no reduction needed).
+    if model::kind(scene) != Kind::Fe {
         let lumped = lumped::build(scene)?;
         if lumped.points.is_empty() {
             return Ok(Built {
@@ -115,7 +113,7 @@ fn build(scene: &Scene, mode: usize, epmc: bool) -> Result<Built, String> {
             reduction: None,
         });
     }
-    let p = jointlin_harness::model::build(scene).map_err(|e| e.to_string())?;
+    let p = model::build(scene).map_err(|e| e.to_string())?;
     print_findings(&p);
     let r = fe::reduce(&p, &s.effects, mode)?;
     Ok(Built {

@@ -8,7 +8,7 @@ use std::process::ExitCode;
 use super::{load_scene_with, print_findings, SceneOverrides};
 use jointlin_harness::input::scene::Scene;
 use jointlin_harness::input::{deck, format_of, Format};
-use jointlin_harness::model::{self, Problem};
+use jointlin_harness::model::{self, BuildError, Built, Problem};
 use jointlin_harness::settings::units::frequency_unit;
 use jointlin_harness::solve::cost;
 use jointlin_harness::solve::modal_stuck::{stuck_modes, ModeCount};
@@ -54,27 +54,22 @@ pub fn main(a: Args) -> ExitCode {
     // [[joints]] are `jointlin backbone`'s and have no FE model.
     let mut built = None;
     let mut parts = model_parts(&s);
-    if s.spec.is_lumped() {
+    match model::model(&s) {
+        Ok(Built::Lumped(l)) => parts = format!("{parts} ({} DOFs)", l.dofs.len()),
+        Ok(Built::Fe(p)) => built = Some(p),
         // The lumped system reads the [[matrices]] files: their errors name file:line.
-        match model::lumped::build(&s) {
-            Ok(l) => parts = format!("{parts} ({} DOFs)", l.dofs.len()),
-            Err(e) => {
-                eprintln!("error: {}: {e}", s.file);
-                return ExitCode::from(2);
-            }
+        Err(BuildError::Lumped(e)) => {
+            eprintln!("error: {}: {e}", s.file);
+            return ExitCode::from(2);
         }
-    } else {
-        match model::build(&s) {
-            // A deck (a scene's `model`) names its own file:line.
-            Err(model::BuildError::Deck(e)) => {
-                eprintln!("error: {e}");
-                return ExitCode::from(2);
-            }
-            Err(e) => {
-                eprintln!("error: {}", model::locate(&s, &e));
-                return ExitCode::from(2);
-            }
-            Ok(p) => built = Some(p),
+        // A deck (a scene's `model`) names its own file:line.
+        Err(BuildError::Deck(e)) => {
+            eprintln!("error: {e}");
+            return ExitCode::from(2);
+        }
+        Err(e) => {
+            eprintln!("error: {}", model::locate(&s, &e));
+            return ExitCode::from(2);
         }
     }
     let fu = frequency_unit(&s.spec.units);
@@ -181,7 +176,7 @@ fn run_checks(s: &Scene, a: &Args) -> ExitCode {
             extras(a, s, &p);
             ExitCode::SUCCESS
         }
-        Err(model::BuildError::Deck(e)) => {
+        Err(BuildError::Deck(e)) => {
             for w in s.deck.iter().flat_map(|j| &j.warnings) {
                 eprintln!("{}: {w}", if w.note { "note" } else { "warning" });
             }

@@ -5,6 +5,7 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use jointlin_harness::input::scene::Reading;
+use jointlin_harness::model::{self, Kind};
 use jointlin_harness::report::modes::ModeTable;
 use jointlin_harness::settings::units::frequency_unit;
 use jointlin_harness::solve::modal_stuck::{stuck_modes, ModeCount};
@@ -45,7 +46,7 @@ pub fn main(a: Args) -> ExitCode {
         Ok(s) => s,
         Err(code) => return code,
     };
-    if s.spec.is_lumped() {
+    if model::kind(&s) == Kind::Lumped {
         return lumped_modes(&a, &s);
     }
     // A deck's *FREQUENCY step says how many modes, unless --count does.
@@ -117,7 +118,7 @@ pub fn main(a: Args) -> ExitCode {
 /// The modes of a lumped scene (mass bodies, `[[matrices]]`, springs, joints) with every
 /// joint stuck: frequencies only (no mesh for labels, effective masses or modes.vtu).
 fn lumped_modes(a: &Args, s: &jointlin_harness::input::scene::Scene) -> ExitCode {
-    let f = match jointlin_harness::model::lumped::build(s).and_then(|l| l.stuck_frequencies()) {
+    let f = match model::lumped::build(s).and_then(|l| l.stuck_frequencies()) {
         Ok(f) => f,
         Err(e) => {
             eprintln!("error: {}: {e}", s.file);

@@ -9,6 +9,7 @@ use serde_json::json;
 
 use jointlin_harness::capi;
 use jointlin_harness::export::reduced;
+use jointlin_harness::model::{self, Kind};
 use jointlin_harness::reduce::{self, Interior, Reduction};
 use jointlin_harness::settings::units::frequency_unit;
 use jointlin_harness::util::progress::progress_bar;
@@ -41,7 +42,7 @@ pub fn main(a: Args) -> ExitCode {
         Ok(s) => s,
         Err(code) => return code,
     };
-    if scene.spec.is_lumped() {
+    if model::kind(&scene) == Kind::Lumped {
         eprintln!(
             "error: {}: a lumped scene ([[matrices]], [[joints]]) is reduced already; reduce takes an FE scene or deck",
             a.model.display()

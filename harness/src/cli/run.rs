@@ -8,7 +8,7 @@ use std::process::ExitCode;
 use clap::ValueEnum;
 
 use jointlin_harness::input::scene::{validate, Scene};
-use jointlin_harness::model::{BuildError, Job};
+use jointlin_harness::model::{self, BuildError, Job, Kind};
 use jointlin_harness::report::{self, ReportOptions};
 use jointlin_harness::run::{run, Extras, RunError, RunResult};
 use jointlin_harness::settings::units::frequency_unit;
@@ -85,7 +85,7 @@ pub fn main(a: Args) -> ExitCode {
     if a.time_domain {
         return time_domain_run(&s, &a.out, !a.no_plots, a.quiet);
     }
-    if s.spec.is_lumped() {
+    if model::kind(&s) == Kind::Lumped {
         if s.spec.iteration.mode == Mode::Thesis {
             eprintln!(
                 "error: {}: a lumped system ([[matrices]], [[joints]]) is swept first order (mode \"fast\", the default) or by harmonic balance (mode \"harmonic_balance\"); the thesis's pass scheme is for FE scenes",
@@ -274,7 +274,7 @@ fn time_domain_run(s: &Scene, out: &Path, plots: bool, quiet: bool) -> ExitCode 
             return ExitCode::from(2);
         }
     };
-    if s.spec.is_lumped() {
+    if model::kind(s) == Kind::Lumped {
         return super::run_lumped_time::main(s, &settings, out, plots, quiet);
     }
     let mut pb = progress_bar(quiet);

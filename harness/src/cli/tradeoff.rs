@@ -3,6 +3,7 @@
 use std::path::PathBuf;
 use std::process::ExitCode;
 
+use jointlin_harness::model::{self, Kind};
 use jointlin_harness::tradeoff::{lumped, markdown, study, write};
 
 use super::{study_main, SceneOverrides};
@@ -30,7 +31,7 @@ pub fn main(a: Args) -> ExitCode {
         &a.out,
         |s| {
             let log = |l: &str| eprintln!("{l}");
-            if s.spec.is_lumped() {
+            if model::kind(s) == Kind::Lumped {
                 lumped::study(s, a.freq, &log)
             } else {
                 study(s, a.freq, &log)

@@ -66,7 +66,7 @@ impl Job {
         Cow::Owned(self.source.with_settings(&self.settings))
     }
 
-    /// The FE (or lumped-as-FE) problem: [`super::build()`].
+    /// The FE problem (of an FE or masses-only input): [`super::build()`].
     pub fn build(&self) -> Result<Problem, BuildError> {
         super::build(&self.scene())
     }

@@ -28,7 +28,10 @@ pub fn locate(scene: &Scene, e: &BuildError) -> SceneError {
             .position(|x| &x.name == name)
             .map(|i| root.key("screws").index(i)),
         BuildError::Deck(_) => s.model.as_ref().map(|_| root.key("model")),
-        BuildError::Mesh(_) | BuildError::Assembly(_) | BuildError::Other(_) => None,
+        BuildError::Mesh(_)
+        | BuildError::Assembly(_)
+        | BuildError::Lumped(_)
+        | BuildError::Other(_) => None,
     };
     let path = path.unwrap_or_else(|| root.key("bodies"));
     at_path(

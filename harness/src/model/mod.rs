@@ -11,6 +11,7 @@ pub mod craig_bampton;
 mod damping;
 pub mod deck;
 pub mod job;
+mod kind;
 mod locate;
 pub mod lumped;
 mod lumped_ends;
@@ -23,12 +24,19 @@ mod variants;
 
 pub use build::{mesh_face, PAIR_TOL};
 pub use job::Job;
+pub use kind::{kind, model, Built, Kind};
 pub use locate::locate;
 
-/// The problem of a scene or deck ([`build::build`]), its warnings joined by a note on
+/// The problem of a scene or deck ([`build::build`]; a lumped scene is refused), its warnings joined by a note on
 /// each material whose E or ρ lies far outside those of solids in the stated units
 /// ([`unit_names::implausible_material`]).
 pub fn build(scene: &Scene) -> Result<Problem, BuildError> {
+    if kind(scene) == Kind::Lumped {
+        return Err(BuildError::Other(
+            "a lumped system ([[matrices]], [[joints]], springs `between` two bodies) has no FE model: `jointlin run` (first order, harmonic balance or --time-domain), `tradeoff`, `modes` and `backbone` take it"
+                .into(),
+        ));
+    }
     let mut p = build::build(scene)?;
     let units = &scene.spec.units;
     let materials: Vec<(String, f64, f64)> = match &scene.deck {
@@ -62,14 +70,6 @@ pub fn node_ids(scene: &Scene, p: &Problem) -> Vec<u64> {
     }
 }
 
-/// The one [`Problem`] of an input, whatever its format: a scene through [`build()`], a
-/// deck (or a scene with `model`) through [`deck::build`].
-pub fn problem(input: &Input) -> Result<Problem, BuildError> {
-    match input {
-        Input::Scene(scene) | Input::Deck(scene) => build(scene),
-    }
-}
-
 use nalgebra::{Complex, Matrix3};
 use thiserror::Error;
 
@@ -78,7 +78,6 @@ use crate::fe::contact_pairs::PairError;
 use crate::fe::csc::Csc;
 use crate::fe::mesh::{MeshError, Model};
 use crate::input::scene::Scene;
-use crate::input::Input;
 use crate::names::ContactLaw;
 use crate::settings::unit_names;
 
@@ -110,6 +109,9 @@ pub enum BuildError {
     },
     #[error(transparent)]
     Deck(#[from] crate::input::deck::DeckError),
+    /// A lumped system's (`lumped::build`): the `[[matrices]]` files name file:line.
+    #[error("{0}")]
+    Lumped(String),
     #[error("{0}")]
     Other(String),
 }

@@ -102,10 +102,45 @@ fn lumped_mass_on_ground() {
 }
 
 #[test]
-fn an_input_builds_the_same_problem_as_its_scene() {
-    let a = build(&good()).unwrap();
-    let b = problem(&Input::Scene(good())).unwrap();
+fn an_input_builds_the_model_of_its_kind() {
+    let fe = good();
+    assert_eq!(kind(&fe), Kind::Fe);
+    let a = build(&fe).unwrap();
+    let Ok(Built::Fe(b)) = model(&fe) else {
+        panic!("an FE scene builds an FE problem")
+    };
     assert_eq!(a.sys.dofs, b.sys.dofs);
     assert_eq!(a.excitation, b.excitation);
     assert_eq!(a.contacts.len(), b.contacts.len());
+}
+
+fn scene_file(name: &str) -> Scene {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../scenes")
+        .join(name);
+    Scene::load(&path).unwrap()
+}
+
+#[test]
+fn a_lumped_scene_builds_its_lumped_system_and_no_fe_problem() {
+    let s = scene_file("jenkins-chain.toml");
+    assert_eq!(kind(&s), Kind::Lumped);
+    let Ok(Built::Lumped(l)) = model(&s) else {
+        panic!("a chain of masses with joints builds a lumped system")
+    };
+    assert_eq!(l.dofs, lumped::build(&s).unwrap().dofs);
+    assert_eq!(l.dofs.len(), 3);
+    let e = build(&s).unwrap_err().to_string();
+    assert!(e.contains("has no FE model"), "{e}");
+}
+
+#[test]
+fn a_masses_only_scene_builds_both_and_runs_as_fe() {
+    let s = scene_file("duffing.toml");
+    assert_eq!(kind(&s), Kind::MassesOnly);
+    let Ok(Built::Fe(p)) = model(&s) else {
+        panic!("a masses-only scene runs as the FE problem")
+    };
+    assert_eq!(p.sys.dofs.n_free(), 1);
+    assert_eq!(lumped::build(&s).unwrap().dofs.len(), 1);
 }

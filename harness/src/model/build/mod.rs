@@ -98,12 +98,6 @@ pub fn build(scene: &Scene) -> Result<Problem, BuildError> {
         )));
     }
     let s = &scene.spec;
-    if s.is_lumped() {
-        return Err(BuildError::Other(
-            "a lumped system ([[matrices]], [[joints]], springs `between` two bodies) has no FE model: `jointlin run` (first order, harmonic balance or --time-domain), `tradeoff`, `modes` and `backbone` take it"
-                .into(),
-        ));
-    }
     let names: Vec<&String> = s.materials.keys().collect();
     let mats = s
         .materials
