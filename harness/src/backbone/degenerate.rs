@@ -49,7 +49,10 @@ pub fn start_mode(sys: &System, mode: usize) -> Result<Mode, BackboneError> {
         (None, Some(p)) if near(mode + 2).is_none() => (own.clone(), p, 0),
         _ => return Ok(own),
     };
-    let (a, b) = orthonormal(sys, &a.shape, &b.shape);
+    // Two vectors of one direction (a solver's repeated vector) are no pair's plane.
+    let Some((a, b)) = orthonormal(sys, &a.shape, &b.shape) else {
+        return Ok(own);
+    };
     let weights = weights(sys)?;
     let v = |theta: f64| {
         let phi = combined(&a, &b, theta);
@@ -93,10 +96,7 @@ pub fn start_mode(sys: &System, mode: usize) -> Result<Mode, BackboneError> {
         .iter()
         .filter(|s| s.1 >= (1.0 - EQUAL) * best)
         .map(|s| s.0)
-        .max_by(|x, y| {
-            let score = |t: f64| tie_break(&combined(&a, &b, t));
-            score(*x).total_cmp(&score(*y))
-        })
+        .max_by(|x, y| ranked(&combined(&a, &b, *x), &combined(&a, &b, *y)))
     else {
         return Ok(own);
     };
@@ -116,14 +116,32 @@ pub fn start_mode(sys: &System, mode: usize) -> Result<Mode, BackboneError> {
     })
 }
 
-/// A number of a shape that tells apart directions of equal V, independent of the basis
-/// the pair is given in: |Σᵢ (i + 1) φᵢ|, the shape weighted by its DOF numbers.
-fn tie_break(phi: &[C64]) -> f64 {
+/// The order of two shapes of equal V, from the shapes alone (the same whatever basis
+/// and sign the pair is given in): the larger |Σᵢ wᵢ φᵢ| with fixed weights
+/// wᵢ = sin(√2 (i + 1)), which no symmetry of a model makes cancel as it can with
+/// patterned weights (two free blocks sliding against each other have Σ φᵢ = 0 per
+/// axis); where those agree to 1e-9, the one whose first moving DOF comes first.
+fn ranked(x: &[C64], y: &[C64]) -> std::cmp::Ordering {
+    let score = |phi: &[C64]| {
+        phi.iter()
+            .enumerate()
+            .map(|(i, v)| v * (std::f64::consts::SQRT_2 * (i + 1) as f64).sin())
+            .sum::<C64>()
+            .norm()
+    };
+    let (sx, sy) = (score(x), score(y));
+    if (sx - sy).abs() > 1e-9 * sx.max(sy) {
+        return sx.total_cmp(&sy);
+    }
+    first_moving(y).cmp(&first_moving(x))
+}
+
+/// The index of the first DOF that moves by more than 1e-6 of the largest.
+fn first_moving(phi: &[C64]) -> usize {
+    let top = phi.iter().map(|v| v.norm()).fold(0.0, f64::max);
     phi.iter()
-        .enumerate()
-        .map(|(i, v)| v * (i + 1) as f64)
-        .sum::<C64>()
-        .norm()
+        .position(|v| v.norm() > 1e-6 * top)
+        .unwrap_or(phi.len())
 }
 
 /// The angle between the directions θ and φ of the pair's plane (period π).
@@ -170,20 +188,77 @@ fn m_inner(sys: &System, x: &[C64], y: &[C64]) -> C64 {
 }
 
 /// The pair (a, b) M-orthonormalized (Gram–Schmidt; the eigen solver's vectors of a
-/// double eigenvalue are any two of its plane), each turned real where largest.
-fn orthonormal(sys: &System, a: &[C64], b: &[C64]) -> (Vec<C64>, Vec<C64>) {
-    let unit = |x: Vec<C64>| {
-        let n = m_inner(sys, &x, &x).re.max(f64::MIN_POSITIVE).sqrt();
-        x.into_iter().map(|v| v / n).collect::<Vec<C64>>()
-    };
-    let a = unit(real_phase(a));
+/// double eigenvalue are any two of its plane), each turned real where largest; `None`
+/// where b is a along (all but 1e-8 of its M-norm) or either is zero.
+fn orthonormal(sys: &System, a: &[C64], b: &[C64]) -> Option<(Vec<C64>, Vec<C64>)> {
+    let norm = |x: &[C64]| m_inner(sys, x, x).re.max(0.0).sqrt();
+    let unit = |x: Vec<C64>, n: f64| x.into_iter().map(|v| v / n).collect::<Vec<C64>>();
+    let (na, nb) = (norm(a), norm(b));
+    if !(na > 0.0 && nb > 0.0) {
+        return None;
+    }
+    let a = unit(real_phase(a), na);
     let p = m_inner(sys, &a, b);
     let b: Vec<C64> = b.iter().zip(&a).map(|(y, x)| y - x * p).collect();
-    (a, unit(real_phase(&b)))
+    let n_perp = norm(&b);
+    (n_perp > 1e-8 * nb).then(|| (a, unit(real_phase(&b), n_perp)))
 }
 
 /// cos θ a + sin θ b (M-normalized: the pair is M-orthonormal).
 fn combined(a: &[C64], b: &[C64], theta: f64) -> Vec<C64> {
     let (s, c) = theta.sin_cos();
     a.iter().zip(b).map(|(x, y)| x * c + y * s).collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn shape(v: &[f64]) -> Vec<C64> {
+        v.iter().map(|&x| C64::new(x, 0.0)).collect()
+    }
+
+    #[test]
+    fn two_blocks_sliding_against_each_other_are_ranked_the_same_in_any_sign() {
+        // Σ φᵢ = 0 per axis: DOF-number weights (i + 1) gave both 2.1213 (a tie, broken
+        // by the eigen solver's basis).
+        let x = shape(&[1.0, 0.0, 0.0, -1.0, 0.0, 0.0]);
+        let y = shape(&[0.0, 1.0, 0.0, 0.0, -1.0, 0.0]);
+        let neg = |v: &[C64]| v.iter().map(|z| -z).collect::<Vec<_>>();
+        let order = ranked(&x, &y);
+        assert_ne!(order, std::cmp::Ordering::Equal);
+        assert_eq!(ranked(&neg(&x), &y), order);
+        assert_eq!(ranked(&x, &neg(&y)), order);
+        assert_eq!(ranked(&y, &x), order.reverse());
+    }
+
+    #[test]
+    fn equal_scores_go_to_the_shape_whose_first_moving_dof_comes_first() {
+        // Both score |w₂| (weights sin(√2 (i + 1)); w₂ = sin(3√2)).
+        let w = |i: usize| (std::f64::consts::SQRT_2 * (i + 1) as f64).sin();
+        let early = shape(&[w(2) / w(0), 0.0, 0.0]);
+        let late = shape(&[0.0, 0.0, 1.0]);
+        assert_eq!(first_moving(&early), 0);
+        assert_eq!(ranked(&early, &late), std::cmp::Ordering::Greater);
+        assert_eq!(ranked(&late, &early), std::cmp::Ordering::Less);
+    }
+
+    #[test]
+    fn a_repeated_vector_is_no_pair() {
+        let n = 2;
+        let sys = System {
+            m: nalgebra::DMatrix::identity(n, n) * 2.0,
+            d: nalgebra::DMatrix::zeros(n, n),
+            k: nalgebra::DMatrix::identity(n, n),
+            f0: vec![0.0; n],
+            f1: vec![C64::new(0.0, 0.0); n],
+            elements: Vec::new(),
+        };
+        let a = shape(&[1.0, 2.0]);
+        assert!(orthonormal(&sys, &a, &shape(&[-3.0, -6.0])).is_none());
+        assert!(orthonormal(&sys, &a, &shape(&[0.0, 0.0])).is_none());
+        let (p, q) = orthonormal(&sys, &a, &shape(&[1.0, 0.0])).unwrap();
+        assert!(m_inner(&sys, &p, &q).norm() < 1e-15);
+        assert!((m_inner(&sys, &q, &q).re - 1.0).abs() < 1e-15);
+    }
 }
