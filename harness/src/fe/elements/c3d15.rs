@@ -15,6 +15,8 @@ pub static C3D15: LazyLock<Isoparametric> = LazyLock::new(|| Isoparametric {
     corner_count: 6,
     edges: &wedge::EDGES,
     faces: &wedge::FACES15,
+    // VTK_QUADRATIC_WEDGE: corners as C3D6's, then the mid-edge points on (0,1), (1,2),
+    // (2,0), (3,4), (4,5), (5,3), (0,3), (1,4), (2,5): Abaqus's nodes 7–15 in order.
     vtk_cell: 26,
     shape: wedge::shape15,
     stiffness_rule: rules::wedge(&rules::tri_3(), 3),

@@ -14,6 +14,8 @@ pub static C3D6: LazyLock<Isoparametric> = LazyLock::new(|| Isoparametric {
     corner_count: 6,
     edges: &[],
     faces: &wedge::FACES6,
+    // VTK_WEDGE: VTK's points 0 (0,0,0), 1 (1,0,0), 2 (0,1,0) and 3–5 above them are
+    // Abaqus's nodes 1–6 in order (positive Jacobian), so the cell is written as read.
     vtk_cell: 13,
     shape: wedge::shape6,
     stiffness_rule: rules::wedge(&rules::tri_1(), 2),
