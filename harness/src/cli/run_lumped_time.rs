@@ -7,15 +7,12 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use jointlin_harness::input::scene::Scene;
-use jointlin_harness::model::lumped::Lumped;
 use jointlin_harness::model::Job;
-use jointlin_harness::report::loop_plot::{self, JointLoop};
+use jointlin_harness::report::lumped_run::plot_joint_loops;
 use jointlin_harness::settings::units::frequency_unit;
-use jointlin_harness::time::lumped::LoopSample;
 use jointlin_harness::time::lumped_sweep::{run_lumped, LumpedTimeRun};
-use jointlin_harness::time::lumped_tables::{self, joint_sample, peak};
+use jointlin_harness::time::lumped_tables::{self, peak};
 use jointlin_harness::time::TimeSettings;
-use jointlin_harness::util::atomic;
 
 use super::progress_bar;
 
@@ -95,41 +92,12 @@ fn plot_loops(s: &Scene, r: &LumpedTimeRun, out: &Path) -> Result<Option<PathBuf
         return Ok(None);
     };
     let file = out.join("loops_time.svg");
-    plot_joint_loops(s, &r.lumped, (freq, &settled.loops), &file, "time domain")
-}
-
-/// Draws every joint's loop of `samples` (per sample, per element) at `freq` into `file`
-/// (nothing without joints); `what` names the method in the title.
-pub(super) fn plot_joint_loops(
-    s: &Scene,
-    l: &Lumped,
-    (freq, samples): (f64, &[Vec<LoopSample>]),
-    file: &Path,
-    what: &str,
-) -> Result<Option<PathBuf>, String> {
-    if l.joints.is_empty() || samples.is_empty() {
-        return Ok(None);
-    }
-    let loops: Vec<JointLoop> = (0..l.joints.len())
-        .map(|j| {
-            let at: Vec<_> = samples.iter().map(|x| joint_sample(l, j, x)).collect();
-            JointLoop {
-                name: l.joints[j].name.clone(),
-                t1: at.iter().map(|s| (s.displacement[0], s.force[0])).collect(),
-                t2: at.iter().map(|s| (s.displacement[1], s.force[1])).collect(),
-            }
-        })
-        .collect();
-    let fu = frequency_unit(&s.spec.units);
-    let title = format!(
-        "{}: {what}, one period at {:.4} {}",
-        s.title(),
-        fu.show(freq),
-        fu.text
-    );
-    if let Some(dir) = file.parent() {
-        std::fs::create_dir_all(dir).map_err(|e| e.to_string())?;
-    }
-    atomic::with_temp(file, |t| loop_plot::draw(t, &title, &s.spec.units, &loops))?;
-    Ok(Some(file.to_path_buf()))
+    let job = Job::from(s);
+    plot_joint_loops(
+        &job,
+        &r.lumped,
+        (freq, &settled.loops),
+        &file,
+        "time domain",
+    )
 }

@@ -7,6 +7,7 @@ pub mod frf_plot;
 pub mod kinematics;
 pub mod legend;
 pub mod loop_plot;
+pub mod lumped_run;
 pub mod modes;
 pub mod point_loops;
 pub mod style;
