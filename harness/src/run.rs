@@ -9,14 +9,15 @@ use serde::Serialize;
 use thiserror::Error;
 
 use crate::capi::{self, CallCounts};
-use crate::model::{BuildError, Job, Problem};
+use crate::model::{Job, Problem};
 use crate::settings::{
     Direction, Effects, FieldOutputSpec, Interval, Mode, RunSettings, SweepMethod,
 };
 use crate::solve::modal::{lowest_modes, ModalOptions};
 use crate::solve::modal_band::modes_below;
 use crate::solve::modal_stuck::stuck_stiffness_after;
-use crate::solve::static_step::{self, StaticError, StaticState};
+use crate::solve::prepared::{PrepareError, Prepared};
+use crate::solve::static_step::StaticState;
 use crate::solve::sweep::modal_route::{
     LinearRoute, ModalRoute, ModeChoice, BAND_FACTOR, MAX_MODES, MIN_MODES,
 };
@@ -25,10 +26,8 @@ use crate::solve::sweep::{self, Options, SweepError, SweepResult};
 /// Errors of a run.
 #[derive(Debug, Error)]
 pub enum RunError {
-    #[error("building the model: {0}")]
-    Build(#[from] BuildError),
-    #[error("static preload step: {0}")]
-    Static(#[from] StaticError),
+    #[error(transparent)]
+    Prepare(#[from] PrepareError),
     #[error("steady-state step: {0}")]
     Sweep(#[from] SweepError),
     #[error("steady-state step: the stuck eigenfrequencies that divide the range: {0}")]
@@ -205,14 +204,12 @@ pub fn run(
     let job: Job = job.into();
     let spec = &job.settings;
     let eff: Effects = spec.effects;
-    let t = Instant::now();
-    progress("building the model", 0, 0);
-    let problem = job.build()?;
-    let t_build = t.elapsed().as_secs_f64();
-    let t = Instant::now();
-    progress("static preload step", 0, 0);
-    let stat = static_step::solve(&problem, eff.normal_contact_nonlinearity)?;
-    let t_static = t.elapsed().as_secs_f64();
+    let Prepared {
+        problem,
+        stat,
+        build_seconds: t_build,
+        static_seconds: t_static,
+    } = Prepared::new(&job, &|step| progress(step, 0, 0))?;
     let mut opts = sweep_options(spec, extras);
     // One modal basis for every sweep of the run (they share the problem).
     let t = Instant::now();
@@ -488,6 +485,7 @@ mod tests {
     use super::*;
     use crate::input::scene::Scene;
     use crate::model::build;
+    use crate::solve::static_step;
 
     /// With `interval = "eigenfrequency"` the fast modal route's own basis divides the
     /// range (its modes computed once): at the very frequencies the stuck modes give.

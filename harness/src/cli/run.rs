@@ -13,6 +13,7 @@ use jointlin_harness::report::{self, ReportOptions};
 use jointlin_harness::run::{run, Extras, RunError, RunResult};
 use jointlin_harness::settings::units::frequency_unit;
 use jointlin_harness::settings::Mode;
+use jointlin_harness::solve::prepared::PrepareError;
 use jointlin_harness::util::progress::progress_bar;
 
 use super::{load_scene_with, print_findings, report_written, SceneOverrides};
@@ -112,12 +113,12 @@ pub fn main(a: Args) -> ExitCode {
     let r = match r {
         Ok(r) => r,
         // A deck the build cannot honour: its own file:line.
-        Err(RunError::Build(BuildError::Deck(e))) => {
+        Err(RunError::Prepare(PrepareError::Build(BuildError::Deck(e)))) => {
             eprintln!("error: {e}");
             return ExitCode::from(2);
         }
         // A model that cannot be built is the scene's fault: its location, as `check`.
-        Err(RunError::Build(e)) => {
+        Err(RunError::Prepare(PrepareError::Build(e))) => {
             eprintln!("error: {}", jointlin_harness::model::locate(&s, &e));
             return ExitCode::from(2);
         }

@@ -20,9 +20,10 @@ pub mod report;
 use thiserror::Error;
 
 use crate::model::Job;
-use crate::model::{BuildError, Problem};
+use crate::model::Problem;
 pub use crate::settings::{LossStudySpec, ReferencePoint};
-use crate::solve::static_step::{self, StaticError, StaticState};
+use crate::solve::prepared::{PrepareError, Prepared};
+use crate::solve::static_step::StaticState;
 use crate::solve::sweep::modal_route::ModalRoute;
 use crate::solve::sweep::{self, Options, PointFreq, SweepError, C64};
 
@@ -33,10 +34,8 @@ pub enum LossError {
     NoStudy,
     #[error("loss_study: {0}")]
     Spec(String),
-    #[error("building the model: {0}")]
-    Build(#[from] BuildError),
-    #[error("static preload step: {0}")]
-    Static(#[from] StaticError),
+    #[error(transparent)]
+    Prepare(#[from] PrepareError),
     #[error("steady-state solve: {0}")]
     Sweep(#[from] SweepError),
     #[error("{what} did not converge at {} Hz", crate::util::number::sig(*freq))]
@@ -91,8 +90,7 @@ impl Operating {
     /// Builds the scene's model and runs its static step; `output` names the output
     /// whose amplitude is studied, `share` the modelled fraction of the structure.
     pub fn new(job: &Job, output: &str, share: f64) -> Result<Self, LossError> {
-        let problem = job.build()?;
-        let stat = static_step::solve(&problem, job.settings.effects.normal_contact_nonlinearity)?;
+        let Prepared { problem, stat, .. } = Prepared::new(job, &|_| {})?;
         let output = problem
             .outputs
             .iter()

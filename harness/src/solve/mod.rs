@@ -10,6 +10,7 @@ pub mod modal;
 pub mod modal_band;
 pub mod modal_stuck;
 pub mod mode_labels;
+pub mod prepared;
 pub mod reduction;
 pub mod static_step;
 pub mod sweep;

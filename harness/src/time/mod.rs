@@ -48,8 +48,8 @@ use thiserror::Error;
 
 use crate::capi::CapiError;
 use crate::mhb::MhbError;
-use crate::model::BuildError;
-use crate::solve::static_step::StaticError;
+
+use crate::solve::prepared::PrepareError;
 use crate::solve::umfpack::UmfpackError;
 
 pub type C64 = Complex<f64>;
@@ -61,10 +61,8 @@ pub enum TimeError {
     Capi(#[from] CapiError),
     #[error(transparent)]
     Umfpack(#[from] UmfpackError),
-    #[error("building the model: {0}")]
-    Build(#[from] BuildError),
-    #[error("static preload step: {0}")]
-    Static(#[from] StaticError),
+    #[error(transparent)]
+    Prepare(#[from] PrepareError),
     #[error("Newton did not converge at t = {t:.6e} (|Φ|/|r| = {residual:.3e} after {iterations} iterations)")]
     Newton {
         t: f64,

@@ -5,6 +5,7 @@
 //! previous end state (a slow sweep, which follows a branch as a physical sweep would);
 //! with `start = "linear"` every frequency starts from the stuck linear steady state.
 
+use crate::solve::prepared::Prepared;
 use std::time::Instant;
 
 use serde::Serialize;
@@ -19,7 +20,7 @@ use super::{Forcing, Integrator, Start, State, Stepper, TimeError, TimeSettings,
 use crate::fe::csc::Csc;
 use crate::mhb::loops::LoopSample;
 use crate::model::{Job, Problem};
-use crate::solve::static_step::{self, StaticState};
+use crate::solve::static_step::StaticState;
 use crate::solve::sweep::harmonic_fe_point3d::{check_laws, PointModel};
 use crate::solve::umfpack::{to_complex, Numeric, Symbolic};
 
@@ -344,8 +345,7 @@ pub fn run_scene(
 ) -> Result<TimeRun, TimeError> {
     let clock = Instant::now();
     let job: Job = job.into();
-    let problem = job.build()?;
-    let stat = static_step::solve(&problem, job.settings.effects.normal_contact_nonlinearity)?;
+    let Prepared { problem, stat, .. } = Prepared::new(&job, &|_| {})?;
     let model = PointModel::from_effects(&job.settings.effects);
     if !model.is_thesis() {
         check_laws(&problem, model).map_err(|e| TimeError::Settings(e.to_string()))?;
