@@ -120,7 +120,8 @@ pub fn start_mode(sys: &System, mode: usize) -> Result<Mode, BackboneError> {
 /// and sign the pair is given in): the larger |Σᵢ wᵢ φᵢ| with fixed weights
 /// wᵢ = sin(√2 (i + 1)), which no symmetry of a model makes cancel as it can with
 /// patterned weights (two free blocks sliding against each other have Σ φᵢ = 0 per
-/// axis); where those agree to 1e-9, the one whose first moving DOF comes first.
+/// axis); where those agree to 1e-6 (about what the refined directions are good to),
+/// the one whose first moving DOF comes first.
 fn ranked(x: &[C64], y: &[C64]) -> std::cmp::Ordering {
     let score = |phi: &[C64]| {
         phi.iter()
@@ -130,7 +131,7 @@ fn ranked(x: &[C64], y: &[C64]) -> std::cmp::Ordering {
             .norm()
     };
     let (sx, sy) = (score(x), score(y));
-    if (sx - sy).abs() > 1e-9 * sx.max(sy) {
+    if (sx - sy).abs() > 1e-6 * sx.max(sy) {
         return sx.total_cmp(&sy);
     }
     first_moving(y).cmp(&first_moving(x))

@@ -91,7 +91,8 @@ fn point_names(l: &Lumped) -> Vec<String> {
 
 fn build(scene: &Scene, mode: usize, epmc: bool) -> Result<Built, String> {
     let s = &scene.spec;
-    // A masses-only scene is read as the lumped system (no reduction needed).
+    // A lumped scene, and a masses-only one, is read as the lumped system (no
+    // reduction needed); an FE scene or deck is reduced onto its contact directions.
     if model::kind(scene) != Kind::Fe {
         let lumped = lumped::build(scene)?;
         if lumped.points.is_empty() {

@@ -50,8 +50,8 @@ pub fn main(a: Args) -> ExitCode {
         Err(code) => return code,
     };
     // What only the model build finds (contact faces whose nodes do not match, ties
-    // between non-conforming meshes), with the scene's location; lumped scenes with
-    // [[joints]] are `jointlin backbone`'s and have no FE model.
+    // between non-conforming meshes), with the scene's location; a lumped scene's
+    // system is built instead (its [[matrices]] files read), with no FE findings.
     let mut built = None;
     let mut parts = model_parts(&s);
     match model::model(&s) {

@@ -60,9 +60,10 @@ pub fn main(s: &Scene, settings: &TimeSettings, out: &Path, plots: bool, quiet: 
             Err(e) => eprintln!("warning: {:.6e} {}: {e}", fu.show(x.freq), fu.text),
         }
     }
+    let job = Job::from(s);
     let mut written = Vec::new();
     if plots {
-        match plot_loops(s, &r, out) {
+        match plot_loops(&job, &r, out) {
             Ok(p) => written.extend(p),
             Err(e) => {
                 eprintln!("error: {e}");
@@ -70,8 +71,7 @@ pub fn main(s: &Scene, settings: &TimeSettings, out: &Path, plots: bool, quiet: 
             }
         }
     }
-    let files = lumped_tables::write(out, &Job::from(s), &r)
-        .map(|f| written.into_iter().chain(f).collect());
+    let files = lumped_tables::write(out, &job, &r).map(|f| written.into_iter().chain(f).collect());
     let failed = r.results.iter().filter(|x| x.result.is_err()).count();
     match super::report_written(files) {
         ExitCode::SUCCESS if failed > 0 => {
@@ -87,17 +87,10 @@ pub fn main(s: &Scene, settings: &TimeSettings, out: &Path, plots: bool, quiet: 
 
 /// loops_time.svg: every joint's loop over the last period at the frequency of the
 /// largest response (nothing without joints or integrated frequencies).
-fn plot_loops(s: &Scene, r: &LumpedTimeRun, out: &Path) -> Result<Option<PathBuf>, String> {
+fn plot_loops(job: &Job, r: &LumpedTimeRun, out: &Path) -> Result<Option<PathBuf>, String> {
     let Some((freq, settled)) = peak(&r.lumped, &r.results) else {
         return Ok(None);
     };
     let file = out.join("loops_time.svg");
-    let job = Job::from(s);
-    plot_joint_loops(
-        &job,
-        &r.lumped,
-        (freq, &settled.loops),
-        &file,
-        "time domain",
-    )
+    plot_joint_loops(job, &r.lumped, (freq, &settled.loops), &file, "time domain")
 }

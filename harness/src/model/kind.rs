@@ -11,9 +11,10 @@ use crate::input::scene::Scene;
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Kind {
     /// `[[matrices]]`, `[[joints]]` or springs `between` two bodies: a lumped system
-    /// (the lumped sweep, modes and time domain, `jointlin backbone`).
+    /// (the lumped sweep, modes, time domain and tradeoff, `jointlin backbone`);
+    /// validation refuses them beside FE parts, and where both are, these decide.
     Lumped,
-    /// A deck, box bodies or `[[interfaces]]`: an FE problem.
+    /// A deck, box bodies or `[[interfaces]]` (and no lumped element): an FE problem.
     Fe,
     /// Mass bodies with grounded springs and nothing else: both builds take it. It runs
     /// as the FE problem ([`model`]); `jointlin backbone` reads it as the lumped system.

@@ -57,18 +57,17 @@ struct Pass {
 /// frf.svg (the outputs' amplitudes), and run.json (last, the marker of a complete run)
 /// into `out`. A file that cannot be written ends the run with its message.
 pub fn run(job: &Job, l: &Lumped, out: &Path, plots: bool) -> Result<LumpedRun, String> {
-    let s = job;
-    let units = &s.settings.units;
-    let it = &s.settings.iteration;
+    let units = &job.settings.units;
+    let it = &job.settings.iteration;
     let harmonic = (it.mode == Mode::HarmonicBalance).then(|| {
         let h = it.harmonics.unwrap_or(1);
         (h, it.samples.unwrap_or_else(|| default_samples(h)))
     });
-    let mut up = s.settings.frequencies();
+    let mut up = job.settings.frequencies();
     up.sort_by(f64::total_cmp);
     let down: Vec<f64> = up.iter().rev().copied().collect();
     // (file suffix, curve label, frequencies in solve order) per pass.
-    let passes: Vec<(&str, &str, &[f64])> = match s.settings.sweep.direction {
+    let passes: Vec<(&str, &str, &[f64])> = match job.settings.sweep.direction {
         Direction::Up => vec![("", "", &up)],
         Direction::Down => vec![("", "", &down)],
         Direction::UpDown => vec![("", "sweep up", &up), ("_down", "sweep down", &down)],
@@ -81,7 +80,7 @@ pub fn run(job: &Job, l: &Lumped, out: &Path, plots: bool) -> Result<LumpedRun, 
     for (suffix, label, order) in &passes {
         let mut pass = sweep_pass(l, units, harmonic, order, label);
         let scope = Written {
-            s,
+            s: job,
             l,
             out,
             harmonic,
@@ -106,21 +105,21 @@ pub fn run(job: &Job, l: &Lumped, out: &Path, plots: bool) -> Result<LumpedRun, 
         let names: Vec<String> = l.outputs.iter().map(|(n, _)| n.clone()).collect();
         let p = out.join("frf.svg");
         let title = match harmonic {
-            None => format!("{}: first order", s.title()),
-            Some((h, _)) => format!("{}: harmonic balance, H = {h}", s.title()),
+            None => format!("{}: first order", job.title()),
+            Some((h, _)) => format!("{}: harmonic balance, H = {h}", job.title()),
         };
         atomic::with_temp(&p, |t| frf_curves(t, &title, units, &names, &curves))?;
         written.push(p);
     }
     let solved = up.len() * passes.len();
-    let head = provenance::head("run", &capi::abi_version(), s.sources());
+    let head = provenance::head("run", &capi::abi_version(), job.sources());
     let record = Record {
         method: &method,
         frequencies: up.len(),
         failed: &failed,
         sweep_seconds,
     };
-    let run = provenance::with_head(head, body(s, l, &record));
+    let run = provenance::with_head(head, body(job, l, &record));
     let text = serde_json::to_string_pretty(&run).expect("json");
     written.push(atomic::write_marker(out, &text)?);
     Ok(LumpedRun {

@@ -1,4 +1,6 @@
-//! An FE job made ready for its steps, as every FE study starts: the problem built
+//! An FE job made ready for its steps, as the run, the loss study and the time domain
+//! start (the backbone, reduction, export and benches preload with their own flags and
+//! messages): the problem built
 //! (`Job::build`) and its static preload step solved (`static_step::solve`, the normal
 //! contact nonlinear where the job's `[effects] normal_contact_nonlinearity` says so),
 //! with what each cost.

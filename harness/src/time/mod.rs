@@ -48,7 +48,6 @@ use thiserror::Error;
 
 use crate::capi::CapiError;
 use crate::mhb::MhbError;
-
 use crate::solve::prepared::PrepareError;
 use crate::solve::umfpack::UmfpackError;
 

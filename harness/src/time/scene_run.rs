@@ -5,7 +5,6 @@
 //! previous end state (a slow sweep, which follows a branch as a physical sweep would);
 //! with `start = "linear"` every frequency starts from the stuck linear steady state.
 
-use crate::solve::prepared::Prepared;
 use std::time::Instant;
 
 use serde::Serialize;
@@ -20,6 +19,7 @@ use super::{Forcing, Integrator, Start, State, Stepper, TimeError, TimeSettings,
 use crate::fe::csc::Csc;
 use crate::mhb::loops::LoopSample;
 use crate::model::{Job, Problem};
+use crate::solve::prepared::Prepared;
 use crate::solve::static_step::StaticState;
 use crate::solve::sweep::harmonic_fe_point3d::{check_laws, PointModel};
 use crate::solve::umfpack::{to_complex, Numeric, Symbolic};

@@ -355,3 +355,20 @@ fn matrices_tables_are_validated() {
     let e = err(&boxed);
     assert_eq!(e.key, "matrices[0]", "{}", e.message);
 }
+
+#[test]
+fn lumped_elements_beside_fe_bodies_are_refused_at_the_first() {
+    let mass =
+        "\n[[bodies]]\nname = \"m\"\nkind = \"mass\"\nposition = [0.0, 0.0, 5.0]\nmass = 1.0\n";
+    let joint = "\n[[joints]]\nname = \"j\"\nbetween = [\"ground\", \"m\"]\ndirection = [1.0, 0.0, 0.0]\nlaw = \"jenkins\"\nrule = \"masing\"\nmu = 1.0\nnormal_force = 0.1\nk_t0 = 2.0\n";
+    let text = format!("{GOOD}{mass}{joint}");
+    let e = err(&text);
+    assert_eq!(e.key, "joints[0]", "{e}");
+    assert_eq!(e.line, line_of(&text, "[[joints]]"));
+    assert!(e.message.contains("make a lumped system"), "{e}");
+    let spring = "\n[[springs]]\nbetween = [\"ground\", \"m\"]\ndirection = [1.0, 0.0, 0.0]\nstiffness = 1.0\n";
+    let text = format!("{GOOD}{mass}{spring}");
+    let e = err(&text);
+    assert_eq!(e.key, "springs[0].between", "{e}");
+    assert!(e.message.contains("make a lumped system"), "{e}");
+}

@@ -156,6 +156,31 @@ pub(super) fn springs(c: &mut Checker, s: &SceneFile) {
     }
 }
 
+/// Lumped elements ([[joints]], springs `between` two bodies) make the scene a lumped
+/// system, which has no FE parts: refused beside `model`, box bodies or [[interfaces]]
+/// at the first of them (a [[matrices]] model says so itself).
+pub(super) fn no_fe_parts(c: &mut Checker, s: &SceneFile) {
+    let fe_parts = s.model.is_some()
+        || !s.interfaces.is_empty()
+        || s.bodies.iter().any(|b| b.kind == BodyKind::Box);
+    if !fe_parts || !s.matrices.is_empty() {
+        return;
+    }
+    let root = KeyPath::root();
+    let first = if s.joints.is_empty() {
+        let Some(i) = s.springs.iter().position(|sp| sp.between.is_some()) else {
+            return;
+        };
+        root.key("springs").index(i).key("between")
+    } else {
+        root.key("joints").index(0)
+    };
+    c.fail(
+        first,
+        "[[joints]] and springs `between` two bodies make a lumped system, joined by mass bodies, [[springs]] and [[matrices]]: no `model`, box bodies or [[interfaces]]",
+    );
+}
+
 /// The two ends of a lumped element: mass bodies or `"ground"`, not the same twice.
 fn lumped_ends(c: &mut Checker, path: KeyPath, ends: &[String; 2]) {
     for (k, e) in ends.iter().enumerate() {

@@ -160,6 +160,7 @@ fn checked(s: &SceneFile) -> Vec<Problem> {
     lumped::joints(&mut c, s);
     lumped::springs(&mut c, s);
     lumped::effects(&mut c, s);
+    lumped::no_fe_parts(&mut c, s);
     loads::excitation(&mut c, s);
     study::sweep(&mut c, s);
     study::iteration(&mut c, s);
