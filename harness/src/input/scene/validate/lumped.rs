@@ -156,9 +156,9 @@ pub(super) fn springs(c: &mut Checker, s: &SceneFile) {
     }
 }
 
-/// Lumped elements ([[joints]], springs `between` two bodies) make the scene a lumped
-/// system, which has no FE parts: refused beside `model`, box bodies or [[interfaces]]
-/// at the first of them (a [[matrices]] model says so itself).
+/// Lumped elements (`[[joints]]`, springs `between` two bodies) make the scene a lumped
+/// system, which has no FE parts: refused beside `model`, box bodies or `[[interfaces]]`
+/// at the first of them (a `[[matrices]]` model says so itself).
 pub(super) fn no_fe_parts(c: &mut Checker, s: &SceneFile) {
     let fe_parts = s.model.is_some()
         || !s.interfaces.is_empty()
