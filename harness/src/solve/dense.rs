@@ -1,72 +1,65 @@
-//! In-place dense complex LU with partial pivoting for the condensed contact system
-//! (m × m, m = 2 × contact points), on caller-owned scratch so that the contact
-//! iterations allocate nothing. Right-looking and unblocked, its updates run down the
-//! columns. (LAPACK's `zgetrf` from OpenBLAS was tried: its threaded version overflows a
-//! 2 MB thread stack, as in the test harness's threads or a host code's.)
+//! Dense complex LU with partial pivoting for the condensed contact system (m × m,
+//! m = 2 × contact points), by faer (blocked and recursive, SIMD, one thread: the
+//! same row-pivoting algorithm as the textbook's, so results differ by round-off only),
+//! on scratch owned by the sweep so that the contact iterations allocate nothing. An
+//! unblocked right-looking LU took ~50 ms per factorization at m = 338 (the bolted lap's
+//! joint), a third of its modal sweep. (LAPACK's `zgetrf` from OpenBLAS was tried
+//! first: its threaded version overflows a 2 MB thread stack, as in the test harness's
+//! threads or a host code's.)
 
+use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
+use faer::linalg::lu::partial_pivoting::{factor, solve};
+use faer::perm::PermRef;
+use faer::{MatMut, MatRef, Par};
 use nalgebra::Complex;
 
 type C64 = Complex<f64>;
 
-/// Solves A x = b in place: `a` (n×n, column-major, overwritten by its LU factors),
-/// `b` (length n, overwritten by x). Returns false if a pivot is exactly zero or the
-/// result is not finite.
-pub fn lu_solve_in_place(a: &mut [C64], n: usize, b: &mut [C64]) -> bool {
-    debug_assert_eq!(a.len(), n * n);
-    debug_assert_eq!(b.len(), n);
-    let at = |r: usize, c: usize| r + n * c;
-    for k in 0..n {
-        // Pivot: largest |a_ik|, i ≥ k.
-        let mut p = k;
-        let mut best = a[at(k, k)].norm();
-        for i in k + 1..n {
-            let v = a[at(i, k)].norm();
-            if v > best {
-                best = v;
-                p = i;
-            }
+/// Scratch for solving systems of up to `n` unknowns.
+pub struct DenseLu {
+    n: usize,
+    perm: Vec<usize>,
+    perm_inv: Vec<usize>,
+    buffer: MemBuffer,
+}
+
+impl DenseLu {
+    /// Scratch for systems of up to `n` unknowns.
+    pub fn new(n: usize) -> Self {
+        let req = StackReq::any_of(&[
+            factor::lu_in_place_scratch::<usize, C64>(n, n, Par::Seq, Default::default()),
+            solve::solve_in_place_scratch::<usize, C64>(n, 1, Par::Seq),
+        ]);
+        DenseLu {
+            n,
+            perm: vec![0; n],
+            perm_inv: vec![0; n],
+            buffer: MemBuffer::new(req),
         }
-        if best == 0.0 {
+    }
+
+    /// Solves A x = b in place: `a` (n×n, column-major, overwritten by its LU factors),
+    /// `b` (length n, overwritten by x), n at most the scratch's size. Returns false if a
+    /// pivot is exactly zero or the result is not finite.
+    pub fn solve_in_place(&mut self, a: &mut [C64], n: usize, b: &mut [C64]) -> bool {
+        assert!(n <= self.n && a.len() == n * n && b.len() == n);
+        if n == 0 {
+            return true;
+        }
+        let stack = MemStack::new(&mut self.buffer);
+        let (perm, perm_inv) = (&mut self.perm[..n], &mut self.perm_inv[..n]);
+        let lu = MatMut::from_column_major_slice_mut(a, n, n);
+        factor::lu_in_place(lu, perm, perm_inv, Par::Seq, stack, Default::default());
+        let lu = MatRef::from_column_major_slice(a, n, n);
+        if (0..n).any(|i| lu[(i, i)] == C64::new(0.0, 0.0)) {
             return false;
         }
-        if p != k {
-            for c in 0..n {
-                a.swap(at(k, c), at(p, c));
-            }
-            b.swap(k, p);
-        }
-        // Multipliers in column k, then the trailing columns one by one: each update is a
-        // contiguous axpy down a column (column-major), the same products and
-        // differences per entry as a row-by-row update.
-        let inv = a[at(k, k)].inv();
-        for i in k + 1..n {
-            a[at(i, k)] *= inv;
-        }
-        let (head, tail) = a.split_at_mut(n * (k + 1));
-        let l = &head[at(k + 1, k)..];
-        for col in tail.chunks_exact_mut(n) {
-            let u = col[k];
-            if u != C64::new(0.0, 0.0) {
-                for (x, li) in col[k + 1..].iter_mut().zip(l) {
-                    *x -= li * u;
-                }
-            }
-        }
-        let bk = b[k];
-        if bk != C64::new(0.0, 0.0) {
-            for (x, li) in b[k + 1..].iter_mut().zip(l) {
-                *x -= li * bk;
-            }
-        }
+        // SAFETY: lu_in_place wrote a permutation and its inverse into these slices.
+        let p = unsafe { PermRef::new_unchecked(&self.perm[..n], &self.perm_inv[..n], n) };
+        let rhs = MatMut::from_column_major_slice_mut(b, n, 1);
+        solve::solve_in_place(lu, lu, p, rhs, Par::Seq, MemStack::new(&mut self.buffer));
+        b.iter().all(|v| v.re.is_finite() && v.im.is_finite())
     }
-    for k in (0..n).rev() {
-        let mut s = b[k];
-        for c in k + 1..n {
-            s -= a[at(k, c)] * b[c];
-        }
-        b[k] = s / a[at(k, k)];
-    }
-    b.iter().all(|v| v.re.is_finite() && v.im.is_finite())
 }
 
 #[cfg(test)]
@@ -91,7 +84,7 @@ mod tests {
                 .unwrap();
             let mut aa = a.clone();
             let mut x = b.clone();
-            assert!(lu_solve_in_place(&mut aa, n, &mut x));
+            assert!(DenseLu::new(n).solve_in_place(&mut aa, n, &mut x));
             let err: f64 = x
                 .iter()
                 .zip(reference.iter())
@@ -102,6 +95,6 @@ mod tests {
         }
         let mut singular = vec![C64::new(0.0, 0.0); 4];
         let mut b = vec![C64::new(1.0, 0.0); 2];
-        assert!(!lu_solve_in_place(&mut singular, 2, &mut b));
+        assert!(!DenseLu::new(2).solve_in_place(&mut singular, 2, &mut b));
     }
 }

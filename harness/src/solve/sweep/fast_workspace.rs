@@ -18,7 +18,7 @@ use super::{Options, Setup, SweepError, SweepResult, C64};
 use crate::capi::Linearized;
 use crate::fe::csc::Csc;
 use crate::settings::IterationSpec;
-use crate::solve::dense::lu_solve_in_place;
+use crate::solve::dense::DenseLu;
 use crate::solve::umfpack::Numeric;
 
 /// Anderson history depth.
@@ -61,8 +61,9 @@ pub struct Workspace {
     pub(super) x_full: Vec<C64>,
     pub(super) x_rhs: Vec<C64>,
     pub(super) gmres: Gmres<C64>,
-    /// I + GΔ (m × m).
+    /// I + GΔ (m × m) and its factorization's scratch.
     pub(super) work: Vec<C64>,
+    lu: DenseLu,
     /// B û, Δ (per unknown) and, with coupled slip, Δ₁₂ per point.
     pub(super) r: Vec<C64>,
     pub(super) delta: Vec<C64>,
@@ -101,6 +102,7 @@ impl Workspace {
             x_full,
             gmres: Gmres::new(if condensed { 0 } else { n }, GMRES_RESTART),
             work: vec![zero; if condensed { m * m } else { 0 }],
+            lu: DenseLu::new(if condensed { m } else { 0 }),
             r: vec![zero; m],
             delta: vec![zero; m],
             delta_off: vec![zero; nc],
@@ -416,7 +418,7 @@ impl Workspace {
             self.work[jc + m * jc] += C64::new(1.0, 0.0);
         }
         self.r.copy_from_slice(&self.rec.r0);
-        if lu_solve_in_place(&mut self.work, m, &mut self.r) {
+        if self.lu.solve_in_place(&mut self.work, m, &mut self.r) {
             Ok(())
         } else {
             Err(SweepError::Condensed { freq: f })

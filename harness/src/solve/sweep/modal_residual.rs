@@ -7,7 +7,8 @@
 //! (the mode-acceleration correction and its inertia term, undamped: the omitted modes
 //! sit above the band, where their damping barely acts). Every image under the contact
 //! rows B and the outputs C comes from one Cholesky factor of K_s: 2 solves per contact
-//! direction once per basis, 4 per load, 4 per field.
+//! direction once per basis, 4 per load, 2 blocked ones (real and imaginary part) per
+//! field.
 
 use nalgebra::DMatrix;
 
@@ -167,13 +168,27 @@ impl Residual {
         g: &[C64],
         x: &mut [C64],
     ) -> Result<(), CholmodError> {
+        // The real and the imaginary part (those not zero) as one blocked solve each
+        // for R and R M R.
+        let n = g.len();
+        let mut units = Vec::with_capacity(2);
+        let mut parts = Vec::with_capacity(2 * n);
         for unit in [C64::new(1.0, 0.0), C64::new(0.0, 1.0)] {
-            let part: Vec<f64> = g.iter().map(|v| (v * unit.conj()).re).collect();
-            if part.iter().all(|&v| v == 0.0) {
-                continue;
+            let start = parts.len();
+            parts.extend(g.iter().map(|v| (v * unit.conj()).re));
+            if parts[start..].iter().all(|&v| v == 0.0) {
+                parts.truncate(start);
+            } else {
+                units.push(unit);
             }
-            let [first, second] = self.images(kept, &part, 1)?;
-            for (xi, (a, b)) in x.iter_mut().zip(first.iter().zip(&second)) {
+        }
+        if units.is_empty() {
+            return Ok(());
+        }
+        let [first, second] = self.images(kept, &parts, units.len())?;
+        for (c, unit) in units.iter().enumerate() {
+            let (a, b) = (&first[c * n..(c + 1) * n], &second[c * n..(c + 1) * n]);
+            for (xi, (a, b)) in x.iter_mut().zip(a.iter().zip(b)) {
                 *xi += unit * (a + w2 * b);
             }
         }

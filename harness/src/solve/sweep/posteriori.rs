@@ -64,6 +64,19 @@ impl CDot2 {
         self.im.add_prod(a.im, z.re);
     }
 
+    /// += a·z for a real a (what [`CDot2::add`] does with a zero imaginary part, whose
+    /// products are exact zeros).
+    fn add_real(&mut self, a: f64, z: C64) {
+        self.re.add_prod(a, z.re);
+        self.im.add_prod(a, z.im);
+    }
+
+    /// += i·b·z for a real b.
+    fn add_imaginary(&mut self, b: f64, z: C64) {
+        self.re.add_prod(-b, z.im);
+        self.im.add_prod(b, z.re);
+    }
+
     fn value(self) -> C64 {
         C64::new(self.re.value(), self.im.value())
     }
@@ -192,19 +205,22 @@ pub fn residual(
     let w2 = omega * omega;
     let mut y = vec![CDot2::default(); n];
     let (mut cols, mut rows) = (vec![0.0f64; n], vec![0.0f64; n]);
-    let m = &p.sys.m.values;
-    for j in 0..n {
+    let (base, m) = (&setup.base, &p.sys.m.values);
+    let damping = setup.damping.map(|d| &d.values);
+    let structural = setup.structural.filter(|_| omega > 0.0).map(|h| &h.values);
+    for (j, &xj) in x[..n].iter().enumerate() {
         for k in pt.col_ptr[j] as usize..pt.col_ptr[j + 1] as usize {
             let i = pt.row_idx[k] as usize;
-            let d = setup.damping.map_or(0.0, |d| d.values[k]);
-            let h = setup
-                .structural
-                .filter(|_| omega > 0.0)
-                .map_or(0.0, |h| h.values[k]);
-            y[i].add(C64::new(setup.base[k], 0.0), x[j]);
-            y[i].add(C64::new(-w2 * m[k], 0.0), x[j]);
-            y[i].add(C64::new(0.0, omega * d + h), x[j]);
-            let v = C64::new(setup.base[k] - w2 * m[k], omega * d + h).norm();
+            let d = damping.map_or(0.0, |d| d[k]);
+            let h = structural.map_or(0.0, |h| h[k]);
+            let imaginary = omega * d + h;
+            // K, −ω²M and iω(D + H) each on their own: no digit lost where K − ω²M cancels.
+            y[i].add_real(base[k], xj);
+            y[i].add_real(-w2 * m[k], xj);
+            if imaginary != 0.0 {
+                y[i].add_imaginary(imaginary, xj);
+            }
+            let v = C64::new(base[k] - w2 * m[k], imaginary).norm();
             cols[j] += v;
             rows[i] += v;
         }
