@@ -31,6 +31,7 @@ use super::contact::Contacts;
 use super::{Forcing, State, Stepper, TimeError};
 use crate::fe::csc::Csc;
 use crate::fe::pair_blocks::to_global;
+use crate::linalg;
 use crate::model::Problem;
 use crate::solve::static_step::StaticState;
 use crate::solve::umfpack::Numeric;
@@ -293,20 +294,22 @@ impl<'a, 'n> Newmark<'a, 'n> {
         out
     }
 
-    /// The Newton matrix's contact part: per point its tangent less K_c0 (m × m, block
-    /// diagonal).
-    fn tangent_stiffness(&self, tangents: &[Matrix3<f64>]) -> DMatrix<f64> {
-        let m = 3 * tangents.len();
-        let mut d = DMatrix::zeros(m, m);
-        for (i, t) in tangents.iter().enumerate() {
-            let dt = t - self.kc0[i];
-            for a in 0..3 {
-                for b in 0..3 {
-                    d[(3 * i + a, 3 * i + b)] = dt[(a, b)];
-                }
-            }
+    /// The Newton matrix's contact part: per point its tangent less K_c0 (the 3 × 3
+    /// blocks of a block-diagonal m × m).
+    fn tangent_stiffness(&self, tangents: &[Matrix3<f64>]) -> Vec<Matrix3<f64>> {
+        tangents.iter().zip(&self.kc0).map(|(t, k)| t - k).collect()
+    }
+
+    /// I + G D for the block-diagonal D of `blocks` (3 × 3 per point): each point's
+    /// three columns of G times its block, 9m² products instead of a dense m³.
+    fn newton_matrix(&self, blocks: &[Matrix3<f64>]) -> DMatrix<f64> {
+        let m = 3 * blocks.len();
+        let mut jac = DMatrix::identity(m, m);
+        for (i, block) in blocks.iter().enumerate() {
+            jac.columns_mut(3 * i, 3)
+                .gemm(1.0, &self.g.columns(3 * i, 3), block, 1.0);
         }
-        d
+        jac
     }
 
     /// The secant iterations' contact part: per component the chord stiffness from the
@@ -318,22 +321,24 @@ impl<'a, 'n> Newmark<'a, 'n> {
         r: &DVector<f64>,
         tangents: &[Matrix3<f64>],
         scale: f64,
-    ) -> DMatrix<f64> {
-        let m = 3 * contacts.len();
-        let mut d = DMatrix::zeros(m, m);
+    ) -> Vec<Matrix3<f64>> {
         let q = contacts.trial_force();
-        for i in 0..contacts.len() {
-            for a in 0..3 {
-                let dd = r[3 * i + a] - contacts.delta[i][a];
-                let chord = if dd.abs() > 1e-14 * scale {
-                    (q[i][a] - contacts.force[i][a]) / dd
-                } else {
-                    tangents[i][(a, a)]
-                };
-                d[(3 * i + a, 3 * i + a)] = chord - self.kc0[i][(a, a)];
-            }
-        }
-        d
+        (0..contacts.len())
+            .map(|i| {
+                Matrix3::from_fn(|a, b| {
+                    if a != b {
+                        return 0.0;
+                    }
+                    let dd = r[3 * i + a] - contacts.delta[i][a];
+                    let chord = if dd.abs() > 1e-14 * scale {
+                        (q[i][a] - contacts.force[i][a]) / dd
+                    } else {
+                        tangents[i][(a, a)]
+                    };
+                    chord - self.kc0[i][(a, a)]
+                })
+            })
+            .collect()
     }
 
     /// u₊ = u₀ − H g: the linear step's displacement corrected by the contacts'
@@ -436,8 +441,7 @@ impl Stepper for Newmark<'_, '_> {
             iterations += 1;
             if iterations > MAX_NEWTON {
                 let d = self.secant_stiffness(contacts, &r, &tangents, scale);
-                let jac = DMatrix::identity(m, m) + &self.g * d;
-                let Some(dr) = jac.lu().solve(&(-&phi)) else {
+                let Some(dr) = linalg::solve(&self.newton_matrix(&d), &(-&phi)) else {
                     return Err(TimeError::Singular { t: t1 });
                 };
                 r += dr;
@@ -446,8 +450,8 @@ impl Stepper for Newmark<'_, '_> {
                 phi = p2;
                 continue;
             }
-            let jac = DMatrix::identity(m, m) + &self.g * self.tangent_stiffness(&tangents);
-            let Some(dr) = jac.lu().solve(&(-&phi)) else {
+            let jac = self.newton_matrix(&self.tangent_stiffness(&tangents));
+            let Some(dr) = linalg::solve(&jac, &(-&phi)) else {
                 return Err(TimeError::Singular { t: t1 });
             };
             let old = phi.amax();
