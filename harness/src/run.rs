@@ -15,7 +15,7 @@ use crate::settings::{
 };
 use crate::solve::modal::{lowest_modes, ModalOptions};
 use crate::solve::modal_band::modes_below;
-use crate::solve::modal_stuck::stuck_stiffness_after;
+use crate::solve::modal_stuck::stuck_stiffness;
 use crate::solve::prepared::{PrepareError, Prepared};
 use crate::solve::static_step::StaticState;
 use crate::solve::sweep::modal_route::{
@@ -120,7 +120,7 @@ pub fn sweep_frequencies(
         return Ok(sw.frequencies());
     }
     let err = |e: String| RunError::Intervals(e);
-    let k = stuck_stiffness_after(problem, stat, &settings.effects).map_err(err)?;
+    let k = stuck_stiffness(problem, stat, &settings.effects).map_err(err)?;
     let opts = ModalOptions::default();
     let modes = match sw.modes {
         Some(n) => lowest_modes(

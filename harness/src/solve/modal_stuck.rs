@@ -8,7 +8,8 @@ use crate::model::{Job, Problem};
 use crate::settings::Effects;
 use crate::solve::modal::ModalOptions;
 use crate::solve::modal_band::{modes_below, BandModes};
-use crate::solve::static_step::{self, StaticState};
+use crate::solve::prepared::Prepared;
+use crate::solve::static_step::StaticState;
 use crate::solve::sweep::Setup;
 
 /// How many modes [`stuck_modes`] looks for.
@@ -40,15 +41,8 @@ pub struct StuckModes {
 }
 
 /// K with every closed joint stuck (k_T0 tangential, static normal stiffness), on the
-/// problem's pattern, after the static step with `effects`.
-pub fn stuck_stiffness(effects: &Effects, p: &Problem) -> Result<Csc<f64>, String> {
-    let stat =
-        static_step::solve(p, effects.normal_contact_nonlinearity).map_err(|e| e.to_string())?;
-    stuck_stiffness_after(p, &stat, effects)
-}
-
-/// [`stuck_stiffness`] after the static step `stat`, with the run's `effects`.
-pub fn stuck_stiffness_after(
+/// problem's pattern, after the static step `stat`, with the run's `effects`.
+pub fn stuck_stiffness(
     p: &Problem,
     stat: &StaticState,
     effects: &Effects,
@@ -66,8 +60,8 @@ pub fn stuck_stiffness_after(
 /// asks.
 pub fn stuck_modes(job: impl Into<Job>, count: ModeCount) -> Result<StuckModes, String> {
     let job: Job = job.into();
-    let problem = job.build().map_err(|e| e.to_string())?;
-    let k = stuck_stiffness(&job.settings.effects, &problem)?;
+    let Prepared { problem, stat, .. } = Prepared::new(&job, &|_| {}).map_err(|e| e.to_string())?;
+    let k = stuck_stiffness(&problem, &stat, &job.settings.effects)?;
     let m = &problem.sys.m;
     let opts = ModalOptions::default();
     let (limit, min, max) = match count {

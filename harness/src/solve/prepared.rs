@@ -1,6 +1,8 @@
-//! An FE job made ready for its steps, as the run, the loss study and the time domain
-//! start (the backbone, reduction, export and benches preload with their own flags and
-//! messages): the problem built
+//! An FE job made ready for its steps, as the run, the loss study, the time domain, the
+//! stuck modes (`modes`, `check`, the benches' probes) and the validation's coarse beams
+//! start (the backbone, the reduction and the export take a built problem and preload it
+//! with their own flags; the column bench always with the nonlinear normal contact): the
+//! problem built
 //! (`Job::build`) and its static preload step solved (`static_step::solve`, the normal
 //! contact nonlinear where the job's `[effects] normal_contact_nonlinearity` says so),
 //! with what each cost.

@@ -6,7 +6,7 @@ use super::{Report, Row};
 use crate::model::Job;
 use crate::run::{run, Extras};
 use crate::settings::{BandSpec, Spacing, SweepSpec};
-use crate::solve::static_step;
+use crate::solve::prepared::Prepared;
 use crate::solve::sweep::harmonic_fe_point3d::PointModel;
 use crate::time::scene_run::sweep as time_sweep;
 use crate::time::{Integrator, Start, TimeSettings};
@@ -98,9 +98,9 @@ pub fn coarse(three_beams: &Job, rep: &mut Report, log: &dyn Fn(&str)) -> Result
     let t = std::time::Instant::now();
     let fd = run(&scene, Extras::default(), &|_, _, _| {}).map_err(|e| e.to_string())?;
     let fd_seconds = t.elapsed().as_secs_f64();
-    let p = scene.build().map_err(|e| e.to_string())?;
-    let stat = static_step::solve(&p, scene.settings.effects.normal_contact_nonlinearity)
-        .map_err(|e| e.to_string())?;
+    let Prepared {
+        problem: p, stat, ..
+    } = Prepared::new(&scene, &|_| {}).map_err(|e| e.to_string())?;
     let settings = settings();
     for (i, &f) in fd.main.freqs.iter().enumerate() {
         log(&format!("{case}: time domain at {f:.1} Hz"));
