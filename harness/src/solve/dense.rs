@@ -9,7 +9,6 @@
 
 use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
 use faer::linalg::lu::partial_pivoting::{factor, solve};
-use faer::perm::PermRef;
 use faer::{MatMut, MatRef, Par};
 use nalgebra::Complex;
 
@@ -46,16 +45,14 @@ impl DenseLu {
         if n == 0 {
             return true;
         }
-        let stack = MemStack::new(&mut self.buffer);
         let (perm, perm_inv) = (&mut self.perm[..n], &mut self.perm_inv[..n]);
         let lu = MatMut::from_column_major_slice_mut(a, n, n);
-        factor::lu_in_place(lu, perm, perm_inv, Par::Seq, stack, Default::default());
+        let stack = MemStack::new(&mut self.buffer);
+        let (_, p) = factor::lu_in_place(lu, perm, perm_inv, Par::Seq, stack, Default::default());
         let lu = MatRef::from_column_major_slice(a, n, n);
         if (0..n).any(|i| lu[(i, i)] == C64::new(0.0, 0.0)) {
             return false;
         }
-        // SAFETY: lu_in_place wrote a permutation and its inverse into these slices.
-        let p = unsafe { PermRef::new_unchecked(&self.perm[..n], &self.perm_inv[..n], n) };
         let rhs = MatMut::from_column_major_slice_mut(b, n, 1);
         solve::solve_in_place(lu, lu, p, rhs, Par::Seq, MemStack::new(&mut self.buffer));
         b.iter().all(|v| v.re.is_finite() && v.im.is_finite())
