@@ -107,7 +107,8 @@
 
 /**
  * Unloading rule code: the thesis's rule (elastic unloading with k_T0 until the force
- * changes sign, §2.3.3).
+ * changes sign, §2.3.3; an excursion past zero force shallower than a quarter of the
+ * branch before it keeps a fading memory of that branch, docs/model.md §4).
  */
 #define JOINTLIN_RULE_THESIS 0
 

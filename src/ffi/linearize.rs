@@ -12,7 +12,8 @@ pub const JOINTLIN_LAW_MINDLIN: i32 = 0;
 /// Tangential law code: Jenkins element (linear spring k_T0 + Coulomb slider).
 pub const JOINTLIN_LAW_JENKINS: i32 = 1;
 /// Unloading rule code: the thesis's rule (elastic unloading with k_T0 until the force
-/// changes sign, §2.3.3).
+/// changes sign, §2.3.3; an excursion past zero force shallower than a quarter of the
+/// branch before it keeps a fading memory of that branch, docs/model.md §4).
 pub const JOINTLIN_RULE_THESIS: i32 = 0;
 /// Unloading rule code: Masing's rule (Mindlin–Deresiewicz).
 pub const JOINTLIN_RULE_MASING: i32 = 1;

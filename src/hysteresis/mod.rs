@@ -3,7 +3,10 @@
 //!
 //! Two unloading rules:
 //! * [`Rule::Thesis`]: after a reversal, elastic unloading with k_T0 until the force changes
-//!   sign, then virgin (Mindlin) loading from that zero-force point (thesis phases 1–3).
+//!   sign, then virgin (Mindlin) loading from that zero-force point (thesis phases 1–3);
+//!   an excursion past zero force that spans less than a quarter of the branch before it
+//!   keeps a fading memory of that branch, so closed loops move continuously with the
+//!   motion (`thesis` module docs; model.md §4 "Shallow excursions").
 //! * [`Rule::Masing`]: Mindlin–Deresiewicz / Masing branches F = F_r ± 2g(|δ − δ_r|/2)
 //!   with the usual memory rules (a branch that reaches an earlier reversal point rejoins
 //!   the branch it interrupted).
@@ -199,3 +202,6 @@ pub(crate) fn sign(x: f64) -> f64 {
 
 #[cfg(test)]
 mod tests;
+
+#[cfg(test)]
+mod fading_tests;

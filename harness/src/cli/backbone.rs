@@ -15,10 +15,9 @@ use jointlin_harness::backbone::{
 };
 use jointlin_harness::capi;
 use jointlin_harness::input::scene::{Reading, Scene};
-use jointlin_harness::mhb::{default_samples, Law, System};
+use jointlin_harness::mhb::{default_samples, System};
 use jointlin_harness::model::lumped::{self, Lumped};
 use jointlin_harness::model::{self, Kind};
-use jointlin_harness::names::{LawName, RuleName};
 use jointlin_harness::settings::units::frequency_unit;
 use jointlin_harness::util::progress::progress_bar;
 use jointlin_harness::util::{atomic, provenance};
@@ -193,11 +192,6 @@ pub fn main(a: Args) -> ExitCode {
         started.elapsed().as_secs_f64()
     );
     print_path(&path, &scene);
-    // Along the path only: a start that fails is another matter.
-    let troubled = !points.is_empty() && (stopped.is_some() || !path.gaps.is_empty());
-    if a.harmonics.is_some_and(|h| h > 1) && troubled && has_thesis_mindlin(&l.system) {
-        eprintln!("{THESIS_AT_H}");
-    }
     let rows: Vec<Row> = points
         .into_iter()
         .map(|p| {
@@ -322,22 +316,6 @@ fn print_path(path: &Path, scene: &Scene) {
             turning.len(),
         );
     }
-}
-
-/// Why a multi-harmonic backbone of thesis-rule joints may stop or jump
-/// (docs/backbone-fe.md, "The thesis rule at H > 1"), and what has no such jumps.
-const THESIS_AT_H: &str = "note: these joints follow the thesis rule, whose closed loop \
-     jumps where the motion has minor reversals (a turning point just past zero force starts \
-     a fresh virgin branch), so the balance at H > 1 can have no solution over short ranges \
-     of the modal amplitude (docs/backbone-fe.md, \"The thesis rule at H > 1\"); Masing's \
-     rule has no such jumps: --set 'interfaces.*.rule=masing' (FE scenes) or \
-     rule = \"masing\" on the [[joints]]";
-
-/// Whether a one-direction element is a Mindlin point under the thesis rule.
-fn has_thesis_mindlin(sys: &System) -> bool {
-    sys.elements.iter().any(|e| {
-        matches!(e.law, Law::Point(t) if t.law == LawName::Mindlin && t.rule == RuleName::Thesis)
-    })
 }
 
 /// The EPMC trace with its progress on stderr (a bar on a terminal, timed lines in a

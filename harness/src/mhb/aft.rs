@@ -152,9 +152,9 @@ pub fn march(law: &Law, delta: &[f64]) -> Result<Period, AftError> {
 
 /// [`march`] from a point's `start` state, e.g. the closed loop of a nearby δ: a
 /// perturbed loop then closes in two or three periods where a virgin start takes up to
-/// eleven. Jenkins and Masing loops are the same from any start; a thesis-rule loop
-/// under a δ with minor reversals may close on another loop than from a virgin start
-/// (6e-3 μF_N apart in `mhb::tests::thesis_loops`; docs/backbone-fe.md).
+/// eleven. Jenkins and Masing loops are the same from any start, and so are the
+/// thesis rule's with its fading memory of shallow excursions (`mhb::tests::thesis_loops`;
+/// docs/model.md §4).
 pub fn march_from(
     law: &Law,
     delta: &[f64],

@@ -1,7 +1,10 @@
 //! The closed loop a point settles on under a periodic relative displacement with minor
 //! reversals (a multi-harmonic δ whose velocity changes sign more than twice per
-//! period): under Masing's rule it is unique and moves continuously with δ̂; under the
-//! thesis rule it need not be either (docs/backbone-fe.md "The thesis rule at H > 1").
+//! period): unique and moving continuously with δ̂ under either rule. The thesis rule
+//! owes this to its fading memory of shallow excursions (docs/model.md §4): at these
+//! waveforms, the rule without it jumped by 2.6e-4 μF_N over the first test's step and
+//! closed on two loops 6.3e-3 μF_N apart in the second (docs/backbone-fe.md "The
+//! thesis rule at H > 1").
 
 use super::*;
 use crate::capi::POINT_STATE_LEN;
@@ -36,12 +39,11 @@ fn max_difference(a: &[f64], b: &[f64]) -> f64 {
 }
 
 /// Two waveforms 7.5e-6 δ* apart in every coefficient (a step of 7.5e-6 moves the
-/// forces by ~1e-5 μF_N elsewhere on this line): the thesis rule's closed loops from a
-/// virgin start differ by 2.6e-4 μF_N (the loop of the first is a fixed point of plain
-/// marching too, so this is the law, not the loop-closure extrapolation); Masing's by
-/// the step's size.
+/// forces by ~1e-5 μF_N elsewhere on this line), where a minor reversal of depth
+/// 0.017 δ* crosses the zero-force point: the closed loops from a virgin start differ
+/// by the step's size under either rule (measured 1.10e-5 μF_N for both).
 #[test]
-fn the_thesis_rules_closed_loop_jumps_where_masings_moves_continuously() {
+fn the_closed_loop_moves_continuously_where_a_minor_reversal_crosses_zero_force() {
     let (h, n) = (7, default_samples(7));
     let mut tr = Transforms::new(n, h);
     let (a, b) = (
@@ -58,16 +60,15 @@ fn the_thesis_rules_closed_loop_jumps_where_masings_moves_continuously() {
     println!(
         "force coefficients' change over the step: thesis {thesis:.3e}, Masing {masing:.3e} (μF_N)"
     );
-    assert!(thesis > 1e-4, "thesis rule {thesis:.3e}");
+    assert!(thesis < 3e-5, "thesis rule {thesis:.3e}");
     assert!(masing < 3e-5, "Masing {masing:.3e}");
 }
 
-/// One waveform, two closed loops under the thesis rule: the loop marched from a virgin
-/// state and the one marched from the closed state of a waveform 1.5e-5 δ* away
-/// differ by 6e-3 μF_N, and each repeats itself period after period; under Masing's
-/// rule both starts close on one loop (1e-8 apart, the closure tolerance's order).
+/// One waveform, one closed loop: the loop marched from a virgin state and the one
+/// marched from the closed state of a waveform 1.5e-5 δ* away agree under either rule
+/// (measured 1.8e-12 μF_N thesis, 1.1e-8 Masing: the closure tolerance's order).
 #[test]
-fn the_thesis_rule_can_close_on_two_loops_under_one_waveform() {
+fn one_waveform_closes_on_one_loop_from_any_start() {
     let (h, n) = (7, default_samples(7));
     let mut tr = Transforms::new(n, h);
     let samples = |c: &[f64], tr: &mut Transforms| {
@@ -86,6 +87,6 @@ fn the_thesis_rule_can_close_on_two_loops_under_one_waveform() {
     };
     let (thesis, masing) = (split(RuleName::Thesis), split(RuleName::Masing));
     println!("closed loops from a virgin start and from the neighbour's loop: thesis {thesis:.3e}, Masing {masing:.3e} (μF_N)");
-    assert!(thesis > 1e-3, "thesis rule {thesis:.3e}");
+    assert!(thesis < 1e-6, "thesis rule {thesis:.3e}");
     assert!(masing < 1e-6, "Masing {masing:.3e}");
 }
