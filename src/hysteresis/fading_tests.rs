@@ -25,13 +25,6 @@ fn forces(p: &Point, path: &[f64], substeps: usize) -> Vec<f64> {
     out
 }
 
-fn max_difference(a: &[f64], b: &[f64]) -> f64 {
-    a.iter()
-        .zip(b)
-        .map(|(x, y)| (x - y).abs())
-        .fold(0.0, f64::max)
-}
-
 /// Loaded to 0.8 δ* and unloaded: a turn ε before the elastic line's zero-force point runs
 /// back up the line; one ε past it (the force has changed sign) keeps the memory of the
 /// branch it left, so the rest of the path differs by O(k_T0 ε), not by the k_T0 d²/4δ*
@@ -45,7 +38,8 @@ fn a_turn_just_past_zero_force_continues_as_one_just_before_it() {
     let zero = top - b.force(top) / b.k_t0();
     for eps in [1e-6 * d, 1e-9 * d] {
         let run = |turn: f64| forces(&p, &[0.0, top, turn, 0.9 * d, -0.5 * d, 0.3 * d], 40);
-        let jump = max_difference(&run(zero + eps), &run(zero - eps));
+        let (before, after) = (run(zero + eps), run(zero - eps));
+        let jump = (0..before.len()).fold(0.0, |m: f64, k| m.max((before[k] - after[k]).abs()));
         assert!(
             jump <= 10.0 * b.k_t0() * eps,
             "ε = {eps:e}: {jump:e} against k_T0 ε = {:e}",

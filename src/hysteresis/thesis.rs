@@ -4,7 +4,8 @@
 //! Phase 3 runs down the elastic line from the reversal point until it meets the virgin
 //! branch of the new direction from the origin o* ([`ThesisState::target_origin`]). For a
 //! branch that spans at least [`FADE_DEPTH`] of the branch before it (every loop of a
-//! harmonic or decaying motion), o* is the elastic line's zero-force point: phase 3 meets
+//! harmonic motion, and of a decaying one that keeps a quarter of its span per half
+//! cycle), o* is the elastic line's zero-force point: phase 3 meets
 //! the branch at zero force, the thesis rule exactly. A shallower excursion (a minor
 //! reversal just past zero force) keeps part of the memory of the branch before it: o*
 //! lies between the zero-force point and that branch's origin, so the way back runs up
